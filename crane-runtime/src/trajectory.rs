@@ -1,0 +1,325 @@
+//! Prescribed load paths `gamma(t)` for the servo constraints `x = gamma(t)`
+//! (paper eq. 1c).
+//!
+//! Every trajectory gives exact time derivatives of any order: the scheme of
+//! eqs. (22a-d) needs `gamma`, `gamma'` and `gamma''`, the analytical references
+//! need derivatives up to order 4 (Appendix A), and the 3D crane with pulley
+//! mass up to order 6 (ERRATA).
+
+use nalgebra::SVector;
+
+/// A load path with exact time derivatives.
+pub trait Trajectory<const A: usize> {
+    /// The `k`-th time derivative of `gamma` at `t` (`k = 0` is the position).
+    fn derivative(&self, t: f64, k: usize) -> SVector<f64, A>;
+
+    /// `gamma, gamma', ..., gamma^(K-1)` at `t`.
+    fn derivatives<const K: usize>(&self, t: f64) -> [SVector<f64, A>; K]
+    where
+        Self: Sized,
+    {
+        std::array::from_fn(|k| self.derivative(t, k))
+    }
+}
+
+impl<const A: usize, T: Trajectory<A> + ?Sized> Trajectory<A> for &T {
+    fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
+        (**self).derivative(t, k)
+    }
+}
+
+/// `k`-th derivative of the polynomial `sum_i c[i] s^i` at `s`.
+fn poly_derivative(coefficients: &[f64], s: f64, k: usize) -> f64 {
+    let mut value = 0.0;
+    for i in (k..coefficients.len()).rev() {
+        // d^k/ds^k s^i = i!/(i-k)! s^(i-k)
+        let falling: f64 = ((i - k + 1)..=i).map(|j| j as f64).product();
+        value = value * s + coefficients[i] * falling;
+    }
+    value
+}
+
+/// Coefficients of the 5-6-7-8-9 polynomial of eq. (44):
+/// `c(tau) = 70 tau^9 - 315 tau^8 + 540 tau^7 - 420 tau^6 + 126 tau^5`.
+const POLY9: [f64; 10] = [0.0, 0.0, 0.0, 0.0, 0.0, 126.0, -420.0, 540.0, -315.0, 70.0];
+
+/// The rest-to-rest path of eqs. (41)-(45):
+/// `gamma(t) = gamma0 + (gammaf - gamma0) c(tau)`, `tau = (t - t0)/(tf - t0)`.
+///
+/// Derivatives up to order 4 vanish at both ends; outside `[t0, tf]` the
+/// load rests at `gamma0` or `gammaf`.
+///
+/// ```
+/// use crane_runtime::trajectory::{Poly9, Trajectory};
+/// use crane_runtime::nalgebra::vector;
+/// let path = Poly9::new(0.0, 4.0, vector![0.0, -10.0], vector![-3.0, -14.0]).unwrap();
+/// assert_eq!(path.derivative(2.0, 0), vector![-1.5, -12.0]); // c(1/2) = 1/2
+/// assert_eq!(path.derivative(0.0, 3), vector![0.0, 0.0]);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Poly9<const A: usize> {
+    t0: f64,
+    tf: f64,
+    start: SVector<f64, A>,
+    end: SVector<f64, A>,
+}
+
+/// A trajectory was given inconsistent times or non-finite points.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TrajectoryError {
+    /// `tf <= t0` or a time is not finite.
+    #[error("invalid time span: need finite t0 < tf, got t0 = {t0}, tf = {tf}")]
+    TimeSpan {
+        /// Start time.
+        t0: f64,
+        /// End time.
+        tf: f64,
+    },
+    /// A ramp longer than half the motion.
+    #[error("invalid ramp: need 0 < tau0 <= tau/2, got tau0 = {tau0}, tau = {tau}")]
+    Ramp {
+        /// Ramp duration.
+        tau0: f64,
+        /// Total duration.
+        tau: f64,
+    },
+    /// A start or end point with a NaN or infinite entry.
+    #[error("the {which} point has a non-finite entry")]
+    NonFinitePoint {
+        /// `"start"` or `"end"`.
+        which: &'static str,
+    },
+}
+
+fn check_points<const A: usize>(
+    start: &SVector<f64, A>,
+    end: &SVector<f64, A>,
+) -> Result<(), TrajectoryError> {
+    if !start.iter().all(|v| v.is_finite()) {
+        return Err(TrajectoryError::NonFinitePoint { which: "start" });
+    }
+    if !end.iter().all(|v| v.is_finite()) {
+        return Err(TrajectoryError::NonFinitePoint { which: "end" });
+    }
+    Ok(())
+}
+
+impl<const A: usize> Poly9<A> {
+    /// Rest-to-rest motion from `start` at `t0` to `end` at `tf`.
+    pub fn new(
+        t0: f64,
+        tf: f64,
+        start: SVector<f64, A>,
+        end: SVector<f64, A>,
+    ) -> Result<Self, TrajectoryError> {
+        if !(t0.is_finite() && tf.is_finite() && tf > t0) {
+            return Err(TrajectoryError::TimeSpan { t0, tf });
+        }
+        check_points(&start, &end)?;
+        Ok(Self { t0, tf, start, end })
+    }
+
+    /// Start time `t0`.
+    pub fn t0(&self) -> f64 {
+        self.t0
+    }
+
+    /// End time `tf`.
+    pub fn tf(&self) -> f64 {
+        self.tf
+    }
+}
+
+impl<const A: usize> Trajectory<A> for Poly9<A> {
+    fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
+        let duration = self.tf - self.t0;
+        let tau = ((t - self.t0) / duration).clamp(0.0, 1.0);
+        let c = if k == 0 {
+            poly_derivative(&POLY9, tau, 0)
+        } else if t <= self.t0 || t >= self.tf {
+            0.0 // at rest outside the motion (derivatives 1..4 vanish at the ends)
+        } else {
+            poly_derivative(&POLY9, tau, k) / duration.powi(k as i32)
+        };
+        if k == 0 {
+            self.start + (self.end - self.start) * c
+        } else {
+            (self.end - self.start) * c
+        }
+    }
+}
+
+/// Coefficients of `h(s)/tau0 = 7 s^5 - 14 s^6 + 10 s^7 - 5/2 s^8` (ERRATA, eq. 86).
+const RAMP: [f64; 9] = [0.0, 0.0, 0.0, 0.0, 0.0, 7.0, -14.0, 10.0, -2.5];
+
+/// The three-phase path of eqs. (82), (85), (86) as corrected in ERRATA:
+/// accelerate during `tau0`, move at constant speed, decelerate during `tau0`.
+///
+/// `gamma(t) = gamma0 + (gammaf - gamma0) c(t - t0)` with
+/// `c_I = h(t)/(tau - tau0)`, `c_II = (t - tau0/2)/(tau - tau0)`,
+/// `c_III = 1 - h(tau - t)/(tau - tau0)`,
+/// `h(t) = tau0 (7 s^5 - 14 s^6 + 10 s^7 - 5/2 s^8)`, `s = t/tau0`.
+/// Four times continuously differentiable (the 5th derivative jumps at the
+/// phase switches).
+///
+/// ```
+/// use crane_runtime::trajectory::{ThreePhase, Trajectory};
+/// use crane_runtime::nalgebra::vector;
+/// let path = ThreePhase::new(0.0, 20.0, 5.0, vector![0.0], vector![1.0]).unwrap();
+/// assert!((path.derivative(10.0, 0)[0] - 0.5).abs() < 1e-15);
+/// assert!((path.derivative(10.0, 1)[0] - 1.0 / 15.0).abs() < 1e-15);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct ThreePhase<const A: usize> {
+    t0: f64,
+    tau: f64,
+    tau0: f64,
+    start: SVector<f64, A>,
+    end: SVector<f64, A>,
+}
+
+impl<const A: usize> ThreePhase<A> {
+    /// Motion from `start` at `t0` to `end` at `t0 + tau` with ramps of length `tau0`.
+    pub fn new(
+        t0: f64,
+        tau: f64,
+        tau0: f64,
+        start: SVector<f64, A>,
+        end: SVector<f64, A>,
+    ) -> Result<Self, TrajectoryError> {
+        if !(t0.is_finite() && tau.is_finite() && tau > 0.0) {
+            return Err(TrajectoryError::TimeSpan { t0, tf: t0 + tau });
+        }
+        if !(tau0 > 0.0 && tau0 <= 0.5 * tau) {
+            return Err(TrajectoryError::Ramp { tau0, tau });
+        }
+        check_points(&start, &end)?;
+        Ok(Self { t0, tau, tau0, start, end })
+    }
+
+    /// `k`-th derivative of `h` at `t` (time since the ramp started).
+    fn ramp(&self, t: f64, k: usize) -> f64 {
+        self.tau0 * poly_derivative(&RAMP, t / self.tau0, k) / self.tau0.powi(k as i32)
+    }
+
+    /// `k`-th derivative of the scalar profile `c` at `t` (time since `t0`).
+    fn profile(&self, t: f64, k: usize) -> f64 {
+        let (tau, tau0) = (self.tau, self.tau0);
+        let cruise = tau - tau0;
+        let t = t.clamp(0.0, tau);
+        if t <= 0.0 || t >= tau {
+            return if k == 0 { if t <= 0.0 { 0.0 } else { 1.0 } } else { 0.0 };
+        }
+        if t < tau0 {
+            self.ramp(t, k) / cruise
+        } else if t < tau - tau0 {
+            match k {
+                0 => (t - 0.5 * tau0) / cruise,
+                1 => 1.0 / cruise,
+                _ => 0.0,
+            }
+        } else {
+            // d^k/dt^k h(tau - t) = (-1)^k h^(k)(tau - t)
+            let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+            let value = -sign * self.ramp(tau - t, k) / cruise;
+            if k == 0 { 1.0 + value } else { value }
+        }
+    }
+}
+
+impl<const A: usize> Trajectory<A> for ThreePhase<A> {
+    fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
+        let c = self.profile(t - self.t0, k);
+        if k == 0 {
+            self.start + (self.end - self.start) * c
+        } else {
+            (self.end - self.start) * c
+        }
+    }
+}
+
+/// A user-supplied path: a closure `(t, k) -> gamma^(k)(t)`.
+///
+/// ```
+/// use crane_runtime::trajectory::{FromFn, Trajectory};
+/// use crane_runtime::nalgebra::{vector, SVector};
+/// // a load lowered at constant acceleration 0.1 m/s^2
+/// let path = FromFn(|t: f64, k: usize| -> SVector<f64, 1> {
+///     match k { 0 => vector![-10.0 - 0.05 * t * t], 1 => vector![-0.1 * t],
+///               2 => vector![-0.1], _ => vector![0.0] }
+/// });
+/// assert_eq!(path.derivative(1.0, 1), vector![-0.1]);
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct FromFn<F>(pub F);
+
+impl<const A: usize, F: Fn(f64, usize) -> SVector<f64, A>> Trajectory<A> for FromFn<F> {
+    fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
+        (self.0)(t, k)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::vector;
+
+    /// Central difference of derivative `k - 1`; error O(h^2) ~ 1e-8 relative
+    /// for h = 1e-4 on these polynomials, plus round-off eps/h ~ 1e-12.
+    fn fd<T: Trajectory<1>>(path: &T, t: f64, k: usize) -> f64 {
+        let h = 1e-4;
+        (path.derivative(t + h, k - 1)[0] - path.derivative(t - h, k - 1)[0]) / (2.0 * h)
+    }
+
+    #[test]
+    fn poly9_derivatives_match_finite_differences() {
+        let path = Poly9::new(0.5, 4.5, vector![1.0], vector![3.0]).unwrap();
+        for &t in &[0.7, 1.3, 2.5, 3.9] {
+            for k in 1..=6 {
+                let exact = path.derivative(t, k)[0];
+                let approx = fd(&path, t, k);
+                assert!((exact - approx).abs() <= 1e-6 * (1.0 + exact.abs()), "k={k} t={t}");
+            }
+        }
+    }
+
+    #[test]
+    fn poly9_is_rest_to_rest() {
+        let path = Poly9::new(0.0, 4.0, vector![0.0], vector![-3.0]).unwrap();
+        assert_eq!(path.derivative(0.0, 0)[0], 0.0);
+        assert_eq!(path.derivative(4.0, 0)[0], -3.0);
+        // c^(k)(0) = c^(k)(1) = 0 for k = 1..4 evaluated on the polynomial itself
+        for k in 1..=4 {
+            assert_eq!(poly_derivative(&POLY9, 0.0, k), 0.0);
+            assert!(poly_derivative(&POLY9, 1.0, k).abs() < 1e-9, "k={k}");
+        }
+        assert_eq!(path.derivative(5.0, 0)[0], -3.0);
+    }
+
+    #[test]
+    fn three_phase_is_four_times_continuously_differentiable() {
+        let path = ThreePhase::new(0.0, 20.0, 5.0, vector![0.0], vector![1.0]).unwrap();
+        for &switch in &[0.0, 5.0, 15.0, 20.0] {
+            for k in 0..=4 {
+                let left = path.derivative(switch - 1e-9, k)[0];
+                let right = path.derivative(switch + 1e-9, k)[0];
+                // jumps would be O(1); continuity leaves O(1e-9 * |c^(k+1)|)
+                assert!((left - right).abs() < 1e-7, "k={k} at t={switch}: {left} vs {right}");
+            }
+        }
+        for &t in &[1.0, 4.0, 7.0, 16.0, 19.5] {
+            for k in 1..=5 {
+                let exact = path.derivative(t, k)[0];
+                assert!((exact - fd(&path, t, k)).abs() <= 1e-6 * (1.0 + exact.abs()), "k={k} t={t}");
+            }
+        }
+        assert_eq!(path.derivative(20.0, 0)[0], 1.0);
+    }
+
+    #[test]
+    fn bad_inputs_are_errors() {
+        assert!(Poly9::new(1.0, 1.0, vector![0.0], vector![1.0]).is_err());
+        assert!(Poly9::new(0.0, 1.0, vector![f64::NAN], vector![1.0]).is_err());
+        assert!(ThreePhase::new(0.0, 10.0, 6.0, vector![0.0], vector![1.0]).is_err());
+    }
+}
