@@ -1,0 +1,168 @@
+//! Check every generated derivative of a model against central finite
+//! differences at random points (DESIGN.md §4).
+//!
+//! Central differences with step `h = 1e-6 (1 + |q_j|)` have truncation error
+//! `O(h^2 |f'''|)` ~ 1e-12 and round-off `O(eps |f| / h)` ~ 1e-10 relative to
+//! the function's size, so a correct derivative shows a normwise relative
+//! error around 1e-9 or below and a wrong one an error of order 1.
+//!
+//! ```
+//! # use crane_runtime::check::{check_derivatives, SampleBox};
+//! # fn demo<Mdl: crane_runtime::CraneModel<7, 3, 2>>(model: &Mdl, boxes: [(f64, f64); 7]) {
+//! let report = check_derivatives(model, &SampleBox::new(boxes), 100, 42);
+//! assert!(report.worst() < 1e-6, "{report}");
+//! # }
+//! ```
+
+use std::fmt;
+
+use nalgebra::{SMatrix, SVector};
+use rand::rngs::SmallRng;
+use rand::{Rng, SeedableRng};
+
+use crate::model::CraneModel;
+
+/// Where to sample: a box for the coordinates and symmetric ranges for the
+/// velocities, multipliers and inputs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SampleBox<const N: usize> {
+    /// `(low, high)` for each coordinate.
+    pub q: [(f64, f64); N],
+    /// Velocities are drawn from `[-velocity, velocity]`.
+    pub velocity: f64,
+    /// Multipliers are drawn from `[-multiplier, multiplier]`.
+    pub multiplier: f64,
+    /// Inputs are drawn from `[-input, input]`.
+    pub input: f64,
+}
+
+impl<const N: usize> SampleBox<N> {
+    /// Coordinates in the given box; velocities, multipliers and inputs in `[-1, 1]`.
+    pub fn new(q: [(f64, f64); N]) -> Self {
+        Self { q, velocity: 1.0, multiplier: 1.0, input: 1.0 }
+    }
+}
+
+/// Worst error found for one generated quantity.
+#[derive(Debug, Clone, PartialEq)]
+pub struct QuantityError {
+    /// The quantity, e.g. `"G = dg/dq"`.
+    pub quantity: &'static str,
+    /// Largest normwise relative error `max|A - FD| / max(max|A|, max|FD|)`
+    /// over all points (0 where both are zero).
+    pub worst_relative_error: f64,
+    /// The coordinates where it occurred.
+    pub at: Vec<f64>,
+}
+
+/// Result of [`check_derivatives`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct DerivativeReport {
+    /// Number of random points.
+    pub points: usize,
+    /// One entry per checked quantity.
+    pub quantities: Vec<QuantityError>,
+}
+
+impl DerivativeReport {
+    /// The largest error over all quantities.
+    pub fn worst(&self) -> f64 {
+        self.quantities.iter().map(|q| q.worst_relative_error).fold(0.0, f64::max)
+    }
+
+    /// The entry for one quantity.
+    pub fn get(&self, quantity: &str) -> Option<&QuantityError> {
+        self.quantities.iter().find(|q| q.quantity == quantity)
+    }
+}
+
+impl fmt::Display for DerivativeReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "derivatives against central differences at {} points:", self.points)?;
+        for q in &self.quantities {
+            writeln!(f, "  {:<28} worst relative error {:.2e}", q.quantity, q.worst_relative_error)?;
+        }
+        Ok(())
+    }
+}
+
+fn relative_error<const R: usize, const C: usize>(a: &SMatrix<f64, R, C>, b: &SMatrix<f64, R, C>) -> f64 {
+    let size = a.amax().max(b.amax());
+    if size == 0.0 { 0.0 } else { (a - b).amax() / size }
+}
+
+/// Central-difference Jacobian of `func` at `x`, column `j` with step `h_j = 1e-6 (1 + |x_j|)`.
+fn central_jacobian<const R: usize, const N: usize>(
+    x: &SVector<f64, N>,
+    func: impl Fn(&SVector<f64, N>) -> SVector<f64, R>,
+) -> SMatrix<f64, R, N> {
+    let mut jac = SMatrix::<f64, R, N>::zeros();
+    for j in 0..N {
+        let h = 1e-6 * (1.0 + x[j].abs());
+        let (mut plus, mut minus) = (*x, *x);
+        plus[j] += h;
+        minus[j] -= h;
+        jac.set_column(j, &((func(&plus) - func(&minus)) / (2.0 * h)));
+    }
+    jac
+}
+
+/// Compare the model's generated derivatives with central finite differences
+/// at `points` random points drawn from `sample` (seeded, reproducible):
+/// `G` against `g`, `d(G^T lambda)/dq` against `G^T lambda`, `df/dq` and
+/// `df/dq'` against `f`, `d(B^T u)/dq` against `B^T u`, and `M` against the
+/// kinetic energy's second differences are implied by the macro (M is
+/// constant and checked by the models' tests).
+pub fn check_derivatives<Mdl, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    sample: &SampleBox<N>,
+    points: usize,
+    seed: u64,
+) -> DerivativeReport
+where
+    Mdl: CraneModel<N, M, A>,
+{
+    let mut rng = SmallRng::seed_from_u64(seed);
+    let names = [
+        "G = dg/dq",
+        "d(G^T lambda)/dq",
+        "df/dq",
+        "df/dq'",
+        "d(B^T u)/dq",
+    ];
+    let mut worst: Vec<QuantityError> = names
+        .iter()
+        .map(|&quantity| QuantityError { quantity, worst_relative_error: 0.0, at: Vec::new() })
+        .collect();
+    for _ in 0..points {
+        let q = SVector::<f64, N>::from_fn(|i, _| rng.random_range(sample.q[i].0..=sample.q[i].1));
+        let v = SVector::<f64, N>::from_fn(|_, _| rng.random_range(-1.0..=1.0) * sample.velocity);
+        let lambda = SVector::<f64, M>::from_fn(|_, _| rng.random_range(-1.0..=1.0) * sample.multiplier);
+        let u = SVector::<f64, A>::from_fn(|_, _| rng.random_range(-1.0..=1.0) * sample.input);
+
+        let (df_dq, df_dv) = model.force_jacobians(&q, &v);
+        let errors = [
+            relative_error(
+                &model.constraint_jacobian(&q),
+                &central_jacobian(&q, |q| model.constraints(q)),
+            ),
+            relative_error(
+                &model.constraint_hessian(&q, &lambda),
+                &central_jacobian(&q, |q| model.constraint_jacobian(q).tr_mul(&lambda)),
+            ),
+            relative_error(&df_dq, &central_jacobian(&q, |q| model.forces(q, &v))),
+            relative_error(&df_dv, &central_jacobian(&v, |v| model.forces(&q, v))),
+            relative_error(
+                &model.input_jacobian(&q, &u),
+                &central_jacobian(&q, |q| model.input_matrix(q) * u),
+            ),
+        ];
+        for (entry, error) in worst.iter_mut().zip(errors) {
+            if error > entry.worst_relative_error || error.is_nan() {
+                entry.worst_relative_error = if error.is_nan() { f64::INFINITY } else { error };
+                entry.at = q.iter().copied().collect();
+            }
+        }
+    }
+    DerivativeReport { points, quantities: worst }
+}

@@ -1,0 +1,94 @@
+//! Typed errors of the runtime: every failure a user can cause or meet.
+
+/// Everything that can go wrong setting up or integrating a crane's inverse dynamics.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Error {
+    /// Newton's method did not meet its tolerance within the iteration limit.
+    #[error(
+        "Newton's method did not converge at t = {t} s after {iterations} iterations \
+         (residual {residual:.3e}); try a smaller dt or check that the path is reachable"
+    )]
+    NewtonNotConverged {
+        /// Time of the step that failed.
+        t: f64,
+        /// Iterations taken.
+        iterations: usize,
+        /// Infinity norm of the (dt^2-scaled) residual at the last iterate.
+        residual: f64,
+    },
+    /// The iteration matrix was singular and the minimum-norm fallback failed too.
+    #[error("singular iteration matrix at t = {t} s (LU pivot ratio {pivot_ratio:.1e})")]
+    SingularIterationMatrix {
+        /// Time of the step that failed.
+        t: f64,
+        /// Smallest-to-largest LU pivot ratio.
+        pivot_ratio: f64,
+    },
+    /// A quantity became NaN or infinite during a step.
+    #[error("non-finite {quantity} at t = {t} s")]
+    NonFinite {
+        /// What became non-finite.
+        quantity: &'static str,
+        /// Time of the step.
+        t: f64,
+    },
+    /// The time step is not a finite positive number.
+    #[error("invalid time step dt = {dt}: it must be finite and positive")]
+    InvalidTimeStep {
+        /// The rejected value.
+        dt: f64,
+    },
+    /// The end time is not after the start time.
+    #[error("invalid time span: tf = {tf} must be finite and greater than t0 = {t0}")]
+    InvalidTimeSpan {
+        /// Start time.
+        t0: f64,
+        /// End time.
+        tf: f64,
+    },
+    /// The time span is not a whole number of steps.
+    #[error("tf - t0 = {span} s is not a whole number of steps of dt = {dt} s")]
+    StepsDoNotFit {
+        /// `tf - t0`.
+        span: f64,
+        /// The time step.
+        dt: f64,
+    },
+    /// A model parameter is NaN or infinite.
+    #[error("parameter `{name}` = {value} is not finite")]
+    NonFiniteParameter {
+        /// Parameter name.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// A user-given start violates an equation that a consistent start must satisfy.
+    #[error("inconsistent start: {equation} is violated by {residual:.3e} (tolerance {tolerance:.1e})")]
+    InconsistentStart {
+        /// The violated equation, named as in the model, e.g. "constraint `hoist` (g = 0)".
+        equation: String,
+        /// Its residual.
+        residual: f64,
+        /// The tolerance it was checked against.
+        tolerance: f64,
+    },
+    /// The static balance at the start is rank deficient: a family of equilibria.
+    #[error(
+        "the static equilibrium is not unique: the balance is singular (singular value ratio \
+         {singular_value_ratio:.1e}) and {free} can move freely; give the start explicitly"
+    )]
+    NonUniqueEquilibrium {
+        /// Smallest-to-largest singular value of the equilibrated balance Jacobian.
+        singular_value_ratio: f64,
+        /// The coordinates along the free direction, e.g. "L1, L0, z0".
+        free: String,
+    },
+    /// The static-equilibrium Newton iteration did not converge.
+    #[error("no static equilibrium found from the guess: residual {residual:.3e} after {iterations} iterations")]
+    EquilibriumNotFound {
+        /// Iterations taken.
+        iterations: usize,
+        /// Infinity norm of the residual at the last iterate.
+        residual: f64,
+    },
+}

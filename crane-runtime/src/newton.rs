@@ -1,0 +1,135 @@
+//! Newton's method with an exact iteration matrix for the square systems of
+//! the backward Euler schemes (eqs. 22a-d).
+
+use std::ops::Range;
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::linsolve::{DenseSolver, SolveKind};
+
+/// A square nonlinear system `r(z) = 0`.
+pub trait NonlinearSystem {
+    /// Number of unknowns (and equations).
+    fn dim(&self) -> usize;
+
+    /// Write the residual `r(z)` and the iteration matrix `J = dr/dz`.
+    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>);
+
+    /// Blocks of unknowns that each get their own relative stopping test
+    /// (e.g. coordinates, scaled inputs, scaled multipliers).
+    fn blocks(&self) -> &[Range<usize>];
+}
+
+/// Tolerances of [`Newton`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NewtonOptions {
+    /// Relative tolerance on each block's update: `|dz_B| <= rtol |z_B| + atol`
+    /// (infinity norms).
+    pub rtol: f64,
+    /// Absolute floor of the update test, in the units of the scaled unknowns.
+    pub atol: f64,
+    /// Iteration limit per solve.
+    pub max_iterations: usize,
+}
+
+impl Default for NewtonOptions {
+    /// `rtol = 1e-10`, `atol = 1e-14`, at most 30 iterations.
+    fn default() -> Self {
+        Self { rtol: 1e-10, atol: 1e-14, max_iterations: 30 }
+    }
+}
+
+/// How a Newton solve ended, when it converged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Converged {
+    /// Iterations taken (linear solves).
+    pub iterations: usize,
+    /// Of those, minimum-norm steps on a singular iteration matrix.
+    pub min_norm_steps: usize,
+}
+
+/// Why a Newton solve failed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NewtonFailure {
+    /// Iteration limit reached.
+    NotConverged {
+        /// Iterations taken.
+        iterations: usize,
+        /// Residual infinity norm at the last evaluation.
+        residual: f64,
+    },
+    /// Singular iteration matrix that even the minimum-norm step could not handle.
+    Singular {
+        /// Smallest-to-largest LU pivot ratio.
+        pivot_ratio: f64,
+    },
+    /// The residual or the update became NaN or infinite.
+    NonFinite,
+}
+
+/// Newton's method with preallocated workspace: `solve` does not allocate.
+#[derive(Debug, Clone)]
+pub struct Newton {
+    options: NewtonOptions,
+    solver: DenseSolver,
+    residual: DVector<f64>,
+    jac: DMatrix<f64>,
+}
+
+impl Newton {
+    /// Workspace for systems of dimension `n`.
+    pub fn new(n: usize, options: NewtonOptions) -> Self {
+        Self {
+            options,
+            solver: DenseSolver::new(n),
+            residual: DVector::zeros(n),
+            jac: DMatrix::zeros(n, n),
+        }
+    }
+
+    /// The tolerances in use.
+    pub fn options(&self) -> &NewtonOptions {
+        &self.options
+    }
+
+    /// Solve `r(z) = 0` starting from `z`, which holds the solution on success.
+    pub fn solve<S: NonlinearSystem + ?Sized>(
+        &mut self,
+        system: &mut S,
+        z: &mut DVector<f64>,
+    ) -> Result<Converged, NewtonFailure> {
+        let mut min_norm_steps = 0;
+        for iteration in 1..=self.options.max_iterations {
+            system.evaluate(z, &mut self.residual, &mut self.jac);
+            if !self.residual.iter().all(|v| v.is_finite()) {
+                return Err(NewtonFailure::NonFinite);
+            }
+            // dz = J^{-1} r, computed in place in the residual buffer; z -= dz
+            let kind = self
+                .solver
+                .solve(&self.jac, &mut self.residual)
+                .map_err(|singular| NewtonFailure::Singular { pivot_ratio: singular.pivot_ratio })?;
+            if kind == SolveKind::MinNorm {
+                min_norm_steps += 1;
+            }
+            let dz = &self.residual;
+            if !dz.iter().all(|v| v.is_finite()) {
+                return Err(NewtonFailure::NonFinite);
+            }
+            *z -= dz;
+            let converged = system.blocks().iter().all(|block| {
+                let step = dz.rows_range(block.clone()).amax();
+                let size = z.rows_range(block.clone()).amax();
+                step <= self.options.rtol * size + self.options.atol
+            });
+            if converged {
+                return Ok(Converged { iterations: iteration, min_norm_steps });
+            }
+        }
+        system.evaluate(z, &mut self.residual, &mut self.jac);
+        Err(NewtonFailure::NotConverged {
+            iterations: self.options.max_iterations,
+            residual: self.residual.amax(),
+        })
+    }
+}

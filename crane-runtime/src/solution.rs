@@ -1,0 +1,65 @@
+//! Results of an inverse-dynamics run: per step `t, q, v, u, lambda`, Newton
+//! iterations and rope tensions.
+
+use nalgebra::SVector;
+
+use crate::model::ModelInfo;
+
+/// The crane's state at one time: what the scheme of eqs. (22a-d) computes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct State<const N: usize, const M: usize, const A: usize> {
+    /// Time.
+    pub t: f64,
+    /// Redundant coordinates `q = [p; x]`, with `x = gamma(t)`.
+    pub q: SVector<f64, N>,
+    /// Velocities `q' = [p'; gamma'(t)]`.
+    pub v: SVector<f64, N>,
+    /// Inputs `u` (winch torques).
+    pub u: SVector<f64, A>,
+    /// Lagrange multipliers `lambda`, in constraint order.
+    pub lambda: SVector<f64, M>,
+}
+
+/// A complete run.
+#[derive(Debug, Clone)]
+pub struct Solution<const N: usize, const M: usize, const A: usize> {
+    /// Names of the model's coordinates, inputs, constraints and ropes.
+    pub info: ModelInfo,
+    /// Time step.
+    pub dt: f64,
+    /// States at `t0, t0 + dt, ..., tf`; the first is the consistent start.
+    pub states: Vec<State<N, M, A>>,
+    /// Newton iterations of each step (0 for the start).
+    pub newton_iterations: Vec<usize>,
+    /// Rope tensions `N = lambda * L`, `info.ropes.len()` per state, row-major.
+    pub tensions: Vec<f64>,
+    /// Newton steps that fell back to the minimum-norm solve (singular
+    /// iteration matrix, as at the paper's degenerate starts).
+    pub min_norm_steps: usize,
+}
+
+impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
+    /// Number of time steps taken (states minus the start).
+    pub fn steps(&self) -> usize {
+        self.states.len().saturating_sub(1)
+    }
+
+    /// Tensions of all ropes at state `i`, in the order of `info.ropes`.
+    pub fn tensions_at(&self, i: usize) -> &[f64] {
+        let r = self.info.ropes.len();
+        &self.tensions[i * r..(i + 1) * r]
+    }
+
+    /// Mean Newton iterations per step.
+    pub fn mean_newton_iterations(&self) -> f64 {
+        let steps = self.steps().max(1);
+        self.newton_iterations.iter().sum::<usize>() as f64 / steps as f64
+    }
+
+    /// The state whose time is nearest to `t`.
+    pub fn state_near(&self, t: f64) -> Option<&State<N, M, A>> {
+        self.states
+            .iter()
+            .min_by(|a, b| (a.t - t).abs().total_cmp(&(b.t - t).abs()))
+    }
+}
