@@ -103,7 +103,7 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
         N + M
     }
 
-    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) {
+    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
         let (p, dt) = (Self::P, self.dt);
         let dt2 = dt * dt;
         let [q, v, a] = self.kinematics(z);
@@ -120,9 +120,24 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
         let g = model.constraints(&q);
 
         // residual: dynamic rows (22b, 22c) scaled by dt^2, then (22d)
-        let dynamic = (self.mass * a - f) * dt2 - bt * u_scaled + jac_g.tr_mul(&lambda_scaled);
+        let inertia = self.mass * a * dt2;
+        let applied = f * dt2;
+        let inputs = bt * u_scaled;
+        let constraint_forces = jac_g.tr_mul(&lambda_scaled);
+        let dynamic = inertia - applied - inputs + constraint_forces;
         r.rows_mut(0, N).copy_from(&dynamic);
         r.rows_mut(N, M).copy_from(&g);
+        // normalise: dynamic rows by their largest term, constraints by |q|^2
+        // (g carries 1/2 of squared lengths)
+        let mut normalised = 0.0f64;
+        for i in 0..N {
+            let scale = inertia[i].abs().max(applied[i].abs()).max(inputs[i].abs()).max(constraint_forces[i].abs());
+            if scale > 0.0 {
+                normalised = normalised.max(dynamic[i].abs() / scale);
+            }
+        }
+        let q_scale = q.amax().max(1.0);
+        normalised = normalised.max(g.amax() / (q_scale * q_scale));
 
         // iteration matrix, column by column of z
         jac.fill(0.0);
@@ -147,6 +162,7 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
                 jac[(i, N + l)] = jac_g[(l, i)];
             }
         }
+        normalised
     }
 
     fn blocks(&self) -> &[Range<usize>] {
