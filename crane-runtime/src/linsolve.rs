@@ -65,7 +65,7 @@ impl DenseSolver {
         }
         // Minimum-norm least squares via (J^T J + eps^2 I) x = J^T b.
         self.normal.gemm_tr(1.0, jac, jac, 0.0);
-        let largest = self.normal.diagonal().max();
+        let largest = (0..self.normal.nrows()).map(|i| self.normal[(i, i)]).fold(0.0, f64::max);
         if !(largest.is_finite() && largest > 0.0) {
             return Err(Singular { pivot_ratio });
         }

@@ -127,18 +127,6 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
         let dynamic = inertia - applied - inputs + constraint_forces;
         r.rows_mut(0, N).copy_from(&dynamic);
         r.rows_mut(N, M).copy_from(&g);
-        // normalise: dynamic rows by their largest term, constraints by |q|^2
-        // (g carries 1/2 of squared lengths)
-        let mut normalised = 0.0f64;
-        for i in 0..N {
-            let scale = inertia[i].abs().max(applied[i].abs()).max(inputs[i].abs()).max(constraint_forces[i].abs());
-            if scale > 0.0 {
-                normalised = normalised.max(dynamic[i].abs() / scale);
-            }
-        }
-        let q_scale = q.amax().max(1.0);
-        normalised = normalised.max(g.amax() / (q_scale * q_scale));
-
         // iteration matrix, column by column of z
         jac.fill(0.0);
         for j in 0..p {
@@ -160,6 +148,23 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
         for l in 0..M {
             for i in 0..N {
                 jac[(i, N + l)] = jac_g[(l, i)];
+            }
+        }
+        // Normalise each row by the size of what makes it up: its largest
+        // term, or |J| |z| (the residual a relative perturbation eps of the
+        // unknowns causes), whichever is larger. Round-off then shows as
+        // ~1e-16 even in rows whose terms nearly vanish (the load row of x
+        // when the load hangs straight below the pulley).
+        let mut normalised = 0.0f64;
+        for i in 0..N + M {
+            let mut scale = (0..N + M).map(|j| (jac[(i, j)] * z[j]).abs()).sum::<f64>();
+            if i < N {
+                scale = scale.max(inertia[i].abs()).max(applied[i].abs());
+            }
+            if scale > 0.0 {
+                normalised = normalised.max(r[i].abs() / scale);
+            } else if r[i] != 0.0 {
+                normalised = f64::INFINITY;
             }
         }
         normalised

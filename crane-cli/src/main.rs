@@ -1,0 +1,187 @@
+//! `crane`: run a crane's inverse dynamics and write results, summary and plots.
+//!
+//! ```text
+//! crane list
+//! crane run navy-planar [--dt 0.01] [--tf 4] [--out out/navy-planar]
+//! crane bench navy-planar [--dt 0.01] [--repeat 20] [--json]
+//! ```
+
+mod output;
+mod plot;
+mod report;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Parser, Subcommand};
+use crane_models::{CATALOG, Case, navy_planar};
+use crane_runtime::{Options, simulate};
+
+/// Inverse dynamics of underactuated cranes: the torques that move the load
+/// exactly along a prescribed path (backward Euler on the minimally extended
+/// index-3 DAEs).
+#[derive(Parser, Debug)]
+#[command(name = "crane", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// List the built-in models with their sizes n, m, a, f.
+    List,
+    /// Run a model on its paper maneuver; write results.csv, summary.json and SVG plots.
+    Run {
+        /// Model name (see `crane list`).
+        model: String,
+        /// Time step [s].
+        #[arg(long, default_value_t = 0.01)]
+        dt: f64,
+        /// End time [s] of the maneuver (the paper uses 4 and 15 for navy-planar).
+        #[arg(long)]
+        tf: Option<f64>,
+        /// Output directory (default out/MODEL).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Time repeated runs without writing files; print median wall time per run and per step.
+    Bench {
+        /// Model name (see `crane list`).
+        model: String,
+        /// Time step [s].
+        #[arg(long, default_value_t = 0.01)]
+        dt: f64,
+        /// Number of timed runs.
+        #[arg(long, default_value_t = 20)]
+        repeat: usize,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Errors the command reports (then exits non-zero).
+#[derive(Debug, thiserror::Error)]
+enum CliError {
+    #[error("unknown model `{0}`; `crane list` shows the built-in models")]
+    UnknownModel(String),
+    #[error(transparent)]
+    Runtime(#[from] crane_runtime::Error),
+    #[error(transparent)]
+    Trajectory(#[from] crane_runtime::trajectory::TrajectoryError),
+    #[error("{context}: {source}")]
+    Io { context: String, source: std::io::Error },
+    #[error("writing {what}: {message}")]
+    Output { what: String, message: String },
+    #[error("--repeat must be at least 1")]
+    NoRepeats,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match execute(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {error}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn execute(command: Command) -> Result<(), CliError> {
+    match command {
+        Command::List => {
+            println!("{:<14} {:>3} {:>3} {:>3} {:>3}  {:<9} description", "model", "n", "m", "a", "f", "reference");
+            for e in CATALOG {
+                let reference = if e.reference { "yes" } else { "no" };
+                println!("{:<14} {:>3} {:>3} {:>3} {:>3}  {:<9} {}", e.name, e.n, e.m, e.a, e.dof(), reference, e.description);
+            }
+            Ok(())
+        }
+        Command::Run { model, dt, tf, out } => {
+            let out = out.unwrap_or_else(|| PathBuf::from("out").join(&model));
+            match model.as_str() {
+                "navy-planar" => run(&navy_planar::PaperCase::new(tf.unwrap_or(4.0))?, &model, dt, &out),
+                _ => Err(CliError::UnknownModel(model)),
+            }
+        }
+        Command::Bench { model, dt, repeat, json } => match model.as_str() {
+            "navy-planar" => bench(&navy_planar::PaperCase::new(4.0)?, &model, dt, repeat, json),
+            _ => Err(CliError::UnknownModel(model)),
+        },
+    }
+}
+
+/// Run one case and write its outputs.
+fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &C,
+    name: &str,
+    dt: f64,
+    out: &std::path::Path,
+) -> Result<(), CliError> {
+    let start = case.start()?;
+    let options = Options::new(dt, case.tf());
+    let clock = Instant::now();
+    let solution = simulate(case.model(), case.path(), &start, &options)?;
+    let wall = clock.elapsed().as_secs_f64();
+    let references: Option<Vec<_>> = solution.states.iter().map(|s| case.reference(s.t)).collect();
+    let summary = report::summarize(name, &solution, references.as_deref(), wall);
+    output::write_all(out, &solution, references.as_deref(), &summary)?;
+    println!(
+        "{name}: {} steps of dt = {dt} s in {:.1} ms ({:.2} Newton iterations per step)",
+        solution.steps(),
+        wall * 1e3,
+        solution.mean_newton_iterations()
+    );
+    for line in report::highlights(&summary) {
+        println!("  {line}");
+    }
+    println!("wrote {}", out.display());
+    Ok(())
+}
+
+/// Time `repeat` runs of one case.
+fn bench<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &C,
+    name: &str,
+    dt: f64,
+    repeat: usize,
+    json: bool,
+) -> Result<(), CliError> {
+    if repeat == 0 {
+        return Err(CliError::NoRepeats);
+    }
+    let start = case.start()?;
+    let options = Options::new(dt, case.tf());
+    let mut times = Vec::with_capacity(repeat);
+    let mut steps = 0;
+    let mut iterations = 0.0;
+    simulate(case.model(), case.path(), &start, &options)?; // warm-up
+    for _ in 0..repeat {
+        let clock = Instant::now();
+        let solution = simulate(case.model(), case.path(), &start, &options)?;
+        times.push(clock.elapsed().as_secs_f64());
+        steps = solution.steps();
+        iterations = solution.mean_newton_iterations();
+    }
+    times.sort_by(f64::total_cmp);
+    let median = times[times.len() / 2];
+    if json {
+        let value = serde_json::json!({
+            "model": name, "dt": dt, "steps": steps, "repeat": repeat,
+            "median_run_s": median, "median_step_s": median / steps as f64,
+            "mean_newton_iterations": iterations,
+        });
+        println!("{value}");
+    } else {
+        println!(
+            "{name}: dt = {dt} s, {steps} steps, {repeat} runs: median {:.3} ms per run, {:.2} us per step, {:.2} Newton iterations per step",
+            median * 1e3,
+            median / steps as f64 * 1e6,
+            iterations
+        );
+    }
+    Ok(())
+}

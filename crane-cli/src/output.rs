@@ -1,0 +1,83 @@
+//! Writing a run's results: every file goes to a temporary name first and is
+//! renamed only when all of them were written, so an error never leaves a
+//! partial `results.csv` that looks like a result.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use crane_runtime::{Solution, State};
+
+use crate::CliError;
+use crate::plot;
+use crate::report::Summary;
+
+/// Column names of `results.csv` (DESIGN.md §5): `t`, the coordinates, the
+/// inputs, `lambda1..lambdam`, the rope tensions.
+pub fn header<const N: usize, const M: usize, const A: usize>(solution: &Solution<N, M, A>) -> Vec<String> {
+    let info = solution.info;
+    let mut names = vec!["t".to_string()];
+    names.extend(info.coordinates.iter().map(|s| s.to_string()));
+    names.extend(info.inputs.iter().map(|s| s.to_string()));
+    names.extend((1..=M).map(|i| format!("lambda{i}")));
+    names.extend(info.ropes.iter().map(|r| r.tension.to_string()));
+    names
+}
+
+fn io_error(context: impl Into<String>) -> impl FnOnce(std::io::Error) -> CliError {
+    let context = context.into();
+    move |source| CliError::Io { context, source }
+}
+
+fn write_csv<const N: usize, const M: usize, const A: usize>(path: &Path, solution: &Solution<N, M, A>) -> Result<(), CliError> {
+    let failed = |e: csv::Error| CliError::Output { what: path.display().to_string(), message: e.to_string() };
+    let mut writer = csv::Writer::from_path(path).map_err(failed)?;
+    writer.write_record(header(solution)).map_err(failed)?;
+    let mut row: Vec<String> = Vec::new();
+    for (i, s) in solution.states.iter().enumerate() {
+        row.clear();
+        row.push(format!("{}", s.t));
+        row.extend(s.q.iter().chain(s.u.iter()).chain(s.lambda.iter()).map(|v| format!("{v:e}")));
+        row.extend(solution.tensions_at(i).iter().map(|v| format!("{v:e}")));
+        writer.write_record(&row).map_err(failed)?;
+    }
+    writer.flush().map_err(io_error(format!("writing {}", path.display())))
+}
+
+/// Write `results.csv`, `summary.json` and the plots into `out`.
+pub fn write_all<const N: usize, const M: usize, const A: usize>(
+    out: &Path,
+    solution: &Solution<N, M, A>,
+    references: Option<&[State<N, M, A>]>,
+    summary: &Summary,
+) -> Result<(), CliError> {
+    fs::create_dir_all(out).map_err(io_error(format!("creating {}", out.display())))?;
+    let mut staged: Vec<(PathBuf, PathBuf)> = Vec::new();
+    let result = (|| {
+        let mut stage = |name: &str| {
+            let final_path = out.join(name);
+            let temporary = out.join(format!(".{name}.partial"));
+            staged.push((temporary.clone(), final_path));
+            temporary
+        };
+        write_csv(&stage("results.csv"), solution)?;
+        let json = serde_json::to_string_pretty(summary)
+            .map_err(|e| CliError::Output { what: "summary.json".into(), message: e.to_string() })?;
+        let path = stage("summary.json");
+        fs::write(&path, json + "\n").map_err(io_error(format!("writing {}", path.display())))?;
+        for (name, svg) in plot::all(solution, references)? {
+            let path = stage(&name);
+            fs::write(&path, svg).map_err(io_error(format!("writing {}", path.display())))?;
+        }
+        Ok(())
+    })();
+    if let Err(error) = result {
+        for (temporary, _) in &staged {
+            let _ = fs::remove_file(temporary);
+        }
+        return Err(error);
+    }
+    for (temporary, final_path) in &staged {
+        fs::rename(temporary, final_path).map_err(io_error(format!("renaming to {}", final_path.display())))?;
+    }
+    Ok(())
+}

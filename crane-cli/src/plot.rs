@@ -1,0 +1,165 @@
+//! SVG plots of a run (plotters, with the DejaVu Sans font embedded so that
+//! no system font library is needed).
+
+use std::sync::Once;
+
+use crane_runtime::{Solution, State};
+use plotters::prelude::*;
+
+use crate::CliError;
+
+static FONT: Once = Once::new();
+
+fn register_font() {
+    FONT.call_once(|| {
+        // the embedded font is valid TrueType; registration only fails on invalid data
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular());
+    });
+}
+
+/// One curve.
+struct Series {
+    name: String,
+    points: Vec<(f64, f64)>,
+    color: RGBColor,
+    dashed: bool,
+}
+
+const PALETTE: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+];
+
+fn draw(title: &str, y_label: &str, series: &[Series]) -> Result<String, CliError> {
+    register_font();
+    let failed = |e: String| CliError::Output { what: format!("plot '{title}'"), message: e };
+    let (mut x_min, mut x_max, mut y_min, mut y_max) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for s in series {
+        for &(x, y) in &s.points {
+            if x.is_finite() && y.is_finite() {
+                x_min = x_min.min(x);
+                x_max = x_max.max(x);
+                y_min = y_min.min(y);
+                y_max = y_max.max(y);
+            }
+        }
+    }
+    if !(x_min < x_max) {
+        return Err(failed("no finite data to plot".into()));
+    }
+    let pad = ((y_max - y_min) * 0.05).max(1e-9 * y_max.abs().max(1.0));
+    let (y_min, y_max) = (y_min - pad, y_max + pad);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| failed(e.to_string()))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 22))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(80)
+            .build_cartesian_2d(x_min..x_max, y_min..y_max)
+            .map_err(|e| failed(e.to_string()))?;
+        chart
+            .configure_mesh()
+            .x_desc("t [s]")
+            .y_desc(y_label)
+            .label_style(("sans-serif", 15))
+            .draw()
+            .map_err(|e| failed(e.to_string()))?;
+        for s in series {
+            let color = s.color;
+            let style = ShapeStyle::from(&color).stroke_width(2);
+            let anno = if s.dashed {
+                chart
+                    .draw_series(DashedLineSeries::new(s.points.iter().copied(), 8, 5, style))
+                    .map_err(|e| failed(e.to_string()))?
+            } else {
+                chart
+                    .draw_series(LineSeries::new(s.points.iter().copied(), style))
+                    .map_err(|e| failed(e.to_string()))?
+            };
+            anno.label(s.name.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], ShapeStyle::from(&color).stroke_width(2)));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 15))
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| failed(e.to_string()))?;
+        root.present().map_err(|e| failed(e.to_string()))?;
+    }
+    Ok(svg)
+}
+
+/// Numerical curves (solid) and, where there is a reference, reference curves (dashed).
+fn curves<const N: usize, const M: usize, const A: usize>(
+    solution: &Solution<N, M, A>,
+    references: Option<&[State<N, M, A>]>,
+    columns: &[(String, usize)],
+    value: impl Fn(&State<N, M, A>, usize) -> f64,
+) -> Vec<Series> {
+    let mut out = Vec::new();
+    for (c, (name, k)) in columns.iter().enumerate() {
+        let color = PALETTE[c % PALETTE.len()];
+        out.push(Series {
+            name: format!("{name} (num)"),
+            points: solution.states.iter().map(|s| (s.t, value(s, *k))).collect(),
+            color,
+            dashed: false,
+        });
+        if let Some(refs) = references {
+            out.push(Series {
+                name: format!("{name} (ref)"),
+                points: refs.iter().map(|s| (s.t, value(s, *k))).collect(),
+                color,
+                dashed: true,
+            });
+        }
+    }
+    out
+}
+
+/// All plots of a run as `(file name, SVG text)`.
+pub fn all<const N: usize, const M: usize, const A: usize>(
+    solution: &Solution<N, M, A>,
+    references: Option<&[State<N, M, A>]>,
+) -> Result<Vec<(String, String)>, CliError> {
+    let info = solution.info;
+    let title = |what: &str| format!("{} - {what} (dt = {} s)", info.name, solution.dt);
+    let inputs: Vec<(String, usize)> = info.inputs.iter().enumerate().map(|(k, n)| (n.to_string(), k)).collect();
+    let coords: Vec<(String, usize)> = info.coordinates.iter().enumerate().map(|(k, n)| (n.to_string(), k)).collect();
+    let lambdas: Vec<(String, usize)> = (0..M).map(|i| (format!("lambda{}", i + 1), i)).collect();
+    let mut plots = vec![
+        ("inputs.svg".to_string(), draw(&title("inputs u"), "u [N m]", &curves(solution, references, &inputs, |s, k| s.u[k]))?),
+        ("coordinates.svg".to_string(), draw(&title("coordinates q"), "q [m]", &curves(solution, references, &coords, |s, k| s.q[k]))?),
+        (
+            "multipliers.svg".to_string(),
+            draw(&title("multipliers lambda"), "lambda [N/m]", &curves(solution, references, &lambdas, |s, k| s.lambda[k]))?,
+        ),
+    ];
+    if !info.ropes.is_empty() {
+        let series: Vec<Series> = info
+            .ropes
+            .iter()
+            .enumerate()
+            .map(|(r, rope)| Series {
+                name: rope.tension.to_string(),
+                points: (0..solution.states.len()).map(|i| (solution.states[i].t, solution.tensions_at(i)[r])).collect(),
+                color: PALETTE[r % PALETTE.len()],
+                dashed: false,
+            })
+            .collect();
+        plots.push(("tensions.svg".to_string(), draw(&title("rope tensions"), "N [N]", &series)?));
+    }
+    Ok(plots)
+}

@@ -1,0 +1,163 @@
+//! The run summary (`summary.json`): feasibility and accuracy at a glance.
+
+use crane_runtime::{Solution, State};
+use serde::Serialize;
+
+/// Extreme value of a column and when it occurs.
+#[derive(Debug, Clone, Serialize)]
+pub struct Extreme {
+    pub name: String,
+    pub value: f64,
+    pub t: f64,
+}
+
+/// A rope's tension over the run.
+#[derive(Debug, Clone, Serialize)]
+pub struct RopeSummary {
+    pub name: String,
+    pub min_tension: f64,
+    pub t_min: f64,
+    /// First time the tension is below `-SLACK_TOLERANCE` times the peak
+    /// tension (ropes only pull; a negative tension is infeasible).
+    pub first_slack: Option<f64>,
+}
+
+/// Errors against the analytical reference.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReferenceErrors {
+    /// Relative error of u at t = 1.5 s, eq. (48): |u - u_ref| / |u_ref|.
+    pub e_u_at_1_5s: Option<f64>,
+    pub max_abs_error_u: Vec<Extreme>,
+    pub max_abs_error_q: Vec<Extreme>,
+    pub max_abs_error_lambda: Vec<Extreme>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct NewtonSummary {
+    pub total_iterations: usize,
+    pub mean_per_step: f64,
+    pub max_per_step: usize,
+    pub min_norm_steps: usize,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    pub model: String,
+    pub description: String,
+    pub formulation: &'static str,
+    pub dt: f64,
+    pub t0: f64,
+    pub tf: f64,
+    pub steps: usize,
+    pub newton: NewtonSummary,
+    pub wall_time_s: f64,
+    pub peak_torque: Vec<Extreme>,
+    pub ropes: Vec<RopeSummary>,
+    pub reference: Option<ReferenceErrors>,
+}
+
+/// Tensions below `-SLACK_TOLERANCE * max |N|` count as slack; above it, a
+/// negative value is round-off around a rope that carries no load (as at the
+/// paper's start, where N1 = 0 exactly and evaluates to about -1e-13 N).
+pub const SLACK_TOLERANCE: f64 = 1e-9;
+
+fn column_extremes<const K: usize, const N: usize, const M: usize, const A: usize>(
+    states: &[State<N, M, A>],
+    names: &[&str],
+    value: impl Fn(&State<N, M, A>, usize) -> f64,
+) -> Vec<Extreme> {
+    (0..K)
+        .map(|k| {
+            let (t, v) = states
+                .iter()
+                .map(|s| (s.t, value(s, k)))
+                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+                .unwrap_or((f64::NAN, f64::NAN));
+            Extreme { name: names[k].to_string(), value: v, t }
+        })
+        .collect()
+}
+
+pub fn summarize<const N: usize, const M: usize, const A: usize>(
+    model: &str,
+    solution: &Solution<N, M, A>,
+    references: Option<&[State<N, M, A>]>,
+    wall_time_s: f64,
+) -> Summary {
+    let info = solution.info;
+    let states = &solution.states;
+    let peak_torque = column_extremes::<A, N, M, A>(states, info.inputs, |s, k| s.u[k]);
+    let ropes = info
+        .ropes
+        .iter()
+        .enumerate()
+        .map(|(r, rope)| {
+            let series: Vec<(f64, f64)> = states.iter().enumerate().map(|(i, s)| (s.t, solution.tensions_at(i)[r])).collect();
+            let peak = series.iter().fold(0.0f64, |m, (_, n)| m.max(n.abs()));
+            let (t_min, min_tension) =
+                series.iter().copied().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap_or((f64::NAN, f64::NAN));
+            let first_slack = series.iter().find(|(_, n)| *n < -SLACK_TOLERANCE * peak).map(|(t, _)| *t);
+            RopeSummary { name: rope.tension.to_string(), min_tension, t_min, first_slack }
+        })
+        .collect();
+    let reference = references.map(|refs| {
+        let lambda_names: Vec<String> = (1..=M).map(|i| format!("lambda{i}")).collect();
+        let lambda_refs: Vec<&str> = lambda_names.iter().map(String::as_str).collect();
+        let pairs: Vec<State<N, M, A>> = states
+            .iter()
+            .zip(refs)
+            .map(|(s, r)| State { t: s.t, q: s.q - r.q, v: s.v - r.v, u: s.u - r.u, lambda: s.lambda - r.lambda })
+            .collect();
+        let e_u_at_1_5s = states
+            .iter()
+            .zip(refs)
+            .find(|(s, _)| (s.t - 1.5).abs() < 0.5 * solution.dt)
+            .map(|(s, r)| (s.u - r.u).norm() / r.u.norm());
+        ReferenceErrors {
+            e_u_at_1_5s,
+            max_abs_error_u: column_extremes::<A, N, M, A>(&pairs, info.inputs, |s, k| s.u[k]),
+            max_abs_error_q: column_extremes::<N, N, M, A>(&pairs, info.coordinates, |s, k| s.q[k]),
+            max_abs_error_lambda: column_extremes::<M, N, M, A>(&pairs, &lambda_refs, |s, k| s.lambda[k]),
+        }
+    });
+    let newton = NewtonSummary {
+        total_iterations: solution.newton_iterations.iter().sum(),
+        mean_per_step: solution.mean_newton_iterations(),
+        max_per_step: solution.newton_iterations.iter().copied().max().unwrap_or(0),
+        min_norm_steps: solution.min_norm_steps,
+    };
+    Summary {
+        model: model.to_string(),
+        description: info.description.to_string(),
+        formulation: "redundant",
+        dt: solution.dt,
+        t0: states.first().map_or(f64::NAN, |s| s.t),
+        tf: states.last().map_or(f64::NAN, |s| s.t),
+        steps: solution.steps(),
+        newton,
+        wall_time_s,
+        peak_torque,
+        ropes,
+        reference,
+    }
+}
+
+/// A few lines for the terminal.
+pub fn highlights(summary: &Summary) -> Vec<String> {
+    let mut lines = Vec::new();
+    for p in &summary.peak_torque {
+        lines.push(format!("peak |{}| = {:.3} N m at t = {:.3} s", p.name, p.value.abs(), p.t));
+    }
+    for r in &summary.ropes {
+        match r.first_slack {
+            Some(t) => lines.push(format!("WARNING: rope {} goes slack at t = {t:.3} s (min tension {:.3e} N)", r.name, r.min_tension)),
+            None => lines.push(format!("rope {} stays taut: min tension {:.3} N at t = {:.3} s", r.name, r.min_tension, r.t_min)),
+        }
+    }
+    if let Some(reference) = &summary.reference {
+        if let Some(e) = reference.e_u_at_1_5s {
+            lines.push(format!("relative error of u at t = 1.5 s against the analytical reference (eq. 48): {e:.3e}"));
+        }
+    }
+    lines
+}

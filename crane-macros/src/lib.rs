@@ -1,0 +1,119 @@
+//! The `crane_model!` DSL: declare a crane, get its equations of motion as
+//! plain Rust, differentiated at compile time.
+//!
+//! A crane in the setting of the paper (sect. 2) has `n` redundant
+//! coordinates `q = [p; x]` (robot coordinates `p`, load coordinates `x`
+//! prescribed by `x = gamma(t)`), `m` holonomic constraints `g(q) = 0` and
+//! `a` inputs, and moves by `M q'' = f + B^T u - G^T lambda` (eq. 1a). The
+//! macro takes the kinetic energy, the generalized forces and the
+//! constraints, and emits a struct implementing
+//! `crane_runtime::CraneModel` with `g`, `G = dg/dq`, the constraint
+//! Hessian, the constant mass matrix `M`, `f`, `B^T` and their derivatives.
+//!
+//! ```
+//! use crane_macros::crane_model;
+//! use crane_runtime::CraneModel;
+//! use crane_runtime::nalgebra::SVector;
+//!
+//! crane_model! {
+//!     /// Planar US Navy crane with massless main pulley (paper, sect. 5.1).
+//!     pub struct NavyPlanar {
+//!         params { m_l = 100.0, J1 = 0.1, J2 = 0.1, r1 = 0.1, r2 = 0.1,
+//!                  alpha = PI / 3.0, l = 10.0, g = 9.81 }
+//!         robot  [L1, L2, L0, x0, z0]
+//!         load   [x, z]
+//!         inputs [u1, u2]
+//!         kinetic = 0.5*J1/r1^2*dot(L1)^2 + 0.5*J2/r2^2*dot(L2)^2 + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+//!         forces { L1: u1/r1, L2: u2/r2, z: -m_l*g }
+//!         constraints {
+//!             #[rope(N1 = L1)]
+//!             rope1: 0.5*((x0 + l*sin(alpha))^2 + (z0 + l*cos(alpha))^2 - L1^2),
+//!             rope0: 0.5*(x0^2 + z0^2 - L0^2),
+//!             #[rope(N2 = L2 - L0)]
+//!             hoist: 0.5*((x - x0)^2 + (z - z0)^2 - (L2 - L0)^2),
+//!         }
+//!     }
+//! }
+//!
+//! let crane = NavyPlanar::new();
+//! let s3 = 3f64.sqrt();
+//! let q = SVector::<f64, 7>::from([5.0 * s3, 10.0, 5.0, 0.0, -5.0, 0.0, -10.0]);
+//! assert!(crane.g(&q).norm() < 1e-12);
+//! assert_eq!(crane.mass_matrix::<f64>()[(5, 5)], 100.0);
+//! assert_eq!(NavyPlanar::INFO.ropes.len(), 2);
+//! ```
+//!
+//! # The DSL
+//! - `params { name = default, ... }`: `f64` fields of the struct; defaults
+//!   are constant expressions (numbers, `PI`, functions of them). Doc
+//!   comments on a parameter become the field's docs.
+//! - `robot [...]`, `load [...]`: the coordinates `p` and `x`; `q = [p; x]`.
+//! - `inputs [...]`: one per load coordinate.
+//! - `kinetic = expr;`: a quadratic form in the velocities `dot(q_i)` with
+//!   constant coefficients (so that `M` is constant).
+//! - `forces { coord: expr, ... }`: generalized forces, linear in the inputs
+//!   (inputs on robot coordinates only); unlisted coordinates get 0.
+//! - `constraints { name: expr, ... }`: `g(q)`; `#[rope(N = length)]` marks a
+//!   rope with tension `N = lambda * length`.
+//!
+//! Expressions: `+ - * /`, unary minus, `^` (integer or real constant
+//! exponent; binds tighter than unary minus, right-associative), parentheses,
+//! `sin cos tan sqrt exp ln atan2(y, x)`, numbers, `PI`, and the declared
+//! names. Mistakes are compile errors pointing at the culprit.
+#![warn(missing_docs)]
+
+extern crate proc_macro;
+
+mod check;
+mod codegen;
+mod ctxt;
+mod diff;
+mod expr;
+mod model;
+mod parse;
+mod simplify;
+
+#[cfg(test)]
+mod tests;
+
+use proc_macro2::TokenStream;
+
+/// Declares a crane; see the crate documentation for the DSL.
+#[proc_macro]
+pub fn crane_model(input: proc_macro::TokenStream) -> proc_macro::TokenStream {
+    expand(input.into()).into()
+}
+
+/// The whole macro on `proc_macro2` tokens: parse, check, differentiate,
+/// generate. On errors: the `compile_error!`s and a stub struct.
+fn expand(input: TokenStream) -> TokenStream {
+    let cx = ctxt::Ctxt::new();
+    let Some(decl) = parse::parse(input, &cx) else {
+        return errors(cx);
+    };
+    let model = if cx.has_errors() {
+        None
+    } else {
+        check::check(&decl, &cx)
+    };
+    match (model, cx.check()) {
+        (Some(mut model), Ok(())) => {
+            let kernels = model::Kernels::derive(&mut model);
+            codegen::generate(&model, &kernels)
+        }
+        (_, Err(error)) => {
+            let mut tokens = error.to_compile_error();
+            tokens.extend(codegen::stub(&decl));
+            tokens
+        }
+        // `check` returns `None` only after reporting an error
+        (None, Ok(())) => codegen::stub(&decl),
+    }
+}
+
+fn errors(cx: ctxt::Ctxt) -> TokenStream {
+    match cx.check() {
+        Ok(()) => TokenStream::new(),
+        Err(error) => error.to_compile_error(),
+    }
+}

@@ -1,0 +1,235 @@
+//! The checked model and the quantities derived from it.
+//!
+//! [`Model`] is what `check.rs` makes of a declaration: names resolved,
+//! every expression lowered into the IR arena and validated. [`Kernels`]
+//! differentiates it into everything the generated code evaluates (paper
+//! eqs. 1a-1b, 3, 11a-11c); `codegen.rs` only prints these.
+
+use proc_macro2::Ident;
+use syn::{Attribute, Visibility};
+
+use crate::diff::Differentiator;
+use crate::expr::{Arena, Id, Sym};
+use crate::parse::Expr;
+
+/// A checked crane declaration.
+pub struct Model {
+    /// The IR of every expression below.
+    pub arena: Arena,
+    /// Attributes and doc comments of the struct.
+    pub attrs: Vec<Attribute>,
+    /// Visibility of the struct.
+    pub vis: Visibility,
+    /// Name of the struct.
+    pub name: Ident,
+    /// First line of the doc comment.
+    pub description: String,
+    /// Parameters, in declaration order.
+    pub params: Vec<Param>,
+    /// Redundant coordinates `q = [p; x]`: robot coordinates first.
+    pub coords: Vec<Ident>,
+    /// Number of robot coordinates `n - a`.
+    pub n_robot: usize,
+    /// Inputs `u`.
+    pub inputs: Vec<Ident>,
+    /// Holonomic constraints `g`.
+    pub constraints: Vec<Constraint>,
+    /// Kinetic energy `T(q')`, a quadratic form with constant coefficients.
+    pub kinetic: Id,
+    /// Generalized force on each coordinate, inputs included (`0` where none
+    /// was declared): `f(q, q') + B^T(q) u`.
+    pub forces: Vec<Id>,
+}
+
+/// A parameter: a field of the generated struct.
+pub struct Param {
+    /// Name of the field.
+    pub name: Ident,
+    /// The default as declared (a constant expression).
+    pub default: Expr,
+    /// Doc comments on the parameter.
+    pub docs: Vec<Attribute>,
+}
+
+/// A holonomic constraint `g_k(q) = 0`.
+pub struct Constraint {
+    /// Name of the constraint.
+    pub name: Ident,
+    /// The constraint function.
+    pub g: Id,
+    /// The rope it models, if any.
+    pub rope: Option<Rope>,
+}
+
+/// A rope: tension `N = lambda * L` (ERRATA, "Conventions").
+pub struct Rope {
+    /// Name of the tension.
+    pub tension: Ident,
+    /// Length `L(q)`.
+    pub length: Id,
+}
+
+impl Model {
+    /// Number of redundant coordinates `n`.
+    pub fn n(&self) -> usize {
+        self.coords.len()
+    }
+
+    /// Number of constraints `m`.
+    pub fn m(&self) -> usize {
+        self.constraints.len()
+    }
+
+    /// Number of inputs `a`.
+    pub fn a(&self) -> usize {
+        self.inputs.len()
+    }
+
+    /// The ropes in constraint order: `(constraint index, rope)`.
+    pub fn ropes(&self) -> impl Iterator<Item = (usize, &Rope)> {
+        self.constraints
+            .iter()
+            .enumerate()
+            .filter_map(|(k, c)| c.rope.as_ref().map(|r| (k, r)))
+    }
+}
+
+/// Row-major matrix of expressions.
+pub type Matrix = Vec<Vec<Id>>;
+
+/// Everything the generated code evaluates, as IR.
+pub struct Kernels {
+    /// `g(q)` (eq. 1b), `m` entries.
+    pub g: Vec<Id>,
+    /// `G = dg/dq` (eq. 3), `m x n`.
+    pub jacobian: Matrix,
+    /// `d(G^T lambda)/dq = sum_k lambda_k d^2 g_k/dq^2`, `n x n`, symmetric.
+    pub hessian: Matrix,
+    /// `M_ij = d^2 T / dq'_i dq'_j` (eq. 11a), `n x n`, constant.
+    pub mass: Matrix,
+    /// `f(q, q')`: the forces with all inputs zero (eq. 11b), `n` entries.
+    pub f: Vec<Id>,
+    /// `df/dq`, `n x n`.
+    pub df_dq: Matrix,
+    /// `df/dq'`, `n x n`.
+    pub df_dv: Matrix,
+    /// `B^T(q)`: column `k` is `d force / d u_k` (eq. 11c), `n x a`.
+    pub bt: Matrix,
+    /// `d(B^T(q) u)/dq`, `n x n`.
+    pub dbtu_dq: Matrix,
+    /// Rope lengths `L(q)`, in constraint order.
+    pub rope_lengths: Vec<Id>,
+}
+
+impl Kernels {
+    /// Differentiates the model.
+    pub fn derive(model: &mut Model) -> Kernels {
+        let n = model.n();
+        let a = model.a();
+        let coord = |i: usize| Sym::Coord(i as u16);
+        let vel = |i: usize| Sym::Vel(i as u16);
+        let input = |k: usize| Sym::Input(k as u16);
+
+        let g: Vec<Id> = model.constraints.iter().map(|c| c.g).collect();
+        let rope_lengths: Vec<Id> = model.ropes().map(|(_, r)| r.length).collect();
+        let kinetic = model.kinetic;
+        let forces = model.forces.clone();
+        let arena = &mut model.arena;
+
+        // f = force with u = 0 (eq. 11b)
+        let zero = arena.zero();
+        let f: Vec<Id> = forces
+            .iter()
+            .map(|&force| {
+                arena.substitute(force, &mut |s| matches!(s, Sym::Input(_)).then_some(zero))
+            })
+            .collect();
+
+        let mut d = Differentiator::new(arena);
+        let jacobian: Matrix = g
+            .iter()
+            .map(|&gk| (0..n).map(|j| d.diff(gk, coord(j))).collect())
+            .collect();
+
+        // sum_k lambda_k d^2 g_k / dq_i dq_j, from the rows of G; symmetric,
+        // so each entry is computed once (for i <= j)
+        let hessian = symmetric(n, |i, j| {
+            let terms: Vec<Id> = jacobian
+                .iter()
+                .enumerate()
+                .map(|(k, row)| {
+                    let second = d.diff(row[i], coord(j));
+                    let lambda = d.arena().sym(Sym::Lambda(k as u16));
+                    d.arena().mul2(lambda, second)
+                })
+                .collect();
+            d.arena().add(terms)
+        });
+
+        // M_ij = d^2 T / dq'_i dq'_j (eq. 11a)
+        let mass = symmetric(n, |i, j| {
+            let dt_dvi = d.diff(kinetic, vel(i));
+            d.diff(dt_dvi, vel(j))
+        });
+
+        let df_dq: Matrix = f
+            .iter()
+            .map(|&fi| (0..n).map(|j| d.diff(fi, coord(j))).collect())
+            .collect();
+        let df_dv: Matrix = f
+            .iter()
+            .map(|&fi| (0..n).map(|j| d.diff(fi, vel(j))).collect())
+            .collect();
+
+        // B^T_ik = d force_i / d u_k (eq. 11c); linear in u, so this is free of u
+        let bt: Matrix = forces
+            .iter()
+            .map(|&fi| (0..a).map(|k| d.diff(fi, input(k))).collect())
+            .collect();
+
+        // d(B^T u)/dq: sum_k u_k dB^T_ik/dq_j
+        let bt_u: Vec<Id> = bt
+            .iter()
+            .map(|row| {
+                let terms: Vec<Id> = row
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &b)| {
+                        let u = d.arena().sym(input(k));
+                        d.arena().mul2(u, b)
+                    })
+                    .collect();
+                d.arena().add(terms)
+            })
+            .collect();
+        let dbtu_dq: Matrix = bt_u
+            .iter()
+            .map(|&e| (0..n).map(|j| d.diff(e, coord(j))).collect())
+            .collect();
+
+        Kernels {
+            g,
+            jacobian,
+            hessian,
+            mass,
+            f,
+            df_dq,
+            df_dv,
+            bt,
+            dbtu_dq,
+            rope_lengths,
+        }
+    }
+}
+
+/// The symmetric `n x n` matrix with entries `entry(i, j)` for `i <= j`.
+fn symmetric(n: usize, mut entry: impl FnMut(usize, usize) -> Id) -> Matrix {
+    let mut rows: Matrix = Vec::with_capacity(n);
+    for i in 0..n {
+        let row = (0..n)
+            .map(|j| if j < i { rows[j][i] } else { entry(i, j) })
+            .collect();
+        rows.push(row);
+    }
+    rows
+}

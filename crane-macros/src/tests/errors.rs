@@ -1,0 +1,434 @@
+//! Every kind of DSL mistake: `expand` must not panic, must report the
+//! message below, and must still emit the stub struct.
+
+use super::{NAVY, tokens};
+use crate::expand;
+
+/// The messages of the `compile_error!`s in an expansion, and whether the
+/// stub struct is there.
+fn expand_errors(source: &str) -> (Vec<String>, bool) {
+    let output = expand(tokens(source));
+    let file: syn::File = match syn::parse2(output.clone()) {
+        Ok(file) => file,
+        Err(error) => panic!("expansion does not parse: {error}\n{output}"),
+    };
+    let mut messages = Vec::new();
+    let mut stub = false;
+    for item in file.items {
+        match item {
+            syn::Item::Macro(m)
+                if m.mac
+                    .path
+                    .segments
+                    .last()
+                    .is_some_and(|s| s.ident == "compile_error") =>
+            {
+                let message: syn::LitStr = m.mac.parse_body().expect("a string literal");
+                messages.push(message.value());
+            }
+            syn::Item::Struct(s) if matches!(s.fields, syn::Fields::Unit) => stub = true,
+            _ => {}
+        }
+    }
+    (messages, stub)
+}
+
+/// The planar crane with `from` replaced by `to` (which must occur).
+fn navy_with(from: &str, to: &str) -> String {
+    assert!(
+        NAVY.contains(from),
+        "test bug: `{from}` is not in the declaration"
+    );
+    NAVY.replacen(from, to, 1)
+}
+
+/// Asserts that breaking the planar crane gives exactly `expected`.
+#[track_caller]
+fn assert_errors(source: &str, expected: &[&str]) {
+    let (messages, stub) = expand_errors(source);
+    assert_eq!(messages, expected);
+    assert!(stub, "no stub struct after the errors");
+}
+
+#[test]
+fn the_planar_crane_has_no_errors() {
+    let (messages, stub) = expand_errors(NAVY);
+    assert!(messages.is_empty(), "{messages:?}");
+    assert!(!stub);
+}
+
+#[test]
+fn unknown_symbol() {
+    assert_errors(
+        &navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(xx^2"),
+        &[
+            "unknown symbol `xx`; allowed in `constraints`: parameters (m_l, J1, J2, r1, r2, alpha, l, g), \
+           coordinates (L1, L2, L0, x0, z0, x, z), PI",
+        ],
+    );
+    assert_errors(
+        &navy_with("z: -m_l*g", "z: -m*g"),
+        &[
+            "unknown symbol `m`; allowed in `forces`: parameters (m_l, J1, J2, r1, r2, alpha, l, g), \
+           coordinates (L1, L2, L0, x0, z0, x, z), velocities dot(coordinate), inputs (u1, u2), PI",
+        ],
+    );
+    assert_errors(
+        &navy_with("dot(L2)^2", "dot(L3)^2"),
+        &["unknown coordinate `L3` in dot(); the coordinates are: L1, L2, L0, x0, z0, x, z"],
+    );
+    assert_errors(
+        &navy_with("z: -m_l*g", "z: -m_l*g*N1"),
+        &[
+            "`N1` is a rope tension and has no value in expressions; allowed in `forces`: parameters (m_l, J1, J2, \
+           r1, r2, alpha, l, g), coordinates (L1, L2, L0, x0, z0, x, z), velocities dot(coordinate), inputs (u1, u2), PI",
+        ],
+    );
+}
+
+#[test]
+fn duplicate_names() {
+    assert_errors(
+        &navy_with("g = 9.81", "g = 9.81, x = 1.0"),
+        &["duplicate name `x`: already declared as a parameter"],
+    );
+    assert_errors(
+        &navy_with("inputs [u1, u2]", "inputs [u1, L0]"),
+        &["duplicate name `L0`: already declared as a robot coordinate"],
+    );
+    assert_errors(
+        &navy_with("rope0:", "rope1:"),
+        &["duplicate name `rope1`: already declared as a constraint"],
+    );
+    assert_errors(
+        &navy_with("#[rope(N2 = L2 - L0)]", "#[rope(N1 = L2 - L0)]"),
+        &["duplicate name `N1`: already declared as a rope tension"],
+    );
+    assert_errors(
+        &navy_with("#[rope(N1 = L1)]", "#[rope(g = L1)]"),
+        &["duplicate name `g`: already declared as a parameter"],
+    );
+    assert_errors(
+        &navy_with("g = 9.81", "g = 9.81, PI = 3.0"),
+        &["`PI` is reserved (the constant pi) and cannot be declared"],
+    );
+}
+
+#[test]
+fn kinetic_energy_must_be_a_constant_quadratic_form() {
+    assert_errors(
+        &navy_with("0.5*J2/r2^2*dot(L2)^2", "0.5*J2/r2^2*L0*dot(L2)^2"),
+        &[
+            "configuration-dependent mass matrix: the method needs a constant M, but the coefficient of this term \
+           depends on the coordinate `L0`",
+        ],
+    );
+    assert_errors(
+        &navy_with("0.5*J2/r2^2*dot(L2)^2", "0.5*J2/r2^2*dot(L2)^3"),
+        &[
+            "not a quadratic form in the velocities: this term is cubic or of higher degree in the velocities (or not \
+           polynomial in them)",
+        ],
+    );
+    assert_errors(
+        &navy_with("0.5*J2/r2^2*dot(L2)^2", "J2*dot(L2)"),
+        &["not a quadratic form in the velocities: this term is linear in the velocity `dot(L2)`"],
+    );
+    assert_errors(
+        &navy_with("0.5*J2/r2^2*dot(L2)^2", "0.5*J2*(dot(L2) + 1)^2"),
+        &["not a quadratic form in the velocities: this term has a part without velocities"],
+    );
+    assert_errors(
+        &navy_with("0.5*J2/r2^2*dot(L2)^2", "m_l*g*z"),
+        &[
+            "not a quadratic form in the velocities: this term contains no velocity (a potential belongs in \
+           `forces`, as a generalized force)",
+        ],
+    );
+    assert_errors(
+        &navy_with("0.5*J2/r2^2*dot(L2)^2", "J2*cos(dot(L2))"),
+        &[
+            "not a quadratic form in the velocities: this term is cubic or of higher degree in the velocities (or not \
+           polynomial in them)",
+        ],
+    );
+    // one error per offending term
+    assert_errors(
+        &navy_with("0.5*J2/r2^2*dot(L2)^2", "x*dot(L2)^2 + dot(x0)"),
+        &[
+            "configuration-dependent mass matrix: the method needs a constant M, but the coefficient of this term \
+             depends on the coordinate `x`",
+            "not a quadratic form in the velocities: this term is linear in the velocity `dot(x0)`",
+        ],
+    );
+}
+
+#[test]
+fn forces_must_be_linear_in_the_inputs() {
+    assert_errors(
+        &navy_with("L1: u1/r1", "L1: u1^2/r1"),
+        &["force on `L1` is not linear in the inputs: B^T must not depend on u (eq. 11c)"],
+    );
+    assert_errors(
+        &navy_with("L1: u1/r1", "L1: u1*u2/r1"),
+        &["force on `L1` is not linear in the inputs: B^T must not depend on u (eq. 11c)"],
+    );
+    assert_errors(
+        &navy_with("L1: u1/r1", "L1: sin(u1)"),
+        &["force on `L1` is not linear in the inputs: B^T must not depend on u (eq. 11c)"],
+    );
+    assert_errors(
+        &navy_with("L1: u1/r1", "L1: u1*dot(L1)"),
+        &[
+            "force on `L1`: the coefficient of the input `u1` depends on the velocity `dot(L1)`; B^T may depend only \
+           on the coordinates (eq. 11c)",
+        ],
+    );
+    assert_errors(
+        &navy_with("z: -m_l*g", "z: -m_l*g + u2"),
+        &[
+            "the input `u2` acts on the load coordinate `z`: inputs may act only on robot coordinates \
+           (B^T = [B1^T; 0], eq. 11c)",
+        ],
+    );
+    assert_errors(
+        &navy_with("L2: u2/r2", "L2: 1/r2"),
+        &["input `u2` appears in no force: B^T would have a zero column"],
+    );
+}
+
+#[test]
+fn velocities_and_inputs_where_not_allowed() {
+    assert_errors(
+        &navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(dot(x0)^2"),
+        &[
+            "velocity `dot(x0)` is not allowed in `constraints`: velocities may appear only in `kinetic` and `forces`",
+        ],
+    );
+    assert_errors(
+        &navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(u1^2"),
+        &["input `u1` is not allowed in `constraints`: inputs may appear only in `forces`"],
+    );
+    assert_errors(
+        &navy_with("0.5*m_l*(dot(x)^2", "0.5*m_l*u1*(dot(x)^2"),
+        &["input `u1` is not allowed in `kinetic`: inputs may appear only in `forces`"],
+    );
+    assert_errors(
+        &navy_with("#[rope(N1 = L1)]", "#[rope(N1 = dot(L1))]"),
+        &[
+            "velocity `dot(L1)` is not allowed in a rope length: velocities may appear only in `kinetic` and `forces`",
+        ],
+    );
+    assert_errors(
+        &navy_with("dot(L1)^2", "dot(u1)^2"),
+        &["dot() takes a coordinate, but `u1` is an input"],
+    );
+}
+
+#[test]
+fn counts() {
+    assert_errors(
+        &navy_with("inputs [u1, u2]", "inputs [u1]").replace("L2: u2/r2", "L2: 0"),
+        &[
+            "number of inputs (1) must equal the number of load coordinates (2): each input drives one prescribed \
+           output (eq. 1c)",
+        ],
+    );
+    let too_many = navy_with(
+        "rope0: 0.5*(x0^2 + z0^2 - L0^2),",
+        "rope0: 0.5*(x0^2 + z0^2 - L0^2), c4: x, c5: z, c6: L2, c7: L0,",
+    );
+    assert_errors(
+        &too_many,
+        &[
+            "number of constraints (7) must be below the number of coordinates (7): the crane needs a degree of \
+           freedom (m < n)",
+        ],
+    );
+}
+
+#[test]
+fn forces_keyed_by_unknown_or_repeated_coordinates() {
+    assert_errors(
+        &navy_with("z: -m_l*g", "zz: -m_l*g"),
+        &["unknown coordinate `zz` in `forces`; the coordinates are: L1, L2, L0, x0, z0, x, z"],
+    );
+    assert_errors(
+        &navy_with("z: -m_l*g", "m_l: -m_l*g"),
+        &[
+            "`m_l` is a parameter, not a coordinate: `forces` maps coordinates to generalized forces",
+        ],
+    );
+    assert_errors(
+        &navy_with("z: -m_l*g", "z: -m_l*g, z: 1"),
+        &["duplicate force on `z`: write the sum as one expression"],
+    );
+}
+
+#[test]
+fn unsupported_functions_and_operators() {
+    assert_errors(
+        &navy_with("l*sin(alpha)", "l*sinh(alpha)"),
+        &[
+            "unsupported function `sinh`; supported: sin, cos, tan, sqrt, exp, ln, atan2(y, x), and dot(coordinate) \
+           for a velocity",
+        ],
+    );
+    assert_errors(
+        &navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(x0%2"),
+        &["unsupported operator `%`; supported: + - * / ^ (power) and parentheses"],
+    );
+    assert_errors(
+        &navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(x0**2"),
+        &["unexpected `*`: write powers as `x^n`"],
+    );
+    assert_errors(
+        &navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(x0^z0"),
+        &["exponent must be a constant number; for a variable exponent write exp(y * ln(x))"],
+    );
+    assert_errors(
+        &navy_with("l = 10.0", "l = 10.0f32"),
+        &["numeric literals take no suffix: every number is an f64"],
+    );
+}
+
+#[test]
+fn sections() {
+    assert_errors(
+        &navy_with("robot  [L1, L2, L0, x0, z0]", "robot []"),
+        &["empty section `robot`: declare at least one name"],
+    );
+    let without_kinetic = navy_with(
+        "kinetic = 0.5*J1/r1^2*dot(L1)^2 + 0.5*J2/r2^2*dot(L2)^2 + 0.5*m_l*(dot(x)^2 + dot(z)^2);",
+        "",
+    );
+    assert_errors(
+        &without_kinetic,
+        &["missing section `kinetic`: declare it, e.g. `kinetic = 0.5*m*(dot(x)^2 + dot(z)^2);`"],
+    );
+    assert_errors(
+        &navy_with("inputs [u1, u2]", "inputs [u1, u2] outputs [x, z]"),
+        &[
+            "unknown section `outputs`; expected one of: params, robot, load, inputs, kinetic, forces, constraints, minimal",
+        ],
+    );
+    assert_errors(
+        &navy_with("inputs [u1, u2]", "inputs [u1, u2] inputs [u3]"),
+        &["duplicate section `inputs`"],
+    );
+    assert_errors(
+        &navy_with("forces { L1: u1/r1, L2: u2/r2, z: -m_l*g }", "forces { }"),
+        &["empty section `forces`: every input must act on some coordinate"],
+    );
+    assert_errors(
+        &navy_with("(dot(x)^2 + dot(z)^2);", "(dot(x)^2 + dot(z)^2)"),
+        &["expected `;` after the kinetic energy"],
+    );
+    assert_errors(
+        &navy_with("robot  [L1, L2, L0, x0, z0]", "robot  {L1, L2, L0, x0, z0}"),
+        &["expected `[ ... ]` after `robot`"],
+    );
+    let minimal = navy_with(
+        "inputs [u1, u2]",
+        "inputs [u1, u2] minimal [beta, gamma | theta, L] { let d = l*sin(gamma - beta)/sin(gamma); L0 = d; }",
+    );
+    assert_errors(
+        &minimal,
+        &["`minimal` blocks (minimal coordinates, paper sect. 3.2) are not supported yet"],
+    );
+}
+
+#[test]
+fn a_pendulum_without_constraints_section() {
+    let source = r#"
+        struct Pendulum {
+            robot [L] load [x] inputs [u]
+            kinetic = 0.5*dot(x)^2;
+            forces { L: u }
+        }
+    "#;
+    assert_errors(
+        source,
+        &[
+            "missing section `constraints`: declare it, e.g. `constraints { rope: 0.5*(x^2 + z^2 - L^2) }`",
+        ],
+    );
+}
+
+#[test]
+fn parameter_defaults_must_be_constant() {
+    assert_errors(
+        &navy_with("l = 10.0", "l = 2*alpha"),
+        &[
+            "parameter defaults must be constant (numbers, PI and functions of them); `alpha` is a parameter",
+        ],
+    );
+    assert_errors(
+        &navy_with("l = 10.0", "l = 2*L1"),
+        &[
+            "parameter defaults must be constant (numbers, PI and functions of them); `L1` is a robot coordinate",
+        ],
+    );
+}
+
+#[test]
+fn a_constraint_must_depend_on_a_coordinate() {
+    assert_errors(
+        &navy_with(
+            "rope0: 0.5*(x0^2 + z0^2 - L0^2),",
+            "rope0: 0.5*(x0^2 + z0^2 - L0^2), c4: l - 1,",
+        ),
+        &["constraint `c4` does not depend on any coordinate"],
+    );
+}
+
+#[test]
+fn all_errors_are_reported_at_once() {
+    let source =
+        navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(xx^2").replace("L1: u1/r1", "L1: u1^2/r1");
+    let (messages, stub) = expand_errors(&source);
+    assert_eq!(messages.len(), 2, "{messages:?}");
+    assert!(messages[0].starts_with("force on `L1` is not linear in the inputs"));
+    assert!(messages[1].starts_with("unknown symbol `xx`"));
+    assert!(stub);
+
+    // and parse errors in different sections, too
+    let source = navy_with("l*sin(alpha)", "l*sinh(alpha)").replace("z: -m_l*g", "z: -m_l % g");
+    let (messages, _) = expand_errors(&source);
+    assert_eq!(messages.len(), 2, "{messages:?}");
+}
+
+#[test]
+fn the_header_must_be_a_struct() {
+    let (messages, stub) = expand_errors("pub enum NavyPlanar { }");
+    assert_eq!(messages, ["expected `struct`"]);
+    assert!(!stub, "no name, no stub");
+}
+
+#[test]
+fn garbage_never_panics() {
+    let inputs = [
+        "",
+        "struct",
+        "pub struct A",
+        "struct A { }",
+        "struct A { robot }",
+        "struct A { kinetic = ; }",
+        "struct A { kinetic = dot(); }",
+        "struct A { params { = } }",
+        "struct A { params { a = , b = 1,, } }",
+        "struct A { constraints { #[rope] c: x } }",
+        "struct A { constraints { #[rope(N)] c: x } }",
+        "struct A { constraints { #[serde] c: x } }",
+        "struct A { forces { : 1 } }",
+        "struct A { minimal [ ] { } }",
+        "struct A { minimal [a | b] }",
+        "struct A { 42 robot [x] }",
+        "struct A { robot [x] load [y] inputs [u] kinetic = dot(x)^2 + dot(y)^2; forces { x: u }          constraints { c: x^2 + y^2 - 1e400 } }",
+        "struct A { robot [x] load [y] inputs [u] kinetic = 1/0*dot(x)^2; forces { x: u } constraints { c: x - y } }",
+    ];
+    for input in inputs {
+        let (messages, _) = expand_errors(input);
+        assert!(!messages.is_empty(), "no error for `{input}`");
+    }
+}

@@ -1,0 +1,217 @@
+//! The parser: precedence and associativity of the expression language,
+//! and the sections of a declaration.
+
+use syn::parse::Parser;
+
+use super::{navy_planar, tokens};
+use crate::ctxt::Ctxt;
+use crate::parse::{BinOp, Expr, Function, parse, parse_expr};
+
+/// Fully parenthesized prefix form, to see the tree the parser built.
+fn sexp(e: &Expr) -> String {
+    match e {
+        Expr::Num { text, .. } => text.clone(),
+        Expr::Name(ident) => ident.to_string(),
+        Expr::Dot { coord, .. } => format!("(dot {coord})"),
+        Expr::Neg { operand, .. } => format!("(neg {})", sexp(operand)),
+        Expr::Binary { op, lhs, rhs } => {
+            let op = match op {
+                BinOp::Add => "+",
+                BinOp::Sub => "-",
+                BinOp::Mul => "*",
+                BinOp::Div => "/",
+                BinOp::Pow => "^",
+            };
+            format!("({op} {} {})", sexp(lhs), sexp(rhs))
+        }
+        Expr::Call { name, args, .. } => {
+            let args: Vec<String> = args.iter().map(sexp).collect();
+            format!("({name} {})", args.join(" "))
+        }
+        Expr::Paren { inner, .. } => sexp(inner),
+    }
+}
+
+fn parsed(source: &str) -> String {
+    match parse_expr.parse2(tokens(source)) {
+        Ok(e) => sexp(&e),
+        Err(error) => panic!("`{source}` does not parse: {error}"),
+    }
+}
+
+fn parse_error(source: &str) -> String {
+    match parse_expr.parse2(tokens(source)) {
+        Ok(e) => panic!("`{source}` parsed as {}", sexp(&e)),
+        Err(error) => error.to_string(),
+    }
+}
+
+#[test]
+fn power_binds_tighter_than_unary_minus() {
+    assert_eq!(parsed("-x^2"), "(neg (^ x 2))");
+    assert_eq!(parsed("-2^2"), "(neg (^ 2 2))");
+    assert_eq!(parsed("(-x)^2"), "(^ (neg x) 2)");
+}
+
+#[test]
+fn unary_minus_binds_tighter_than_products() {
+    assert_eq!(parsed("-x*y"), "(* (neg x) y)");
+    assert_eq!(parsed("a * -b"), "(* a (neg b))");
+    assert_eq!(parsed("a - -b"), "(- a (neg b))");
+    assert_eq!(parsed("-a + b"), "(+ (neg a) b)");
+}
+
+#[test]
+fn power_is_right_associative_and_takes_signed_exponents() {
+    assert_eq!(parsed("2^3^2"), "(^ 2 (^ 3 2))");
+    assert_eq!(parsed("x^-1"), "(^ x (neg 1))");
+    assert_eq!(parsed("x^-y^2"), "(^ x (neg (^ y 2)))");
+    assert_eq!(parsed("x^0.5"), "(^ x 0.5)");
+}
+
+#[test]
+fn products_and_sums_are_left_associative() {
+    assert_eq!(parsed("a - b - c"), "(- (- a b) c)");
+    assert_eq!(parsed("a / b * c"), "(* (/ a b) c)");
+    assert_eq!(parsed("a + b * c ^ d"), "(+ a (* b (^ c d)))");
+    assert_eq!(
+        parsed("0.5*J1/r1^2*dot(L1)^2"),
+        "(* (/ (* 0.5 J1) (^ r1 2)) (^ (dot L1) 2))"
+    );
+}
+
+#[test]
+fn calls_velocities_and_constants() {
+    assert_eq!(parsed("atan2(y, x - 1)"), "(atan2 y (- x 1))");
+    assert_eq!(
+        parsed("sin(alpha)*cos(PI/3)"),
+        "(* (sin alpha) (cos (/ PI 3)))"
+    );
+    assert_eq!(parsed("dot(x)^2 + 1e-3"), "(+ (^ (dot x) 2) 1e-3)");
+    assert_eq!(parsed("sqrt(exp(ln(tan(x))))"), "(sqrt (exp (ln (tan x))))");
+}
+
+#[test]
+fn display_prints_what_the_user_wrote() {
+    let e = parse_expr
+        .parse2(tokens("-(a + b)^2 * c / (d - e) - PI / 3.0"))
+        .unwrap();
+    assert_eq!(e.to_string(), "-(a + b)^2 * c / (d - e) - PI / 3.0");
+    let e = parse_expr.parse2(tokens("atan2(1, 2)^-1")).unwrap();
+    assert_eq!(e.to_string(), "atan2(1, 2)^(-1)");
+}
+
+#[test]
+fn unsupported_syntax_is_an_error_not_a_panic() {
+    assert_eq!(
+        parse_error("x % 2"),
+        "unsupported operator `%`; supported: + - * / ^ (power) and parentheses"
+    );
+    assert_eq!(
+        parse_error("x.sin()"),
+        "unsupported operator `.`: write functions as `sin(x)`, not `x.sin()`"
+    );
+    assert_eq!(
+        parse_error("x ** 2"),
+        "unexpected `*`: write powers as `x^n`"
+    );
+    assert_eq!(
+        parse_error("cosh(x)"),
+        "unsupported function `cosh`; supported: sin, cos, tan, sqrt, exp, ln, atan2(y, x), and dot(coordinate) for a velocity"
+    );
+    assert_eq!(
+        parse_error("atan2(x)"),
+        "`atan2` takes 2 arguments (y, x), found 1"
+    );
+    assert_eq!(parse_error("sin(x, y)"), "`sin` takes 1 argument, found 2");
+    assert_eq!(
+        parse_error("dot(x + y)"),
+        "dot() takes the name of a coordinate, e.g. `dot(x)`"
+    );
+    assert_eq!(
+        parse_error("2 x"),
+        "expected an operator (+ - * / ^) or the end of the expression"
+    );
+    assert_eq!(
+        parse_error("2.0f32 * x"),
+        "numeric literals take no suffix: every number is an f64"
+    );
+    assert!(parse_error("").contains("expected an expression"));
+    assert!(parse_error("x +").contains("expected an expression"));
+}
+
+#[test]
+fn sections_of_the_planar_crane() {
+    let cx = Ctxt::new();
+    let decl = parse(navy_planar(), &cx).expect("header parses");
+    assert!(cx.check().is_ok());
+    assert_eq!(decl.name, "NavyPlanar");
+    let s = &decl.sections;
+    let names = |v: &[proc_macro2::Ident]| {
+        v.iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let params = &s.params.as_ref().unwrap().body;
+    assert_eq!(
+        params
+            .iter()
+            .map(|p| p.name.to_string())
+            .collect::<Vec<_>>()
+            .join(" "),
+        "m_l J1 J2 r1 r2 alpha l g"
+    );
+    assert_eq!(params[5].default.to_string(), "PI / 3.0");
+    assert_eq!(names(&s.robot.as_ref().unwrap().body), "L1 L2 L0 x0 z0");
+    assert_eq!(names(&s.load.as_ref().unwrap().body), "x z");
+    assert_eq!(names(&s.inputs.as_ref().unwrap().body), "u1 u2");
+    assert_eq!(
+        s.kinetic.as_ref().unwrap().body.to_string(),
+        "0.5 * J1 / r1^2 * dot(L1)^2 + 0.5 * J2 / r2^2 * dot(L2)^2 + 0.5 * m_l * (dot(x)^2 + dot(z)^2)"
+    );
+    let forces = &s.forces.as_ref().unwrap().body;
+    assert_eq!(forces.len(), 3);
+    assert_eq!(forces[2].coord, "z");
+    assert_eq!(forces[2].force.to_string(), "-m_l * g");
+    let constraints = &s.constraints.as_ref().unwrap().body;
+    assert_eq!(constraints.len(), 3);
+    let rope = constraints[2].rope.as_ref().unwrap();
+    assert_eq!(
+        (rope.tension.to_string(), rope.length.to_string()),
+        ("N2".to_owned(), "L2 - L0".to_owned())
+    );
+    assert!(constraints[1].rope.is_none());
+    assert!(s.minimal.is_none());
+}
+
+#[test]
+fn sections_in_any_order_with_the_minimal_block_reserved() {
+    let source = r#"
+        struct Pendulum {
+            constraints { rope: 0.5*(x^2 + z^2 - L^2) }
+            minimal [theta | L] { let s = sin(theta); x = L*s; z = -L*cos(theta); }
+            inputs [u]
+            forces { L: u, z: -m*g }
+            kinetic = 0.5*m*(dot(x)^2 + dot(z)^2);
+            load [x]
+            robot [L, z]
+            params { m = 1, g = 9.81 }
+        }
+    "#;
+    let cx = Ctxt::new();
+    let decl = parse(tokens(source), &cx).expect("header parses");
+    assert!(cx.check().is_ok());
+    let minimal = &decl.sections.minimal.as_ref().unwrap().body;
+    assert_eq!(
+        (minimal.mu1.len(), minimal.mu2.len(), minimal.body.len()),
+        (1, 1, 3)
+    );
+    assert!(matches!(&minimal.body[0], crate::parse::MinimalStmt::Let { name, .. } if name == "s"));
+}
+
+#[test]
+fn function_names_resolve() {
+    assert_eq!(Function::from_name("atan2"), Some(Function::Atan2));
+    assert_eq!(Function::from_name("log"), None);
+}

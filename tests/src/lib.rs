@@ -1,0 +1,7 @@
+//! Cross-crate checks of the crane models: generated code against the
+//! hand-written model, numerical solutions against the analytical references.
+
+pub mod handwritten;
+
+#[cfg(test)]
+mod navy_planar_reference;
