@@ -802,51 +802,48 @@ pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
                 <Self as ::core::default::Default>::default()
             }
 
-            /// Constraint functions `g(q)` (eq. 1b; for the crane of sect. 5.1, eq. 33).
+            /// Constraint functions `g(q)` (eq. 1b).
             pub fn g<T: #scalar>(&self, #q: &#sv<T, #n_lit>) -> #sv<T, #m_lit> {
                 #g_body
             }
 
             /// `G1 = dg/dp`, the robot block of the constraint Jacobian `G = [G1 G2]`
-            /// (eq. 3; for the crane of sect. 5.1, eq. 35).
+            /// (eq. 3).
             pub fn G1<T: #scalar>(&self, #q: &#sv<T, #n_lit>) -> #sm<T, #m_lit, #nr_lit> {
                 #g1_body
             }
 
             /// `G2 = dg/dx`, the load block of the constraint Jacobian `G = [G1 G2]`
-            /// (eq. 3; for the crane of sect. 5.1, eq. 35).
+            /// (eq. 3).
             pub fn G2<T: #scalar>(&self, #q: &#sv<T, #n_lit>) -> #sm<T, #m_lit, #a_lit> {
                 #g2_body
             }
 
-            /// Robot block `M1` of the constant mass matrix (eq. 11a; for the crane of
-            /// sect. 5.1, eq. 29), from the kinetic energy `T = 1/2 q'^T M q'` (eq. 28).
+            /// Robot block `M1` of the constant mass matrix (eq. 11a), from the kinetic energy `T = 1/2 q'^T M q'` (eq. 28).
             #[doc = #coupling]
             pub fn M1<T: #scalar>(&self) -> #sm<T, #nr_lit, #nr_lit> {
                 #m1_body
             }
 
-            /// Load block `M2` of the constant mass matrix (eq. 11a; for the crane of
-            /// sect. 5.1, eq. 29).
+            /// Load block `M2` of the constant mass matrix (eq. 11a).
             #[doc = #coupling]
             pub fn M2<T: #scalar>(&self) -> #sm<T, #a_lit, #a_lit> {
                 #m2_body
             }
 
             /// Applied forces on the robot coordinates without the inputs, `f1(q, q')`
-            /// (eq. 11b; for the crane of sect. 5.1, eq. 34).
+            /// (eq. 11b).
             pub fn f1<T: #scalar>(&self, #q: &#sv<T, #n_lit>, #v: &#sv<T, #n_lit>) -> #sv<T, #nr_lit> {
                 #f1_body
             }
 
-            /// Applied forces on the load coordinates, `f2(q, q')` (eq. 11b; for the
-            /// crane of sect. 5.1, eq. 34).
+            /// Applied forces on the load coordinates, `f2(q, q')` (eq. 11b).
             pub fn f2<T: #scalar>(&self, #q: &#sv<T, #n_lit>, #v: &#sv<T, #n_lit>) -> #sv<T, #a_lit> {
                 #f2_body
             }
 
             /// Input matrix `B1^T(q)`: generalized force on the robot coordinates per
-            /// unit input (eq. 11c; for the crane of sect. 5.1, eq. 34).
+            /// unit input (eq. 11c).
             #[doc = #load_inputs_doc]
             pub fn B1T<T: #scalar>(&self, #q: &#sv<T, #n_lit>) -> #sm<T, #nr_lit, #a_lit> {
                 #b1t_body

@@ -59,7 +59,7 @@ impl NavyPlanar {
     pub fn new() -> Self {
         <Self as ::core::default::Default>::default()
     }
-    /// Constraint functions `g(q)` (eq. 1b; for the crane of sect. 5.1, eq. 33).
+    /// Constraint functions `g(q)` (eq. 1b).
     pub fn g<T: ::crane_runtime::Scalar>(
         &self,
         q: &::crane_runtime::nalgebra::SVector<T, 7>,
@@ -81,7 +81,7 @@ impl NavyPlanar {
         out
     }
     /// `G1 = dg/dp`, the robot block of the constraint Jacobian `G = [G1 G2]`
-    /// (eq. 3; for the crane of sect. 5.1, eq. 35).
+    /// (eq. 3).
     pub fn G1<T: ::crane_runtime::Scalar>(
         &self,
         q: &::crane_runtime::nalgebra::SVector<T, 7>,
@@ -109,7 +109,7 @@ impl NavyPlanar {
         out
     }
     /// `G2 = dg/dx`, the load block of the constraint Jacobian `G = [G1 G2]`
-    /// (eq. 3; for the crane of sect. 5.1, eq. 35).
+    /// (eq. 3).
     pub fn G2<T: ::crane_runtime::Scalar>(
         &self,
         q: &::crane_runtime::nalgebra::SVector<T, 7>,
@@ -123,8 +123,7 @@ impl NavyPlanar {
         out[(2, 1)] = z - z0;
         out
     }
-    /// Robot block `M1` of the constant mass matrix (eq. 11a; for the crane of
-    /// sect. 5.1, eq. 29), from the kinetic energy `T = 1/2 q'^T M q'` (eq. 28).
+    /// Robot block `M1` of the constant mass matrix (eq. 11a), from the kinetic energy `T = 1/2 q'^T M q'` (eq. 28).
     /// `M` is block diagonal, `M = diag(M1, M2)`.
     pub fn M1<T: ::crane_runtime::Scalar>(
         &self,
@@ -138,8 +137,7 @@ impl NavyPlanar {
         out[(1, 1)] = J2 / r2.powi(2);
         out
     }
-    /// Load block `M2` of the constant mass matrix (eq. 11a; for the crane of
-    /// sect. 5.1, eq. 29).
+    /// Load block `M2` of the constant mass matrix (eq. 11a).
     /// `M` is block diagonal, `M = diag(M1, M2)`.
     pub fn M2<T: ::crane_runtime::Scalar>(
         &self,
@@ -151,7 +149,7 @@ impl NavyPlanar {
         out
     }
     /// Applied forces on the robot coordinates without the inputs, `f1(q, q')`
-    /// (eq. 11b; for the crane of sect. 5.1, eq. 34).
+    /// (eq. 11b).
     pub fn f1<T: ::crane_runtime::Scalar>(
         &self,
         q: &::crane_runtime::nalgebra::SVector<T, 7>,
@@ -159,8 +157,7 @@ impl NavyPlanar {
     ) -> ::crane_runtime::nalgebra::SVector<T, 5> {
         ::crane_runtime::nalgebra::SVector::<T, 5>::zeros()
     }
-    /// Applied forces on the load coordinates, `f2(q, q')` (eq. 11b; for the
-    /// crane of sect. 5.1, eq. 34).
+    /// Applied forces on the load coordinates, `f2(q, q')` (eq. 11b).
     pub fn f2<T: ::crane_runtime::Scalar>(
         &self,
         q: &::crane_runtime::nalgebra::SVector<T, 7>,
@@ -173,7 +170,7 @@ impl NavyPlanar {
         out
     }
     /// Input matrix `B1^T(q)`: generalized force on the robot coordinates per
-    /// unit input (eq. 11c; for the crane of sect. 5.1, eq. 34).
+    /// unit input (eq. 11c).
     /// The load rows of `B^T = [B1^T; 0]` are zero.
     pub fn B1T<T: ::crane_runtime::Scalar>(
         &self,
