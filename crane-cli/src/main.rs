@@ -128,7 +128,13 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let wall = clock.elapsed().as_secs_f64();
     let references: Option<Vec<_>> = solution.states.iter().map(|s| case.reference(s.t)).collect();
     let summary = report::summarize(name, &solution, references.as_deref(), wall);
-    output::write_all(out, &solution, references.as_deref(), &summary)?;
+    // the reference curves of the plots on a fine grid, whatever dt
+    let (t0, tf) = (case.t0(), case.tf());
+    let samples = solution.steps().max(800);
+    let fine: Option<Vec<_>> = references
+        .as_ref()
+        .and_then(|_| (0..=samples).map(|i| case.reference(t0 + (tf - t0) * i as f64 / samples as f64)).collect());
+    output::write_all(out, &solution, fine.as_deref(), &summary)?;
     println!(
         "{name}: {} steps of dt = {dt} s in {:.1} ms ({:.2} Newton iterations per step)",
         solution.steps(),

@@ -4,6 +4,7 @@
 use std::sync::Once;
 
 use crane_runtime::{Solution, State};
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
 use crate::CliError;
@@ -57,9 +58,11 @@ fn draw(title: &str, y_label: &str, series: &[Series]) -> Result<String, CliErro
     let (y_min, y_max) = (y_min - pad, y_max + pad);
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (1000, 560)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| failed(e.to_string()))?;
-        let mut chart = ChartBuilder::on(&root)
+        // plot on the left, legend in its own column on the right so it never hides data
+        let (plot_area, legend_area) = root.split_horizontally(820);
+        let mut chart = ChartBuilder::on(&plot_area)
             .caption(title, ("sans-serif", 22))
             .margin(12)
             .x_label_area_size(45)
@@ -74,54 +77,63 @@ fn draw(title: &str, y_label: &str, series: &[Series]) -> Result<String, CliErro
             .draw()
             .map_err(|e| failed(e.to_string()))?;
         for s in series {
-            let color = s.color;
-            let style = ShapeStyle::from(&color).stroke_width(2);
-            let anno = if s.dashed {
+            let style = ShapeStyle::from(&s.color).stroke_width(if s.dashed { 1 } else { 2 });
+            if s.dashed {
                 chart
-                    .draw_series(DashedLineSeries::new(s.points.iter().copied(), 8, 5, style))
-                    .map_err(|e| failed(e.to_string()))?
+                    .draw_series(DashedLineSeries::new(s.points.iter().copied(), 6, 4, style))
+                    .map_err(|e| failed(e.to_string()))?;
             } else {
                 chart
                     .draw_series(LineSeries::new(s.points.iter().copied(), style))
-                    .map_err(|e| failed(e.to_string()))?
-            };
-            anno.label(s.name.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], ShapeStyle::from(&color).stroke_width(2)));
+                    .map_err(|e| failed(e.to_string()))?;
+            }
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 15))
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(|e| failed(e.to_string()))?;
+        let mut y = 60;
+        for s in series.iter().filter(|s| !s.name.is_empty()) {
+            let style = ShapeStyle::from(&s.color).stroke_width(if s.dashed { 1 } else { 2 });
+            let sample = vec![(8, y), (38, y)];
+            if s.dashed {
+                legend_area
+                    .draw(&DashedPathElement::new(sample, 6, 4, style))
+                    .map_err(|e| failed(e.to_string()))?;
+            } else {
+                legend_area.draw(&PathElement::new(sample, style)).map_err(|e| failed(e.to_string()))?;
+            }
+            legend_area
+                .draw(&Text::new(s.name.clone(), (46, y - 8), ("sans-serif", 15)))
+                .map_err(|e| failed(e.to_string()))?;
+            y += 22;
+        }
         root.present().map_err(|e| failed(e.to_string()))?;
     }
     Ok(svg)
 }
 
-/// Numerical curves (solid) and, where there is a reference, reference curves (dashed).
+/// Numerical curves (solid, one colour per column) and, where there is a
+/// reference, the reference curves as thin black dashes on top of them (one
+/// legend entry), as in the paper's figures (NUM vs REF).
 fn curves<const N: usize, const M: usize, const A: usize>(
     solution: &Solution<N, M, A>,
     references: Option<&[State<N, M, A>]>,
     columns: &[(String, usize)],
     value: impl Fn(&State<N, M, A>, usize) -> f64,
 ) -> Vec<Series> {
-    let mut out = Vec::new();
-    for (c, (name, k)) in columns.iter().enumerate() {
-        let color = PALETTE[c % PALETTE.len()];
-        out.push(Series {
-            name: format!("{name} (num)"),
+    let mut out: Vec<Series> = columns
+        .iter()
+        .enumerate()
+        .map(|(c, (name, k))| Series {
+            name: name.clone(),
             points: solution.states.iter().map(|s| (s.t, value(s, *k))).collect(),
-            color,
+            color: PALETTE[c % PALETTE.len()],
             dashed: false,
-        });
-        if let Some(refs) = references {
+        })
+        .collect();
+    if let Some(refs) = references {
+        for (c, (_, k)) in columns.iter().enumerate() {
             out.push(Series {
-                name: format!("{name} (ref)"),
+                name: if c == 0 { "analytical reference".into() } else { String::new() },
                 points: refs.iter().map(|s| (s.t, value(s, *k))).collect(),
-                color,
+                color: BLACK,
                 dashed: true,
             });
         }
