@@ -69,7 +69,7 @@ pub mod solution;
 pub mod trajectory;
 
 pub use error::Error;
-pub use model::{CraneModel, ModelInfo, Rope, Scalar, UnknownParameter};
+pub use model::{CraneModel, MinimalMap, ModelInfo, Rope, Scalar, UnknownParameter};
 pub use redundant::{Options, RedundantStepper, simulate};
 pub use solution::{Solution, State};
 pub use trajectory::Trajectory;
