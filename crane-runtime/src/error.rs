@@ -83,6 +83,26 @@ pub enum Error {
         /// The coordinates along the free direction, e.g. "L1, L0, z0".
         free: String,
     },
+    /// The output Jacobian `D2 phi_x` of a minimal-coordinate map is singular
+    /// or ill-conditioned: the split `mu = [mu1; mu2]` does not satisfy eq. (12) there.
+    #[error(
+        "D2 phi_x is singular or ill-conditioned at t = {t} s (condition estimate {condition:.1e}): \
+         the split of the minimal coordinates violates eq. (12) on this path"
+    )]
+    SingularOutputJacobian {
+        /// Time of the step.
+        t: f64,
+        /// 1-norm condition estimate of `D2 phi_x` (infinite if exactly singular).
+        condition: f64,
+    },
+    /// Solving `phi(mu0) = q0` for the minimal start did not converge.
+    #[error("no minimal coordinates mu0 with phi(mu0) = q0 found from the guess: residual {residual:.3e} after {iterations} iterations")]
+    MinimalStartNotFound {
+        /// Iterations taken.
+        iterations: usize,
+        /// Infinity norm of `phi(mu) - q0` at the last iterate.
+        residual: f64,
+    },
     /// The static-equilibrium Newton iteration did not converge.
     #[error("no static equilibrium found from the guess: residual {residual:.3e} after {iterations} iterations")]
     EquilibriumNotFound {

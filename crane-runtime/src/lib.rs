@@ -62,6 +62,7 @@ pub mod check;
 pub mod error;
 pub mod init;
 pub mod linsolve;
+pub mod minimal;
 pub mod model;
 pub mod newton;
 pub mod redundant;
@@ -70,6 +71,7 @@ pub mod trajectory;
 
 pub use error::Error;
 pub use model::{CraneModel, MinimalMap, ModelInfo, Rope, Scalar, UnknownParameter};
+pub use minimal::{MinimalStepper, simulate_minimal};
 pub use redundant::{Options, RedundantStepper, simulate};
 pub use solution::{Solution, State};
 pub use trajectory::Trajectory;

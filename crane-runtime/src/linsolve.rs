@@ -42,6 +42,11 @@ pub struct DenseSolver {
     normal: DMatrix<f64>,
     rhs: DVector<f64>,
     pivots: Vec<usize>,
+    /// Row and column scale factors when equilibrating.
+    row_scale: Vec<f64>,
+    col_scale: Vec<f64>,
+    equilibrate: bool,
+    scaled: DMatrix<f64>,
 }
 
 impl DenseSolver {
@@ -52,11 +57,54 @@ impl DenseSolver {
             normal: DMatrix::zeros(n, n),
             rhs: DVector::zeros(n),
             pivots: vec![0; n],
+            row_scale: vec![1.0; n],
+            col_scale: vec![1.0; n],
+            equilibrate: false,
+            scaled: DMatrix::zeros(0, 0),
         }
+    }
+
+    /// Workspace that first equilibrates each matrix: columns, then rows,
+    /// scaled by powers of two to largest entry about 1 (exact in floating
+    /// point), so that unknowns and equations of very different units do not
+    /// spoil the pivoting or the singularity test (DESIGN.md §3, minimal
+    /// coordinates: condition 1e16 without it).
+    pub fn equilibrated(n: usize) -> Self {
+        Self { equilibrate: true, scaled: DMatrix::zeros(n, n), ..Self::new(n) }
     }
 
     /// Solve `jac x = b` in place (`b` becomes `x`). `jac` is left unchanged.
     pub fn solve(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
+        if !self.equilibrate {
+            return self.solve_plain(jac, b);
+        }
+        let n = jac.nrows();
+        let power_of_two = |m: f64| if m > 0.0 && m.is_finite() { 2f64.powi(-(m.log2().round() as i32)) } else { 1.0 };
+        for j in 0..n {
+            self.col_scale[j] = power_of_two(jac.column(j).amax());
+        }
+        for i in 0..n {
+            let largest = (0..n).map(|j| (jac[(i, j)] * self.col_scale[j]).abs()).fold(0.0, f64::max);
+            self.row_scale[i] = power_of_two(largest);
+        }
+        let mut scaled = std::mem::take(&mut self.scaled);
+        for j in 0..n {
+            for i in 0..n {
+                scaled[(i, j)] = jac[(i, j)] * self.row_scale[i] * self.col_scale[j];
+            }
+        }
+        for i in 0..n {
+            b[i] *= self.row_scale[i];
+        }
+        let outcome = self.solve_plain(&scaled, b);
+        self.scaled = scaled;
+        for j in 0..n {
+            b[j] *= self.col_scale[j];
+        }
+        outcome
+    }
+
+    fn solve_plain(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
         self.lu.copy_from(jac);
         let pivot_ratio = lu_in_place(&mut self.lu, &mut self.pivots);
         if pivot_ratio.is_finite() && pivot_ratio >= SINGULAR_PIVOT_RATIO {

@@ -95,6 +95,12 @@ impl Newton {
         }
     }
 
+    /// Workspace for systems of dimension `n` whose matrices are equilibrated
+    /// before each solve (see [`DenseSolver::equilibrated`]).
+    pub fn equilibrated(n: usize, options: NewtonOptions) -> Self {
+        Self { solver: DenseSolver::equilibrated(n), ..Self::new(n, options) }
+    }
+
     /// The tolerances in use.
     pub fn options(&self) -> &NewtonOptions {
         &self.options

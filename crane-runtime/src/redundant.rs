@@ -319,7 +319,7 @@ pub(crate) fn step_count(t0: f64, tf: f64, dt: f64) -> Result<usize, Error> {
 }
 
 /// Rope tensions `N = lambda * L` of a state, appended to `out`.
-pub(crate) fn push_tensions<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+fn push_tensions<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
     model: &Mdl,
     state: &State<N, M, A>,
     lengths: &mut [f64],
@@ -361,6 +361,44 @@ where
 {
     let steps = step_count(start.t, options.tf, options.dt)?;
     let mut stepper = RedundantStepper::new(model, trajectory, start, options.dt, options.newton)?;
+    run_steps(model, start, &mut stepper, steps, options.dt, &mut progress)
+}
+
+/// A one-step integrator of the inverse dynamics (backward Euler in
+/// redundant or minimal coordinates).
+pub trait Stepper<const N: usize, const M: usize, const A: usize> {
+    /// Advance one step along the trajectory.
+    fn step(&mut self) -> Result<StepReport, Error>;
+    /// The state after the last step (the start before the first).
+    fn state(&self) -> &State<N, M, A>;
+}
+
+impl<Mdl, Tr, const N: usize, const M: usize, const A: usize> Stepper<N, M, A> for RedundantStepper<'_, Mdl, Tr, N, M, A>
+where
+    Mdl: CraneModel<N, M, A>,
+    Tr: Trajectory<A>,
+{
+    fn step(&mut self) -> Result<StepReport, Error> {
+        RedundantStepper::step(self)
+    }
+    fn state(&self) -> &State<N, M, A> {
+        RedundantStepper::state(self)
+    }
+}
+
+/// Take `steps` steps and collect the solution. Storage for all steps is
+/// reserved up front; the loop does not allocate.
+pub(crate) fn run_steps<Mdl, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    start: &State<N, M, A>,
+    stepper: &mut impl Stepper<N, M, A>,
+    steps: usize,
+    dt: f64,
+    progress: &mut impl FnMut(usize, usize),
+) -> Result<Solution<N, M, A>, Error>
+where
+    Mdl: CraneModel<N, M, A>,
+{
     let ropes = Mdl::INFO.ropes.len();
     let mut states = Vec::with_capacity(steps + 1);
     let mut newton_iterations = Vec::with_capacity(steps + 1);
@@ -379,5 +417,5 @@ where
         push_tensions(model, state, &mut lengths, &mut tensions);
         progress(step, steps);
     }
-    Ok(Solution { info: Mdl::INFO, dt: options.dt, states, newton_iterations, tensions, min_norm_steps })
+    Ok(Solution { info: Mdl::INFO, dt, states, newton_iterations, tensions, min_norm_steps })
 }

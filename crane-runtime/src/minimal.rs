@@ -1,0 +1,449 @@
+//! Backward Euler for the minimally extended index-3 DAEs in minimal
+//! coordinates, paper eqs. (24a-e) with (24b-d) as corrected in ERRATA.
+//!
+//! With `mu = [mu1; mu2]`, `mu' = [nu1; mu2_hat]` and the reduced quantities
+//! `M~ = P^T M P`, `f~ = P^T f - P^T M P' mu'`, `B~^T = P^T B^T` (eqs. 18-19),
+//! the unknowns of a step are `mu1, mu2, mu2_hat, mu2_tilde, u`;
+//! `nu1 = (mu1 - mu1_n)/dt` (eq. 24a) is eliminated. Rows and unknowns are
+//! scaled so that the iteration matrix does not degrade with `dt`:
+//! ```text
+//! (24b) dt^2:  M~ [mu1 - mu1_n - dt nu1_n; s] - dt^2 f~ - B~^T ut            = 0   (f rows)
+//! (24c) dt^2:  D1 phi_x (mu1 - mu1_n - dt nu1_n) + D2 phi_x s + dt^2 (w - gamma'') = 0   (a rows)
+//! (24d) dt:    D1 phi_x (mu1 - mu1_n) + D2 phi_x h - dt gamma'            = 0   (a rows)
+//! (24e)        phi_x(mu) - gamma                                           = 0   (a rows)
+//! unknowns z = [mu (f); h = dt mu2_hat (a); s = dt^2 mu2_tilde (a); ut = dt^2 u (a)]
+//! ```
+//! The iteration matrix is the exact Jacobian, by forward-mode dual numbers
+//! pushed through the generated `phi`, `P`, `P'` and the model functions;
+//! it is equilibrated before each solve (DESIGN.md §3: `M~` is singular along
+//! the whole motion for a massless pulley, the full system is regular but
+//! badly scaled). Newton starts from a quadratic extrapolation of the last
+//! three steps (DESIGN.md §3: from the previous step alone it fails near the
+//! degenerate start).
+//!
+//! Results are reported in redundant terms, `q = phi(mu)`, `q' = P mu'`, with
+//! the multipliers recovered from the redundant equations of motion by least
+//! squares, `G G^T lambda = G (f + B^T u - M q'')`, so both formulations can
+//! be compared column by column (Fig. 1).
+
+use std::ops::Range;
+
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+use num_dual::Dual64;
+
+use crate::error::Error;
+use crate::linsolve::DenseSolver;
+use crate::model::{MinimalMap, Scalar};
+use crate::newton::{Newton, NewtonFailure, NewtonOptions, NonlinearSystem};
+use crate::redundant::{Options, ServoTarget, StepReport, Stepper, check_parameters, run_steps, step_count};
+use crate::solution::{Solution, State};
+use crate::trajectory::Trajectory;
+
+/// Condition estimate of `D2 phi_x` above which the split is refused: beyond
+/// it the servo constraints no longer determine `mu2` to more than 4 digits.
+pub const OUTPUT_JACOBIAN_CONDITION_LIMIT: f64 = 1e12;
+
+/// The residual of eqs. (24b-e) at one step, in the unknowns
+/// `z = [mu; dt mu2_hat; dt^2 mu2_tilde; dt^2 u]`.
+struct MinimalEquations<'m, Mdl, const N: usize, const M: usize, const A: usize, const F: usize> {
+    model: &'m Mdl,
+    dt: f64,
+    target: ServoTarget<A>,
+    mu_prev: SVector<f64, F>,
+    mu_dot_prev: SVector<f64, F>,
+    blocks: [Range<usize>; 4],
+}
+
+/// What a residual evaluation produces, generic over the scalar.
+struct Residual<T: Scalar, const F: usize, const A: usize> {
+    dynamics: SVector<T, F>,
+    acceleration: SVector<T, A>,
+    velocity: SVector<T, A>,
+    position: SVector<T, A>,
+}
+
+impl<Mdl, const N: usize, const M: usize, const A: usize, const F: usize> MinimalEquations<'_, Mdl, N, M, A, F>
+where
+    Mdl: MinimalMap<N, M, A, F>,
+{
+    const DIM: usize = F + 3 * A;
+
+    /// `mu`, `mu'` and `dt^2 mu''` from the unknowns (`z(i)` reads unknown `i`).
+    fn kinematics<T: Scalar>(&self, z: &impl Fn(usize) -> T) -> [SVector<T, F>; 3] {
+        let split = F - A;
+        let dt = self.dt;
+        let mu = SVector::<T, F>::from_fn(|i, _| z(i));
+        let mu_dot = SVector::<T, F>::from_fn(|i, _| {
+            if i < split { (z(i) - self.mu_prev[i]) * (1.0 / dt) } else { z(F + i - split) * (1.0 / dt) }
+        });
+        let accel_dt2 = SVector::<T, F>::from_fn(|i, _| {
+            if i < split { z(i) - self.mu_prev[i] - dt * self.mu_dot_prev[i] } else { z(F + A + i - split) }
+        });
+        [mu, mu_dot, accel_dt2]
+    }
+
+    fn residual<T: Scalar>(&self, z: &impl Fn(usize) -> T) -> Residual<T, F, A> {
+        let (dt, model) = (self.dt, self.model);
+        let dt2 = dt * dt;
+        let [mu, mu_dot, accel_dt2] = self.kinematics(z);
+        let u_scaled = SVector::<T, A>::from_fn(|k, _| z(F + 2 * A + k));
+        let q = model.phi(&mu);
+        let p = model.null_space(&mu);
+        let p_dot = model.null_space_rate(&mu, &mu_dot);
+        let v = p * mu_dot;
+        let mass = model.mass_matrix::<T>();
+        let pt_m = p.transpose() * mass;
+        let curvature = p_dot * mu_dot; // P' mu'; its load rows are w (eq. 17)
+        let qdd_dt2 = p * accel_dt2 + curvature * T::from(dt2);
+        // (24b) * dt^2: M~ (dt^2 mu'') = dt^2 f~ + B~^T (dt^2 u)
+        let f_reduced = p.tr_mul(&model.forces(&q, &v)) - pt_m * curvature;
+        let dynamics = pt_m * (p * accel_dt2) - f_reduced * T::from(dt2) - p.tr_mul(&(model.input_matrix(&q) * u_scaled));
+        let off = N - A;
+        let mut acceleration = SVector::<T, A>::zeros();
+        let mut velocity = SVector::<T, A>::zeros();
+        let mut position = SVector::<T, A>::zeros();
+        let mu_step = SVector::<T, F>::from_fn(|i, _| mu_dot[i] * dt); // [mu1 - mu1_n; h]
+        let v_dt = p * mu_step;
+        for k in 0..A {
+            acceleration[k] = qdd_dt2[off + k] - dt2 * self.target[2][k]; // (24c)
+            velocity[k] = v_dt[off + k] - dt * self.target[1][k]; // (24d)
+            position[k] = q[off + k] - self.target[0][k]; // (24e)
+        }
+        Residual { dynamics, acceleration, velocity, position }
+    }
+}
+
+fn write_residual<T: Scalar, const F: usize, const A: usize>(r: &Residual<T, F, A>, mut out: impl FnMut(usize, T)) {
+    for i in 0..F {
+        out(i, r.dynamics[i]);
+    }
+    for k in 0..A {
+        out(F + k, r.acceleration[k]);
+        out(F + A + k, r.velocity[k]);
+        out(F + 2 * A + k, r.position[k]);
+    }
+}
+
+impl<Mdl, const N: usize, const M: usize, const A: usize, const F: usize> NonlinearSystem
+    for MinimalEquations<'_, Mdl, N, M, A, F>
+where
+    Mdl: MinimalMap<N, M, A, F>,
+{
+    fn dim(&self) -> usize {
+        Self::DIM
+    }
+
+    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
+        let values = self.residual(&|i| z[i]);
+        write_residual(&values, |i, v| r[i] = v);
+        // exact Jacobian column by column: seed unknown j with a dual unit
+        for j in 0..Self::DIM {
+            let column = self.residual(&|i| Dual64::new(z[i], if i == j { 1.0 } else { 0.0 }));
+            write_residual(&column, |i, v| jac[(i, j)] = v.eps);
+        }
+        // normalise by |J| |z| (see the redundant scheme): round-off shows as ~1e-16
+        let mut normalised = 0.0f64;
+        for i in 0..Self::DIM {
+            let scale = (0..Self::DIM).map(|j| (jac[(i, j)] * z[j]).abs()).sum::<f64>();
+            if scale > 0.0 {
+                normalised = normalised.max(r[i].abs() / scale);
+            } else if r[i] != 0.0 {
+                normalised = f64::INFINITY;
+            }
+        }
+        normalised
+    }
+
+    fn blocks(&self) -> &[Range<usize>] {
+        &self.blocks
+    }
+}
+
+/// Find minimal coordinates for a redundant start: `phi(mu0) = q0` by
+/// Gauss-Newton from `mu_guess`, and `mu0'` from `P mu0' = q0'` (least squares).
+pub fn minimal_start<Mdl, const N: usize, const M: usize, const A: usize, const F: usize>(
+    model: &Mdl,
+    start: &State<N, M, A>,
+    mu_guess: &SVector<f64, F>,
+) -> Result<(SVector<f64, F>, SVector<f64, F>), Error>
+where
+    Mdl: MinimalMap<N, M, A, F>,
+{
+    const MAX_ITERATIONS: usize = 50;
+    let mut mu = *mu_guess;
+    let scale = start.q.amax().max(1.0);
+    let least_squares = |p: &SMatrix<f64, N, F>, rhs: &SVector<f64, N>| -> Option<SVector<f64, F>> {
+        let a = DMatrix::from_column_slice(N, F, p.as_slice());
+        let b = DVector::from_column_slice(rhs.as_slice());
+        let x = a.svd(true, true).solve(&b, 1e-14).ok()?;
+        Some(SVector::from_column_slice(x.as_slice()))
+    };
+    for iteration in 0..=MAX_ITERATIONS {
+        let residual = start.q - model.phi(&mu);
+        let p = model.null_space(&mu);
+        let converged = residual.amax() <= 1e-12 * scale;
+        if converged {
+            let mu_dot = least_squares(&p, &start.v).ok_or(Error::NonFinite { quantity: "minimal start velocity", t: start.t })?;
+            if (p * mu_dot - start.v).amax() > 1e-9 * start.v.amax().max(1.0) {
+                return Err(Error::InconsistentStart {
+                    equation: "q0' = P mu0' (eq. 8)".into(),
+                    residual: (p * mu_dot - start.v).amax(),
+                    tolerance: 1e-9 * start.v.amax().max(1.0),
+                });
+            }
+            return Ok((mu, mu_dot));
+        }
+        if iteration == MAX_ITERATIONS || !residual.amax().is_finite() {
+            return Err(Error::MinimalStartNotFound { iterations: iteration, residual: residual.amax() });
+        }
+        let step = least_squares(&p, &residual)
+            .ok_or(Error::MinimalStartNotFound { iterations: iteration, residual: residual.amax() })?;
+        mu += step;
+    }
+    Err(Error::MinimalStartNotFound { iterations: MAX_ITERATIONS, residual: f64::NAN })
+}
+
+/// Backward Euler on eqs. (24a-e), one step at a time; [`step`](Self::step)
+/// does not allocate.
+pub struct MinimalStepper<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize> {
+    equations: MinimalEquations<'m, Mdl, N, M, A, F>,
+    trajectory: Tr,
+    newton: Newton,
+    z: DVector<f64>,
+    /// Converged unknowns of the last three steps, newest first, for the predictor.
+    history: [DVector<f64>; 3],
+    known: usize,
+    state: State<N, M, A>,
+    t0: f64,
+    steps: usize,
+    lambda_solver: DenseSolver,
+    normal: DMatrix<f64>,
+    normal_rhs: DVector<f64>,
+    output_solver: DenseSolver,
+    output_jacobian: DMatrix<f64>,
+    unit: DVector<f64>,
+}
+
+impl<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize> MinimalStepper<'m, Mdl, Tr, N, M, A, F>
+where
+    Mdl: MinimalMap<N, M, A, F>,
+    Tr: Trajectory<A>,
+{
+    /// A stepper from a consistent redundant `start`, with `mu_guess` a rough
+    /// guess of the minimal coordinates there.
+    pub fn new(
+        model: &'m Mdl,
+        trajectory: Tr,
+        start: &State<N, M, A>,
+        mu_guess: &SVector<f64, F>,
+        dt: f64,
+        newton: NewtonOptions,
+    ) -> Result<Self, Error> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(Error::InvalidTimeStep { dt });
+        }
+        check_parameters(model)?;
+        let (mu, mu_dot) = minimal_start(model, start, mu_guess)?;
+        let split = F - A;
+        let dim = F + 3 * A;
+        let mut z = DVector::zeros(dim);
+        for i in 0..F {
+            z[i] = mu[i];
+        }
+        for k in 0..A {
+            z[F + k] = dt * mu_dot[split + k];
+            z[F + 2 * A + k] = dt * dt * start.u[k];
+        }
+        // s = dt^2 mu2'' at the start: from rest it is 0 (gamma'' = 0 there);
+        // otherwise Newton's first iterate corrects it
+        let equations = MinimalEquations {
+            model,
+            dt,
+            target: [SVector::zeros(); 3],
+            mu_prev: mu,
+            mu_dot_prev: mu_dot,
+            blocks: [0..F, F..F + A, F + A..F + 2 * A, F + 2 * A..dim],
+        };
+        let mut stepper = Self {
+            equations,
+            trajectory,
+            newton: Newton::equilibrated(dim, newton),
+            history: [z.clone(), z.clone(), z.clone()],
+            z,
+            known: 1,
+            state: *start,
+            t0: start.t,
+            steps: 0,
+            lambda_solver: DenseSolver::new(M),
+            normal: DMatrix::zeros(M, M),
+            normal_rhs: DVector::zeros(M),
+            output_solver: DenseSolver::new(A),
+            output_jacobian: DMatrix::zeros(A, A),
+            unit: DVector::zeros(A),
+        };
+        let p = model.null_space(&mu);
+        stepper.check_output_jacobian(&p, start.t)?;
+        Ok(stepper)
+    }
+
+    /// The state after the last step, in redundant coordinates.
+    pub fn state(&self) -> &State<N, M, A> {
+        &self.state
+    }
+
+    /// The minimal coordinates `mu` and velocities `mu'` after the last step.
+    pub fn minimal_state(&self) -> (SVector<f64, F>, SVector<f64, F>) {
+        (self.equations.mu_prev, self.equations.mu_dot_prev)
+    }
+
+    /// Advance one step along the stepper's trajectory.
+    pub fn step(&mut self) -> Result<StepReport, Error> {
+        let t = self.t0 + (self.steps + 1) as f64 * self.equations.dt;
+        let target = [
+            self.trajectory.derivative(t, 0),
+            self.trajectory.derivative(t, 1),
+            self.trajectory.derivative(t, 2),
+        ];
+        self.step_to(t, &target)
+    }
+
+    /// Advance one step to time `t = t_n + dt` with the load target
+    /// `gamma, gamma', gamma''` at `t`.
+    pub fn step_to(&mut self, t: f64, target: &ServoTarget<A>) -> Result<StepReport, Error> {
+        if !target.iter().all(|x| x.iter().all(|v| v.is_finite())) {
+            return Err(Error::NonFinite { quantity: "load target gamma(t)", t });
+        }
+        self.equations.target = *target;
+        // predictor: extrapolate the last steps (quadratic once three are known)
+        let [h0, h1, h2] = &self.history;
+        for i in 0..self.z.len() {
+            self.z[i] = match self.known {
+                1 => h0[i],
+                2 => 2.0 * h0[i] - h1[i],
+                _ => 3.0 * h0[i] - 3.0 * h1[i] + h2[i],
+            };
+        }
+        let converged = self.newton.solve(&mut self.equations, &mut self.z).map_err(|failure| match failure {
+            NewtonFailure::NotConverged { iterations, residual } => {
+                Error::NewtonNotConverged { t, iterations, residual }
+            }
+            NewtonFailure::Singular { pivot_ratio } => Error::SingularIterationMatrix { t, pivot_ratio },
+            NewtonFailure::NonFinite => Error::NonFinite { quantity: "Newton iterate", t },
+        })?;
+        self.accept(t)?;
+        Ok(StepReport { iterations: converged.iterations, min_norm_steps: converged.min_norm_steps })
+    }
+
+    /// Take the converged unknowns as the new state: minimal and redundant
+    /// coordinates, inputs and the recovered multipliers.
+    fn accept(&mut self, t: f64) -> Result<(), Error> {
+        let eq = &self.equations;
+        let (dt, model) = (eq.dt, eq.model);
+        let dt2 = dt * dt;
+        let z = &self.z;
+        let [mu, mu_dot, accel_dt2] = eq.kinematics(&|i| z[i]);
+        let u = SVector::<f64, A>::from_fn(|k, _| z[F + 2 * A + k] / dt2);
+        let q = model.phi(&mu);
+        let p = model.null_space(&mu);
+        let v = p * mu_dot;
+        let qdd = (p * accel_dt2) / dt2 + model.null_space_rate(&mu, &mu_dot) * mu_dot;
+        // G G^T lambda = G (f + B^T u - M q'')
+        let jac_g = model.constraint_jacobian(&q);
+        let rhs = model.forces(&q, &v) + model.input_matrix(&q) * u - model.mass_matrix::<f64>() * qdd;
+        self.normal.copy_from(&(jac_g * jac_g.transpose()));
+        self.normal_rhs.copy_from(&(jac_g * rhs));
+        self.lambda_solver
+            .solve(&self.normal, &mut self.normal_rhs)
+            .map_err(|s| Error::SingularIterationMatrix { t, pivot_ratio: s.pivot_ratio })?;
+        let lambda = SVector::<f64, M>::from_fn(|i, _| self.normal_rhs[i]);
+        self.check_output_jacobian(&p, t)?;
+        self.state = State { t, q, v, u, lambda };
+        self.equations.mu_prev = mu;
+        self.equations.mu_dot_prev = mu_dot;
+        let [h0, h1, h2] = &mut self.history;
+        std::mem::swap(h1, h2);
+        std::mem::swap(h0, h1);
+        h0.copy_from(&self.z);
+        self.known = (self.known + 1).min(3);
+        self.steps += 1;
+        Ok(())
+    }
+
+    /// Refuse an ill-conditioned `D2 phi_x` (eq. 12): 1-norm condition
+    /// estimate `|D| |D^-1|` with the inverse from `A` solves.
+    fn check_output_jacobian(&mut self, p: &SMatrix<f64, N, F>, t: f64) -> Result<(), Error> {
+        let (off, split) = (N - A, F - A);
+        for i in 0..A {
+            for k in 0..A {
+                self.output_jacobian[(i, k)] = p[(off + i, split + k)];
+            }
+        }
+        let norm1 = |m: &DMatrix<f64>| m.column_iter().map(|c| c.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max);
+        let d_norm = norm1(&self.output_jacobian);
+        let mut inverse_norm = 0.0f64;
+        for k in 0..A {
+            self.unit.fill(0.0);
+            self.unit[k] = 1.0;
+            let kind = self.output_solver.solve(&self.output_jacobian, &mut self.unit);
+            let column = if kind == Ok(crate::linsolve::SolveKind::Lu) {
+                self.unit.iter().map(|x| x.abs()).sum::<f64>()
+            } else {
+                f64::INFINITY
+            };
+            inverse_norm = inverse_norm.max(column);
+        }
+        let condition = d_norm * inverse_norm;
+        if !(condition <= OUTPUT_JACOBIAN_CONDITION_LIMIT) {
+            return Err(Error::SingularOutputJacobian { t, condition });
+        }
+        Ok(())
+    }
+}
+
+/// Integrate eqs. (24a-e) from the redundant `start` to `options.tf`;
+/// `mu_guess` is a rough guess of the minimal coordinates at the start.
+pub fn simulate_minimal<Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize>(
+    model: &Mdl,
+    trajectory: Tr,
+    start: &State<N, M, A>,
+    mu_guess: &SVector<f64, F>,
+    options: &Options,
+) -> Result<Solution<N, M, A>, Error>
+where
+    Mdl: MinimalMap<N, M, A, F>,
+    Tr: Trajectory<A>,
+{
+    simulate_minimal_with_progress(model, trajectory, start, mu_guess, options, |_, _| {})
+}
+
+/// [`simulate_minimal`], calling `progress(step, steps)` after every step.
+pub fn simulate_minimal_with_progress<Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize>(
+    model: &Mdl,
+    trajectory: Tr,
+    start: &State<N, M, A>,
+    mu_guess: &SVector<f64, F>,
+    options: &Options,
+    mut progress: impl FnMut(usize, usize),
+) -> Result<Solution<N, M, A>, Error>
+where
+    Mdl: MinimalMap<N, M, A, F>,
+    Tr: Trajectory<A>,
+{
+    let steps = step_count(start.t, options.tf, options.dt)?;
+    let mut stepper = MinimalStepper::new(model, trajectory, start, mu_guess, options.dt, options.newton)?;
+    run_steps(model, start, &mut stepper, steps, options.dt, &mut progress)
+}
+
+impl<Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize> Stepper<N, M, A>
+    for MinimalStepper<'_, Mdl, Tr, N, M, A, F>
+where
+    Mdl: MinimalMap<N, M, A, F>,
+    Tr: Trajectory<A>,
+{
+    fn step(&mut self) -> Result<StepReport, Error> {
+        MinimalStepper::step(self)
+    }
+    fn state(&self) -> &State<N, M, A> {
+        MinimalStepper::state(self)
+    }
+}
