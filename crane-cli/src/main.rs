@@ -15,7 +15,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Parser, Subcommand};
-use crane_models::{CATALOG, Case, navy_planar};
+use crane_models::{CATALOG, Case, navy_planar, navy_planar_pulley};
 use crane_runtime::{Options, simulate};
 
 /// Inverse dynamics of underactuated cranes: the torques that move the load
@@ -45,6 +45,9 @@ enum Command {
         /// Output directory (default out/MODEL).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Redundant coordinates (eqs. 22a-d) or minimal coordinates (eqs. 24a-e).
+        #[arg(long, value_enum, default_value_t = Formulation::Redundant)]
+        formulation: Formulation,
     },
     /// Time repeated runs without writing files; print median wall time per run and per step.
     Bench {
@@ -59,7 +62,46 @@ enum Command {
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
+        /// Redundant coordinates (eqs. 22a-d) or minimal coordinates (eqs. 24a-e).
+        #[arg(long, value_enum, default_value_t = Formulation::Redundant)]
+        formulation: Formulation,
     },
+}
+
+/// Which index-3 formulation to integrate.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Formulation {
+    /// Redundant coordinates, backward Euler on eqs. (22a-d).
+    Redundant,
+    /// Minimal coordinates, backward Euler on eqs. (24a-e).
+    Minimal,
+}
+
+impl Formulation {
+    /// The name used in `summary.json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Formulation::Redundant => "redundant",
+            Formulation::Minimal => "minimal",
+        }
+    }
+
+    /// Integrate `case` from `start` with this formulation.
+    fn simulate<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
+        self,
+        case: &C,
+        name: &str,
+        start: &crane_runtime::State<N, M, A>,
+        options: &Options,
+    ) -> Result<crane_runtime::Solution<N, M, A>, CliError> {
+        match self {
+            Formulation::Redundant => Ok(simulate(case.model(), case.path(), start, options)?),
+            Formulation::Minimal => case
+                .simulate_minimal(start, options)
+                .ok_or_else(|| CliError::NoMinimalMap(name.to_string()))?
+                .map_err(CliError::from),
+        }
+    }
 }
 
 /// Errors the command reports (then exits non-zero).
@@ -75,6 +117,8 @@ enum CliError {
     Io { context: String, source: std::io::Error },
     #[error("writing {what}: {message}")]
     Output { what: String, message: String },
+    #[error("model `{0}` declares no minimal-coordinate map; use --formulation redundant")]
+    NoMinimalMap(String),
     #[error("--repeat must be at least 1")]
     NoRepeats,
 }
@@ -93,22 +137,27 @@ fn main() -> ExitCode {
 fn execute(command: Command) -> Result<(), CliError> {
     match command {
         Command::List => {
-            println!("{:<14} {:>3} {:>3} {:>3} {:>3}  {:<9} description", "model", "n", "m", "a", "f", "reference");
+            let width = CATALOG.iter().map(|e| e.name.len()).max().unwrap_or(5);
+            println!("{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} description", "model", "n", "m", "a", "f", "reference");
             for e in CATALOG {
                 let reference = if e.reference { "yes" } else { "no" };
-                println!("{:<14} {:>3} {:>3} {:>3} {:>3}  {:<9} {}", e.name, e.n, e.m, e.a, e.dof(), reference, e.description);
+                println!("{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {}", e.name, e.n, e.m, e.a, e.dof(), reference, e.description);
             }
             Ok(())
         }
-        Command::Run { model, dt, tf, out } => {
+        Command::Run { model, dt, tf, out, formulation } => {
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&model));
             match model.as_str() {
-                "navy-planar" => run(&navy_planar::PaperCase::new(tf.unwrap_or(4.0))?, &model, dt, &out),
+                "navy-planar" => run(&navy_planar::PaperCase::new(tf.unwrap_or(4.0))?, &model, formulation, dt, &out),
+                "navy-planar-pulley" => {
+                    run(&navy_planar_pulley::PaperCase::new(tf.unwrap_or(4.0))?, &model, formulation, dt, &out)
+                }
                 _ => Err(CliError::UnknownModel(model)),
             }
         }
-        Command::Bench { model, dt, repeat, json } => match model.as_str() {
-            "navy-planar" => bench(&navy_planar::PaperCase::new(4.0)?, &model, dt, repeat, json),
+        Command::Bench { model, dt, repeat, json, formulation } => match model.as_str() {
+            "navy-planar" => bench(&navy_planar::PaperCase::new(4.0)?, &model, formulation, dt, repeat, json),
+            "navy-planar-pulley" => bench(&navy_planar_pulley::PaperCase::new(4.0)?, &model, formulation, dt, repeat, json),
             _ => Err(CliError::UnknownModel(model)),
         },
     }
@@ -118,16 +167,17 @@ fn execute(command: Command) -> Result<(), CliError> {
 fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &C,
     name: &str,
+    formulation: Formulation,
     dt: f64,
     out: &std::path::Path,
 ) -> Result<(), CliError> {
     let start = case.start()?;
     let options = Options::new(dt, case.tf());
     let clock = Instant::now();
-    let solution = simulate(case.model(), case.path(), &start, &options)?;
+    let solution = formulation.simulate(case, name, &start, &options)?;
     let wall = clock.elapsed().as_secs_f64();
     let references: Option<Vec<_>> = solution.states.iter().map(|s| case.reference(s.t)).collect();
-    let summary = report::summarize(name, &solution, references.as_deref(), wall);
+    let summary = report::summarize(name, formulation.name(), &solution, references.as_deref(), wall);
     // the reference curves of the plots on a fine grid, whatever dt
     let (t0, tf) = (case.t0(), case.tf());
     let samples = solution.steps().max(800);
@@ -136,7 +186,8 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
         .and_then(|_| (0..=samples).map(|i| case.reference(t0 + (tf - t0) * i as f64 / samples as f64)).collect());
     output::write_all(out, &solution, fine.as_deref(), &summary)?;
     println!(
-        "{name}: {} steps of dt = {dt} s in {:.1} ms ({:.2} Newton iterations per step)",
+        "{name} ({}): {} steps of dt = {dt} s in {:.1} ms ({:.2} Newton iterations per step)",
+        formulation.name(),
         solution.steps(),
         wall * 1e3,
         solution.mean_newton_iterations()
@@ -152,6 +203,7 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
 fn bench<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &C,
     name: &str,
+    formulation: Formulation,
     dt: f64,
     repeat: usize,
     json: bool,
@@ -164,10 +216,10 @@ fn bench<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let mut times = Vec::with_capacity(repeat);
     let mut steps = 0;
     let mut iterations = 0.0;
-    simulate(case.model(), case.path(), &start, &options)?; // warm-up
+    formulation.simulate(case, name, &start, &options)?; // warm-up
     for _ in 0..repeat {
         let clock = Instant::now();
-        let solution = simulate(case.model(), case.path(), &start, &options)?;
+        let solution = formulation.simulate(case, name, &start, &options)?;
         times.push(clock.elapsed().as_secs_f64());
         steps = solution.steps();
         iterations = solution.mean_newton_iterations();
@@ -176,14 +228,15 @@ fn bench<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let median = times[times.len() / 2];
     if json {
         let value = serde_json::json!({
-            "model": name, "dt": dt, "steps": steps, "repeat": repeat,
+            "model": name, "formulation": formulation.name(), "dt": dt, "steps": steps, "repeat": repeat,
             "median_run_s": median, "median_step_s": median / steps as f64,
             "mean_newton_iterations": iterations,
         });
         println!("{value}");
     } else {
         println!(
-            "{name}: dt = {dt} s, {steps} steps, {repeat} runs: median {:.3} ms per run, {:.2} us per step, {:.2} Newton iterations per step",
+            "{name} ({}): dt = {dt} s, {steps} steps, {repeat} runs: median {:.3} ms per run, {:.2} us per step, {:.2} Newton iterations per step",
+            formulation.name(),
             median * 1e3,
             median / steps as f64 * 1e6,
             iterations

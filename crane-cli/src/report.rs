@@ -44,7 +44,7 @@ pub struct NewtonSummary {
 pub struct Summary {
     pub model: String,
     pub description: String,
-    pub formulation: &'static str,
+    pub formulation: String,
     pub dt: f64,
     pub t0: f64,
     pub tf: f64,
@@ -80,6 +80,7 @@ fn column_extremes<const K: usize, const N: usize, const M: usize, const A: usiz
 
 pub fn summarize<const N: usize, const M: usize, const A: usize>(
     model: &str,
+    formulation: &str,
     solution: &Solution<N, M, A>,
     references: Option<&[State<N, M, A>]>,
     wall_time_s: f64,
@@ -129,7 +130,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
     Summary {
         model: model.to_string(),
         description: info.description.to_string(),
-        formulation: "redundant",
+        formulation: formulation.to_string(),
         dt: solution.dt,
         t0: states.first().map_or(f64::NAN, |s| s.t),
         tf: states.last().map_or(f64::NAN, |s| s.t),

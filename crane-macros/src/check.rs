@@ -7,9 +7,14 @@
 //! - the generalized forces are linear in the inputs, `f + B^T(q) u`, and
 //!   the inputs act on the robot coordinates only (eq. 11c);
 //! - one input per load coordinate (eq. 1c) and fewer constraints than
-//!   coordinates (`m < n`).
+//!   coordinates (`m < n`);
+//! - a `minimal` block maps every coordinate once, with `f = n - m` minimal
+//!   coordinates of which the last `a` are `mu2` (eqs. 6, 12); see
+//!   [`minimal`].
 //!
 //! Every problem is reported to the [`Ctxt`] with a span on the culprit.
+
+mod minimal;
 
 use std::collections::HashMap;
 
@@ -105,6 +110,7 @@ enum Place {
     Force,
     Constraint,
     RopeLength,
+    Minimal,
 }
 
 impl Place {
@@ -115,6 +121,7 @@ impl Place {
             Place::Force => "`forces`",
             Place::Constraint => "`constraints`",
             Place::RopeLength => "a rope length",
+            Place::Minimal => "`minimal`",
         }
     }
 
@@ -136,6 +143,8 @@ struct Lowerer<'a> {
     arena: &'a mut Arena,
     names: &'a Names,
     cx: &'a Ctxt,
+    /// What the statements of a `minimal` block have defined so far.
+    minimal: Option<minimal::Scope>,
 }
 
 impl Lowerer<'_> {
@@ -218,6 +227,9 @@ impl Lowerer<'_> {
         if ident == "PI" {
             return Some(self.arena.constant(std::f64::consts::PI));
         }
+        if place == Place::Minimal {
+            return self.minimal_name(ident);
+        }
         let span = ident.span();
         if place == Place::ParamDefault {
             let what = match self.names.get(ident) {
@@ -267,6 +279,16 @@ impl Lowerer<'_> {
     }
 
     fn velocity(&mut self, e: &Expr, coord: &Ident, place: Place) -> Option<Id> {
+        if place == Place::Minimal {
+            self.cx.error_spanned_by(
+                e.range(),
+                format!(
+                    "velocity `dot({coord})` is not allowed in `minimal`: the map q = phi(mu) depends on the \
+                     minimal coordinates only, and its derivatives P and P' are generated (eqs. 8-9)"
+                ),
+            );
+            return None;
+        }
         match self.names.get(coord) {
             Some((Kind::RobotCoord | Kind::LoadCoord, index)) => {
                 if place.allows_velocities() {
@@ -307,6 +329,9 @@ impl Lowerer<'_> {
 
     /// "allowed in ...: ..." for the unknown-symbol message.
     fn allowed(&self, place: Place) -> String {
+        if place == Place::Minimal {
+            return self.allowed_in_minimal();
+        }
         let mut kinds = Vec::new();
         if !self.names.params.is_empty() {
             kinds.push(format!("parameters ({})", join(&self.names.params)));
@@ -330,6 +355,7 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
     let no_params = Vec::new();
     let params = s.params.as_ref().map_or(&no_params, |p| &p.body);
     let constraints = s.constraints.as_ref().map_or(&[][..], |c| &c.body[..]);
+    let m = constraints.len();
     let names = declare_names(params, &lists, constraints, cx)?;
     let (n_robot, inputs) = (lists.robot.len(), lists.inputs);
     check_counts(decl, &names, cx);
@@ -339,6 +365,7 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         arena: &mut arena,
         names: &names,
         cx,
+        minimal: None,
     };
     for p in params {
         lower.lower(&p.default, Place::ParamDefault);
@@ -349,12 +376,10 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         .and_then(|k| check_kinetic(&k.body, &mut lower));
     let forces = check_forces(decl, n_robot, &mut lower);
     let constraints = check_constraints(constraints, &mut lower);
-    if let Some(minimal) = &s.minimal {
-        cx.error_at(
-            minimal.keyword.span(),
-            "`minimal` blocks (minimal coordinates, paper sect. 3.2) are not supported yet",
-        );
-    }
+    let minimal = s
+        .minimal
+        .as_ref()
+        .and_then(|section| minimal::check(section, lists.load.len(), m, &mut lower));
     if cx.has_errors() {
         return None;
     }
@@ -380,6 +405,7 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         constraints,
         kinetic: kinetic?,
         forces,
+        minimal,
     })
 }
 
@@ -746,6 +772,8 @@ fn describe_sym(sym: Sym, names: &Names) -> String {
         Sym::Input(k) => format!("the input `{}`", names.inputs[k as usize]),
         Sym::Param(i) => format!("the parameter `{}`", names.params[i as usize]),
         Sym::Lambda(k) => format!("lambda_{}", k + 1),
+        Sym::Mu(k) => format!("the minimal coordinate number {}", k + 1),
+        Sym::MuDot(k) => format!("the velocity of minimal coordinate number {}", k + 1),
     }
 }
 

@@ -10,8 +10,10 @@
 //! The code is generic over `T: ::crane_runtime::Scalar`, which supports
 //! `T op T` and `T op f64` but not `f64 op T`; the printer therefore keeps
 //! numeric constants to the right (`x * 2.0`, `x - 1.0`, `r.recip()`).
-//! Internal names (`q`, `v`, `lambda`, `out`, `tN`, `dot_x`) are
-//! `Span::mixed_site()` so they cannot collide with the user's names.
+//! Internal names (`q`, `v`, `lambda`, `mu`, `mu_dot`, `out`, `tN`, `dot_x`)
+//! are `Span::mixed_site()` so they cannot collide with the user's names.
+//! A common subexpression that is the value of a `let` of a `minimal` block
+//! is bound under the user's name instead of a `tN`.
 
 use std::collections::HashMap;
 
@@ -19,7 +21,7 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{ToTokens, format_ident, quote};
 
 use crate::expr::{Arena, Id, Node, Sym};
-use crate::model::{Kernels, Model};
+use crate::model::{Kernels, Minimal, MinimalKernels, Model};
 use crate::parse::{BinOp, Declaration, Expr, Function};
 
 /// The scalar a function computes in.
@@ -215,6 +217,8 @@ impl Printer<'_> {
                 let k = index(k as usize);
                 quote!(#lambda[#k])
             }
+            Sym::Mu(k) => minimal_coordinate(self.model, k).to_token_stream(),
+            Sym::MuDot(k) => velocity_name(minimal_coordinate(self.model, k)).to_token_stream(),
         }
     }
 
@@ -386,6 +390,13 @@ fn velocity_name(coord: &Ident) -> Ident {
     Ident::new(&format!("dot_{coord}"), Span::mixed_site())
 }
 
+/// The name of the minimal coordinate `mu_k`.
+fn minimal_coordinate(model: &Model, k: u16) -> &Ident {
+    // `Sym::Mu` is only created for a model with a `minimal` block
+    let minimal = model.minimal.as_ref();
+    &minimal.map_or(&model.coords, |m| &m.mu)[k as usize]
+}
+
 /// Nodes worth a `let`: not leaves, not a bare reciprocal (printed as a
 /// division) or negation.
 fn bindable(arena: &Arena, id: Id) -> bool {
@@ -450,6 +461,8 @@ fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream {
     let q = internal("q");
     let v = internal("v");
     let u = internal("u");
+    let mu = internal("mu");
+    let mu_dot = internal("mu_dot");
     for s in syms {
         statements.extend(match s {
             Sym::Param(i) => {
@@ -475,14 +488,36 @@ fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream {
                 quote!(let #name = #u[#k];)
             }
             Sym::Lambda(_) => quote!(),
+            Sym::Mu(k) => {
+                let name = minimal_coordinate(model, k);
+                let k = index(k as usize);
+                quote!(let #name = #mu[#k];)
+            }
+            Sym::MuDot(k) => {
+                let name = velocity_name(minimal_coordinate(model, k));
+                let k = index(k as usize);
+                quote!(let #name = #mu_dot[#k];)
+            }
         });
     }
 
-    // common subexpressions, children first
-    for (n, &id) in bound_order.iter().enumerate() {
+    // common subexpressions, children first; the user's name for the value
+    // of a `let` (the first of equal ones), `tN` for the others
+    let mut let_names: HashMap<Id, &Ident> = HashMap::new();
+    for (name, id) in model.minimal.iter().flat_map(|m| &m.lets) {
+        let_names.entry(*id).or_insert(name);
+    }
+    let mut temporaries = 0;
+    for &id in &bound_order {
         let value = printer.print_node(id);
         let value = printer.value(value);
-        let name = internal(&format!("t{n}"));
+        let name = match let_names.get(&id) {
+            Some(&name) => name.clone(),
+            None => {
+                temporaries += 1;
+                internal(&format!("t{}", temporaries - 1))
+            }
+        };
         statements.extend(quote!(let #name = #value;));
         printer.bound.insert(id, name);
     }
@@ -769,6 +804,10 @@ pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
     };
 
     let lints = quote!(#[allow(non_snake_case, unused_variables, clippy::too_many_lines, clippy::unreadable_literal)]);
+    let minimal_items = match (&model.minimal, &k.minimal) {
+        (Some(minimal), Some(kernels)) => generate_minimal(model, minimal, kernels, &lints),
+        _ => TokenStream::new(),
+    };
 
     quote! {
         #(#attrs)*
@@ -929,6 +968,130 @@ pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
 
             fn rope_lengths(&self, #q: &#sv<f64, #n_lit>, #out: &mut [f64]) {
                 #rope_lengths_body
+            }
+        }
+
+        #minimal_items
+    }
+}
+
+/// The items of a `minimal` block: inherent methods with the paper's names
+/// and sizes, and the `MinimalMap` implementation.
+fn generate_minimal(
+    model: &Model,
+    minimal: &Minimal,
+    k: &MinimalKernels,
+    lints: &TokenStream,
+) -> TokenStream {
+    let name = &model.name;
+    let (n, m, a, f) = (model.n(), model.m(), model.a(), minimal.mu.len());
+    let nr = model.n_robot;
+    let f1 = minimal.n_mu1;
+    let (n_lit, m_lit, a_lit, nr_lit, f_lit, f1_lit) =
+        (index(n), index(m), index(a), index(nr), index(f), index(f1));
+    let sv = quote!(::crane_runtime::nalgebra::SVector);
+    let sm = quote!(::crane_runtime::nalgebra::SMatrix);
+    let scalar = quote!(::crane_runtime::Scalar);
+    let mu = internal("mu");
+    let mu_dot = internal("mu_dot");
+
+    let (mu1, mu2) = minimal.mu.split_at(f1);
+    let doc_split = doc(format!(
+        "Number of minimal coordinates in `mu1`, `f - a`: `mu = [mu1; mu2]` with `mu1` = {} and `mu2` = {}, \
+         chosen so that `D2 phi_x` is regular (eq. 12).",
+        names_list(mu1),
+        names_list(mu2)
+    ));
+    let robot = &model.coords[..nr];
+    let load = &model.coords[nr..];
+    let doc_phi_p = doc(format!(
+        "Robot part `phi_p(mu)` of the map `q = phi(mu)` (eq. 6): {} as functions of the minimal coordinates \
+         `mu` = {}.",
+        names_list(robot),
+        names_list(&minimal.mu)
+    ));
+    let doc_phi_x = doc(format!(
+        "Load part `phi_x(mu)` of the map `q = phi(mu)` (eq. 6): {}; the servo constraints read \
+         `phi_x(mu) = gamma(t)` (eq. 10b).",
+        names_list(load)
+    ));
+    let declared: Vec<TokenStream> = minimal.source.iter().map(doc).collect();
+
+    let phi_body = single(model, vector_output("out", n, &k.phi));
+    let phi_p_body = single(model, vector_output("out", nr, &k.phi[..nr]));
+    let phi_x_body = single(model, vector_output("out", a, &k.phi[nr..]));
+    let p_body = single(model, matrix_output("out", &k.p, 0..n, 0..f));
+    let p_rate_body = single(model, matrix_output("out", &k.p_rate, 0..n, 0..f));
+    let d1_body = single(model, matrix_output("out", &k.p, nr..n, 0..f1));
+    let d2_body = single(model, matrix_output("out", &k.p, nr..n, f1..f));
+    let w_body = single(model, vector_output("out", a, &k.w));
+    let mu_names = str_list(minimal.mu.iter().map(ToString::to_string));
+
+    quote! {
+        #lints
+        impl #name {
+            #doc_split
+            pub const MINIMAL_SPLIT: usize = #f1_lit;
+
+            #doc_phi_p
+            pub fn phi_p<T: #scalar>(&self, #mu: &#sv<T, #f_lit>) -> #sv<T, #nr_lit> {
+                #phi_p_body
+            }
+
+            #doc_phi_x
+            pub fn phi_x<T: #scalar>(&self, #mu: &#sv<T, #f_lit>) -> #sv<T, #a_lit> {
+                #phi_x_body
+            }
+
+            /// `D1 phi_x = d phi_x / d mu1` (eqs. 15-16): the load rows of `P = D phi` in
+            /// the columns of `mu1`.
+            pub fn D1_phi_x<T: #scalar>(&self, #mu: &#sv<T, #f_lit>) -> #sm<T, #a_lit, #f1_lit> {
+                #d1_body
+            }
+
+            /// `D2 phi_x = d phi_x / d mu2` (eqs. 12, 15-16): the load rows of `P = D phi`
+            /// in the columns of `mu2`; must be regular.
+            pub fn D2_phi_x<T: #scalar>(&self, #mu: &#sv<T, #f_lit>) -> #sm<T, #a_lit, #a_lit> {
+                #d2_body
+            }
+
+            /// `w = d/dt[D1 phi_x] mu1' + d/dt[D2 phi_x] mu2^` (eq. 17), with
+            /// `mu_dot = [mu1'; mu2^]`: the load rows of `P'(mu, mu') mu'`, the second
+            /// directional derivative of `phi_x` along `mu'`.
+            pub fn w<T: #scalar>(
+                &self,
+                #mu: &#sv<T, #f_lit>,
+                #mu_dot: &#sv<T, #f_lit>,
+            ) -> #sv<T, #a_lit> {
+                #w_body
+            }
+        }
+
+        #lints
+        impl ::crane_runtime::MinimalMap<#n_lit, #m_lit, #a_lit, #f_lit> for #name {
+            const MINIMAL_COORDINATES: &'static [&'static str] = #mu_names;
+
+            /// The map `q = phi(mu)` (eq. 6), as declared:
+            ///
+            /// ```text
+            #(#declared)*
+            /// ```
+            fn phi<T: #scalar>(&self, #mu: &#sv<T, #f_lit>) -> #sv<T, #n_lit> {
+                #phi_body
+            }
+
+            /// `P = D phi(mu)` (eq. 8).
+            fn null_space<T: #scalar>(&self, #mu: &#sv<T, #f_lit>) -> #sm<T, #n_lit, #f_lit> {
+                #p_body
+            }
+
+            /// `P' = sum_k dP/dmu_k mu_k'` (eq. 9).
+            fn null_space_rate<T: #scalar>(
+                &self,
+                #mu: &#sv<T, #f_lit>,
+                #mu_dot: &#sv<T, #f_lit>,
+            ) -> #sm<T, #n_lit, #f_lit> {
+                #p_rate_body
             }
         }
     }

@@ -47,6 +47,12 @@ impl Ctxt {
         !self.errors.borrow().is_empty()
     }
 
+    /// How many errors were reported so far (to tell whether a stage added
+    /// any).
+    pub fn error_count(&self) -> usize {
+        self.errors.borrow().len()
+    }
+
     /// `Err` with all reported errors combined, in the order they were
     /// reported, or `Ok` if there were none.
     pub fn check(self) -> Result<(), syn::Error> {

@@ -33,8 +33,8 @@ impl Id {
 ///
 /// The indices refer to the declaration order of the model (`Coord` and
 /// `Vel` to the redundant coordinates `q = [p; x]`, `Lambda` to the
-/// constraints). Minimal coordinates `mu` and their velocities (paper
-/// sect. 3.2) will be two more variants.
+/// constraints, `Mu` and `MuDot` to the minimal coordinates
+/// `mu = [mu1; mu2]` of a `minimal` block, paper sect. 3.2).
 #[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
 pub enum Sym {
     /// A parameter of the model (a field of the generated struct).
@@ -47,6 +47,11 @@ pub enum Sym {
     Input(u16),
     /// A Lagrange multiplier `lambda_k` (only in the constraint Hessian).
     Lambda(u16),
+    /// A minimal coordinate `mu_k` (only in the map `q = phi(mu)`, eq. 6,
+    /// and its derivatives).
+    Mu(u16),
+    /// A minimal velocity `mu_k'` (only in `P'` and `w`, eqs. 9 and 17).
+    MuDot(u16),
 }
 
 /// An `f64` that can be hashed: its bit pattern, with `-0.0` stored as `0.0`.

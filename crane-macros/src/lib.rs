@@ -9,10 +9,14 @@
 //! constraints, and emits a struct implementing
 //! `crane_runtime::CraneModel` with `g`, `G = dg/dq`, the constraint
 //! Hessian, the constant mass matrix `M`, `f`, `B^T` and their derivatives.
+//! With a `minimal` block (sect. 3.2) it also implements
+//! `crane_runtime::MinimalMap`: the map `q = phi(mu)` to `f = n - m` minimal
+//! coordinates, `P = D phi` and `P'`, plus `phi_p`, `phi_x`, `D1_phi_x`,
+//! `D2_phi_x` and `w` (eqs. 6-17).
 //!
 //! ```
 //! use crane_macros::crane_model;
-//! use crane_runtime::CraneModel;
+//! use crane_runtime::{CraneModel, MinimalMap};
 //! use crane_runtime::nalgebra::SVector;
 //!
 //! crane_model! {
@@ -32,6 +36,12 @@
 //!             #[rope(N2 = L2 - L0)]
 //!             hoist: 0.5*((x - x0)^2 + (z - z0)^2 - (L2 - L0)^2),
 //!         }
+//!         minimal [beta, gamma | theta, L] {
+//!             let d = l*sin(gamma - beta)/sin(gamma);
+//!             L1 = l*sin(beta)/sin(gamma);  L2 = d + L;  L0 = d;
+//!             x0 = -d*sin(alpha - beta);    z0 = -d*cos(alpha - beta);
+//!             x  = x0 + L*sin(theta);       z  = z0 - L*cos(theta);
+//!         }
 //!     }
 //! }
 //!
@@ -41,6 +51,11 @@
 //! assert!(crane.g(&q).norm() < 1e-12);
 //! assert_eq!(crane.mass_matrix::<f64>()[(5, 5)], 100.0);
 //! assert_eq!(NavyPlanar::INFO.ropes.len(), 2);
+//!
+//! // the same start in minimal coordinates mu = [beta, gamma, theta, L]
+//! let mu = SVector::<f64, 4>::from([std::f64::consts::FRAC_PI_3, std::f64::consts::FRAC_PI_2, 0.0, 5.0]);
+//! assert!((crane.phi(&mu) - q).norm() < 1e-12);
+//! assert!((crane.constraint_jacobian(&q) * crane.null_space(&mu)).norm() < 1e-12);
 //! ```
 //!
 //! # The DSL
@@ -55,6 +70,16 @@
 //!   (inputs on robot coordinates only); unlisted coordinates get 0.
 //! - `constraints { name: expr, ... }`: `g(q)`; `#[rope(N = length)]` marks a
 //!   rope with tension `N = lambda * length`.
+//! - `minimal [mu1, ... | mu2, ...] { ... }` (optional): the map
+//!   `q = phi(mu)` to `f = n - m` minimal coordinates; the `a` names after
+//!   `|` are `mu2`, chosen so that `D2 phi_x` is regular (eq. 12). The body
+//!   has one `coord = expr;` per redundant coordinate and any number of
+//!   `let name = expr;` abbreviations. A right-hand side may use the
+//!   parameters, the minimal coordinates, and the `let`s and coordinates
+//!   defined above it (a coordinate stands for its mapping, so
+//!   `x = x0 + L*sin(theta)` reuses `x0`'s); reading top to bottom rules
+//!   out circular definitions. Minimal coordinates and `let`s need names of
+//!   their own.
 //!
 //! Expressions: `+ - * /`, unary minus, `^` (integer or real constant
 //! exponent; binds tighter than unary minus, right-associative), parentheses,

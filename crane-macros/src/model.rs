@@ -3,7 +3,8 @@
 //! [`Model`] is what `check.rs` makes of a declaration: names resolved,
 //! every expression lowered into the IR arena and validated. [`Kernels`]
 //! differentiates it into everything the generated code evaluates (paper
-//! eqs. 1a-1b, 3, 11a-11c); `codegen.rs` only prints these.
+//! eqs. 1a-1b, 3, 11a-11c, and for a `minimal` block eqs. 6, 8, 9, 12, 17);
+//! `codegen.rs` only prints these.
 
 use proc_macro2::Ident;
 use syn::{Attribute, Visibility};
@@ -39,6 +40,25 @@ pub struct Model {
     /// Generalized force on each coordinate, inputs included (`0` where none
     /// was declared): `f(q, q') + B^T(q) u`.
     pub forces: Vec<Id>,
+    /// The map to minimal coordinates, if declared.
+    pub minimal: Option<Minimal>,
+}
+
+/// A checked `minimal` block: the map `q = phi(mu)` (eq. 6).
+pub struct Minimal {
+    /// The minimal coordinates `mu = [mu1; mu2]` as declared.
+    pub mu: Vec<Ident>,
+    /// Number of coordinates in `mu1`, `f - a`.
+    pub n_mu1: usize,
+    /// `phi(mu)`, one entry per redundant coordinate, in the parameters and
+    /// `mu` only (`let`s and mapped coordinates are substituted).
+    pub phi: Vec<Id>,
+    /// The `let` abbreviations and their values; where a value is bound to
+    /// a local in the generated code, the local takes the user's name.
+    pub lets: Vec<(Ident, Id)>,
+    /// The statements as written (`L1 = l * sin(beta) / sin(gamma)`), for
+    /// the docs of the generated functions.
+    pub source: Vec<String>,
 }
 
 /// A parameter: a field of the generated struct.
@@ -119,6 +139,22 @@ pub struct Kernels {
     pub dbtu_dq: Matrix,
     /// Rope lengths `L(q)`, in constraint order.
     pub rope_lengths: Vec<Id>,
+    /// The minimal-coordinate map and its derivatives, if declared.
+    pub minimal: Option<MinimalKernels>,
+}
+
+/// The map `q = phi(mu)` and its derivatives (paper sect. 3.2).
+pub struct MinimalKernels {
+    /// `phi(mu) = [phi_p(mu); phi_x(mu)]` (eq. 6), `n` entries.
+    pub phi: Vec<Id>,
+    /// `P = D phi(mu)` (eq. 8), `n x f`; its load rows are
+    /// `[D1 phi_x  D2 phi_x]` (eq. 12).
+    pub p: Matrix,
+    /// `P' = sum_k dP/dmu_k mu_k'` (eq. 9), `n x f`.
+    pub p_rate: Matrix,
+    /// `w = [P' mu']_x`, the second directional derivative of `phi_x` along
+    /// `mu'` (eq. 17), `a` entries.
+    pub w: Vec<Id>,
 }
 
 impl Kernels {
@@ -146,6 +182,10 @@ impl Kernels {
             .collect();
 
         let mut d = Differentiator::new(arena);
+        let minimal = model
+            .minimal
+            .as_ref()
+            .map(|minimal| MinimalKernels::derive(minimal, n - a, &mut d));
         let jacobian: Matrix = g
             .iter()
             .map(|&gk| (0..n).map(|j| d.diff(gk, coord(j))).collect())
@@ -218,7 +258,65 @@ impl Kernels {
             bt,
             dbtu_dq,
             rope_lengths,
+            minimal,
         }
+    }
+}
+
+impl MinimalKernels {
+    /// Differentiates the map; `n_robot` is the number of rows of `phi_p`.
+    fn derive(minimal: &Minimal, n_robot: usize, d: &mut Differentiator<'_>) -> Self {
+        let f = minimal.mu.len();
+        let mu = |k: usize| Sym::Mu(k as u16);
+        let phi = minimal.phi.clone();
+
+        // P_ik = d phi_i / d mu_k (eq. 8)
+        let p: Matrix = phi
+            .iter()
+            .map(|&phi_i| (0..f).map(|k| d.diff(phi_i, mu(k))).collect())
+            .collect();
+
+        // chain rule along the motion: P'_ik = sum_l dP_ik/dmu_l mu_l' (eq. 9)
+        let along = |d: &mut Differentiator<'_>, e: Id| {
+            let terms: Vec<Id> = (0..f)
+                .map(|l| {
+                    let de = d.diff(e, mu(l));
+                    let mu_dot = d.arena().sym(Sym::MuDot(l as u16));
+                    d.arena().mul2(de, mu_dot)
+                })
+                .collect();
+            d.arena().add(terms)
+        };
+        let p_rate: Matrix = p
+            .iter()
+            .map(|row| row.iter().map(|&e| along(d, e)).collect())
+            .collect();
+
+        // w = [P' mu']_x = d/dt[D1 phi_x] mu1' + d/dt[D2 phi_x] mu2^ (eq. 17),
+        // as the quadratic form sum_kl d^2 phi_x/dmu_k dmu_l mu_k' mu_l'
+        // (mixed terms once, doubled)
+        let w: Vec<Id> = p[n_robot..]
+            .iter()
+            .map(|row| {
+                let mut terms = Vec::new();
+                for (k, &p_ik) in row.iter().enumerate() {
+                    for l in k..f {
+                        let second = d.diff(p_ik, mu(l));
+                        let twice = if k == l { 1.0 } else { 2.0 };
+                        let arena = d.arena();
+                        let (mu_dot_k, mu_dot_l) = (
+                            arena.sym(Sym::MuDot(k as u16)),
+                            arena.sym(Sym::MuDot(l as u16)),
+                        );
+                        let c = arena.constant(twice);
+                        terms.push(arena.mul(vec![c, second, mu_dot_k, mu_dot_l]));
+                    }
+                }
+                d.arena().add(terms)
+            })
+            .collect();
+
+        MinimalKernels { phi, p, p_rate, w }
     }
 }
 

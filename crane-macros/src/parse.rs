@@ -47,8 +47,7 @@ pub struct Sections {
     pub forces: Option<Section<Vec<ForceDecl>>>,
     /// `constraints { [#[rope(N = L)]] name: expr, ... }`.
     pub constraints: Option<Section<Vec<ConstraintDecl>>>,
-    /// `minimal [mu1.. | mu2..] { ... }`: a minimal-coordinate map (parsed,
-    /// not yet generated).
+    /// `minimal [mu1.. | mu2..] { ... }`: a minimal-coordinate map.
     pub minimal: Option<Section<MinimalDecl>>,
 }
 
@@ -98,21 +97,22 @@ pub struct RopeAttr {
     pub length: Expr,
 }
 
-/// `minimal [mu1, ... | mu2, ...] { let a = e; coord = e; ... }` (paper
-/// sect. 3.2; `mu2` must make `D2 phi_x` regular, eq. 12). Parsed so that
-/// the syntax is reserved; code generation for it is still to come.
-#[allow(dead_code)]
+/// `minimal [mu1, ... | mu2, ...] { let a = e; coord = e; ... }`: the map
+/// `q = phi(mu)` to minimal coordinates (paper sect. 3.2, eq. 6); `mu2`
+/// (one per load coordinate) must make `D2 phi_x` regular (eq. 12).
 pub struct MinimalDecl {
+    /// The `[...]` group with the minimal coordinates (for errors about
+    /// their number).
+    pub split: Span,
     /// The minimal coordinates `mu1`.
     pub mu1: Vec<Ident>,
     /// The minimal coordinates `mu2`.
     pub mu2: Vec<Ident>,
-    /// The body of the map `q = phi(mu)`.
+    /// The body of the map `q = phi(mu)`, in the order written.
     pub body: Vec<MinimalStmt>,
 }
 
 /// A statement of a `minimal` block.
-#[allow(dead_code)]
 pub enum MinimalStmt {
     /// `let name = value;`: an abbreviation.
     Let {
@@ -584,7 +584,8 @@ fn parse_section(
             store(&mut sections.constraints, keyword, range, items, cx);
         }
         "minimal" => {
-            let (mu1, mu2) = match parse_mu.parse2(group_stream(&tts[0])) {
+            let split = tts[0].span();
+            let (mu1, mu2) = match parse_mu(group_stream(&tts[0]), split) {
                 Ok(mu) => mu,
                 Err(error) => {
                     cx.syn_error(error);
@@ -608,7 +609,12 @@ fn parse_section(
                 &mut sections.minimal,
                 keyword,
                 range,
-                MinimalDecl { mu1, mu2, body },
+                MinimalDecl {
+                    split,
+                    mu1,
+                    mu2,
+                    body,
+                },
                 cx,
             );
         }
@@ -722,24 +728,53 @@ fn parse_constraint(input: ParseStream) -> syn::Result<ConstraintDecl> {
     Ok(ConstraintDecl { rope, name, expr })
 }
 
-fn parse_mu(input: ParseStream) -> syn::Result<(Vec<Ident>, Vec<Ident>)> {
-    let names = |input: ParseStream| -> syn::Result<Vec<Ident>> {
-        let mut names = Vec::new();
-        while !input.is_empty() && !input.peek(Token![|]) {
-            names.push(input.parse()?);
-            if input.is_empty() || input.peek(Token![|]) {
-                break;
-            }
-            input.parse::<Token![,]>()?;
+/// What the error messages show as the form of the split.
+const SPLIT_FORM: &str = "`minimal [mu1, ... | mu2, ...]`, with one mu2 per load coordinate \
+     (chosen so that D2 phi_x is regular, eq. 12)";
+
+/// `mu1, ... | mu2, ...`, the content of the `[...]` group at `split`.
+fn parse_mu(tokens: TokenStream, split: Span) -> syn::Result<(Vec<Ident>, Vec<Ident>)> {
+    let bars: Vec<Span> = tokens
+        .clone()
+        .into_iter()
+        .filter_map(|tt| match tt {
+            TokenTree::Punct(p) if p.as_char() == '|' => Some(p.span()),
+            _ => None,
+        })
+        .collect();
+    match bars[..] {
+        [] => {
+            return Err(syn::Error::new(
+                split,
+                format!("missing `|` between mu1 and mu2: write {SPLIT_FORM}"),
+            ));
         }
-        Ok(names)
+        [_] => {}
+        [_, second, ..] => {
+            return Err(syn::Error::new(
+                second,
+                format!("only one `|` is allowed: write {SPLIT_FORM}"),
+            ));
+        }
+    }
+    let parser = |input: ParseStream| -> syn::Result<(Vec<Ident>, Vec<Ident>)> {
+        let names = |input: ParseStream| -> syn::Result<Vec<Ident>> {
+            let mut names = Vec::new();
+            while !input.is_empty() && !input.peek(Token![|]) {
+                names.push(input.parse()?);
+                if input.is_empty() || input.peek(Token![|]) {
+                    break;
+                }
+                input.parse::<Token![,]>()?;
+            }
+            Ok(names)
+        };
+        let mu1 = names(input)?;
+        input.parse::<Token![|]>()?;
+        let mu2 = names(input)?;
+        Ok((mu1, mu2))
     };
-    let mu1 = names(input)?;
-    input
-        .parse::<Token![|]>()
-        .map_err(|e| syn::Error::new(e.span(), "expected `[mu1, ... | mu2, ...]`"))?;
-    let mu2 = names(input)?;
-    Ok((mu1, mu2))
+    parser.parse2(tokens)
 }
 
 fn parse_minimal_stmt(input: ParseStream) -> syn::Result<MinimalStmt> {

@@ -2,6 +2,9 @@
 //! right thing: the planar crane of sect. 5.1 against the paper's matrices
 //! (eqs. 29, 33-35), and every generated derivative of a deliberately
 //! awkward model against central finite differences and dual numbers.
+//! The minimal-coordinate map of sect. 5.1.2 (eqs. 36-40) is checked at
+//! random points: `g(phi(mu)) = 0`, `G P = 0`, `P`, `P'` and `w` against
+//! finite differences and dual numbers, and the paper's formulas.
 
 use crane_macros::crane_model;
 use crane_runtime::CraneModel;
@@ -24,6 +27,12 @@ crane_model! {
             rope0: 0.5*(x0^2 + z0^2 - L0^2),
             #[rope(N2 = L2 - L0)]
             hoist: 0.5*((x - x0)^2 + (z - z0)^2 - (L2 - L0)^2),
+        }
+        minimal [beta, gamma | theta, L] {           // mu1 | mu2 (eq. 39)
+            let d = l*sin(gamma - beta)/sin(gamma);   // = L0, pulley to boom tip P
+            L1 = l*sin(beta)/sin(gamma);  L2 = d + L;  L0 = d;     // eq. (37)
+            x0 = -d*sin(alpha - beta);    z0 = -d*cos(alpha - beta);
+            x  = x0 + L*sin(theta);       z  = z0 - L*cos(theta);  // eq. (38)
         }
     }
 }
@@ -367,4 +376,308 @@ fn awkward_defaults_and_rope() {
         Awkward::INFO.description,
         "Not a crane: every function, a coupled mass matrix, damping, a"
     );
+}
+
+// --- the minimal-coordinate map of sect. 5.1.2 (eqs. 36-40)
+
+use crane_runtime::MinimalMap;
+use crane_runtime::num_dual::Dual2_64;
+
+/// A small deterministic generator (xorshift64*), so that a failure
+/// reproduces.
+struct Rng(u64);
+
+impl Rng {
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let bits = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11;
+        lo + (hi - lo) * (bits as f64 / (1u64 << 53) as f64)
+    }
+}
+
+/// `(mu, mu')` at 200 random points: `beta` in (0.2, 0.9), `gamma` in
+/// (1.2, 2.2), `theta` in (-0.5, 0.5), `L` in (2, 10) m, velocities of order 1.
+fn navy_samples() -> Vec<(SVector<f64, 4>, SVector<f64, 4>)> {
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    (0..200)
+        .map(|_| {
+            let mu = SVector::from([
+                rng.uniform(0.2, 0.9),
+                rng.uniform(1.2, 2.2),
+                rng.uniform(-0.5, 0.5),
+                rng.uniform(2.0, 10.0),
+            ]);
+            let mu_dot = SVector::from([
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(-2.0, 2.0),
+            ]);
+            (mu, mu_dot)
+        })
+        .collect()
+}
+
+/// `|a - b| <= tol (1 + |b|)` entrywise, with the largest violation in the
+/// message.
+#[track_caller]
+fn assert_within<const R: usize, const C: usize>(
+    what: &str,
+    a: &SMatrix<f64, R, C>,
+    b: &SMatrix<f64, R, C>,
+    tol: f64,
+) {
+    let error = (a - b).amax() / (1.0 + b.amax());
+    assert!(
+        error <= tol,
+        "{what}: relative error {error:.2e} > {tol:.0e}\ngenerated {a}\nexpected {b}"
+    );
+}
+
+#[test]
+fn navy_minimal_names_and_split() {
+    assert_eq!(
+        <NavyPlanar as MinimalMap<7, 3, 2, 4>>::MINIMAL_COORDINATES,
+        ["beta", "gamma", "theta", "L"]
+    );
+    assert_eq!(NavyPlanar::MINIMAL_SPLIT, 2);
+}
+
+#[test]
+fn navy_minimal_samples_give_a_real_crane() {
+    // all rope lengths positive in the sampled range
+    let crane = NavyPlanar::new();
+    for (mu, _) in navy_samples() {
+        let q = crane.phi(&mu);
+        let mut ropes = [0.0; 2];
+        crane.rope_lengths(&q, &mut ropes);
+        let (l0, hoisted) = (q[2], q[1] - q[2]);
+        assert!(
+            ropes[0] > 0.0 && ropes[1] > 0.0 && l0 > 0.0,
+            "mu = {mu}, q = {q}"
+        );
+        assert!((hoisted - mu[3]).abs() < 1e-12, "L = L2 - L0");
+    }
+}
+
+#[test]
+fn navy_map_satisfies_the_constraints() {
+    // eq. (7): g(phi(mu)) = 0; g is half a difference of squared lengths,
+    // so its round-off is eps |q|^2
+    let crane = NavyPlanar::new();
+    for (mu, _) in navy_samples() {
+        let q = crane.phi(&mu);
+        let g = crane.constraints(&q);
+        assert!(g.amax() <= 1e-12 * q.amax().powi(2), "g(phi({mu})) = {g}");
+        // and G(phi(mu)) P(mu) = 0, the columns of P span the null space of G
+        let gp = crane.constraint_jacobian(&q) * crane.null_space(&mu);
+        let scale = crane.constraint_jacobian(&q).amax() * crane.null_space(&mu).amax();
+        assert!(gp.amax() <= 1e-12 * scale, "G P at {mu}: {gp}");
+    }
+}
+
+#[test]
+fn navy_null_space_is_the_jacobian_of_the_map() {
+    // central differences: error h^2/6 |phi'''| + eps |phi| / h, about
+    // 1e-10 + 4e-10 here (|phi| < 25, third derivatives of order 10; 8e-11
+    // measured), so 1e-8 relative to 1 + |P| leaves a margin of 20
+    const H: f64 = 1e-5;
+    let crane = NavyPlanar::new();
+    for (mu, _) in navy_samples() {
+        let p = crane.null_space(&mu);
+        let mut numerical = SMatrix::<f64, 7, 4>::zeros();
+        for k in 0..4 {
+            let mut e = SVector::<f64, 4>::zeros();
+            e[k] = H;
+            numerical.set_column(
+                k,
+                &((crane.phi(&(mu + e)) - crane.phi(&(mu - e))) / (2.0 * H)),
+            );
+        }
+        assert_within("P", &p, &numerical, 1e-8);
+
+        // dual numbers: exact to round-off
+        for k in 0..4 {
+            let mu_d: SVector<Dual64, 4> =
+                SVector::from_fn(|i, _| Dual64::new(mu[i], if i == k { 1.0 } else { 0.0 }));
+            let column = crane.phi(&mu_d).map(|x| x.eps);
+            assert_within("P (dual)", &column, &p.column(k).into(), 1e-13);
+        }
+
+        // the blocks with the paper's names
+        let phi = crane.phi(&mu);
+        assert_eq!(crane.phi_p(&mu), phi.fixed_rows::<5>(0));
+        assert_eq!(crane.phi_x(&mu), phi.fixed_rows::<2>(5));
+        assert_eq!(crane.D1_phi_x(&mu), p.fixed_view::<2, 2>(5, 0));
+        assert_eq!(crane.D2_phi_x(&mu), p.fixed_view::<2, 2>(5, 2));
+    }
+}
+
+#[test]
+fn navy_null_space_rate_is_the_derivative_of_p_along_the_motion() {
+    // eq. (9): P' = d/dt P(mu(t)) = directional derivative of P along mu';
+    // central differences in that direction, same error budget as for P
+    // with |mu'| <= 2
+    const H: f64 = 1e-5;
+    let crane = NavyPlanar::new();
+    for (mu, mu_dot) in navy_samples() {
+        let rate = crane.null_space_rate(&mu, &mu_dot);
+        let numerical = (crane.null_space(&(mu + mu_dot * H))
+            - crane.null_space(&(mu - mu_dot * H)))
+            / (2.0 * H);
+        assert_within("P'", &rate, &numerical, 1e-8);
+
+        // dual numbers through the generated P: exact to round-off
+        let mu_d: SVector<Dual64, 4> = SVector::from_fn(|i, _| Dual64::new(mu[i], mu_dot[i]));
+        let dual = crane.null_space(&mu_d).map(|x| x.eps);
+        assert_within("P' (dual)", &rate, &dual, 1e-13);
+    }
+}
+
+#[test]
+fn navy_w_is_the_second_directional_derivative_of_phi_x() {
+    // eq. (17): w = [P' mu']_x = d^2/dt^2 phi_x(mu + t mu') at t = 0.
+    // The second difference (phi_x(mu + h mu') - 2 phi_x(mu) + phi_x(mu - h mu'))/h^2
+    // has error h^2/12 |phi_x''''| |mu'|^4 + 4 eps |phi_x| / h^2: with h = 1e-4,
+    // |phi_x| < 25 and fourth derivatives of order 10^2 along |mu'| <= 2, that
+    // is about 1e-7 + 2e-6 (3e-7 measured); the tolerance is 1e-5 relative
+    // to 1 + |w|.
+    const H: f64 = 1e-4;
+    let crane = NavyPlanar::new();
+    for (mu, mu_dot) in navy_samples() {
+        let w = crane.w(&mu, &mu_dot);
+        let numerical = (crane.phi_x(&(mu + mu_dot * H)) - crane.phi_x(&mu) * 2.0
+            + crane.phi_x(&(mu - mu_dot * H)))
+            / (H * H);
+        assert_within("w", &w, &numerical, 1e-5);
+
+        // the definition via P' (a different expression tree)
+        let via_rate = (crane.null_space_rate(&mu, &mu_dot) * mu_dot)
+            .fixed_rows::<2>(5)
+            .into_owned();
+        assert_within("w = [P' mu']_x", &w, &via_rate, 1e-13);
+
+        // second-order dual numbers along mu': exact to round-off
+        let mu_d: SVector<Dual2_64, 4> =
+            SVector::from_fn(|i, _| Dual2_64::new(mu[i], mu_dot[i], 0.0));
+        let dual = crane.phi_x(&mu_d).map(|x| x.v2);
+        assert_within("w (Dual2)", &w, &dual, 1e-13);
+    }
+}
+
+#[test]
+fn navy_d2_phi_x_is_eq_40() {
+    let crane = NavyPlanar::new();
+    for (mu, _) in navy_samples() {
+        let [_, _, theta, l] = mu.into();
+        let (s, c) = theta.sin_cos();
+        #[rustfmt::skip]
+        let eq40 = SMatrix::<f64, 2, 2>::from_row_slice(&[
+            l * c, s,
+            l * s, -c,
+        ]);
+        assert_within("D2 phi_x", &crane.D2_phi_x(&mu), &eq40, 1e-15);
+        assert!(eq40.determinant() < 0.0, "regular: det = -L");
+    }
+}
+
+#[test]
+fn navy_map_is_eqs_37_and_38() {
+    let crane = NavyPlanar::new();
+    let (l, alpha) = (crane.l, crane.alpha);
+    let mu = SVector::<f64, 4>::from([0.55, 1.7, 0.3, 6.5]);
+    let [beta, gamma, theta, big_l] = mu.into();
+    // as printed in the paper
+    let d = l * (gamma - beta).sin() / gamma.sin();
+    let eq37 = [
+        l * beta.sin() / gamma.sin(),
+        d + big_l,
+        d,
+        -d * (alpha - beta).sin(),
+        -d * (alpha - beta).cos(),
+    ];
+    let eq38 = [
+        -d * (alpha - beta).sin() + big_l * theta.sin(),
+        -d * (alpha - beta).cos() - big_l * theta.cos(),
+    ];
+    assert_within("phi_p", &crane.phi_p(&mu), &SVector::from(eq37), 1e-15);
+    assert_within("phi_x", &crane.phi_x(&mu), &SVector::from(eq38), 1e-15);
+
+    // the paper's start (46): beta = alpha, gamma = pi/2, theta = 0, L = 5 m
+    // put the pulley at (0, -5) and the load at (0, -10)
+    let start = SVector::<f64, 4>::from([alpha, std::f64::consts::FRAC_PI_2, 0.0, 5.0]);
+    assert_within("phi(mu0)", &crane.phi(&start), &navy_start(), 1e-15);
+}
+
+crane_model! {
+    /// A trolley with a hoisted load, in minimal coordinates and `let`s whose
+    /// names collide with the generated code's locals (`mu`, `mu_dot`,
+    /// `dot_mu`, `out`, `t0`, `t1`).
+    pub struct Trolley {
+        params { m = 10.0, M = 50.0, J = 0.2, mu_dot = 9.81 }
+        robot [s, Lr]
+        load [x, z]
+        inputs [u1, u2]
+        kinetic = 0.5*M*dot(s)^2 + 0.5*J*dot(Lr)^2 + 0.5*m*(dot(x)^2 + dot(z)^2);
+        forces { s: u1, Lr: u2, z: -m*mu_dot }
+        constraints { rope: 0.5*((x - s)^2 + z^2 - Lr^2) }
+        minimal [mu | t0, out] {
+            let t1 = sin(t0);
+            let dot_mu = cos(t0);
+            s = mu;  Lr = out;
+            x = s + Lr*t1;  z = -Lr*dot_mu;
+        }
+    }
+}
+
+#[test]
+fn trolley_map_with_colliding_names() {
+    const H: f64 = 1e-5;
+    let trolley = Trolley::new();
+    let mut rng = Rng(7);
+    for _ in 0..100 {
+        let mu = SVector::from([
+            rng.uniform(-3.0, 3.0),
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(1.0, 8.0),
+        ]);
+        let mu_dot = SVector::from([
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+        ]);
+        let [trolley_position, angle, length] = mu.into();
+        let q = trolley.phi(&mu);
+        let expected = SVector::<f64, 4>::from([
+            trolley_position,
+            length,
+            trolley_position + length * angle.sin(),
+            -length * angle.cos(),
+        ]);
+        assert_within("phi", &q, &expected, 1e-15);
+        assert!(trolley.constraints(&q).amax() < 1e-12);
+
+        let p = trolley.null_space(&mu);
+        let mut numerical = SMatrix::<f64, 4, 3>::zeros();
+        for k in 0..3 {
+            let mut e = SVector::<f64, 3>::zeros();
+            e[k] = H;
+            numerical.set_column(
+                k,
+                &((trolley.phi(&(mu + e)) - trolley.phi(&(mu - e))) / (2.0 * H)),
+            );
+        }
+        assert_within("P", &p, &numerical, 1e-8);
+
+        let mu_d: SVector<Dual64, 3> = SVector::from_fn(|i, _| Dual64::new(mu[i], mu_dot[i]));
+        let dual = trolley.null_space(&mu_d).map(|x| x.eps);
+        assert_within("P'", &trolley.null_space_rate(&mu, &mu_dot), &dual, 1e-13);
+        let mu_d: SVector<Dual2_64, 3> =
+            SVector::from_fn(|i, _| Dual2_64::new(mu[i], mu_dot[i], 0.0));
+        let w = trolley.phi_x(&mu_d).map(|x| x.v2);
+        assert_within("w", &trolley.w(&mu, &mu_dot), &w, 1e-13);
+    }
+    assert_eq!(Trolley::MINIMAL_SPLIT, 1);
 }

@@ -19,9 +19,10 @@
 //! ```
 #![warn(missing_docs)]
 
-use crane_runtime::{CraneModel, Error, State, Trajectory};
+use crane_runtime::{CraneModel, Error, Options, Solution, State, Trajectory};
 
 pub mod navy_planar;
+pub mod navy_planar_pulley;
 
 /// A crane with a load path, a start and optionally an analytical reference.
 pub trait Case<const N: usize, const M: usize, const A: usize> {
@@ -42,6 +43,13 @@ pub trait Case<const N: usize, const M: usize, const A: usize> {
     fn start(&self) -> Result<State<N, M, A>, Error>;
     /// The analytical reference at `t`, if the crane has one.
     fn reference(&self, t: f64) -> Option<State<N, M, A>>;
+
+    /// Run the inverse dynamics in minimal coordinates (eqs. 24a-e) from
+    /// `start`, if the crane declares a minimal-coordinate map; `None` if not.
+    fn simulate_minimal(&self, start: &State<N, M, A>, options: &Options) -> Option<Result<Solution<N, M, A>, Error>> {
+        let _ = (start, options);
+        None
+    }
 }
 
 /// A built-in model, as `crane list` shows it.
@@ -75,5 +83,12 @@ pub const CATALOG: &[Entry] = &[Entry {
     n: navy_planar::NavyPlanar::N,
     m: navy_planar::NavyPlanar::M,
     a: navy_planar::NavyPlanar::A,
+    reference: true,
+}, Entry {
+    name: "navy-planar-pulley",
+    description: "planar US Navy crane with pulley mass (paper sect. 5.2)",
+    n: navy_planar_pulley::NavyPlanarPulley::N,
+    m: navy_planar_pulley::NavyPlanarPulley::M,
+    a: navy_planar_pulley::NavyPlanarPulley::A,
     reference: true,
 }];

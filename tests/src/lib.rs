@@ -5,3 +5,6 @@ pub mod handwritten;
 
 #[cfg(test)]
 mod navy_planar_reference;
+
+#[cfg(test)]
+mod navy_planar_pulley_reference;

@@ -1,7 +1,7 @@
 //! Every kind of DSL mistake: `expand` must not panic, must report the
 //! message below, and must still emit the stub struct.
 
-use super::{NAVY, tokens};
+use super::{MINIMAL, NAVY, navy_minimal_source, tokens};
 use crate::expand;
 
 /// The messages of the `compile_error!`s in an expansion, and whether the
@@ -42,6 +42,16 @@ fn navy_with(from: &str, to: &str) -> String {
     NAVY.replacen(from, to, 1)
 }
 
+/// The planar crane with its `minimal` block, with `from` replaced by `to`
+/// in the block (where it must occur).
+fn minimal_with(from: &str, to: &str) -> String {
+    assert!(
+        MINIMAL.contains(from),
+        "test bug: `{from}` is not in the minimal block"
+    );
+    navy_minimal_source().replacen(from, to, 1)
+}
+
 /// Asserts that breaking the planar crane gives exactly `expected`.
 #[track_caller]
 fn assert_errors(source: &str, expected: &[&str]) {
@@ -53,6 +63,13 @@ fn assert_errors(source: &str, expected: &[&str]) {
 #[test]
 fn the_planar_crane_has_no_errors() {
     let (messages, stub) = expand_errors(NAVY);
+    assert!(messages.is_empty(), "{messages:?}");
+    assert!(!stub);
+}
+
+#[test]
+fn the_planar_crane_with_its_minimal_block_has_no_errors() {
+    let (messages, stub) = expand_errors(&navy_minimal_source());
     assert!(messages.is_empty(), "{messages:?}");
     assert!(!stub);
 }
@@ -328,13 +345,12 @@ fn sections() {
         &navy_with("robot  [L1, L2, L0, x0, z0]", "robot  {L1, L2, L0, x0, z0}"),
         &["expected `[ ... ]` after `robot`"],
     );
-    let minimal = navy_with(
-        "inputs [u1, u2]",
-        "inputs [u1, u2] minimal [beta, gamma | theta, L] { let d = l*sin(gamma - beta)/sin(gamma); L0 = d; }",
-    );
     assert_errors(
-        &minimal,
-        &["`minimal` blocks (minimal coordinates, paper sect. 3.2) are not supported yet"],
+        &navy_with(
+            "inputs [u1, u2]",
+            "inputs [u1, u2] minimal [beta, gamma | theta, L]",
+        ),
+        &["expected `{ ... }` with the map `q = phi(mu)` after `minimal [...]`"],
     );
 }
 
@@ -430,5 +446,256 @@ fn garbage_never_panics() {
     for input in inputs {
         let (messages, _) = expand_errors(input);
         assert!(!messages.is_empty(), "no error for `{input}`");
+    }
+}
+
+// --- the `minimal` block
+
+#[test]
+fn minimal_split() {
+    assert_errors(
+        &minimal_with("[beta, gamma | theta, L]", "[beta, gamma, theta, L]"),
+        &[
+            "missing `|` between mu1 and mu2: write `minimal [mu1, ... | mu2, ...]`, with one mu2 per load \
+             coordinate (chosen so that D2 phi_x is regular, eq. 12)",
+        ],
+    );
+    assert_errors(
+        &minimal_with("[beta, gamma | theta, L]", "[beta | gamma | theta, L]"),
+        &[
+            "only one `|` is allowed: write `minimal [mu1, ... | mu2, ...]`, with one mu2 per load coordinate \
+             (chosen so that D2 phi_x is regular, eq. 12)",
+        ],
+    );
+    assert_errors(
+        &minimal_with("[beta, gamma | theta, L]", "[beta, gamma, theta | L]"),
+        &[
+            "mu2 (after `|`) has 1 entry, but there are 2 load coordinates (x, z): mu2 needs one entry per load \
+             coordinate, so that D2 phi_x is square (eq. 12)",
+        ],
+    );
+}
+
+#[test]
+fn minimal_count_is_the_degrees_of_freedom() {
+    assert_errors(
+        &minimal_with(
+            "[beta, gamma | theta, L]",
+            "[beta, gamma, kappa | theta, L]",
+        ),
+        &[
+            "`minimal` declares 5 minimal coordinates (beta, gamma, kappa, theta, L), but the crane has \
+             f = n - m = 7 - 3 = 4 degrees of freedom",
+        ],
+    );
+}
+
+#[test]
+fn minimal_coordinates_need_names_of_their_own() {
+    // `g` is the gravity parameter
+    let source = minimal_with("[beta, gamma | theta, L]", "[beta, gamma | g, L]")
+        .replace("sin(theta)", "sin(g)")
+        .replace("cos(theta)", "cos(g)");
+    assert_errors(
+        &source,
+        &[
+            "duplicate name `g`: already declared as a parameter; minimal coordinates need names of their own",
+        ],
+    );
+    let source = minimal_with("[beta, gamma | theta, L]", "[beta, beta | theta, L]")
+        .replace("gamma", "beta");
+    assert_errors(
+        &source,
+        &[
+            "duplicate name `beta`: already declared as a minimal coordinate; minimal coordinates need names of \
+             their own",
+        ],
+    );
+    // `z` is a load coordinate
+    let source = minimal_with("[beta, gamma | theta, L]", "[beta, gamma | theta, z]")
+        .replace("d + L;", "d + z;")
+        .replace("L*sin(theta)", "z*sin(theta)")
+        .replace("L*cos(theta)", "z*cos(theta)");
+    assert_errors(
+        &source,
+        &[
+            "duplicate name `z`: already declared as a load coordinate; minimal coordinates need names of their \
+             own",
+        ],
+    );
+}
+
+#[test]
+fn minimal_lets_shadow_nothing() {
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d; let x0 = 1;"),
+        &[
+            "`let x0` would shadow `x0`, which is a robot coordinate: choose another name for the abbreviation",
+        ],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d; let d = 2*l;"),
+        &[
+            "`let d` would shadow `d`, which is a `let` above: choose another name for the abbreviation",
+        ],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d; let theta = 0;"),
+        &[
+            "`let theta` would shadow `theta`, which is a minimal coordinate: choose another name for the abbreviation",
+        ],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d; let sqrt = 2;"),
+        &[
+            "`let sqrt` would shadow `sqrt`, which is reserved (a function): choose another name for the abbreviation",
+        ],
+    );
+}
+
+#[test]
+fn minimal_maps_every_coordinate_once() {
+    assert_errors(
+        &minimal_with("z  = z0 - L*cos(theta);", ""),
+        &[
+            "coordinate `z` has no mapping in `minimal`: every redundant coordinate needs one, \
+             `z = <expression in the minimal coordinates>;`",
+        ],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d; L0 = l - d;"),
+        &["coordinate `L0` is mapped twice: the map gives each coordinate one expression"],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d; beta = 1;"),
+        &[
+            "`beta` is a minimal coordinate, not a redundant one: the left-hand sides of `minimal` are the \
+             redundant coordinates (L1, L2, L0, x0, z0, x, z); write `let name = ...;` for an abbreviation",
+        ],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d; alpha = 1;"),
+        &[
+            "`alpha` is a parameter, not a coordinate: the left-hand sides of `minimal` are the redundant \
+             coordinates (L1, L2, L0, x0, z0, x, z); write `let name = ...;` for an abbreviation",
+        ],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d; d = 1;"),
+        &[
+            "`d` is a `let` abbreviation, not a coordinate: the left-hand sides of `minimal` are the redundant \
+             coordinates (L1, L2, L0, x0, z0, x, z); write `let name = ...;` for an abbreviation",
+        ],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L00 = d;"),
+        &[
+            "unknown coordinate `L00` in `minimal`; the coordinates are: L1, L2, L0, x0, z0, x, z",
+            "coordinate `L0` has no mapping in `minimal`: every redundant coordinate needs one, \
+             `L0 = <expression in the minimal coordinates>;`",
+        ],
+    );
+}
+
+#[test]
+fn minimal_names_on_the_right() {
+    assert_errors(
+        &minimal_with("L1 = l*sin(beta)/sin(gamma)", "L1 = l*sin(beta)/sin(gama)"),
+        &[
+            "unknown symbol `gama`; allowed in `minimal`: parameters (m_l, J1, J2, r1, r2, alpha, l, g), minimal \
+             coordinates (beta, gamma, theta, L), `let` names above (d), coordinates mapped above (none yet), PI",
+        ],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d*u1;"),
+        &["input `u1` is not allowed in `minimal`: inputs may appear only in `forces`"],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d + dot(beta);"),
+        &[
+            "velocity `dot(beta)` is not allowed in `minimal`: the map q = phi(mu) depends on the minimal \
+             coordinates only, and its derivatives P and P' are generated (eqs. 8-9)",
+        ],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d*N1;"),
+        &[
+            "`N1` is a rope tension and has no value in expressions; allowed in `minimal`: parameters (m_l, J1, J2, \
+             r1, r2, alpha, l, g), minimal coordinates (beta, gamma, theta, L), `let` names above (d), coordinates \
+             mapped above (L1, L2), PI",
+        ],
+    );
+}
+
+#[test]
+fn minimal_reads_top_to_bottom() {
+    // mapped coordinates stand for their mapping, once mapped
+    assert_errors(
+        &minimal_with("L2 = d + L;", "L2 = d + L + 0*x0;"),
+        &[
+            "coordinate `x0` is used above its mapping: the block reads top to bottom, so move `x0 = ...;` above \
+             this line (this also rules out circular definitions)",
+        ],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d + 0*L0;"),
+        &["`L0 = ...` uses `L0` itself: a coordinate cannot be defined in terms of itself"],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = d; let e = 2*e;"),
+        &["`let e = ...` uses `e` itself: an abbreviation cannot be defined in terms of itself"],
+    );
+    assert_errors(
+        &minimal_with("L0 = d;", "L0 = e; let e = d;"),
+        &[
+            "`e` is used above its `let`: the block reads top to bottom, so move `let e = ...;` above this line",
+        ],
+    );
+    assert_errors(
+        &minimal_with(
+            "let d = l*sin(gamma - beta)/sin(gamma);",
+            "let d = l*sin(gamma - beta)/sin(gamma) + 0*L0;",
+        ),
+        &[
+            "coordinate `L0` is used above its mapping: the block reads top to bottom, so move `L0 = ...;` above \
+             this line (this also rules out circular definitions)",
+        ],
+    );
+}
+
+#[test]
+fn minimal_coordinates_must_all_be_used() {
+    let source =
+        minimal_with("x  = x0 + L*sin(theta);", "x  = x0;").replace("z0 - L*cos(theta)", "z0 - L");
+    assert_errors(
+        &source,
+        &[
+            "minimal coordinate `theta` appears in no mapping: P = D phi (eq. 8) would have a zero column",
+        ],
+    );
+}
+
+#[test]
+fn minimal_garbage_never_panics() {
+    let blocks = [
+        "minimal [|] { }",
+        "minimal [ | ] { x = 1; }",
+        "minimal [a, | b] { }",
+        "minimal [a | b,] { let = 1; }",
+        "minimal [1 | b] { }",
+        "minimal [a | b] { let a; }",
+        "minimal [a | b] { x = ; }",
+        "minimal [a | b] { x == 1; }",
+        "minimal [a | b] { ;; }",
+        "minimal [a | b] { let c = c; }",
+        "minimal [a | b] { x = x; }",
+    ];
+    for block in blocks {
+        let source = format!(
+            "struct A {{ robot [p] load [x] inputs [u] kinetic = dot(x)^2; forces {{ p: u }} \
+             constraints {{ c: x - p }} {block} }}"
+        );
+        let (messages, _) = expand_errors(&source);
+        assert!(!messages.is_empty(), "no error for `{block}`");
     }
 }

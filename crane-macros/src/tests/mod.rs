@@ -2,6 +2,7 @@
 
 mod errors;
 mod ir;
+mod minimal;
 mod parse;
 mod snapshot;
 
@@ -28,6 +29,25 @@ pub(crate) const NAVY: &str = r#"
         }
     }
 "#;
+
+/// The minimal coordinates of sect. 5.1.2 (eqs. 36-40): `mu = [beta, gamma,
+/// theta, L]`, `mu1 = [beta, gamma]`, `mu2 = [theta, L]`.
+pub(crate) const MINIMAL: &str = r#"
+        minimal [beta, gamma | theta, L] {
+            let d = l*sin(gamma - beta)/sin(gamma);   // L0: pulley to boom tip P
+            L1 = l*sin(beta)/sin(gamma);  L2 = d + L;  L0 = d;
+            x0 = -d*sin(alpha - beta);    z0 = -d*cos(alpha - beta);
+            x  = x0 + L*sin(theta);       z  = z0 - L*cos(theta);
+        }
+"#;
+
+/// The declaration of sect. 5.1 with the `minimal` block of sect. 5.1.2.
+pub(crate) fn navy_minimal_source() -> String {
+    // before the closing brace of the struct
+    let end = NAVY.trim_end().len() - 1;
+    let (head, tail) = NAVY.split_at(NAVY[..end].trim_end().len());
+    format!("{head}{MINIMAL}{tail}")
+}
 
 /// Tokens of `source`.
 pub(crate) fn tokens(source: &str) -> TokenStream {

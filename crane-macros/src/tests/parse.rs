@@ -3,9 +3,9 @@
 
 use syn::parse::Parser;
 
-use super::{navy_planar, tokens};
+use super::{navy_minimal_source, navy_planar, tokens};
 use crate::ctxt::Ctxt;
-use crate::parse::{BinOp, Expr, Function, parse, parse_expr};
+use crate::parse::{BinOp, Expr, Function, MinimalStmt, parse, parse_expr};
 
 /// Fully parenthesized prefix form, to see the tree the parser built.
 fn sexp(e: &Expr) -> String {
@@ -186,7 +186,7 @@ fn sections_of_the_planar_crane() {
 }
 
 #[test]
-fn sections_in_any_order_with_the_minimal_block_reserved() {
+fn sections_in_any_order() {
     let source = r#"
         struct Pendulum {
             constraints { rope: 0.5*(x^2 + z^2 - L^2) }
@@ -214,4 +214,96 @@ fn sections_in_any_order_with_the_minimal_block_reserved() {
 fn function_names_resolve() {
     assert_eq!(Function::from_name("atan2"), Some(Function::Atan2));
     assert_eq!(Function::from_name("log"), None);
+}
+
+/// The `minimal` block of `source` as `(mu1, mu2, statements)`, with the
+/// statements printed back (`let d = ...`, `x = ...`).
+fn minimal_block(source: &str) -> Result<(String, String, Vec<String>), String> {
+    let cx = Ctxt::new();
+    let decl = parse(tokens(source), &cx).expect("header parses");
+    if let Err(error) = cx.check() {
+        return Err(error.to_string());
+    }
+    let minimal = &decl
+        .sections
+        .minimal
+        .as_ref()
+        .expect("a minimal block")
+        .body;
+    let names = |v: &[proc_macro2::Ident]| {
+        v.iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let statements = minimal
+        .body
+        .iter()
+        .map(|stmt| match stmt {
+            MinimalStmt::Let { name, value } => format!("let {name} = {value}"),
+            MinimalStmt::Assign { coord, value } => format!("{coord} = {value}"),
+        })
+        .collect();
+    Ok((names(&minimal.mu1), names(&minimal.mu2), statements))
+}
+
+#[test]
+fn the_minimal_block_of_the_planar_crane() {
+    let (mu1, mu2, statements) = minimal_block(&navy_minimal_source()).unwrap();
+    assert_eq!((mu1.as_str(), mu2.as_str()), ("beta gamma", "theta L"));
+    assert_eq!(
+        statements,
+        [
+            "let d = l * sin(gamma - beta) / sin(gamma)",
+            "L1 = l * sin(beta) / sin(gamma)",
+            "L2 = d + L",
+            "L0 = d",
+            "x0 = -d * sin(alpha - beta)",
+            "z0 = -d * cos(alpha - beta)",
+            "x = x0 + L * sin(theta)",
+            "z = z0 - L * cos(theta)",
+        ]
+    );
+}
+
+#[test]
+fn minimal_splits() {
+    let block = |split: &str| {
+        minimal_block(&format!("struct A {{ minimal [{split}] {{ x = a; }} }}"))
+            .map(|(mu1, mu2, _)| format!("{mu1} | {mu2}"))
+    };
+    assert_eq!(block("a, b | c").unwrap(), "a b | c");
+    assert_eq!(block("a, b, | c,").unwrap(), "a b | c");
+    assert_eq!(block("| c").unwrap(), " | c");
+    assert_eq!(block("a |").unwrap(), "a | ");
+    assert!(
+        block("a, b")
+            .unwrap_err()
+            .starts_with("missing `|` between mu1 and mu2")
+    );
+    assert!(
+        block("a | b | c")
+            .unwrap_err()
+            .starts_with("only one `|` is allowed")
+    );
+    assert_eq!(block("a b | c").unwrap_err(), "expected `,`");
+    assert_eq!(block("a, 1 | c").unwrap_err(), "expected identifier");
+}
+
+#[test]
+fn minimal_statements() {
+    let statements = |body: &str| {
+        minimal_block(&format!("struct A {{ minimal [a | b] {{ {body} }} }}"))
+            .map(|(_, _, statements)| statements.join("; "))
+    };
+    assert_eq!(
+        statements("let c = a^2; x = c + b;; ").unwrap_err(),
+        "unexpected `;`"
+    );
+    assert_eq!(
+        statements("let c = a^2; x = c + b; y = -x").unwrap(),
+        "let c = a^2; x = c + b; y = -x"
+    );
+    assert_eq!(statements("let c a").unwrap_err(), "expected `=`");
+    assert_eq!(statements("x: a").unwrap_err(), "expected `=`");
 }

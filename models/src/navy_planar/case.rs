@@ -2,7 +2,7 @@
 //! start eq. (46), reference Appendix A.
 
 use crane_runtime::trajectory::{Poly9, TrajectoryError};
-use crane_runtime::{Error, State, Trajectory, init};
+use crane_runtime::{Error, Options, Solution, State, Trajectory, init, simulate_minimal};
 use nalgebra::{SVector, vector};
 
 use super::model::NavyPlanar;
@@ -67,6 +67,10 @@ impl crate::Case<7, 3, 2> for PaperCase {
         init::check_start(&self.model, &self.path, self.t0(), &self.p0, None)
     }
 
+    fn simulate_minimal(&self, start: &State<7, 3, 2>, options: &Options) -> Option<Result<Solution<7, 3, 2>, Error>> {
+        Some(simulate_minimal(&self.model, &self.path, start, &minimal_guess(&self.model, start), options))
+    }
+
     fn reference(&self, t: f64) -> Option<State<7, 3, 2>> {
         let r = reference_at(&self.params(), &self.path, t);
         let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
@@ -78,6 +82,21 @@ impl crate::Case<7, 3, 2> for PaperCase {
             lambda: r.lambda,
         })
     }
+}
+
+/// A rough guess of the minimal coordinates `mu = [beta, gamma, theta, L]`
+/// (eq. 36) at a redundant state, from the triangle PAB and the load rope:
+/// exact at the paper's start (beta = alpha, gamma = pi/2, theta = 0).
+pub fn minimal_guess(model: &NavyPlanar, state: &State<7, 3, 2>) -> SVector<f64, 4> {
+    let q = &state.q;
+    let (x0, z0, x, z) = (q[3], q[4], q[5], q[6]);
+    // beta: angle at P between the boom (towards A) and PB
+    // (eq. 37: x0 = -L0 sin(alpha - beta), z0 = -L0 cos(alpha - beta))
+    let beta = model.alpha + x0.atan2(-z0);
+    // gamma: angle at B in the triangle PAB, from the law of cosines
+    let (l, l1, l0) = (model.l, q[0], q[2]);
+    let gamma = ((l1 * l1 + l0 * l0 - l * l) / (2.0 * l1 * l0)).clamp(-1.0, 1.0).acos();
+    SVector::from([beta, gamma, (x - x0).atan2(z0 - z), (x - x0).hypot(z - z0)])
 }
 
 /// The load path's derivatives `gamma^(0..=4)` at `t`.

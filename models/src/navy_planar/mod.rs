@@ -8,5 +8,5 @@ pub mod case;
 pub mod model;
 pub mod reference;
 
-pub use case::{PaperCase, paper_p0, paper_path};
+pub use case::{PaperCase, minimal_guess, paper_p0, paper_path};
 pub use model::NavyPlanar;

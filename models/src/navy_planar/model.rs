@@ -5,6 +5,13 @@
 //! `m = 3` rope constraints (eq. 33), `a = 2` winch torques; the mass matrix
 //! (eq. 29) is singular because the pulley is massless and `L0` carries no
 //! inertia. `crane_model!` derives `G` (eq. 35), `M`, `f` and `B^T` (eq. 34).
+//!
+//! The `minimal` block is the map to the minimal coordinates of sect. 5.1.2,
+//! `mu = [beta, gamma | theta, L]` (eqs. 36, 39), from the law of sines in
+//! the triangle PAB: `phi_p` and `phi_x` are eqs. (37) and (38), and
+//! `D2 phi_x` is eq. (40). Here `d = l sin(gamma - beta)/sin(gamma)` is `L0`,
+//! the distance from the boom tip P to the pulley (not Appendix A's `d`, see
+//! ERRATA, eq. 105), and `L = L2 - L0` is the length of the load rope.
 
 use crane_macros::crane_model;
 
@@ -29,6 +36,12 @@ crane_model! {
             rope0: 0.5*(x0^2 + z0^2 - L0^2),
             #[rope(N2 = L2 - L0)]
             hoist: 0.5*((x - x0)^2 + (z - z0)^2 - (L2 - L0)^2),
+        }
+        minimal [beta, gamma | theta, L] {           // mu1 | mu2 (eq. 39)
+            let d = l*sin(gamma - beta)/sin(gamma);   // = L0, pulley to boom tip P
+            L1 = l*sin(beta)/sin(gamma);  L2 = d + L;  L0 = d;     // eq. (37)
+            x0 = -d*sin(alpha - beta);    z0 = -d*cos(alpha - beta);
+            x  = x0 + L*sin(theta);       z  = z0 - L*cos(theta);  // eq. (38)
         }
     }
 }

@@ -1,0 +1,14 @@
+//! Planar US Navy crane with pulley mass (paper, sect. 5.2).
+//!
+//! - [`model`]: the crane declared with `crane_model!` (eqs. 49-58);
+//! - [`reference`](mod@reference): the analytical flatness-based solution of
+//!   Appendix B (eqs. 113-124, with ERRATA (124h));
+//! - [`case`]: the paper's maneuver (eqs. 41, 44, 64-67, ERRATA (66)) as a
+//!   [`Case`](crate::Case).
+
+pub mod case;
+pub mod model;
+pub mod reference;
+
+pub use case::{PaperCase, paper_p0, paper_path};
+pub use model::NavyPlanarPulley;
