@@ -20,7 +20,7 @@ use nalgebra::{SMatrix, SVector};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 
-use crate::model::CraneModel;
+use crate::model::{CraneModel, MinimalMap};
 
 /// Where to sample: a box for the coordinates and symmetric ranges for the
 /// velocities, multipliers and inputs.
@@ -161,6 +161,54 @@ where
             if error > entry.worst_relative_error || error.is_nan() {
                 entry.worst_relative_error = if error.is_nan() { f64::INFINITY } else { error };
                 entry.at = q.iter().copied().collect();
+            }
+        }
+    }
+    DerivativeReport { points, quantities: worst }
+}
+
+/// Check a minimal-coordinate map at `points` random `mu` from the box
+/// `mu_box` (velocities `mu'` from `[-mu_dot, mu_dot]`): that it satisfies
+/// the constraints, `g(phi(mu)) = 0` (eq. 7, relative to `|q|^2` since `g`
+/// carries 1/2 of squared lengths), that `P` is the null space of `G`
+/// (`|G P| / (|G| |P|)`, eq. 11), and `P = D phi` (eq. 8) and `P'` (eq. 9)
+/// against central differences (errors as in [`check_derivatives`]).
+pub fn check_minimal_map<Mdl, const N: usize, const M: usize, const A: usize, const F: usize>(
+    model: &Mdl,
+    mu_box: &[(f64, f64); F],
+    mu_dot: f64,
+    points: usize,
+    seed: u64,
+) -> DerivativeReport
+where
+    Mdl: MinimalMap<N, M, A, F>,
+{
+    let mut rng = SmallRng::seed_from_u64(seed);
+    let names = ["g(phi(mu)) = 0", "G P = 0", "P = D phi", "P' = dP/dt"];
+    let mut worst: Vec<QuantityError> = names
+        .iter()
+        .map(|&quantity| QuantityError { quantity, worst_relative_error: 0.0, at: Vec::new() })
+        .collect();
+    for _ in 0..points {
+        let mu = SVector::<f64, F>::from_fn(|i, _| rng.random_range(mu_box[i].0..=mu_box[i].1));
+        let mu_rate = SVector::<f64, F>::from_fn(|_, _| rng.random_range(-1.0..=1.0) * mu_dot);
+        let q = model.phi(&mu);
+        let p = model.null_space(&mu);
+        let jac_g = model.constraint_jacobian(&q);
+        let scale = q.amax().max(1.0);
+        // P' is the derivative of P along mu': central difference in that direction
+        let h = 1e-6 * (1.0 + mu.amax()) / mu_rate.amax().max(1e-300);
+        let p_rate_fd = (model.null_space(&(mu + mu_rate * h)) - model.null_space(&(mu - mu_rate * h))) / (2.0 * h);
+        let errors = [
+            model.constraints(&q).amax() / (scale * scale),
+            (jac_g * p).amax() / (jac_g.amax() * p.amax()).max(1e-300),
+            relative_error(&p, &central_jacobian(&mu, |mu| model.phi(mu))),
+            relative_error(&model.null_space_rate(&mu, &mu_rate), &p_rate_fd),
+        ];
+        for (entry, error) in worst.iter_mut().zip(errors) {
+            if error > entry.worst_relative_error || error.is_nan() {
+                entry.worst_relative_error = if error.is_nan() { f64::INFINITY } else { error };
+                entry.at = mu.iter().copied().collect();
             }
         }
     }

@@ -137,3 +137,19 @@ fn a_singular_split_is_a_typed_error_not_a_nan() {
         other => panic!("expected SingularOutputJacobian, got {:?}", other.map(|s| s.steps())),
     }
 }
+
+/// The generated map of eqs. (36)-(40) satisfies the constraints and its
+/// derivatives match central differences (errors ~1e-9 for correct
+/// derivatives, O(1) for wrong ones; g(phi) and G P are round-off, ~1e-15).
+#[test]
+fn minimal_map_satisfies_the_constraints_and_its_derivatives_check() {
+    use crane_models::navy_planar::NavyPlanar;
+    use crane_runtime::check::check_minimal_map;
+    // beta, gamma, theta, L around the paper's maneuver (all lengths positive)
+    let mu_box = [(0.2, 0.9), (1.2, 2.2), (-0.5, 0.5), (2.0, 10.0)];
+    let report = check_minimal_map(&NavyPlanar::default(), &mu_box, 1.0, 200, 3);
+    println!("{report}");
+    assert!(report.get("g(phi(mu)) = 0").unwrap().worst_relative_error < 1e-13, "{report}");
+    assert!(report.get("G P = 0").unwrap().worst_relative_error < 1e-13, "{report}");
+    assert!(report.worst() < 1e-6, "{report}");
+}
