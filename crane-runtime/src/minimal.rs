@@ -136,10 +136,33 @@ where
     fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
         let values = self.residual(&|i| z[i]);
         write_residual(&values, |i, v| r[i] = v);
-        // exact Jacobian column by column: seed unknown j with a dual unit
-        for j in 0..Self::DIM {
+        // exact Jacobian column by column: seed unknown j with a dual unit;
+        // the residual is nonlinear in mu and h only
+        for j in 0..F + A {
             let column = self.residual(&|i| Dual64::new(z[i], if i == j { 1.0 } else { 0.0 }));
             write_residual(&column, |i, v| jac[(i, j)] = v.eps);
+        }
+        // ... and linear in s = dt^2 mu2'' and ut = dt^2 u, whose columns are
+        // [P^T M P e; D2 phi_x e; 0; 0] and [-P^T B^T e; 0; 0; 0]
+        let mu = SVector::<f64, F>::from_fn(|i, _| z[i]);
+        let p = self.model.null_space(&mu);
+        let q = self.model.phi(&mu);
+        let pt_m_p = p.tr_mul(&(self.model.mass_matrix::<f64>() * p));
+        let reduced_inputs = p.tr_mul(&self.model.input_matrix(&q));
+        let (split, off) = (F - A, N - A);
+        for k in 0..A {
+            let (s_col, u_col) = (F + A + k, F + 2 * A + k);
+            for i in 0..Self::DIM {
+                jac[(i, s_col)] = 0.0;
+                jac[(i, u_col)] = 0.0;
+            }
+            for i in 0..F {
+                jac[(i, s_col)] = pt_m_p[(i, split + k)];
+                jac[(i, u_col)] = -reduced_inputs[(i, k)];
+            }
+            for i in 0..A {
+                jac[(F + i, s_col)] = p[(off + i, split + k)];
+            }
         }
         // normalise by |J| |z| (see the redundant scheme): round-off shows as ~1e-16
         let mut normalised = 0.0f64;
