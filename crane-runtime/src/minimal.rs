@@ -34,8 +34,10 @@ use num_dual::Dual64;
 use crate::error::Error;
 use crate::linsolve::DenseSolver;
 use crate::model::{MinimalMap, Scalar};
-use crate::newton::{Newton, NewtonFailure, NewtonOptions, NonlinearSystem};
-use crate::redundant::{Options, ServoTarget, StepReport, Stepper, check_parameters, run_steps, step_count};
+use crate::newton::{Newton, NewtonOptions, NonlinearSystem};
+use crate::redundant::{
+    Options, ServoTarget, StepReport, Stepper, check_parameters, check_target, run_steps, servo_target, step_count, step_error,
+};
 use crate::solution::{Solution, State};
 use crate::trajectory::Trajectory;
 
@@ -322,20 +324,13 @@ where
     /// Advance one step along the stepper's trajectory.
     pub fn step(&mut self) -> Result<StepReport, Error> {
         let t = self.t0 + (self.steps + 1) as f64 * self.equations.dt;
-        let target = [
-            self.trajectory.derivative(t, 0),
-            self.trajectory.derivative(t, 1),
-            self.trajectory.derivative(t, 2),
-        ];
-        self.step_to(t, &target)
+        self.step_to(t, &servo_target(&self.trajectory, t))
     }
 
     /// Advance one step to time `t = t_n + dt` with the load target
     /// `gamma, gamma', gamma''` at `t`.
     pub fn step_to(&mut self, t: f64, target: &ServoTarget<A>) -> Result<StepReport, Error> {
-        if !target.iter().all(|x| x.iter().all(|v| v.is_finite())) {
-            return Err(Error::NonFinite { quantity: "load target gamma(t)", t });
-        }
+        check_target(target, t)?;
         self.equations.target = *target;
         // predictor: quadratic extrapolation of the last three steps; before
         // that, the previous step. (Measured on navy-planar, tf = 4 s: from
@@ -347,13 +342,8 @@ where
         for i in 0..self.z.len() {
             self.z[i] = if self.known >= 3 { 3.0 * h0[i] - 3.0 * h1[i] + h2[i] } else { h0[i] };
         }
-        let converged = self.newton.solve(&mut self.equations, &mut self.z).map_err(|failure| match failure {
-            NewtonFailure::NotConverged { iterations, residual } => {
-                Error::NewtonNotConverged { t, iterations, residual }
-            }
-            NewtonFailure::Singular { pivot_ratio } => Error::SingularIterationMatrix { t, pivot_ratio },
-            NewtonFailure::NonFinite => Error::NonFinite { quantity: "Newton iterate", t },
-        })?;
+        let converged =
+            self.newton.solve(&mut self.equations, &mut self.z).map_err(|failure| step_error(failure, t))?;
         self.accept(t)?;
         Ok(StepReport { iterations: converged.iterations, min_norm_steps: converged.min_norm_steps })
     }

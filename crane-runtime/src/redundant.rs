@@ -245,20 +245,13 @@ where
     /// Advance one step along the stepper's trajectory.
     pub fn step(&mut self) -> Result<StepReport, Error> {
         let t = self.t0 + (self.steps + 1) as f64 * self.equations.dt;
-        let target = [
-            self.trajectory.derivative(t, 0),
-            self.trajectory.derivative(t, 1),
-            self.trajectory.derivative(t, 2),
-        ];
-        self.step_to(t, &target)
+        self.step_to(t, &servo_target(&self.trajectory, t))
     }
 
     /// Advance one step to time `t` (which must be `t_n + dt`) with the load
     /// target `gamma, gamma', gamma''` at `t`.
     pub fn step_to(&mut self, t: f64, target: &ServoTarget<A>) -> Result<StepReport, Error> {
-        if !target.iter().all(|x| x.iter().all(|v| v.is_finite())) {
-            return Err(Error::NonFinite { quantity: "load target gamma(t)", t });
-        }
+        check_target(target, t)?;
         let (p, dt) = (N - A, self.equations.dt);
         let dt2 = dt * dt;
         let eq = &mut self.equations;
@@ -269,13 +262,7 @@ where
         for i in 0..p {
             self.z[i] = self.state.q[i] + dt * self.state.v[i];
         }
-        let converged = self.newton.solve(eq, &mut self.z).map_err(|failure| match failure {
-            NewtonFailure::NotConverged { iterations, residual } => {
-                Error::NewtonNotConverged { t, iterations, residual }
-            }
-            NewtonFailure::Singular { pivot_ratio } => Error::SingularIterationMatrix { t, pivot_ratio },
-            NewtonFailure::NonFinite => Error::NonFinite { quantity: "Newton iterate", t },
-        })?;
+        let converged = self.newton.solve(eq, &mut self.z).map_err(|failure| step_error(failure, t))?;
         let [q, v, _] = eq.kinematics(&self.z);
         self.state = State {
             t,
@@ -286,6 +273,29 @@ where
         };
         self.steps += 1;
         Ok(StepReport { iterations: converged.iterations, min_norm_steps: converged.min_norm_steps })
+    }
+}
+
+/// The load target `gamma, gamma', gamma''` of the step to `t`.
+pub(crate) fn servo_target<const A: usize>(trajectory: &impl Trajectory<A>, t: f64) -> ServoTarget<A> {
+    [0, 1, 2].map(|k| trajectory.derivative(t, k))
+}
+
+/// Refuse a NaN or infinite load target.
+pub(crate) fn check_target<const A: usize>(target: &ServoTarget<A>, t: f64) -> Result<(), Error> {
+    if target.iter().all(|x| x.iter().all(|v| v.is_finite())) {
+        Ok(())
+    } else {
+        Err(Error::NonFinite { quantity: "load target gamma(t)", t })
+    }
+}
+
+/// The runtime error for a failed Newton solve of the step to `t`.
+pub(crate) fn step_error(failure: NewtonFailure, t: f64) -> Error {
+    match failure {
+        NewtonFailure::NotConverged { iterations, residual } => Error::NewtonNotConverged { t, iterations, residual },
+        NewtonFailure::Singular { pivot_ratio } => Error::SingularIterationMatrix { t, pivot_ratio },
+        NewtonFailure::NonFinite => Error::NonFinite { quantity: "Newton iterate", t },
     }
 }
 

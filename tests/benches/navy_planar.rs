@@ -1,21 +1,22 @@
-//! Criterion benchmarks of the `navy-planar` inverse dynamics: a full run at
-//! dt = 0.01 (400 steps) and dt = 0.001 (4000 steps), and a single step, for
-//! the generated model and the hand-written one (the target: generated code
-//! costs no more than hand-written code).
+//! Criterion benchmarks of the inverse dynamics of the paper's planar cranes:
+//! full runs at dt = 0.01 (400 steps) and dt = 0.001 (4000 steps) and single
+//! steps, in redundant (eqs. 22a-d) and minimal (eqs. 24a-e) coordinates, and
+//! for `navy-planar` the generated model against a hand-written one (the
+//! target: generated code costs no more than hand-written code).
 //!
 //! Run with `cargo bench -p crane-tests`.
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
-use crane_models::Case;
-use crane_models::navy_planar::PaperCase;
+use crane_models::{Case, navy_planar, navy_planar_pulley};
 use crane_runtime::newton::NewtonOptions;
 use crane_runtime::{CraneModel, Options, RedundantStepper, State, simulate};
 use crane_tests::handwritten::HandNavyPlanar;
 
-fn full_runs<Mdl: CraneModel<7, 3, 2>>(c: &mut Criterion, label: &str, model: &Mdl) {
-    let case = PaperCase::new(4.0).unwrap();
+/// Redundant runs and one step with `model` on the navy-planar maneuver.
+fn redundant_runs<Mdl: CraneModel<7, 3, 2>>(c: &mut Criterion, label: &str, model: &Mdl) {
+    let case = navy_planar::PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
     for dt in [0.01, 0.001] {
         let options = Options::new(dt, 4.0);
@@ -35,9 +36,25 @@ fn full_runs<Mdl: CraneModel<7, 3, 2>>(c: &mut Criterion, label: &str, model: &M
     });
 }
 
+/// Full runs at dt = 0.01 of a case in both formulations.
+fn formulations<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(c: &mut Criterion, name: &str, case: &C) {
+    let start = case.start().unwrap();
+    let options = Options::new(0.01, case.tf());
+    c.bench_function(&format!("{name}/redundant/run dt=0.01"), |b| {
+        b.iter(|| simulate(black_box(case.model()), case.path(), &start, &options).unwrap())
+    });
+    if case.simulate_minimal(&start, &options).is_some() {
+        c.bench_function(&format!("{name}/minimal/run dt=0.01"), |b| {
+            b.iter(|| case.simulate_minimal(black_box(&start), &options).unwrap().unwrap())
+        });
+    }
+}
+
 fn benches(c: &mut Criterion) {
-    full_runs(c, "generated", &crane_models::navy_planar::NavyPlanar::default());
-    full_runs(c, "hand-written", &HandNavyPlanar::default());
+    redundant_runs(c, "generated", &navy_planar::NavyPlanar::default());
+    redundant_runs(c, "hand-written", &HandNavyPlanar::default());
+    formulations(c, "navy-planar", &navy_planar::PaperCase::new(4.0).unwrap());
+    formulations(c, "navy-planar-pulley", &navy_planar_pulley::PaperCase::new(4.0).unwrap());
 }
 
 criterion_group!(navy_planar, benches);
