@@ -3,8 +3,8 @@
 //! reference Appendix B.
 
 use crane_runtime::trajectory::{Poly9, TrajectoryError};
-use crane_runtime::{CraneModel, Error, State, init};
-use nalgebra::vector;
+use crane_runtime::{CraneModel, Error, Options, Solution, State, init, simulate_minimal};
+use nalgebra::{SVector, vector};
 
 use super::model::NavyPlanarPulley;
 use super::reference::{PulleyParams, reference_at};
@@ -80,6 +80,20 @@ impl crate::Case<8, 4, 3> for PaperCase {
         init::check_start(&self.model, &self.path, self.t0(), &self.p0, None)
     }
 
+    fn simulate_minimal(
+        &self,
+        start: &State<8, 4, 3>,
+        options: &Options,
+    ) -> Option<Result<Solution<8, 4, 3>, Error>> {
+        Some(simulate_minimal(
+            &self.model,
+            &self.path,
+            start,
+            &minimal_guess(&self.model, start),
+            options,
+        ))
+    }
+
     fn reference(&self, t: f64) -> Option<State<8, 4, 3>> {
         let r = reference_at(&self.params(), &self.path, t);
         let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
@@ -93,4 +107,27 @@ impl crate::Case<8, 4, 3> for PaperCase {
             },
         )
     }
+}
+
+/// The minimal coordinates `mu = [beta, gamma, theta, L]` (eq. 59) of a
+/// redundant state, by geometry from the positions of the pulley `B = (x0,
+/// z0)` and the load `C = (x, z)` (angles as in [`model`](super::model)):
+/// `beta` from the direction of `PB` (eq. 62), `theta` and `L` from `BC`
+/// (eq. 61), `gamma + theta` from the direction of `BA`. Exact wherever `q`
+/// satisfies the constraints (55) with `alpha - beta`, `theta` and
+/// `gamma + theta` in `(-pi, pi]` (the range of `atan2`), e.g. at the paper's
+/// start, `mu = [pi/3, pi/3, 0, 5]`, and along the whole maneuver;
+/// [`simulate_minimal`] refines it by Gauss-Newton on `phi(mu) = q0` anyway.
+pub fn minimal_guess(model: &NavyPlanarPulley, state: &State<8, 4, 3>) -> SVector<f64, 4> {
+    let q = &state.q;
+    let (x0, x, z, z0) = (q[4], q[5], q[6], q[7]);
+    let (sin_a, cos_a) = model.alpha.sin_cos();
+    // B - P = -L0 (sin(alpha - beta), cos(alpha - beta))
+    let beta = model.alpha - (-(x0 + model.s * sin_a)).atan2(-(z0 + model.s * cos_a));
+    // C - B = L (sin(theta), -cos(theta))
+    let theta = (x - x0).atan2(z0 - z);
+    // A - B = L1 (-sin(gamma + theta), cos(gamma + theta)), A = -(l + s) (sin(alpha), cos(alpha))
+    let ls = model.l + model.s;
+    let gamma = (x0 + ls * sin_a).atan2(-ls * cos_a - z0) - theta;
+    SVector::from([beta, gamma, theta, (x - x0).hypot(z - z0)])
 }

@@ -15,6 +15,30 @@
 //! angle `alpha` with the vertical. Ropes 1 and 2 end at the main pulley
 //! `B = (x0, z0)`; rope 3 runs from `P` over the pulley to the load
 //! `C = (x, z)`, split into `L0 = |PB|` and `L3 - L0 = |BC|`.
+//!
+//! The `minimal` block is the map to the minimal coordinates of sect. 5.2.2,
+//! `mu = [beta | gamma, theta, L]` (eqs. 59, 63), from the law of sines in
+//! the triangle PAB (`|PA| = l`): `phi_p` is eq. (60) as corrected in ERRATA
+//! (its printed rows 2 and 3 are garbled; with `p` of eq. (49) they are
+//! `L2 = sqrt(x0^2 + z0^2)` and `L3 = L0 + L`), `phi_x` is eq. (61), the
+//! pulley position `(x0, z0)` eq. (62).
+//! The angles, in this model's frame (z up, boom from `S` through `P` to `A`
+//! along `-(sin(alpha), cos(alpha))`):
+//! - `beta` is the angle at `P` from `PA` to `PB`:
+//!   `B - P = -L0 (sin(alpha - beta), cos(alpha - beta))` (eq. 62);
+//! - `theta` is the load rope's angle with the vertical:
+//!   `C - B = L (sin(theta), -cos(theta))` (eq. 61);
+//! - `gamma` is the angle at `B` from the load rope's upward extension to
+//!   rope 1: `A - B = L1 (-sin(gamma + theta), cos(gamma + theta))`, so the
+//!   angle at `B` in PAB is `gamma + theta + alpha - beta` and the one at
+//!   `A` is `pi - (gamma + theta + alpha)`;
+//! - `L = L3 - L0 = |BC|`, the length of the load rope.
+//!
+//! `D2 phi_x` (eq. 12) has determinant
+//! `-L l sin(beta) cos(alpha - beta) / sin^2(gamma + theta + alpha - beta)`:
+//! regular for a load rope of positive length unless `PB` is along the boom
+//! (`beta = 0`) or horizontal (`cos(alpha - beta) = 0`); at the paper's start
+//! (eqs. 66-67, ERRATA) `mu = [pi/3 | pi/3, 0, 5]`.
 
 use crane_macros::crane_model;
 
@@ -67,6 +91,18 @@ crane_model! {
             rope2: 0.5*(x0^2 + z0^2 - L2^2),
             #[rope(N3 = L3 - L0)]
             hoist: 0.5*((x - x0)^2 + (z - z0)^2 - (L3 - L0)^2),
+        }
+        minimal [beta | gamma, theta, L] {                 // mu1 | mu2 (eqs. 59, 63)
+            let psi = gamma + theta + alpha;               // psi - beta: angle at B in PAB
+            let d = l*sin(psi)/sin(psi - beta);            // = L0 = |PB|, law of sines
+            x0 = -s*sin(alpha) - d*sin(alpha - beta);      // eq. (62)
+            z0 = -s*cos(alpha) - d*cos(alpha - beta);
+            L1 = l*sin(beta)/sin(psi - beta);              // eq. (60) with ERRATA
+            L2 = sqrt(x0^2 + z0^2);
+            L3 = d + L;
+            L0 = d;
+            x  = x0 + L*sin(theta);                        // eq. (61)
+            z  = z0 - L*cos(theta);
         }
     }
 }

@@ -485,7 +485,7 @@ mod tests {
     /// `(-sin(alpha - mu), -cos(alpha - mu))`, towards `P`
     /// `(-sin(alpha - beta), -cos(alpha - beta))` (so (122b, c) need `mu`,
     /// `beta` measured from `SA` and `PA` towards the vertical), towards `A`
-    /// `(sin(theta + gamma), -cos(theta + gamma))`, towards `C`
+    /// `(-sin(theta + gamma), cos(theta + gamma))`, towards `C`
     /// `(sin(theta), -cos(theta))`.
     #[test]
     fn newton_way_agrees_with_direct_way() {
