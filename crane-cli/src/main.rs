@@ -8,6 +8,7 @@
 
 mod output;
 mod plot;
+mod progress;
 mod report;
 
 use std::path::PathBuf;
@@ -16,7 +17,7 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 use crane_models::{CATALOG, Case, navy_planar, navy_planar_pulley};
-use crane_runtime::{Options, simulate};
+use crane_runtime::Options;
 
 /// Inverse dynamics of underactuated cranes: the torques that move the load
 /// exactly along a prescribed path (backward Euler on the minimally extended
@@ -48,6 +49,9 @@ enum Command {
         /// Redundant coordinates (eqs. 22a-d) or minimal coordinates (eqs. 24a-e).
         #[arg(long, value_enum, default_value_t = Formulation::Redundant)]
         formulation: Formulation,
+        /// No progress bar (it is shown only on a terminal, for runs over a second).
+        #[arg(long)]
+        quiet: bool,
     },
     /// Time repeated runs without writing files; print median wall time per run and per step.
     Bench {
@@ -93,11 +97,14 @@ impl Formulation {
         name: &str,
         start: &crane_runtime::State<N, M, A>,
         options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
     ) -> Result<crane_runtime::Solution<N, M, A>, CliError> {
         match self {
-            Formulation::Redundant => Ok(simulate(case.model(), case.path(), start, options)?),
+            Formulation::Redundant => {
+                Ok(crane_runtime::redundant::simulate_with_progress(case.model(), case.path(), start, options, progress)?)
+            }
             Formulation::Minimal => case
-                .simulate_minimal(start, options)
+                .simulate_minimal_with_progress(start, options, progress)
                 .ok_or_else(|| CliError::NoMinimalMap(name.to_string()))?
                 .map_err(CliError::from),
         }
@@ -145,13 +152,12 @@ fn execute(command: Command) -> Result<(), CliError> {
             }
             Ok(())
         }
-        Command::Run { model, dt, tf, out, formulation } => {
+        Command::Run { model, dt, tf, out, formulation, quiet } => {
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&model));
+            let settings = RunSettings { name: &model, formulation, dt, out: &out, quiet };
             match model.as_str() {
-                "navy-planar" => run(&navy_planar::PaperCase::new(tf.unwrap_or(4.0))?, &model, formulation, dt, &out),
-                "navy-planar-pulley" => {
-                    run(&navy_planar_pulley::PaperCase::new(tf.unwrap_or(4.0))?, &model, formulation, dt, &out)
-                }
+                "navy-planar" => run(&navy_planar::PaperCase::new(tf.unwrap_or(4.0))?, &settings),
+                "navy-planar-pulley" => run(&navy_planar_pulley::PaperCase::new(tf.unwrap_or(4.0))?, &settings),
                 _ => Err(CliError::UnknownModel(model)),
             }
         }
@@ -163,18 +169,28 @@ fn execute(command: Command) -> Result<(), CliError> {
     }
 }
 
+/// What `crane run` was asked to do.
+struct RunSettings<'a> {
+    name: &'a str,
+    formulation: Formulation,
+    dt: f64,
+    out: &'a std::path::Path,
+    quiet: bool,
+}
+
 /// Run one case and write its outputs.
 fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &C,
-    name: &str,
-    formulation: Formulation,
-    dt: f64,
-    out: &std::path::Path,
+    settings: &RunSettings,
 ) -> Result<(), CliError> {
+    let RunSettings { name, formulation, dt, out, quiet } = *settings;
     let start = case.start()?;
     let options = Options::new(dt, case.tf());
     let clock = Instant::now();
-    let solution = formulation.simulate(case, name, &start, &options)?;
+    let mut progress = progress::Progress::new(name, quiet);
+    let solution = formulation.simulate(case, name, &start, &options, &mut |step, steps| progress.tick(step, steps));
+    progress.finish();
+    let solution = solution?;
     let wall = clock.elapsed().as_secs_f64();
     let references: Option<Vec<_>> = solution.states.iter().map(|s| case.reference(s.t)).collect();
     let summary = report::summarize(name, formulation.name(), &solution, references.as_deref(), wall);
@@ -216,10 +232,10 @@ fn bench<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let mut times = Vec::with_capacity(repeat);
     let mut steps = 0;
     let mut iterations = 0.0;
-    formulation.simulate(case, name, &start, &options)?; // warm-up
+    formulation.simulate(case, name, &start, &options, &mut |_, _| {})?; // warm-up
     for _ in 0..repeat {
         let clock = Instant::now();
-        let solution = formulation.simulate(case, name, &start, &options)?;
+        let solution = formulation.simulate(case, name, &start, &options, &mut |_, _| {})?;
         times.push(clock.elapsed().as_secs_f64());
         steps = solution.steps();
         iterations = solution.mean_newton_iterations();

@@ -23,6 +23,7 @@ use crane_runtime::{CraneModel, Error, Options, Solution, State, Trajectory};
 
 pub mod navy_planar;
 pub mod navy_planar_pulley;
+pub mod navy_3d;
 
 /// A crane with a load path, a start and optionally an analytical reference.
 pub trait Case<const N: usize, const M: usize, const A: usize> {
@@ -47,7 +48,18 @@ pub trait Case<const N: usize, const M: usize, const A: usize> {
     /// Run the inverse dynamics in minimal coordinates (eqs. 24a-e) from
     /// `start`, if the crane declares a minimal-coordinate map; `None` if not.
     fn simulate_minimal(&self, start: &State<N, M, A>, options: &Options) -> Option<Result<Solution<N, M, A>, Error>> {
-        let _ = (start, options);
+        self.simulate_minimal_with_progress(start, options, &mut |_, _| {})
+    }
+
+    /// [`simulate_minimal`](Self::simulate_minimal), calling
+    /// `progress(step, steps)` after every step.
+    fn simulate_minimal_with_progress(
+        &self,
+        start: &State<N, M, A>,
+        options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Option<Result<Solution<N, M, A>, Error>> {
+        let _ = (start, options, progress);
         None
     }
 }
@@ -90,5 +102,12 @@ pub const CATALOG: &[Entry] = &[Entry {
     n: navy_planar_pulley::NavyPlanarPulley::N,
     m: navy_planar_pulley::NavyPlanarPulley::M,
     a: navy_planar_pulley::NavyPlanarPulley::A,
+    reference: true,
+}, Entry {
+    name: "navy-3d",
+    description: "3D US Navy crane, massless pulley, slewing (paper sect. 6.1)",
+    n: navy_3d::Navy3d::N,
+    m: navy_3d::Navy3d::M,
+    a: navy_3d::Navy3d::A,
     reference: true,
 }];

@@ -2,7 +2,8 @@
 //! start eq. (46), reference Appendix A.
 
 use crane_runtime::trajectory::{Poly9, TrajectoryError};
-use crane_runtime::{Error, Options, Solution, State, Trajectory, init, simulate_minimal};
+use crane_runtime::{Error, Options, Solution, State, Trajectory, init};
+use crane_runtime::minimal::simulate_minimal_with_progress;
 use nalgebra::{SVector, vector};
 
 use super::model::NavyPlanar;
@@ -67,8 +68,14 @@ impl crate::Case<7, 3, 2> for PaperCase {
         init::check_start(&self.model, &self.path, self.t0(), &self.p0, None)
     }
 
-    fn simulate_minimal(&self, start: &State<7, 3, 2>, options: &Options) -> Option<Result<Solution<7, 3, 2>, Error>> {
-        Some(simulate_minimal(&self.model, &self.path, start, &minimal_guess(&self.model, start), options))
+    fn simulate_minimal_with_progress(
+        &self,
+        start: &State<7, 3, 2>,
+        options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Option<Result<Solution<7, 3, 2>, Error>> {
+        let guess = minimal_guess(&self.model, start);
+        Some(simulate_minimal_with_progress(&self.model, &self.path, start, &guess, options, progress))
     }
 
     fn reference(&self, t: f64) -> Option<State<7, 3, 2>> {

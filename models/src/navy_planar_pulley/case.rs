@@ -3,7 +3,8 @@
 //! reference Appendix B.
 
 use crane_runtime::trajectory::{Poly9, TrajectoryError};
-use crane_runtime::{CraneModel, Error, Options, Solution, State, init, simulate_minimal};
+use crane_runtime::minimal::simulate_minimal_with_progress;
+use crane_runtime::{CraneModel, Error, Options, Solution, State, init};
 use nalgebra::{SVector, vector};
 
 use super::model::NavyPlanarPulley;
@@ -80,18 +81,14 @@ impl crate::Case<8, 4, 3> for PaperCase {
         init::check_start(&self.model, &self.path, self.t0(), &self.p0, None)
     }
 
-    fn simulate_minimal(
+    fn simulate_minimal_with_progress(
         &self,
         start: &State<8, 4, 3>,
         options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
     ) -> Option<Result<Solution<8, 4, 3>, Error>> {
-        Some(simulate_minimal(
-            &self.model,
-            &self.path,
-            start,
-            &minimal_guess(&self.model, start),
-            options,
-        ))
+        let guess = minimal_guess(&self.model, start);
+        Some(simulate_minimal_with_progress(&self.model, &self.path, start, &guess, options, progress))
     }
 
     fn reference(&self, t: f64) -> Option<State<8, 4, 3>> {
@@ -117,7 +114,7 @@ impl crate::Case<8, 4, 3> for PaperCase {
 /// satisfies the constraints (55) with `alpha - beta`, `theta` and
 /// `gamma + theta` in `(-pi, pi]` (the range of `atan2`), e.g. at the paper's
 /// start, `mu = [pi/3, pi/3, 0, 5]`, and along the whole maneuver;
-/// [`simulate_minimal`] refines it by Gauss-Newton on `phi(mu) = q0` anyway.
+/// [`crane_runtime::simulate_minimal`] refines it by Gauss-Newton on `phi(mu) = q0` anyway.
 pub fn minimal_guess(model: &NavyPlanarPulley, state: &State<8, 4, 3>) -> SVector<f64, 4> {
     let q = &state.q;
     let (x0, x, z, z0) = (q[4], q[5], q[6], q[7]);
