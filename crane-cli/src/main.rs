@@ -16,7 +16,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Parser, Subcommand};
-use crane_models::{CATALOG, Case, navy_planar, navy_planar_pulley};
+use crane_models::{CATALOG, Case, navy_3d, navy_planar, navy_planar_pulley};
 use crane_runtime::Options;
 
 /// Inverse dynamics of underactuated cranes: the torques that move the load
@@ -158,12 +158,14 @@ fn execute(command: Command) -> Result<(), CliError> {
             match model.as_str() {
                 "navy-planar" => run(&navy_planar::PaperCase::new(tf.unwrap_or(4.0))?, &settings),
                 "navy-planar-pulley" => run(&navy_planar_pulley::PaperCase::new(tf.unwrap_or(4.0))?, &settings),
+                "navy-3d" => run(&navy_3d::PaperCase::new(tf.unwrap_or(navy_3d::TF))?, &settings),
                 _ => Err(CliError::UnknownModel(model)),
             }
         }
         Command::Bench { model, dt, repeat, json, formulation } => match model.as_str() {
             "navy-planar" => bench(&navy_planar::PaperCase::new(4.0)?, &model, formulation, dt, repeat, json),
             "navy-planar-pulley" => bench(&navy_planar_pulley::PaperCase::new(4.0)?, &model, formulation, dt, repeat, json),
+            "navy-3d" => bench(&navy_3d::PaperCase::new(navy_3d::TF)?, &model, formulation, dt, repeat, json),
             _ => Err(CliError::UnknownModel(model)),
         },
     }

@@ -225,8 +225,21 @@ where
             .solve(&rhs, 1e-12 * sigma_max)
             .map_err(|_| Error::NonFinite { quantity: "static equilibrium step", t: t0 })?;
         let step = DVector::from_fn(dim, |j, _| step_scaled[j] * col_scale[j]);
-        let converged_step = (0..dim).all(|j| step[j].abs() <= 1e-11 * z[j].abs().max(1e-9));
-        if converged_step || norm == 0.0 {
+        // converged when each block's step (p, u, lambda) is below 1e-11 of the
+        // block's size, or the residual is at round-off relative to |J| |z|
+        // (a block can be exactly zero at the solution, e.g. a slewing torque
+        // at rest, and then only the residual test can end the iteration)
+        let converged_step = [0..p, p..N, N..dim].into_iter().all(|block| {
+            let size = z.rows_range(block.clone()).amax();
+            step.rows_range(block).amax() <= 1e-11 * size
+        });
+        let normalised = (0..dim)
+            .map(|i| {
+                let scale: f64 = (0..dim).map(|j| (jac[(i, j)] * z[j]).abs()).sum();
+                if scale > 0.0 { r[i].abs() / scale } else if r[i] == 0.0 { 0.0 } else { f64::INFINITY }
+            })
+            .fold(0.0, f64::max);
+        if converged_step || normalised <= 1e-14 || norm == 0.0 {
             let ratio = svd.singular_values.min() / sigma_max;
             if ratio < RANK_TOLERANCE {
                 let free = free_direction(&svd, &col_scale, p, info.coordinates);
