@@ -18,7 +18,7 @@ mod minimal;
 
 use std::collections::HashMap;
 
-use proc_macro2::Ident;
+use proc_macro2::{Ident, TokenStream};
 
 use crate::ctxt::Ctxt;
 use crate::diff::Differentiator;
@@ -380,6 +380,7 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         .minimal
         .as_ref()
         .and_then(|section| minimal::check(section, lists.load.len(), m, &mut lower));
+    let (runtime, attrs) = runtime_path(&decl.attrs, cx);
     if cx.has_errors() {
         return None;
     }
@@ -394,7 +395,8 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         .collect();
     Some(Model {
         arena,
-        attrs: decl.attrs.clone(),
+        runtime,
+        attrs,
         vis: decl.vis.clone(),
         name: decl.name.clone(),
         description: first_doc_line(&decl.attrs),
@@ -833,6 +835,35 @@ fn check_force(
 }
 
 /// The first line of the first doc comment, trimmed.
+/// The path of the runtime crate the generated code names: `::crane_runtime`,
+/// or the path of `#[crane(runtime = path)]` (which a facade crate passes, so
+/// that its users need not depend on `crane-runtime` themselves). Returns the
+/// other attributes, which pass through to the struct.
+fn runtime_path(attrs: &[syn::Attribute], cx: &Ctxt) -> (TokenStream, Vec<syn::Attribute>) {
+    let mut runtime = quote::quote!(::crane_runtime);
+    let mut rest = Vec::new();
+    for attr in attrs {
+        if !attr.path().is_ident("crane") {
+            rest.push(attr.clone());
+            continue;
+        }
+        let parsed = attr.parse_args_with(|input: syn::parse::ParseStream| {
+            let key: Ident = input.parse()?;
+            if key != "runtime" {
+                return Err(syn::Error::new(key.span(), "unknown `crane` option: the only one is `runtime = path::to::crane_runtime`"));
+            }
+            input.parse::<syn::Token![=]>()?;
+            input.parse::<TokenStream>()
+        });
+        match parsed {
+            Ok(path) if !path.is_empty() => runtime = path,
+            Ok(_) => cx.error_spanned_by(attr, "`#[crane(runtime = ...)]` needs a path"),
+            Err(error) => cx.syn_error(error),
+        }
+    }
+    (runtime, rest)
+}
+
 fn first_doc_line(attrs: &[syn::Attribute]) -> String {
     for attr in attrs {
         if let syn::Meta::NameValue(nv) = &attr.meta

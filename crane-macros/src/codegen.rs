@@ -550,7 +550,7 @@ fn vector_output(var: &str, len: usize, entries: &[Id]) -> Output {
     let len_lit = index(len);
     Output {
         var: internal(var),
-        init: Some(quote!(::crane_runtime::nalgebra::SVector::<T, #len_lit>::zeros())),
+        init: Some(quote!(__crane_runtime::nalgebra::SVector::<T, #len_lit>::zeros())),
         writes: entries
             .iter()
             .enumerate()
@@ -576,7 +576,7 @@ fn matrix_output(
     }
     Output {
         var: internal(var),
-        init: Some(quote!(::crane_runtime::nalgebra::SMatrix::<T, #r, #c>::zeros())),
+        init: Some(quote!(__crane_runtime::nalgebra::SMatrix::<T, #r, #c>::zeros())),
         writes,
     }
 }
@@ -673,6 +673,7 @@ fn block_is_zero(
 
 /// The complete expansion for a checked model.
 pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
+    let runtime = &model.runtime;
     let name = &model.name;
     let vis = &model.vis;
     let attrs = &model.attrs;
@@ -682,9 +683,9 @@ pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
         (index(n), index(m), index(a), index(nr), index(n - m));
     let arena = &model.arena;
 
-    let sv = quote!(::crane_runtime::nalgebra::SVector);
-    let sm = quote!(::crane_runtime::nalgebra::SMatrix);
-    let scalar = quote!(::crane_runtime::Scalar);
+    let sv = quote!(__crane_runtime::nalgebra::SVector);
+    let sm = quote!(__crane_runtime::nalgebra::SMatrix);
+    let scalar = quote!(__crane_runtime::Scalar);
     let q = internal("q");
     let v = internal("v");
     let u = internal("u");
@@ -756,7 +757,7 @@ pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
     let ropes = model.ropes().map(|(index_k, r)| {
         let tension = r.tension.to_string();
         let index_k = index(index_k);
-        quote!(::crane_runtime::Rope { tension: #tension, constraint: #index_k })
+        quote!(__crane_runtime::Rope { tension: #tension, constraint: #index_k })
     });
     let description = &model.description;
     let name_str = name.to_string();
@@ -825,6 +826,10 @@ pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
             }
         }
 
+        // the model functions, naming the runtime crate through one alias
+        const _: () = {
+        use #runtime as __crane_runtime;
+
         #lints
         impl #name {
             #doc_n
@@ -890,8 +895,8 @@ pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
         }
 
         #lints
-        impl ::crane_runtime::CraneModel<#n_lit, #m_lit, #a_lit> for #name {
-            const INFO: ::crane_runtime::ModelInfo = ::crane_runtime::ModelInfo {
+        impl __crane_runtime::CraneModel<#n_lit, #m_lit, #a_lit> for #name {
+            const INFO: __crane_runtime::ModelInfo = __crane_runtime::ModelInfo {
                 name: #name_str,
                 description: #description,
                 coordinates: #info_coords,
@@ -909,11 +914,11 @@ pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
                 &mut self,
                 name: &str,
                 value: f64,
-            ) -> ::core::result::Result<(), ::crane_runtime::UnknownParameter> {
+            ) -> ::core::result::Result<(), __crane_runtime::UnknownParameter> {
                 match name {
                     #(#param_strs => self.#param_names = value,)*
                     _ => {
-                        return ::core::result::Result::Err(::crane_runtime::UnknownParameter {
+                        return ::core::result::Result::Err(__crane_runtime::UnknownParameter {
                             name: ::std::string::String::from(name),
                             known: ::std::string::String::from(#known),
                         });
@@ -972,6 +977,7 @@ pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
         }
 
         #minimal_items
+        };
     }
 }
 
@@ -989,9 +995,9 @@ fn generate_minimal(
     let f1 = minimal.n_mu1;
     let (n_lit, m_lit, a_lit, nr_lit, f_lit, f1_lit) =
         (index(n), index(m), index(a), index(nr), index(f), index(f1));
-    let sv = quote!(::crane_runtime::nalgebra::SVector);
-    let sm = quote!(::crane_runtime::nalgebra::SMatrix);
-    let scalar = quote!(::crane_runtime::Scalar);
+    let sv = quote!(__crane_runtime::nalgebra::SVector);
+    let sm = quote!(__crane_runtime::nalgebra::SMatrix);
+    let scalar = quote!(__crane_runtime::Scalar);
     let mu = internal("mu");
     let mu_dot = internal("mu_dot");
 
@@ -1068,7 +1074,7 @@ fn generate_minimal(
         }
 
         #lints
-        impl ::crane_runtime::MinimalMap<#n_lit, #m_lit, #a_lit, #f_lit> for #name {
+        impl __crane_runtime::MinimalMap<#n_lit, #m_lit, #a_lit, #f_lit> for #name {
             const MINIMAL_COORDINATES: &'static [&'static str] = #mu_names;
 
             /// The map `q = phi(mu)` (eq. 6), as declared:

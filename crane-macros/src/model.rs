@@ -6,7 +6,7 @@
 //! eqs. 1a-1b, 3, 11a-11c, and for a `minimal` block eqs. 6, 8, 9, 12, 17);
 //! `codegen.rs` only prints these.
 
-use proc_macro2::Ident;
+use proc_macro2::{Ident, TokenStream};
 use syn::{Attribute, Visibility};
 
 use crate::diff::Differentiator;
@@ -17,6 +17,8 @@ use crate::parse::Expr;
 pub struct Model {
     /// The IR of every expression below.
     pub arena: Arena,
+    /// Path of the runtime crate (`::crane_runtime` unless `#[crane(runtime = ...)]`).
+    pub runtime: TokenStream,
     /// Attributes and doc comments of the struct.
     pub attrs: Vec<Attribute>,
     /// Visibility of the struct.

@@ -40,645 +40,648 @@ impl ::core::default::Default for NavyPlanar {
         }
     }
 }
-#[allow(
-    non_snake_case,
-    unused_variables,
-    clippy::too_many_lines,
-    clippy::unreadable_literal
-)]
-impl NavyPlanar {
-    /// Number of redundant coordinates `n` in `q = [p; x]` (eq. 2): robot coordinates `L1`, `L2`, `L0`, `x0`, `z0`, load coordinates `x`, `z`.
-    pub const N: usize = 7;
-    /// Number of holonomic constraints `m` (eq. 1b): `rope1`, `rope0`, `hoist`.
-    pub const M: usize = 3;
-    /// Number of inputs `a` (eq. 1a), equal to the number of load coordinates prescribed by `x = gamma(t)` (eq. 1c): `u1`, `u2`.
-    pub const A: usize = 2;
-    /// Degrees of freedom `f = n - m`.
-    pub const F: usize = 4;
-    /// The crane with the declared default parameters.
-    pub fn new() -> Self {
-        <Self as ::core::default::Default>::default()
-    }
-    /// Constraint functions `g(q)` (eq. 1b).
-    pub fn g<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-    ) -> ::crane_runtime::nalgebra::SVector<T, 3> {
-        let alpha = T::from(self.alpha);
-        let l = T::from(self.l);
-        let L1 = q[0];
-        let L2 = q[1];
-        let L0 = q[2];
-        let x0 = q[3];
-        let z0 = q[4];
-        let x = q[5];
-        let z = q[6];
-        let mut out = ::crane_runtime::nalgebra::SVector::<T, 3>::zeros();
-        out[0] = ((x0 + l * alpha.sin()).powi(2) + (z0 + l * alpha.cos()).powi(2)
-            - L1.powi(2)) * 0.5;
-        out[1] = (x0.powi(2) + z0.powi(2) - L0.powi(2)) * 0.5;
-        out[2] = ((x - x0).powi(2) + (z - z0).powi(2) - (L2 - L0).powi(2)) * 0.5;
-        out
-    }
-    /// `G1 = dg/dp`, the robot block of the constraint Jacobian `G = [G1 G2]`
-    /// (eq. 3).
-    pub fn G1<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 3, 5> {
-        let alpha = T::from(self.alpha);
-        let l = T::from(self.l);
-        let L1 = q[0];
-        let L2 = q[1];
-        let L0 = q[2];
-        let x0 = q[3];
-        let z0 = q[4];
-        let x = q[5];
-        let z = q[6];
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 3, 5>::zeros();
-        out[(0, 0)] = -L1;
-        out[(0, 3)] = x0 + l * alpha.sin();
-        out[(0, 4)] = z0 + l * alpha.cos();
-        out[(1, 2)] = -L0;
-        out[(1, 3)] = x0;
-        out[(1, 4)] = z0;
-        out[(2, 1)] = L0 - L2;
-        out[(2, 2)] = L2 - L0;
-        out[(2, 3)] = x0 - x;
-        out[(2, 4)] = z0 - z;
-        out
-    }
-    /// `G2 = dg/dx`, the load block of the constraint Jacobian `G = [G1 G2]`
-    /// (eq. 3).
-    pub fn G2<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 3, 2> {
-        let x0 = q[3];
-        let z0 = q[4];
-        let x = q[5];
-        let z = q[6];
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 3, 2>::zeros();
-        out[(2, 0)] = x - x0;
-        out[(2, 1)] = z - z0;
-        out
-    }
-    /// Robot block `M1` of the constant mass matrix (eq. 11a), from the kinetic energy `T = 1/2 q'^T M q'` (eq. 28).
-    /// `M` is block diagonal, `M = diag(M1, M2)`.
-    pub fn M1<T: ::crane_runtime::Scalar>(
-        &self,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 5, 5> {
-        let J1 = T::from(self.J1);
-        let J2 = T::from(self.J2);
-        let r1 = T::from(self.r1);
-        let r2 = T::from(self.r2);
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 5, 5>::zeros();
-        out[(0, 0)] = J1 / r1.powi(2);
-        out[(1, 1)] = J2 / r2.powi(2);
-        out
-    }
-    /// Load block `M2` of the constant mass matrix (eq. 11a).
-    /// `M` is block diagonal, `M = diag(M1, M2)`.
-    pub fn M2<T: ::crane_runtime::Scalar>(
-        &self,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 2, 2> {
-        let m_l = T::from(self.m_l);
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
-        out[(0, 0)] = m_l;
-        out[(1, 1)] = m_l;
-        out
-    }
-    /// Applied forces on the robot coordinates without the inputs, `f1(q, q')`
-    /// (eq. 11b).
-    pub fn f1<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-        v: &::crane_runtime::nalgebra::SVector<T, 7>,
-    ) -> ::crane_runtime::nalgebra::SVector<T, 5> {
-        ::crane_runtime::nalgebra::SVector::<T, 5>::zeros()
-    }
-    /// Applied forces on the load coordinates, `f2(q, q')` (eq. 11b).
-    pub fn f2<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-        v: &::crane_runtime::nalgebra::SVector<T, 7>,
-    ) -> ::crane_runtime::nalgebra::SVector<T, 2> {
-        let m_l = T::from(self.m_l);
-        let g = T::from(self.g);
-        let mut out = ::crane_runtime::nalgebra::SVector::<T, 2>::zeros();
-        out[1] = -m_l * g;
-        out
-    }
-    /// Input matrix `B1^T(q)`: generalized force on the robot coordinates per
-    /// unit input (eq. 11c).
-    /// The load rows of `B^T = [B1^T; 0]` are zero.
-    pub fn B1T<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 5, 2> {
-        let r1 = T::from(self.r1);
-        let r2 = T::from(self.r2);
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 5, 2>::zeros();
-        out[(0, 0)] = r1.recip();
-        out[(1, 1)] = r2.recip();
-        out
-    }
-}
-#[allow(
-    non_snake_case,
-    unused_variables,
-    clippy::too_many_lines,
-    clippy::unreadable_literal
-)]
-impl ::crane_runtime::CraneModel<7, 3, 2> for NavyPlanar {
-    const INFO: ::crane_runtime::ModelInfo = ::crane_runtime::ModelInfo {
-        name: "NavyPlanar",
-        description: "Planar US Navy crane with massless main pulley (paper, sect. 5.1).",
-        coordinates: &["L1", "L2", "L0", "x0", "z0", "x", "z"],
-        inputs: &["u1", "u2"],
-        constraints: &["rope1", "rope0", "hoist"],
-        ropes: &[
-            ::crane_runtime::Rope {
-                tension: "N1",
-                constraint: 0,
-            },
-            ::crane_runtime::Rope {
-                tension: "N2",
-                constraint: 2,
-            },
-        ],
-        parameters: &["m_l", "J1", "J2", "r1", "r2", "alpha", "l", "g"],
-    };
-    fn parameter_values(&self) -> ::std::vec::Vec<f64> {
-        ::std::vec![
-            self.m_l, self.J1, self.J2, self.r1, self.r2, self.alpha, self.l, self.g
-        ]
-    }
-    fn set_parameter(
-        &mut self,
-        name: &str,
-        value: f64,
-    ) -> ::core::result::Result<(), ::crane_runtime::UnknownParameter> {
-        match name {
-            "m_l" => self.m_l = value,
-            "J1" => self.J1 = value,
-            "J2" => self.J2 = value,
-            "r1" => self.r1 = value,
-            "r2" => self.r2 = value,
-            "alpha" => self.alpha = value,
-            "l" => self.l = value,
-            "g" => self.g = value,
-            _ => {
-                return ::core::result::Result::Err(::crane_runtime::UnknownParameter {
-                    name: ::std::string::String::from(name),
-                    known: ::std::string::String::from(
-                        "m_l, J1, J2, r1, r2, alpha, l, g",
-                    ),
-                });
-            }
+const _: () = {
+    use ::crane_runtime as __crane_runtime;
+    #[allow(
+        non_snake_case,
+        unused_variables,
+        clippy::too_many_lines,
+        clippy::unreadable_literal
+    )]
+    impl NavyPlanar {
+        /// Number of redundant coordinates `n` in `q = [p; x]` (eq. 2): robot coordinates `L1`, `L2`, `L0`, `x0`, `z0`, load coordinates `x`, `z`.
+        pub const N: usize = 7;
+        /// Number of holonomic constraints `m` (eq. 1b): `rope1`, `rope0`, `hoist`.
+        pub const M: usize = 3;
+        /// Number of inputs `a` (eq. 1a), equal to the number of load coordinates prescribed by `x = gamma(t)` (eq. 1c): `u1`, `u2`.
+        pub const A: usize = 2;
+        /// Degrees of freedom `f = n - m`.
+        pub const F: usize = 4;
+        /// The crane with the declared default parameters.
+        pub fn new() -> Self {
+            <Self as ::core::default::Default>::default()
         }
-        ::core::result::Result::Ok(())
+        /// Constraint functions `g(q)` (eq. 1b).
+        pub fn g<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+        ) -> __crane_runtime::nalgebra::SVector<T, 3> {
+            let alpha = T::from(self.alpha);
+            let l = T::from(self.l);
+            let L1 = q[0];
+            let L2 = q[1];
+            let L0 = q[2];
+            let x0 = q[3];
+            let z0 = q[4];
+            let x = q[5];
+            let z = q[6];
+            let mut out = __crane_runtime::nalgebra::SVector::<T, 3>::zeros();
+            out[0] = ((x0 + l * alpha.sin()).powi(2) + (z0 + l * alpha.cos()).powi(2)
+                - L1.powi(2)) * 0.5;
+            out[1] = (x0.powi(2) + z0.powi(2) - L0.powi(2)) * 0.5;
+            out[2] = ((x - x0).powi(2) + (z - z0).powi(2) - (L2 - L0).powi(2)) * 0.5;
+            out
+        }
+        /// `G1 = dg/dp`, the robot block of the constraint Jacobian `G = [G1 G2]`
+        /// (eq. 3).
+        pub fn G1<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 3, 5> {
+            let alpha = T::from(self.alpha);
+            let l = T::from(self.l);
+            let L1 = q[0];
+            let L2 = q[1];
+            let L0 = q[2];
+            let x0 = q[3];
+            let z0 = q[4];
+            let x = q[5];
+            let z = q[6];
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 3, 5>::zeros();
+            out[(0, 0)] = -L1;
+            out[(0, 3)] = x0 + l * alpha.sin();
+            out[(0, 4)] = z0 + l * alpha.cos();
+            out[(1, 2)] = -L0;
+            out[(1, 3)] = x0;
+            out[(1, 4)] = z0;
+            out[(2, 1)] = L0 - L2;
+            out[(2, 2)] = L2 - L0;
+            out[(2, 3)] = x0 - x;
+            out[(2, 4)] = z0 - z;
+            out
+        }
+        /// `G2 = dg/dx`, the load block of the constraint Jacobian `G = [G1 G2]`
+        /// (eq. 3).
+        pub fn G2<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 3, 2> {
+            let x0 = q[3];
+            let z0 = q[4];
+            let x = q[5];
+            let z = q[6];
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 3, 2>::zeros();
+            out[(2, 0)] = x - x0;
+            out[(2, 1)] = z - z0;
+            out
+        }
+        /// Robot block `M1` of the constant mass matrix (eq. 11a), from the kinetic energy `T = 1/2 q'^T M q'` (eq. 28).
+        /// `M` is block diagonal, `M = diag(M1, M2)`.
+        pub fn M1<T: __crane_runtime::Scalar>(
+            &self,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 5, 5> {
+            let J1 = T::from(self.J1);
+            let J2 = T::from(self.J2);
+            let r1 = T::from(self.r1);
+            let r2 = T::from(self.r2);
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 5, 5>::zeros();
+            out[(0, 0)] = J1 / r1.powi(2);
+            out[(1, 1)] = J2 / r2.powi(2);
+            out
+        }
+        /// Load block `M2` of the constant mass matrix (eq. 11a).
+        /// `M` is block diagonal, `M = diag(M1, M2)`.
+        pub fn M2<T: __crane_runtime::Scalar>(
+            &self,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 2, 2> {
+            let m_l = T::from(self.m_l);
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
+            out[(0, 0)] = m_l;
+            out[(1, 1)] = m_l;
+            out
+        }
+        /// Applied forces on the robot coordinates without the inputs, `f1(q, q')`
+        /// (eq. 11b).
+        pub fn f1<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            v: &__crane_runtime::nalgebra::SVector<T, 7>,
+        ) -> __crane_runtime::nalgebra::SVector<T, 5> {
+            __crane_runtime::nalgebra::SVector::<T, 5>::zeros()
+        }
+        /// Applied forces on the load coordinates, `f2(q, q')` (eq. 11b).
+        pub fn f2<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            v: &__crane_runtime::nalgebra::SVector<T, 7>,
+        ) -> __crane_runtime::nalgebra::SVector<T, 2> {
+            let m_l = T::from(self.m_l);
+            let g = T::from(self.g);
+            let mut out = __crane_runtime::nalgebra::SVector::<T, 2>::zeros();
+            out[1] = -m_l * g;
+            out
+        }
+        /// Input matrix `B1^T(q)`: generalized force on the robot coordinates per
+        /// unit input (eq. 11c).
+        /// The load rows of `B^T = [B1^T; 0]` are zero.
+        pub fn B1T<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 5, 2> {
+            let r1 = T::from(self.r1);
+            let r2 = T::from(self.r2);
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 5, 2>::zeros();
+            out[(0, 0)] = r1.recip();
+            out[(1, 1)] = r2.recip();
+            out
+        }
     }
-    fn constraints<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-    ) -> ::crane_runtime::nalgebra::SVector<T, 3> {
-        self.g(q)
+    #[allow(
+        non_snake_case,
+        unused_variables,
+        clippy::too_many_lines,
+        clippy::unreadable_literal
+    )]
+    impl __crane_runtime::CraneModel<7, 3, 2> for NavyPlanar {
+        const INFO: __crane_runtime::ModelInfo = __crane_runtime::ModelInfo {
+            name: "NavyPlanar",
+            description: "Planar US Navy crane with massless main pulley (paper, sect. 5.1).",
+            coordinates: &["L1", "L2", "L0", "x0", "z0", "x", "z"],
+            inputs: &["u1", "u2"],
+            constraints: &["rope1", "rope0", "hoist"],
+            ropes: &[
+                __crane_runtime::Rope {
+                    tension: "N1",
+                    constraint: 0,
+                },
+                __crane_runtime::Rope {
+                    tension: "N2",
+                    constraint: 2,
+                },
+            ],
+            parameters: &["m_l", "J1", "J2", "r1", "r2", "alpha", "l", "g"],
+        };
+        fn parameter_values(&self) -> ::std::vec::Vec<f64> {
+            ::std::vec![
+                self.m_l, self.J1, self.J2, self.r1, self.r2, self.alpha, self.l, self.g
+            ]
+        }
+        fn set_parameter(
+            &mut self,
+            name: &str,
+            value: f64,
+        ) -> ::core::result::Result<(), __crane_runtime::UnknownParameter> {
+            match name {
+                "m_l" => self.m_l = value,
+                "J1" => self.J1 = value,
+                "J2" => self.J2 = value,
+                "r1" => self.r1 = value,
+                "r2" => self.r2 = value,
+                "alpha" => self.alpha = value,
+                "l" => self.l = value,
+                "g" => self.g = value,
+                _ => {
+                    return ::core::result::Result::Err(__crane_runtime::UnknownParameter {
+                        name: ::std::string::String::from(name),
+                        known: ::std::string::String::from(
+                            "m_l, J1, J2, r1, r2, alpha, l, g",
+                        ),
+                    });
+                }
+            }
+            ::core::result::Result::Ok(())
+        }
+        fn constraints<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+        ) -> __crane_runtime::nalgebra::SVector<T, 3> {
+            self.g(q)
+        }
+        fn constraint_jacobian<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 3, 7> {
+            let alpha = T::from(self.alpha);
+            let l = T::from(self.l);
+            let L1 = q[0];
+            let L2 = q[1];
+            let L0 = q[2];
+            let x0 = q[3];
+            let z0 = q[4];
+            let x = q[5];
+            let z = q[6];
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 3, 7>::zeros();
+            out[(0, 0)] = -L1;
+            out[(0, 3)] = x0 + l * alpha.sin();
+            out[(0, 4)] = z0 + l * alpha.cos();
+            out[(1, 2)] = -L0;
+            out[(1, 3)] = x0;
+            out[(1, 4)] = z0;
+            out[(2, 1)] = L0 - L2;
+            out[(2, 2)] = L2 - L0;
+            out[(2, 3)] = x0 - x;
+            out[(2, 4)] = z0 - z;
+            out[(2, 5)] = x - x0;
+            out[(2, 6)] = z - z0;
+            out
+        }
+        fn constraint_hessian<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            lambda: &__crane_runtime::nalgebra::SVector<T, 3>,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 7> {
+            let t0 = lambda[0] + lambda[1] + lambda[2];
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
+            out[(0, 0)] = -lambda[0];
+            out[(1, 1)] = -lambda[2];
+            out[(1, 2)] = lambda[2];
+            out[(2, 1)] = lambda[2];
+            out[(2, 2)] = -lambda[2] - lambda[1];
+            out[(3, 3)] = t0;
+            out[(3, 5)] = -lambda[2];
+            out[(4, 4)] = t0;
+            out[(4, 6)] = -lambda[2];
+            out[(5, 3)] = -lambda[2];
+            out[(5, 5)] = lambda[2];
+            out[(6, 4)] = -lambda[2];
+            out[(6, 6)] = lambda[2];
+            out
+        }
+        fn mass_matrix<T: __crane_runtime::Scalar>(
+            &self,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 7> {
+            let m_l = T::from(self.m_l);
+            let J1 = T::from(self.J1);
+            let J2 = T::from(self.J2);
+            let r1 = T::from(self.r1);
+            let r2 = T::from(self.r2);
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
+            out[(0, 0)] = J1 / r1.powi(2);
+            out[(1, 1)] = J2 / r2.powi(2);
+            out[(5, 5)] = m_l;
+            out[(6, 6)] = m_l;
+            out
+        }
+        fn forces<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            v: &__crane_runtime::nalgebra::SVector<T, 7>,
+        ) -> __crane_runtime::nalgebra::SVector<T, 7> {
+            let m_l = T::from(self.m_l);
+            let g = T::from(self.g);
+            let mut out = __crane_runtime::nalgebra::SVector::<T, 7>::zeros();
+            out[6] = -m_l * g;
+            out
+        }
+        fn force_jacobians<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            v: &__crane_runtime::nalgebra::SVector<T, 7>,
+        ) -> (
+            __crane_runtime::nalgebra::SMatrix<T, 7, 7>,
+            __crane_runtime::nalgebra::SMatrix<T, 7, 7>,
+        ) {
+            let df_dq = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
+            let df_dv = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
+            (df_dq, df_dv)
+        }
+        fn input_matrix<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 2> {
+            let r1 = T::from(self.r1);
+            let r2 = T::from(self.r2);
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 7, 2>::zeros();
+            out[(0, 0)] = r1.recip();
+            out[(1, 1)] = r2.recip();
+            out
+        }
+        fn input_jacobian<T: __crane_runtime::Scalar>(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            u: &__crane_runtime::nalgebra::SVector<T, 2>,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 7> {
+            __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros()
+        }
+        fn rope_lengths(
+            &self,
+            q: &__crane_runtime::nalgebra::SVector<f64, 7>,
+            out: &mut [f64],
+        ) {
+            ::core::assert_eq!(
+                out.len(), 2, "rope_lengths: `out` must have one entry per rope (2)"
+            );
+            let L1 = q[0];
+            let L2 = q[1];
+            let L0 = q[2];
+            out[0] = L1;
+            out[1] = L2 - L0;
+        }
     }
-    fn constraint_jacobian<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 3, 7> {
-        let alpha = T::from(self.alpha);
-        let l = T::from(self.l);
-        let L1 = q[0];
-        let L2 = q[1];
-        let L0 = q[2];
-        let x0 = q[3];
-        let z0 = q[4];
-        let x = q[5];
-        let z = q[6];
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 3, 7>::zeros();
-        out[(0, 0)] = -L1;
-        out[(0, 3)] = x0 + l * alpha.sin();
-        out[(0, 4)] = z0 + l * alpha.cos();
-        out[(1, 2)] = -L0;
-        out[(1, 3)] = x0;
-        out[(1, 4)] = z0;
-        out[(2, 1)] = L0 - L2;
-        out[(2, 2)] = L2 - L0;
-        out[(2, 3)] = x0 - x;
-        out[(2, 4)] = z0 - z;
-        out[(2, 5)] = x - x0;
-        out[(2, 6)] = z - z0;
-        out
+    #[allow(
+        non_snake_case,
+        unused_variables,
+        clippy::too_many_lines,
+        clippy::unreadable_literal
+    )]
+    impl NavyPlanar {
+        /// Number of minimal coordinates in `mu1`, `f - a`: `mu = [mu1; mu2]` with `mu1` = `beta`, `gamma` and `mu2` = `theta`, `L`, chosen so that `D2 phi_x` is regular (eq. 12).
+        pub const MINIMAL_SPLIT: usize = 2;
+        /// Robot part `phi_p(mu)` of the map `q = phi(mu)` (eq. 6): `L1`, `L2`, `L0`, `x0`, `z0` as functions of the minimal coordinates `mu` = `beta`, `gamma`, `theta`, `L`.
+        pub fn phi_p<T: __crane_runtime::Scalar>(
+            &self,
+            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+        ) -> __crane_runtime::nalgebra::SVector<T, 5> {
+            let alpha = T::from(self.alpha);
+            let l = T::from(self.l);
+            let beta = mu[0];
+            let gamma = mu[1];
+            let L = mu[3];
+            let t0 = (gamma - beta).sin();
+            let t1 = gamma.sin();
+            let d = l * t0 / t1;
+            let t2 = alpha - beta;
+            let mut out = __crane_runtime::nalgebra::SVector::<T, 5>::zeros();
+            out[0] = l * beta.sin() / t1;
+            out[1] = d + L;
+            out[2] = d;
+            out[3] = -l * t0 * t2.sin() / t1;
+            out[4] = -l * t0 * t2.cos() / t1;
+            out
+        }
+        /// Load part `phi_x(mu)` of the map `q = phi(mu)` (eq. 6): `x`, `z`; the servo constraints read `phi_x(mu) = gamma(t)` (eq. 10b).
+        pub fn phi_x<T: __crane_runtime::Scalar>(
+            &self,
+            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+        ) -> __crane_runtime::nalgebra::SVector<T, 2> {
+            let alpha = T::from(self.alpha);
+            let l = T::from(self.l);
+            let beta = mu[0];
+            let gamma = mu[1];
+            let theta = mu[2];
+            let L = mu[3];
+            let t0 = (gamma - beta).sin();
+            let t1 = gamma.sin();
+            let t2 = alpha - beta;
+            let mut out = __crane_runtime::nalgebra::SVector::<T, 2>::zeros();
+            out[0] = L * theta.sin() - l * t0 * t2.sin() / t1;
+            out[1] = -l * t0 * t2.cos() / t1 - L * theta.cos();
+            out
+        }
+        /// `D1 phi_x = d phi_x / d mu1` (eqs. 15-16): the load rows of `P = D phi` in
+        /// the columns of `mu1`.
+        pub fn D1_phi_x<T: __crane_runtime::Scalar>(
+            &self,
+            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 2, 2> {
+            let alpha = T::from(self.alpha);
+            let l = T::from(self.l);
+            let beta = mu[0];
+            let gamma = mu[1];
+            let t0 = gamma - beta;
+            let t1 = t0.sin();
+            let t2 = gamma.sin();
+            let t3 = alpha - beta;
+            let t4 = t3.sin();
+            let t5 = t3.cos();
+            let t6 = gamma.cos();
+            let t7 = t2.powi(-2);
+            let t8 = t0.cos();
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
+            out[(0, 0)] = l * t1 * t5 / t2 + l * t4 * t8 / t2;
+            out[(0, 1)] = l * t1 * t4 * t6 * t7 - l * t4 * t8 / t2;
+            out[(1, 0)] = l * t5 * t8 / t2 - l * t1 * t4 / t2;
+            out[(1, 1)] = l * t1 * t5 * t6 * t7 - l * t5 * t8 / t2;
+            out
+        }
+        /// `D2 phi_x = d phi_x / d mu2` (eqs. 12, 15-16): the load rows of `P = D phi`
+        /// in the columns of `mu2`; must be regular.
+        pub fn D2_phi_x<T: __crane_runtime::Scalar>(
+            &self,
+            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 2, 2> {
+            let theta = mu[2];
+            let L = mu[3];
+            let t0 = theta.sin();
+            let t1 = theta.cos();
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
+            out[(0, 0)] = L * t1;
+            out[(0, 1)] = t0;
+            out[(1, 0)] = L * t0;
+            out[(1, 1)] = -t1;
+            out
+        }
+        /// `w = d/dt[D1 phi_x] mu1' + d/dt[D2 phi_x] mu2^` (eq. 17), with
+        /// `mu_dot = [mu1'; mu2^]`: the load rows of `P'(mu, mu') mu'`, the second
+        /// directional derivative of `phi_x` along `mu'`.
+        pub fn w<T: __crane_runtime::Scalar>(
+            &self,
+            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            mu_dot: &__crane_runtime::nalgebra::SVector<T, 4>,
+        ) -> __crane_runtime::nalgebra::SVector<T, 2> {
+            let alpha = T::from(self.alpha);
+            let l = T::from(self.l);
+            let beta = mu[0];
+            let gamma = mu[1];
+            let theta = mu[2];
+            let L = mu[3];
+            let dot_beta = mu_dot[0];
+            let dot_gamma = mu_dot[1];
+            let dot_theta = mu_dot[2];
+            let dot_L = mu_dot[3];
+            let t0 = gamma - beta;
+            let t1 = t0.sin();
+            let t2 = gamma.sin();
+            let t3 = alpha - beta;
+            let t4 = t3.sin();
+            let t5 = t3.cos();
+            let t6 = theta.sin();
+            let t7 = theta.cos();
+            let t8 = gamma.cos();
+            let t9 = t2.powi(-2);
+            let t10 = t0.cos();
+            let t11 = t2.powi(-3);
+            let t12 = t8.powi(2);
+            let t13 = dot_beta.powi(2);
+            let t14 = dot_gamma.powi(2);
+            let t15 = dot_theta.powi(2);
+            let mut out = __crane_runtime::nalgebra::SVector::<T, 2>::zeros();
+            out[0] = (l * t1 * t4 * 2.0 / t2 - l * t5 * t10 * 2.0 / t2) * t13
+                + dot_beta * dot_gamma
+                    * (l * t5 * t10 / t2 - l * t1 * t4 / t2 - l * t1 * t5 * t8 * t9
+                        - l * t4 * t8 * t9 * t10) * 2.0
+                + (l * t4 * t8 * t9 * t10 * 2.0 - l * t1 * t4 * t11 * t12 * 2.0) * t14
+                - L * t6 * t15 + t7 * dot_theta * dot_L * 2.0;
+            out[1] = (l * t1 * t5 * 2.0 / t2 + l * t4 * t10 * 2.0 / t2) * t13
+                + dot_beta * dot_gamma
+                    * (l * t1 * t4 * t8 * t9 - l * t1 * t5 / t2 - l * t4 * t10 / t2
+                        - l * t5 * t8 * t9 * t10) * 2.0
+                + (l * t5 * t8 * t9 * t10 * 2.0 - l * t1 * t5 * t11 * t12 * 2.0) * t14
+                + L * t7 * t15 + t6 * dot_theta * dot_L * 2.0;
+            out
+        }
     }
-    fn constraint_hessian<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-        lambda: &::crane_runtime::nalgebra::SVector<T, 3>,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 7, 7> {
-        let t0 = lambda[0] + lambda[1] + lambda[2];
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
-        out[(0, 0)] = -lambda[0];
-        out[(1, 1)] = -lambda[2];
-        out[(1, 2)] = lambda[2];
-        out[(2, 1)] = lambda[2];
-        out[(2, 2)] = -lambda[2] - lambda[1];
-        out[(3, 3)] = t0;
-        out[(3, 5)] = -lambda[2];
-        out[(4, 4)] = t0;
-        out[(4, 6)] = -lambda[2];
-        out[(5, 3)] = -lambda[2];
-        out[(5, 5)] = lambda[2];
-        out[(6, 4)] = -lambda[2];
-        out[(6, 6)] = lambda[2];
-        out
+    #[allow(
+        non_snake_case,
+        unused_variables,
+        clippy::too_many_lines,
+        clippy::unreadable_literal
+    )]
+    impl __crane_runtime::MinimalMap<7, 3, 2, 4> for NavyPlanar {
+        const MINIMAL_COORDINATES: &'static [&'static str] = &[
+            "beta",
+            "gamma",
+            "theta",
+            "L",
+        ];
+        /// The map `q = phi(mu)` (eq. 6), as declared:
+        ///
+        /// ```text
+        /// let d = l * sin(gamma - beta) / sin(gamma)
+        /// L1 = l * sin(beta) / sin(gamma)
+        /// L2 = d + L
+        /// L0 = d
+        /// x0 = -d * sin(alpha - beta)
+        /// z0 = -d * cos(alpha - beta)
+        /// x = x0 + L * sin(theta)
+        /// z = z0 - L * cos(theta)
+        /// ```
+        fn phi<T: __crane_runtime::Scalar>(
+            &self,
+            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+        ) -> __crane_runtime::nalgebra::SVector<T, 7> {
+            let alpha = T::from(self.alpha);
+            let l = T::from(self.l);
+            let beta = mu[0];
+            let gamma = mu[1];
+            let theta = mu[2];
+            let L = mu[3];
+            let t0 = (gamma - beta).sin();
+            let t1 = gamma.sin();
+            let d = l * t0 / t1;
+            let t2 = alpha - beta;
+            let t3 = -l * t0 * t2.sin() / t1;
+            let t4 = -l * t0 * t2.cos() / t1;
+            let mut out = __crane_runtime::nalgebra::SVector::<T, 7>::zeros();
+            out[0] = l * beta.sin() / t1;
+            out[1] = d + L;
+            out[2] = d;
+            out[3] = t3;
+            out[4] = t4;
+            out[5] = t3 + L * theta.sin();
+            out[6] = t4 - L * theta.cos();
+            out
+        }
+        /// `P = D phi(mu)` (eq. 8).
+        fn null_space<T: __crane_runtime::Scalar>(
+            &self,
+            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 4> {
+            let alpha = T::from(self.alpha);
+            let l = T::from(self.l);
+            let beta = mu[0];
+            let gamma = mu[1];
+            let theta = mu[2];
+            let L = mu[3];
+            let t0 = gamma - beta;
+            let t1 = t0.sin();
+            let t2 = gamma.sin();
+            let t3 = alpha - beta;
+            let t4 = t3.sin();
+            let t5 = t3.cos();
+            let t6 = theta.sin();
+            let t7 = theta.cos();
+            let t8 = gamma.cos();
+            let t9 = t2.powi(-2);
+            let t10 = t0.cos();
+            let t11 = -l * t10 / t2;
+            let t12 = l * t10 / t2 - l * t1 * t8 * t9;
+            let t13 = l * t1 * t5 / t2 + l * t4 * t10 / t2;
+            let t14 = l * t1 * t4 * t8 * t9 - l * t4 * t10 / t2;
+            let t15 = l * t5 * t10 / t2 - l * t1 * t4 / t2;
+            let t16 = l * t1 * t5 * t8 * t9 - l * t5 * t10 / t2;
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 7, 4>::zeros();
+            out[(0, 0)] = l * beta.cos() / t2;
+            out[(0, 1)] = -l * beta.sin() * t8 * t9;
+            out[(1, 0)] = t11;
+            out[(1, 1)] = t12;
+            out[(1, 3)] = T::from(1.0);
+            out[(2, 0)] = t11;
+            out[(2, 1)] = t12;
+            out[(3, 0)] = t13;
+            out[(3, 1)] = t14;
+            out[(4, 0)] = t15;
+            out[(4, 1)] = t16;
+            out[(5, 0)] = t13;
+            out[(5, 1)] = t14;
+            out[(5, 2)] = L * t7;
+            out[(5, 3)] = t6;
+            out[(6, 0)] = t15;
+            out[(6, 1)] = t16;
+            out[(6, 2)] = L * t6;
+            out[(6, 3)] = -t7;
+            out
+        }
+        /// `P' = sum_k dP/dmu_k mu_k'` (eq. 9).
+        fn null_space_rate<T: __crane_runtime::Scalar>(
+            &self,
+            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            mu_dot: &__crane_runtime::nalgebra::SVector<T, 4>,
+        ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 4> {
+            let alpha = T::from(self.alpha);
+            let l = T::from(self.l);
+            let beta = mu[0];
+            let gamma = mu[1];
+            let theta = mu[2];
+            let L = mu[3];
+            let dot_beta = mu_dot[0];
+            let dot_gamma = mu_dot[1];
+            let dot_theta = mu_dot[2];
+            let dot_L = mu_dot[3];
+            let t0 = gamma - beta;
+            let t1 = t0.sin();
+            let t2 = gamma.sin();
+            let t3 = beta.sin();
+            let t4 = alpha - beta;
+            let t5 = t4.sin();
+            let t6 = t4.cos();
+            let t7 = theta.sin();
+            let t8 = theta.cos();
+            let t9 = gamma.cos();
+            let t10 = beta.cos();
+            let t11 = t2.powi(-2);
+            let t12 = t0.cos();
+            let t13 = t2.powi(-3);
+            let t14 = t9.powi(2);
+            let t15 = l * t1 / t2 + l * t9 * t11 * t12;
+            let t16 = dot_gamma * t15 - l * t1 * dot_beta / t2;
+            let t17 = dot_beta * t15
+                + dot_gamma * (l * t1 * t13 * t14 * 2.0 - l * t9 * t11 * t12 * 2.0);
+            let t18 = l * t6 * t12 / t2 - l * t1 * t5 / t2 - l * t1 * t6 * t9 * t11
+                - l * t5 * t9 * t11 * t12;
+            let t19 = dot_beta * (l * t1 * t5 * 2.0 / t2 - l * t6 * t12 * 2.0 / t2)
+                + dot_gamma * t18;
+            let t20 = dot_beta * t18
+                + dot_gamma
+                    * (l * t5 * t9 * t11 * t12 * 2.0 - l * t1 * t5 * t13 * t14 * 2.0);
+            let t21 = l * t1 * t5 * t9 * t11 - l * t1 * t6 / t2 - l * t5 * t12 / t2
+                - l * t6 * t9 * t11 * t12;
+            let t22 = dot_beta * (l * t1 * t6 * 2.0 / t2 + l * t5 * t12 * 2.0 / t2)
+                + dot_gamma * t21;
+            let t23 = dot_beta * t21
+                + dot_gamma
+                    * (l * t6 * t9 * t11 * t12 * 2.0 - l * t1 * t6 * t13 * t14 * 2.0);
+            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 7, 4>::zeros();
+            out[(0, 0)] = -l * t3 * dot_beta / t2 - l * t9 * t10 * t11 * dot_gamma;
+            out[(0, 1)] = dot_gamma * (l * t3 / t2 + l * t3 * t13 * t14 * 2.0)
+                - l * t9 * t10 * t11 * dot_beta;
+            out[(1, 0)] = t16;
+            out[(1, 1)] = t17;
+            out[(2, 0)] = t16;
+            out[(2, 1)] = t17;
+            out[(3, 0)] = t19;
+            out[(3, 1)] = t20;
+            out[(4, 0)] = t22;
+            out[(4, 1)] = t23;
+            out[(5, 0)] = t19;
+            out[(5, 1)] = t20;
+            out[(5, 2)] = t8 * dot_L - L * t7 * dot_theta;
+            out[(5, 3)] = t8 * dot_theta;
+            out[(6, 0)] = t22;
+            out[(6, 1)] = t23;
+            out[(6, 2)] = L * t8 * dot_theta + t7 * dot_L;
+            out[(6, 3)] = t7 * dot_theta;
+            out
+        }
     }
-    fn mass_matrix<T: ::crane_runtime::Scalar>(
-        &self,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 7, 7> {
-        let m_l = T::from(self.m_l);
-        let J1 = T::from(self.J1);
-        let J2 = T::from(self.J2);
-        let r1 = T::from(self.r1);
-        let r2 = T::from(self.r2);
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
-        out[(0, 0)] = J1 / r1.powi(2);
-        out[(1, 1)] = J2 / r2.powi(2);
-        out[(5, 5)] = m_l;
-        out[(6, 6)] = m_l;
-        out
-    }
-    fn forces<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-        v: &::crane_runtime::nalgebra::SVector<T, 7>,
-    ) -> ::crane_runtime::nalgebra::SVector<T, 7> {
-        let m_l = T::from(self.m_l);
-        let g = T::from(self.g);
-        let mut out = ::crane_runtime::nalgebra::SVector::<T, 7>::zeros();
-        out[6] = -m_l * g;
-        out
-    }
-    fn force_jacobians<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-        v: &::crane_runtime::nalgebra::SVector<T, 7>,
-    ) -> (
-        ::crane_runtime::nalgebra::SMatrix<T, 7, 7>,
-        ::crane_runtime::nalgebra::SMatrix<T, 7, 7>,
-    ) {
-        let df_dq = ::crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
-        let df_dv = ::crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
-        (df_dq, df_dv)
-    }
-    fn input_matrix<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 7, 2> {
-        let r1 = T::from(self.r1);
-        let r2 = T::from(self.r2);
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 7, 2>::zeros();
-        out[(0, 0)] = r1.recip();
-        out[(1, 1)] = r2.recip();
-        out
-    }
-    fn input_jacobian<T: ::crane_runtime::Scalar>(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<T, 7>,
-        u: &::crane_runtime::nalgebra::SVector<T, 2>,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 7, 7> {
-        ::crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros()
-    }
-    fn rope_lengths(
-        &self,
-        q: &::crane_runtime::nalgebra::SVector<f64, 7>,
-        out: &mut [f64],
-    ) {
-        ::core::assert_eq!(
-            out.len(), 2, "rope_lengths: `out` must have one entry per rope (2)"
-        );
-        let L1 = q[0];
-        let L2 = q[1];
-        let L0 = q[2];
-        out[0] = L1;
-        out[1] = L2 - L0;
-    }
-}
-#[allow(
-    non_snake_case,
-    unused_variables,
-    clippy::too_many_lines,
-    clippy::unreadable_literal
-)]
-impl NavyPlanar {
-    /// Number of minimal coordinates in `mu1`, `f - a`: `mu = [mu1; mu2]` with `mu1` = `beta`, `gamma` and `mu2` = `theta`, `L`, chosen so that `D2 phi_x` is regular (eq. 12).
-    pub const MINIMAL_SPLIT: usize = 2;
-    /// Robot part `phi_p(mu)` of the map `q = phi(mu)` (eq. 6): `L1`, `L2`, `L0`, `x0`, `z0` as functions of the minimal coordinates `mu` = `beta`, `gamma`, `theta`, `L`.
-    pub fn phi_p<T: ::crane_runtime::Scalar>(
-        &self,
-        mu: &::crane_runtime::nalgebra::SVector<T, 4>,
-    ) -> ::crane_runtime::nalgebra::SVector<T, 5> {
-        let alpha = T::from(self.alpha);
-        let l = T::from(self.l);
-        let beta = mu[0];
-        let gamma = mu[1];
-        let L = mu[3];
-        let t0 = (gamma - beta).sin();
-        let t1 = gamma.sin();
-        let d = l * t0 / t1;
-        let t2 = alpha - beta;
-        let mut out = ::crane_runtime::nalgebra::SVector::<T, 5>::zeros();
-        out[0] = l * beta.sin() / t1;
-        out[1] = d + L;
-        out[2] = d;
-        out[3] = -l * t0 * t2.sin() / t1;
-        out[4] = -l * t0 * t2.cos() / t1;
-        out
-    }
-    /// Load part `phi_x(mu)` of the map `q = phi(mu)` (eq. 6): `x`, `z`; the servo constraints read `phi_x(mu) = gamma(t)` (eq. 10b).
-    pub fn phi_x<T: ::crane_runtime::Scalar>(
-        &self,
-        mu: &::crane_runtime::nalgebra::SVector<T, 4>,
-    ) -> ::crane_runtime::nalgebra::SVector<T, 2> {
-        let alpha = T::from(self.alpha);
-        let l = T::from(self.l);
-        let beta = mu[0];
-        let gamma = mu[1];
-        let theta = mu[2];
-        let L = mu[3];
-        let t0 = (gamma - beta).sin();
-        let t1 = gamma.sin();
-        let t2 = alpha - beta;
-        let mut out = ::crane_runtime::nalgebra::SVector::<T, 2>::zeros();
-        out[0] = L * theta.sin() - l * t0 * t2.sin() / t1;
-        out[1] = -l * t0 * t2.cos() / t1 - L * theta.cos();
-        out
-    }
-    /// `D1 phi_x = d phi_x / d mu1` (eqs. 15-16): the load rows of `P = D phi` in
-    /// the columns of `mu1`.
-    pub fn D1_phi_x<T: ::crane_runtime::Scalar>(
-        &self,
-        mu: &::crane_runtime::nalgebra::SVector<T, 4>,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 2, 2> {
-        let alpha = T::from(self.alpha);
-        let l = T::from(self.l);
-        let beta = mu[0];
-        let gamma = mu[1];
-        let t0 = gamma - beta;
-        let t1 = t0.sin();
-        let t2 = gamma.sin();
-        let t3 = alpha - beta;
-        let t4 = t3.sin();
-        let t5 = t3.cos();
-        let t6 = gamma.cos();
-        let t7 = t2.powi(-2);
-        let t8 = t0.cos();
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
-        out[(0, 0)] = l * t1 * t5 / t2 + l * t4 * t8 / t2;
-        out[(0, 1)] = l * t1 * t4 * t6 * t7 - l * t4 * t8 / t2;
-        out[(1, 0)] = l * t5 * t8 / t2 - l * t1 * t4 / t2;
-        out[(1, 1)] = l * t1 * t5 * t6 * t7 - l * t5 * t8 / t2;
-        out
-    }
-    /// `D2 phi_x = d phi_x / d mu2` (eqs. 12, 15-16): the load rows of `P = D phi`
-    /// in the columns of `mu2`; must be regular.
-    pub fn D2_phi_x<T: ::crane_runtime::Scalar>(
-        &self,
-        mu: &::crane_runtime::nalgebra::SVector<T, 4>,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 2, 2> {
-        let theta = mu[2];
-        let L = mu[3];
-        let t0 = theta.sin();
-        let t1 = theta.cos();
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
-        out[(0, 0)] = L * t1;
-        out[(0, 1)] = t0;
-        out[(1, 0)] = L * t0;
-        out[(1, 1)] = -t1;
-        out
-    }
-    /// `w = d/dt[D1 phi_x] mu1' + d/dt[D2 phi_x] mu2^` (eq. 17), with
-    /// `mu_dot = [mu1'; mu2^]`: the load rows of `P'(mu, mu') mu'`, the second
-    /// directional derivative of `phi_x` along `mu'`.
-    pub fn w<T: ::crane_runtime::Scalar>(
-        &self,
-        mu: &::crane_runtime::nalgebra::SVector<T, 4>,
-        mu_dot: &::crane_runtime::nalgebra::SVector<T, 4>,
-    ) -> ::crane_runtime::nalgebra::SVector<T, 2> {
-        let alpha = T::from(self.alpha);
-        let l = T::from(self.l);
-        let beta = mu[0];
-        let gamma = mu[1];
-        let theta = mu[2];
-        let L = mu[3];
-        let dot_beta = mu_dot[0];
-        let dot_gamma = mu_dot[1];
-        let dot_theta = mu_dot[2];
-        let dot_L = mu_dot[3];
-        let t0 = gamma - beta;
-        let t1 = t0.sin();
-        let t2 = gamma.sin();
-        let t3 = alpha - beta;
-        let t4 = t3.sin();
-        let t5 = t3.cos();
-        let t6 = theta.sin();
-        let t7 = theta.cos();
-        let t8 = gamma.cos();
-        let t9 = t2.powi(-2);
-        let t10 = t0.cos();
-        let t11 = t2.powi(-3);
-        let t12 = t8.powi(2);
-        let t13 = dot_beta.powi(2);
-        let t14 = dot_gamma.powi(2);
-        let t15 = dot_theta.powi(2);
-        let mut out = ::crane_runtime::nalgebra::SVector::<T, 2>::zeros();
-        out[0] = (l * t1 * t4 * 2.0 / t2 - l * t5 * t10 * 2.0 / t2) * t13
-            + dot_beta * dot_gamma
-                * (l * t5 * t10 / t2 - l * t1 * t4 / t2 - l * t1 * t5 * t8 * t9
-                    - l * t4 * t8 * t9 * t10) * 2.0
-            + (l * t4 * t8 * t9 * t10 * 2.0 - l * t1 * t4 * t11 * t12 * 2.0) * t14
-            - L * t6 * t15 + t7 * dot_theta * dot_L * 2.0;
-        out[1] = (l * t1 * t5 * 2.0 / t2 + l * t4 * t10 * 2.0 / t2) * t13
-            + dot_beta * dot_gamma
-                * (l * t1 * t4 * t8 * t9 - l * t1 * t5 / t2 - l * t4 * t10 / t2
-                    - l * t5 * t8 * t9 * t10) * 2.0
-            + (l * t5 * t8 * t9 * t10 * 2.0 - l * t1 * t5 * t11 * t12 * 2.0) * t14
-            + L * t7 * t15 + t6 * dot_theta * dot_L * 2.0;
-        out
-    }
-}
-#[allow(
-    non_snake_case,
-    unused_variables,
-    clippy::too_many_lines,
-    clippy::unreadable_literal
-)]
-impl ::crane_runtime::MinimalMap<7, 3, 2, 4> for NavyPlanar {
-    const MINIMAL_COORDINATES: &'static [&'static str] = &[
-        "beta",
-        "gamma",
-        "theta",
-        "L",
-    ];
-    /// The map `q = phi(mu)` (eq. 6), as declared:
-    ///
-    /// ```text
-    /// let d = l * sin(gamma - beta) / sin(gamma)
-    /// L1 = l * sin(beta) / sin(gamma)
-    /// L2 = d + L
-    /// L0 = d
-    /// x0 = -d * sin(alpha - beta)
-    /// z0 = -d * cos(alpha - beta)
-    /// x = x0 + L * sin(theta)
-    /// z = z0 - L * cos(theta)
-    /// ```
-    fn phi<T: ::crane_runtime::Scalar>(
-        &self,
-        mu: &::crane_runtime::nalgebra::SVector<T, 4>,
-    ) -> ::crane_runtime::nalgebra::SVector<T, 7> {
-        let alpha = T::from(self.alpha);
-        let l = T::from(self.l);
-        let beta = mu[0];
-        let gamma = mu[1];
-        let theta = mu[2];
-        let L = mu[3];
-        let t0 = (gamma - beta).sin();
-        let t1 = gamma.sin();
-        let d = l * t0 / t1;
-        let t2 = alpha - beta;
-        let t3 = -l * t0 * t2.sin() / t1;
-        let t4 = -l * t0 * t2.cos() / t1;
-        let mut out = ::crane_runtime::nalgebra::SVector::<T, 7>::zeros();
-        out[0] = l * beta.sin() / t1;
-        out[1] = d + L;
-        out[2] = d;
-        out[3] = t3;
-        out[4] = t4;
-        out[5] = t3 + L * theta.sin();
-        out[6] = t4 - L * theta.cos();
-        out
-    }
-    /// `P = D phi(mu)` (eq. 8).
-    fn null_space<T: ::crane_runtime::Scalar>(
-        &self,
-        mu: &::crane_runtime::nalgebra::SVector<T, 4>,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 7, 4> {
-        let alpha = T::from(self.alpha);
-        let l = T::from(self.l);
-        let beta = mu[0];
-        let gamma = mu[1];
-        let theta = mu[2];
-        let L = mu[3];
-        let t0 = gamma - beta;
-        let t1 = t0.sin();
-        let t2 = gamma.sin();
-        let t3 = alpha - beta;
-        let t4 = t3.sin();
-        let t5 = t3.cos();
-        let t6 = theta.sin();
-        let t7 = theta.cos();
-        let t8 = gamma.cos();
-        let t9 = t2.powi(-2);
-        let t10 = t0.cos();
-        let t11 = -l * t10 / t2;
-        let t12 = l * t10 / t2 - l * t1 * t8 * t9;
-        let t13 = l * t1 * t5 / t2 + l * t4 * t10 / t2;
-        let t14 = l * t1 * t4 * t8 * t9 - l * t4 * t10 / t2;
-        let t15 = l * t5 * t10 / t2 - l * t1 * t4 / t2;
-        let t16 = l * t1 * t5 * t8 * t9 - l * t5 * t10 / t2;
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 7, 4>::zeros();
-        out[(0, 0)] = l * beta.cos() / t2;
-        out[(0, 1)] = -l * beta.sin() * t8 * t9;
-        out[(1, 0)] = t11;
-        out[(1, 1)] = t12;
-        out[(1, 3)] = T::from(1.0);
-        out[(2, 0)] = t11;
-        out[(2, 1)] = t12;
-        out[(3, 0)] = t13;
-        out[(3, 1)] = t14;
-        out[(4, 0)] = t15;
-        out[(4, 1)] = t16;
-        out[(5, 0)] = t13;
-        out[(5, 1)] = t14;
-        out[(5, 2)] = L * t7;
-        out[(5, 3)] = t6;
-        out[(6, 0)] = t15;
-        out[(6, 1)] = t16;
-        out[(6, 2)] = L * t6;
-        out[(6, 3)] = -t7;
-        out
-    }
-    /// `P' = sum_k dP/dmu_k mu_k'` (eq. 9).
-    fn null_space_rate<T: ::crane_runtime::Scalar>(
-        &self,
-        mu: &::crane_runtime::nalgebra::SVector<T, 4>,
-        mu_dot: &::crane_runtime::nalgebra::SVector<T, 4>,
-    ) -> ::crane_runtime::nalgebra::SMatrix<T, 7, 4> {
-        let alpha = T::from(self.alpha);
-        let l = T::from(self.l);
-        let beta = mu[0];
-        let gamma = mu[1];
-        let theta = mu[2];
-        let L = mu[3];
-        let dot_beta = mu_dot[0];
-        let dot_gamma = mu_dot[1];
-        let dot_theta = mu_dot[2];
-        let dot_L = mu_dot[3];
-        let t0 = gamma - beta;
-        let t1 = t0.sin();
-        let t2 = gamma.sin();
-        let t3 = beta.sin();
-        let t4 = alpha - beta;
-        let t5 = t4.sin();
-        let t6 = t4.cos();
-        let t7 = theta.sin();
-        let t8 = theta.cos();
-        let t9 = gamma.cos();
-        let t10 = beta.cos();
-        let t11 = t2.powi(-2);
-        let t12 = t0.cos();
-        let t13 = t2.powi(-3);
-        let t14 = t9.powi(2);
-        let t15 = l * t1 / t2 + l * t9 * t11 * t12;
-        let t16 = dot_gamma * t15 - l * t1 * dot_beta / t2;
-        let t17 = dot_beta * t15
-            + dot_gamma * (l * t1 * t13 * t14 * 2.0 - l * t9 * t11 * t12 * 2.0);
-        let t18 = l * t6 * t12 / t2 - l * t1 * t5 / t2 - l * t1 * t6 * t9 * t11
-            - l * t5 * t9 * t11 * t12;
-        let t19 = dot_beta * (l * t1 * t5 * 2.0 / t2 - l * t6 * t12 * 2.0 / t2)
-            + dot_gamma * t18;
-        let t20 = dot_beta * t18
-            + dot_gamma
-                * (l * t5 * t9 * t11 * t12 * 2.0 - l * t1 * t5 * t13 * t14 * 2.0);
-        let t21 = l * t1 * t5 * t9 * t11 - l * t1 * t6 / t2 - l * t5 * t12 / t2
-            - l * t6 * t9 * t11 * t12;
-        let t22 = dot_beta * (l * t1 * t6 * 2.0 / t2 + l * t5 * t12 * 2.0 / t2)
-            + dot_gamma * t21;
-        let t23 = dot_beta * t21
-            + dot_gamma
-                * (l * t6 * t9 * t11 * t12 * 2.0 - l * t1 * t6 * t13 * t14 * 2.0);
-        let mut out = ::crane_runtime::nalgebra::SMatrix::<T, 7, 4>::zeros();
-        out[(0, 0)] = -l * t3 * dot_beta / t2 - l * t9 * t10 * t11 * dot_gamma;
-        out[(0, 1)] = dot_gamma * (l * t3 / t2 + l * t3 * t13 * t14 * 2.0)
-            - l * t9 * t10 * t11 * dot_beta;
-        out[(1, 0)] = t16;
-        out[(1, 1)] = t17;
-        out[(2, 0)] = t16;
-        out[(2, 1)] = t17;
-        out[(3, 0)] = t19;
-        out[(3, 1)] = t20;
-        out[(4, 0)] = t22;
-        out[(4, 1)] = t23;
-        out[(5, 0)] = t19;
-        out[(5, 1)] = t20;
-        out[(5, 2)] = t8 * dot_L - L * t7 * dot_theta;
-        out[(5, 3)] = t8 * dot_theta;
-        out[(6, 0)] = t22;
-        out[(6, 1)] = t23;
-        out[(6, 2)] = L * t8 * dot_theta + t7 * dot_L;
-        out[(6, 3)] = t7 * dot_theta;
-        out
-    }
-}
+};
