@@ -834,7 +834,6 @@ fn check_force(
     }
 }
 
-/// The first line of the first doc comment, trimmed.
 /// The path of the runtime crate the generated code names: `::crane_runtime`,
 /// or the path of `#[crane(runtime = path)]` (which a facade crate passes, so
 /// that its users need not depend on `crane-runtime` themselves). Returns the
@@ -864,6 +863,7 @@ fn runtime_path(attrs: &[syn::Attribute], cx: &Ctxt) -> (TokenStream, Vec<syn::A
     (runtime, rest)
 }
 
+/// The first line of the first doc comment, trimmed.
 fn first_doc_line(attrs: &[syn::Attribute]) -> String {
     for attr in attrs {
         if let syn::Meta::NameValue(nv) = &attr.meta
