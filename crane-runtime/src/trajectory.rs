@@ -238,6 +238,123 @@ impl<const A: usize> Trajectory<A> for ThreePhase<A> {
     }
 }
 
+/// Coefficients of the smooth ramp `h(s)/tau0 = 66 s^7 - 495/2 s^8 + 385 s^9
+/// - 308 s^10 + 126 s^11 - 21 s^12` of [`SmoothThreePhase`].
+///
+/// Derivation: with `p(s) = h(tau0 s)/tau0` the ramp needs `p^(k)(0) = 0` for
+/// `k = 0..6`, so `p = sum_{i=7}^{13} a_i s^i`, and at `s = 1` it must meet the
+/// cruise line `c_II` (times `tau - tau0`), `t - tau0/2`: `p(1) = 1/2`,
+/// `p'(1) = 1`, `p^(k)(1) = 0` for `k = 2..6`. These 7 linear equations in
+/// `a_7..a_13` (solved in exact rational arithmetic) give
+/// `a = [66, -495/2, 385, -308, 126, -21, 0]`: degree 12 suffices, `a_13 = 0`.
+/// (The 7th derivative jumps at the switches: `p^(7)(0) = 66 * 7!`.)
+const SMOOTH_RAMP: [f64; 13] = [
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 66.0, -247.5, 385.0, -308.0, 126.0, -21.0,
+];
+
+/// A smoother three-phase path: like [`ThreePhase`] (accelerate during
+/// `tau0`, cruise at constant speed, decelerate during `tau0`), but with
+/// ramps that make the profile six times continuously differentiable at the
+/// phase switches `t0`, `t0 + tau0`, `t0 + tau - tau0`, `t0 + tau`.
+///
+/// `gamma(t) = gamma0 + (gammaf - gamma0) c(t - t0)` with
+/// `c_I = h(t)/(tau - tau0)`, `c_II = (t - tau0/2)/(tau - tau0)`,
+/// `c_III = 1 - h(tau - t)/(tau - tau0)` and
+/// `h(t) = tau0 (66 s^7 - 495/2 s^8 + 385 s^9 - 308 s^10 + 126 s^11 - 21 s^12)`,
+/// `s = t/tau0` (the lowest-degree polynomial with `h^(k)(0) = 0`, `k = 0..6`,
+/// meeting the cruise line with derivatives up to order 6 at `s = 1`).
+///
+/// The 3D crane with pulley mass (paper sect. 6.2) needs the load path's
+/// derivatives up to order 6 for its slewing torque (ERRATA): on the paper's
+/// C4 profile [`ThreePhase`] that torque has impulses at the switches, on this
+/// one it is bounded. Same constructor as [`ThreePhase`]; the ramps are
+/// steeper in the middle: for the same `tau0` the peak of `h''` is
+/// `2.707/tau0` against `2.1875/tau0` (1.24 times higher, at `s = 1/2`).
+///
+/// ```
+/// use crane_runtime::trajectory::{SmoothThreePhase, Trajectory};
+/// use crane_runtime::nalgebra::vector;
+/// let path = SmoothThreePhase::new(0.0, 20.0, 5.0, vector![0.0], vector![1.0]).unwrap();
+/// assert!((path.derivative(10.0, 0)[0] - 0.5).abs() < 1e-15);
+/// assert!((path.derivative(10.0, 1)[0] - 1.0 / 15.0).abs() < 1e-15);
+/// // the 6th derivative is continuous at the end of the acceleration phase
+/// let (left, right) = (path.derivative(5.0 - 1e-9, 6)[0], path.derivative(5.0 + 1e-9, 6)[0]);
+/// assert!((left - right).abs() < 1e-6);
+/// assert_eq!(path.derivative(20.0, 0)[0], 1.0);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct SmoothThreePhase<const A: usize> {
+    t0: f64,
+    tau: f64,
+    tau0: f64,
+    start: SVector<f64, A>,
+    end: SVector<f64, A>,
+}
+
+impl<const A: usize> SmoothThreePhase<A> {
+    /// Motion from `start` at `t0` to `end` at `t0 + tau` with ramps of length
+    /// `tau0` (`0 < tau0 <= tau/2`).
+    pub fn new(
+        t0: f64,
+        tau: f64,
+        tau0: f64,
+        start: SVector<f64, A>,
+        end: SVector<f64, A>,
+    ) -> Result<Self, TrajectoryError> {
+        if !(t0.is_finite() && tau.is_finite() && tau > 0.0) {
+            return Err(TrajectoryError::TimeSpan { t0, tf: t0 + tau });
+        }
+        if !(tau0 > 0.0 && tau0 <= 0.5 * tau) {
+            return Err(TrajectoryError::Ramp { tau0, tau });
+        }
+        check_points(&start, &end)?;
+        Ok(Self { t0, tau, tau0, start, end })
+    }
+
+    /// `k`-th derivative of `h` at `t` (time since the ramp started).
+    fn ramp(&self, t: f64, k: usize) -> f64 {
+        self.tau0 * poly_derivative(&SMOOTH_RAMP, t / self.tau0, k) / self.tau0.powi(k as i32)
+    }
+
+    /// `k`-th derivative of the scalar profile `c` at `t` (time since `t0`).
+    fn profile(&self, t: f64, k: usize) -> f64 {
+        let (tau, tau0) = (self.tau, self.tau0);
+        let cruise = tau - tau0;
+        if t <= 0.0 || t >= tau {
+            return match k {
+                0 if t <= 0.0 => 0.0,
+                0 => 1.0,
+                _ => 0.0,
+            };
+        }
+        if t < tau0 {
+            self.ramp(t, k) / cruise
+        } else if t < tau - tau0 {
+            match k {
+                0 => (t - 0.5 * tau0) / cruise,
+                1 => 1.0 / cruise,
+                _ => 0.0,
+            }
+        } else {
+            // d^k/dt^k h(tau - t) = (-1)^k h^(k)(tau - t)
+            let sign = if k.is_multiple_of(2) { 1.0 } else { -1.0 };
+            let value = -sign * self.ramp(tau - t, k) / cruise;
+            if k == 0 { 1.0 + value } else { value }
+        }
+    }
+}
+
+impl<const A: usize> Trajectory<A> for SmoothThreePhase<A> {
+    fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
+        let c = self.profile(t - self.t0, k);
+        if k == 0 {
+            self.start + (self.end - self.start) * c
+        } else {
+            (self.end - self.start) * c
+        }
+    }
+}
+
 /// A user-supplied path: a closure `(t, k) -> gamma^(k)(t)`.
 ///
 /// ```
@@ -314,6 +431,57 @@ mod tests {
             }
         }
         assert_eq!(path.derivative(20.0, 0)[0], 1.0);
+    }
+
+    #[test]
+    fn smooth_ramp_meets_its_conditions() {
+        // p^(k)(0) = 0 for k = 0..6; p(1) = 1/2, p'(1) = 1, p^(k)(1) = 0 for k = 2..6
+        for k in 0..=6 {
+            assert_eq!(poly_derivative(&SMOOTH_RAMP, 0.0, k), 0.0, "k={k}");
+            let expected = match k {
+                0 => 0.5,
+                1 => 1.0,
+                _ => 0.0,
+            };
+            let at_one = poly_derivative(&SMOOTH_RAMP, 1.0, k);
+            // the terms reach 66 * 12!/5! ~ 2.6e8 for k = 6: round-off ~ 1e-7
+            assert!((at_one - expected).abs() < 1e-6, "k={k}: {at_one}");
+        }
+        // the 7th derivative jumps (so the profile is exactly C6)
+        assert!(poly_derivative(&SMOOTH_RAMP, 0.0, 7).abs() > 1e5);
+    }
+
+    #[test]
+    fn smooth_three_phase_is_six_times_continuously_differentiable() {
+        let path = SmoothThreePhase::new(0.0, 20.0, 5.0, vector![0.0], vector![1.0]).unwrap();
+        let paper = ThreePhase::new(0.0, 20.0, 5.0, vector![0.0], vector![1.0]).unwrap();
+        for &switch in &[0.0, 5.0, 15.0, 20.0] {
+            for k in 0..=6 {
+                let left = path.derivative(switch - 1e-9, k)[0];
+                let right = path.derivative(switch + 1e-9, k)[0];
+                // jumps would be O(1e-3..1) (cf. the paper profile below); continuity leaves
+                // O(1e-9 |c^(k+1)|) plus round-off in the ramp polynomial
+                assert!((left - right).abs() < 1e-7, "k={k} at t={switch}: {left} vs {right}");
+            }
+            // the paper's C4 profile jumps in the 5th derivative there
+            let jump5 = paper.derivative(switch + 1e-9, 5)[0] - paper.derivative(switch - 1e-9, 5)[0];
+            assert!(jump5.abs() > 1e-3, "t={switch}: {jump5}");
+        }
+        for &t in &[1.0, 2.5, 4.0, 7.0, 16.0, 18.0, 19.5] {
+            for k in 1..=8 {
+                let exact = path.derivative(t, k)[0];
+                let approx = fd(&path, t, k);
+                assert!((exact - approx).abs() <= 1e-6 * (1.0 + exact.abs()), "k={k} t={t}: {exact} vs {approx}");
+            }
+        }
+        assert_eq!(path.derivative(0.0, 0)[0], 0.0);
+        assert_eq!(path.derivative(20.0, 0)[0], 1.0);
+        assert_eq!(path.derivative(25.0, 1)[0], 0.0);
+        // monotone: the speed c' stays >= 0 on the ramps
+        for i in 0..=1000 {
+            assert!(path.derivative(20.0 * i as f64 / 1000.0, 1)[0] >= 0.0);
+        }
+        assert!(SmoothThreePhase::new(0.0, 10.0, 6.0, vector![0.0], vector![1.0]).is_err());
     }
 
     #[test]

@@ -24,6 +24,7 @@ use crane_runtime::{CraneModel, Error, Options, Solution, State, Trajectory};
 pub mod navy_planar;
 pub mod navy_planar_pulley;
 pub mod navy_3d;
+pub mod navy_3d_pulley;
 
 /// A crane with a load path, a start and optionally an analytical reference.
 pub trait Case<const N: usize, const M: usize, const A: usize> {
@@ -110,4 +111,11 @@ pub const CATALOG: &[Entry] = &[Entry {
     m: navy_3d::Navy3d::M,
     a: navy_3d::Navy3d::A,
     reference: true,
+}, Entry {
+    name: "navy-3d-pulley",
+    description: "3D US Navy crane with pulley mass, slewing (paper sect. 6.2)",
+    n: navy_3d_pulley::Navy3dPulley::N,
+    m: navy_3d_pulley::Navy3dPulley::M,
+    a: navy_3d_pulley::Navy3dPulley::A,
+    reference: false,
 }];
