@@ -23,7 +23,7 @@ use proc_macro2::{Ident, TokenStream};
 use crate::ctxt::Ctxt;
 use crate::diff::Differentiator;
 use crate::expr::{Arena, Id, Sym};
-use crate::model::{Constraint, Model, Param, Rope};
+use crate::model::{Constraint, Model, Param, Rope, SelfTest};
 use crate::parse::{BinOp, ConstraintDecl, Declaration, Expr, Function, ParamDecl, Section};
 
 /// What a declared name is.
@@ -380,7 +380,11 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         .minimal
         .as_ref()
         .and_then(|section| minimal::check(section, lists.load.len(), m, &mut lower));
-    let (runtime, attrs) = runtime_path(&decl.attrs, cx);
+    let (runtime, self_test_enabled, attrs) = crane_options(&decl.attrs, cx);
+    let self_test = s.sample.as_ref().and_then(|section| {
+        let mu: Option<Vec<Ident>> = s.minimal.as_ref().map(|m| m.body.mu1.iter().chain(&m.body.mu2).cloned().collect());
+        check_sample(section, &names.coords, mu.as_deref(), &mut lower)
+    });
     if cx.has_errors() {
         return None;
     }
@@ -408,7 +412,77 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         kinetic: kinetic?,
         forces,
         minimal,
+        self_test: self_test.filter(|_| self_test_enabled),
     })
+}
+
+/// Check the `sample` section: a constant range for every coordinate and, if
+/// any minimal coordinate is named, for every minimal coordinate.
+fn check_sample(
+    section: &crate::parse::Section<Vec<crate::parse::SampleDecl>>,
+    coords: &[Ident],
+    mu: Option<&[Ident]>,
+    lower: &mut Lowerer,
+) -> Option<SelfTest> {
+    let mut q_ranges: Vec<Option<(Expr, Expr)>> = vec![None; coords.len()];
+    let mut mu_ranges: Vec<Option<(Expr, Expr)>> = vec![None; mu.map_or(0, <[Ident]>::len)];
+    for item in &section.body {
+        lower.lower(&item.low, Place::ParamDefault);
+        lower.lower(&item.high, Place::ParamDefault);
+        let slot = if let Some(i) = coords.iter().position(|c| *c == item.name) {
+            &mut q_ranges[i]
+        } else if let Some(k) = mu.and_then(|mu| mu.iter().position(|c| *c == item.name)) {
+            &mut mu_ranges[k]
+        } else {
+            lower.cx.error_at(
+                item.name.span(),
+                format!(
+                    "`{}` in `sample` is not a coordinate{}: give a range for each coordinate, e.g. `{} = 1.0 .. 10.0`",
+                    item.name,
+                    if mu.is_some() { " or minimal coordinate" } else { "" },
+                    coords.first().map_or("x".to_string(), ToString::to_string),
+                ),
+            );
+            continue;
+        };
+        if slot.is_some() {
+            lower.cx.error_at(item.name.span(), format!("duplicate range for `{}` in `sample`", item.name));
+        }
+        *slot = Some((item.low.clone(), item.high.clone()));
+    }
+    let missing = |ranges: &[Option<(Expr, Expr)>], names: &[Ident]| -> Vec<String> {
+        ranges.iter().zip(names).filter(|(r, _)| r.is_none()).map(|(_, n)| n.to_string()).collect()
+    };
+    let q_missing = missing(&q_ranges, coords);
+    if !q_missing.is_empty() {
+        lower.cx.error_at(
+            section.keyword.span(),
+            format!(
+                "`sample` needs a range for every coordinate; missing: {} (write e.g. `{} = -10.0 .. 10.0`)",
+                q_missing.join(", "),
+                q_missing[0]
+            ),
+        );
+        return None;
+    }
+    let mu_ranges = match mu {
+        Some(mu) if mu_ranges.iter().any(Option::is_some) => {
+            let mu_missing = missing(&mu_ranges, mu);
+            if !mu_missing.is_empty() {
+                lower.cx.error_at(
+                    section.keyword.span(),
+                    format!(
+                        "`sample` names minimal coordinates but not all of them; missing: {}",
+                        mu_missing.join(", ")
+                    ),
+                );
+                return None;
+            }
+            Some(mu_ranges.into_iter().flatten().collect())
+        }
+        _ => None,
+    };
+    Some(SelfTest { q: q_ranges.into_iter().flatten().collect(), mu: mu_ranges })
 }
 
 /// The names of the list sections (empty where missing or empty).
@@ -834,12 +908,15 @@ fn check_force(
     }
 }
 
-/// The path of the runtime crate the generated code names: `::crane_runtime`,
-/// or the path of `#[crane(runtime = path)]` (which a facade crate passes, so
-/// that its users need not depend on `crane-runtime` themselves). Returns the
-/// other attributes, which pass through to the struct.
-fn runtime_path(attrs: &[syn::Attribute], cx: &Ctxt) -> (TokenStream, Vec<syn::Attribute>) {
+/// The `#[crane(...)]` options on the struct: `runtime = path` names the
+/// runtime crate the generated code uses (default `::crane_runtime`; a facade
+/// crate passes its own re-export so that its users need not depend on
+/// `crane-runtime`), and `no_self_test` turns off the generated self-test.
+/// Returns the runtime path, whether the self-test is on, and the other
+/// attributes, which pass through to the struct.
+fn crane_options(attrs: &[syn::Attribute], cx: &Ctxt) -> (TokenStream, bool, Vec<syn::Attribute>) {
     let mut runtime = quote::quote!(::crane_runtime);
+    let mut self_test = true;
     let mut rest = Vec::new();
     for attr in attrs {
         if !attr.path().is_ident("crane") {
@@ -848,19 +925,26 @@ fn runtime_path(attrs: &[syn::Attribute], cx: &Ctxt) -> (TokenStream, Vec<syn::A
         }
         let parsed = attr.parse_args_with(|input: syn::parse::ParseStream| {
             let key: Ident = input.parse()?;
+            if key == "no_self_test" {
+                return Ok((key, None));
+            }
             if key != "runtime" {
-                return Err(syn::Error::new(key.span(), "unknown `crane` option: the only one is `runtime = path::to::crane_runtime`"));
+                return Err(syn::Error::new(
+                    key.span(),
+                    "unknown `crane` option: expected `runtime = path::to::crane_runtime` or `no_self_test`",
+                ));
             }
             input.parse::<syn::Token![=]>()?;
-            input.parse::<TokenStream>()
+            Ok((key, Some(input.parse::<TokenStream>()?)))
         });
         match parsed {
-            Ok(path) if !path.is_empty() => runtime = path,
+            Ok((_, None)) => self_test = false,
+            Ok((_, Some(path))) if !path.is_empty() => runtime = path,
             Ok(_) => cx.error_spanned_by(attr, "`#[crane(runtime = ...)]` needs a path"),
             Err(error) => cx.syn_error(error),
         }
     }
-    (runtime, rest)
+    (runtime, self_test, rest)
 }
 
 /// The first line of the first doc comment, trimmed.

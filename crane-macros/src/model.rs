@@ -44,6 +44,18 @@ pub struct Model {
     pub forces: Vec<Id>,
     /// The map to minimal coordinates, if declared.
     pub minimal: Option<Minimal>,
+    /// Where the generated self-test samples, if a `sample` section is
+    /// declared and `#[crane(no_self_test)]` is not given.
+    pub self_test: Option<SelfTest>,
+}
+
+/// The sampling boxes of the generated self-test: `(low, high)` constant
+/// expressions per coordinate and, for a minimal map, per minimal coordinate.
+pub struct SelfTest {
+    /// One range per redundant coordinate, in coordinate order.
+    pub q: Vec<(Expr, Expr)>,
+    /// One range per minimal coordinate, in `mu` order, if there is a map.
+    pub mu: Option<Vec<(Expr, Expr)>>,
 }
 
 /// A checked `minimal` block: the map `q = phi(mu)` (eq. 6).

@@ -49,6 +49,19 @@ pub struct Sections {
     pub constraints: Option<Section<Vec<ConstraintDecl>>>,
     /// `minimal [mu1.. | mu2..] { ... }`: a minimal-coordinate map.
     pub minimal: Option<Section<MinimalDecl>>,
+    /// `sample { name = low .. high, ... }`: where the generated self-test
+    /// draws its random points (coordinates, and minimal coordinates).
+    pub sample: Option<Section<Vec<SampleDecl>>>,
+}
+
+/// `name = low .. high` in `sample`.
+pub struct SampleDecl {
+    /// A coordinate or minimal coordinate.
+    pub name: Ident,
+    /// Lower bound, a constant expression.
+    pub low: Expr,
+    /// Upper bound, a constant expression.
+    pub high: Expr,
 }
 
 /// A section: its keyword, where it is, and what it holds.
@@ -351,11 +364,12 @@ const SECTIONS: &[(&str, Follow)] = &[
     ("forces", Follow::Brace),
     ("constraints", Follow::Brace),
     ("minimal", Follow::Bracket),
+    ("sample", Follow::Brace),
 ];
 
 /// The list of section names for error messages.
 pub const SECTION_NAMES: &str =
-    "params, robot, load, inputs, kinetic, forces, constraints, minimal";
+    "params, robot, load, inputs, kinetic, forces, constraints, minimal, sample";
 
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Follow {
@@ -583,6 +597,10 @@ fn parse_section(
             let items = parse_items(group_stream(&tts[0]), ',', parse_constraint, cx);
             store(&mut sections.constraints, keyword, range, items, cx);
         }
+        "sample" => {
+            let items = parse_items(group_stream(&tts[0]), ',', parse_sample, cx);
+            store(&mut sections.sample, keyword, range, items, cx);
+        }
         "minimal" => {
             let split = tts[0].span();
             let (mu1, mu2) = match parse_mu(group_stream(&tts[0]), split) {
@@ -687,6 +705,33 @@ fn parse_param(input: ParseStream) -> syn::Result<ParamDecl> {
         name,
         default,
     })
+}
+
+/// `name = low .. high`; the bounds are split at the `..` token pair.
+fn parse_sample(input: ParseStream) -> syn::Result<SampleDecl> {
+    let name: Ident = input.parse()?;
+    input.parse::<Token![=]>()?;
+    let rest: TokenStream = input.parse()?;
+    let tts: Vec<TokenTree> = rest.into_iter().collect();
+    let dots = tts.windows(2).position(|w| {
+        matches!((&w[0], &w[1]), (TokenTree::Punct(a), TokenTree::Punct(b))
+            if a.as_char() == '.' && a.spacing() == proc_macro2::Spacing::Joint && b.as_char() == '.')
+    });
+    let Some(dots) = dots else {
+        return Err(syn::Error::new(
+            name.span(),
+            format!("expected a range `{name} = low .. high` (constant bounds)"),
+        ));
+    };
+    let low: TokenStream = tts[..dots].iter().cloned().collect();
+    let high: TokenStream = tts[dots + 2..].iter().cloned().collect();
+    if low.is_empty() || high.is_empty() {
+        return Err(syn::Error::new(
+            tts[dots].span(),
+            format!("a range needs both bounds: `{name} = low .. high`"),
+        ));
+    }
+    Ok(SampleDecl { name, low: parse_expr.parse2(low)?, high: parse_expr.parse2(high)? })
 }
 
 fn parse_force(input: ParseStream) -> syn::Result<ForceDecl> {

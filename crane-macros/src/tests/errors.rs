@@ -699,3 +699,53 @@ fn minimal_garbage_never_panics() {
         assert!(!messages.is_empty(), "no error for `{block}`");
     }
 }
+
+/// The planar crane with a `sample` section appended.
+fn navy_with_sample(sample: &str) -> String {
+    let end = NAVY.trim_end().len() - 1;
+    let (head, tail) = NAVY.split_at(NAVY[..end].trim_end().len());
+    format!("{head}\n{sample}\n{tail}")
+}
+
+const FULL_SAMPLE: &str = "L1 = 1.0 .. 20.0, L2 = 1.0 .. 20.0, L0 = 1.0 .. 20.0, x0 = -15.0 .. 15.0, \
+                           z0 = -15.0 .. 0.0, x = -15.0 .. 15.0, z = -20.0 .. 0.0";
+
+#[test]
+fn sample_section_generates_a_self_test() {
+    let source = navy_with_sample(&format!("sample {{ {FULL_SAMPLE} }}"));
+    let (messages, _) = expand_errors(&source);
+    assert!(messages.is_empty(), "{messages:?}");
+    let output = expand(super::tokens(&source)).to_string();
+    assert!(output.contains("__crane_self_test_navyplanar"), "no self-test module");
+    assert!(output.contains("check_derivatives"));
+    // opting out removes it
+    let quiet = source.replacen("pub struct", "#[crane(no_self_test)] pub struct", 1);
+    let output = expand(super::tokens(&quiet)).to_string();
+    assert!(!output.contains("__crane_self_test"), "self-test despite no_self_test");
+}
+
+#[test]
+fn sample_section_errors() {
+    assert_errors(
+        &navy_with_sample("sample { L1 = 1.0 .. 20.0 }"),
+        &["`sample` needs a range for every coordinate; missing: L2, L0, x0, z0, x, z (write e.g. `L2 = -10.0 .. 10.0`)"],
+    );
+    assert_errors(
+        &navy_with_sample(&format!("sample {{ {FULL_SAMPLE}, m_l = 1.0 .. 2.0 }}")),
+        &["`m_l` in `sample` is not a coordinate: give a range for each coordinate, e.g. `L1 = 1.0 .. 10.0`"],
+    );
+    assert_errors(
+        &navy_with_sample(&format!("sample {{ {FULL_SAMPLE}, x = 0.0 .. 1.0 }}")),
+        &["duplicate range for `x` in `sample`"],
+    );
+    assert_errors(
+        &navy_with_sample("sample { L1 = 1.0 }"),
+        &["expected a range `L1 = low .. high` (constant bounds)"],
+    );
+    let (messages, _) = expand_errors(&navy_with_sample(&format!("sample {{ {FULL_SAMPLE}, L1 = l .. 20.0 }}")));
+    assert!(!messages.is_empty(), "a non-constant bound must be an error");
+    assert_errors(
+        &navy_with_sample(&format!("sample {{ {FULL_SAMPLE} }}")).replacen("pub struct", "#[crane(self_check)] pub struct", 1),
+        &["unknown `crane` option: expected `runtime = path::to::crane_runtime` or `no_self_test`"],
+    );
+}

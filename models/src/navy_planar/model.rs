@@ -43,5 +43,12 @@ crane_model! {
             x0 = -d*sin(alpha - beta);    z0 = -d*cos(alpha - beta);
             x  = x0 + L*sin(theta);       z  = z0 - L*cos(theta);  // eq. (38)
         }
+        // Where `cargo test` checks the generated derivatives (a generated
+        // self-test): around the paper's maneuver, all lengths positive.
+        sample {
+            L1 = 1.0 .. 20.0, L2 = 1.0 .. 20.0, L0 = 1.0 .. 20.0,
+            x0 = -15.0 .. 15.0, z0 = -15.0 .. 0.0, x = -15.0 .. 15.0, z = -20.0 .. 0.0,
+            beta = 0.2 .. 0.9, gamma = 1.2 .. 2.2, theta = -0.5 .. 0.5, L = 2.0 .. 10.0,
+        }
     }
 }
