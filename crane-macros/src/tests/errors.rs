@@ -326,7 +326,7 @@ fn sections() {
     assert_errors(
         &navy_with("inputs [u1, u2]", "inputs [u1, u2] outputs [x, z]"),
         &[
-            "unknown section `outputs`; expected one of: params, robot, load, inputs, kinetic, forces, constraints, minimal",
+            "unknown section `outputs`; expected one of: params, robot, load, inputs, kinetic, forces, constraints, minimal, sample",
         ],
     );
     assert_errors(
