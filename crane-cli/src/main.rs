@@ -2,22 +2,26 @@
 //!
 //! ```text
 //! crane list
-//! crane run navy-planar [--dt 0.01] [--tf 4] [--out out/navy-planar]
+//! crane run navy-planar [--scenario FILE.toml] [--dt 0.01] [--tf 4] [--out out/navy-planar] [--strict]
+//! crane convergence navy-planar [--formulation minimal]
 //! crane bench navy-planar [--dt 0.01] [--repeat 20] [--json]
 //! ```
 
+mod convergence;
 mod output;
 mod plot;
 mod progress;
 mod report;
+mod scenario;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Parser, Subcommand};
-use crane_models::{CATALOG, Case, navy_3d, navy_planar, navy_planar_pulley};
+use crane_models::{CATALOG, Case};
 use crane_runtime::Options;
+use scenario::{Overrides, ScenarioFile};
 
 /// Inverse dynamics of underactuated cranes: the torques that move the load
 /// exactly along a prescribed path (backward Euler on the minimally extended
@@ -33,22 +37,31 @@ struct Cli {
 enum Command {
     /// List the built-in models with their sizes n, m, a, f.
     List,
-    /// Run a model on its paper maneuver; write results.csv, summary.json and SVG plots.
+    /// Run a model on its paper maneuver or a scenario; write results.csv, summary.json and SVG plots.
     Run {
         /// Model name (see `crane list`).
         model: String,
-        /// Time step [s].
-        #[arg(long, default_value_t = 0.01)]
-        dt: f64,
-        /// End time [s] of the maneuver (the paper uses 4 and 15 for navy-planar).
+        /// Scenario file (TOML): load path, times, parameters, start, torque limits
+        /// (see examples/); flags given on the command line override it.
+        #[arg(long, value_name = "FILE.toml")]
+        scenario: Option<PathBuf>,
+        /// Time step [s] (default 0.01).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// End time [s] of the run (and of the motion unless the scenario sets t1;
+        /// the paper uses 4 and 15 for navy-planar).
         #[arg(long)]
         tf: Option<f64>,
         /// Output directory (default out/MODEL).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Redundant coordinates (eqs. 22a-d) or minimal coordinates (eqs. 24a-e).
-        #[arg(long, value_enum, default_value_t = Formulation::Redundant)]
-        formulation: Formulation,
+        /// Redundant coordinates (eqs. 22a-d) or minimal coordinates (eqs. 24a-e) (default redundant).
+        #[arg(long, value_enum)]
+        formulation: Option<Formulation>,
+        /// Exit non-zero if a rope goes slack or an input exceeds its limit
+        /// (the results are still written).
+        #[arg(long)]
+        strict: bool,
         /// No progress bar (it is shown only on a terminal, for runs over a second).
         #[arg(long)]
         quiet: bool,
@@ -70,10 +83,27 @@ enum Command {
         #[arg(long, value_enum, default_value_t = Formulation::Redundant)]
         formulation: Formulation,
     },
+    /// Convergence study: the relative error of u at t = 1.5 s (eq. 48) for
+    /// dt = 0.1 ... 0.001 and the observed orders; writes convergence.svg
+    /// (log-log, like Figs. 7 and 16) and convergence.csv.
+    Convergence {
+        /// Model name (see `crane list`); it needs an analytical reference.
+        model: String,
+        /// Scenario file (its dt is ignored).
+        #[arg(long, value_name = "FILE.toml")]
+        scenario: Option<PathBuf>,
+        /// Redundant coordinates (eqs. 22a-d) or minimal coordinates (eqs. 24a-e) (default redundant).
+        #[arg(long, value_enum)]
+        formulation: Option<Formulation>,
+        /// Output directory (default out/MODEL).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 /// Which index-3 formulation to integrate.
-#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(clap::ValueEnum, serde::Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
 pub enum Formulation {
     /// Redundant coordinates, backward Euler on eqs. (22a-d).
     Redundant,
@@ -100,9 +130,13 @@ impl Formulation {
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<crane_runtime::Solution<N, M, A>, CliError> {
         match self {
-            Formulation::Redundant => {
-                Ok(crane_runtime::redundant::simulate_with_progress(case.model(), case.path(), start, options, progress)?)
-            }
+            Formulation::Redundant => Ok(crane_runtime::redundant::simulate_with_progress(
+                case.model(),
+                case.path(),
+                start,
+                options,
+                progress,
+            )?),
             Formulation::Minimal => case
                 .simulate_minimal_with_progress(start, options, progress)
                 .ok_or_else(|| CliError::NoMinimalMap(name.to_string()))?
@@ -121,13 +155,34 @@ enum CliError {
     #[error(transparent)]
     Trajectory(#[from] crane_runtime::trajectory::TrajectoryError),
     #[error("{context}: {source}")]
-    Io { context: String, source: std::io::Error },
+    Io {
+        context: String,
+        source: std::io::Error,
+    },
     #[error("writing {what}: {message}")]
     Output { what: String, message: String },
     #[error("model `{0}` declares no minimal-coordinate map; use --formulation redundant")]
     NoMinimalMap(String),
     #[error("--repeat must be at least 1")]
     NoRepeats,
+    #[error(transparent)]
+    Scenario(#[from] scenario::ScenarioError),
+    #[error("infeasible (--strict): {problems}; the results were still written to {out}")]
+    Infeasible { problems: String, out: String },
+    #[error("{0}")]
+    Convergence(String),
+}
+
+/// Call `$f::<Crane, N, M, A>($args)` for the model named `$model`.
+macro_rules! with_crane {
+    ($model:expr, $f:ident ( $($arg:expr),* $(,)? )) => {
+        match $model {
+            "navy-planar" => $f::<scenario::Planar, 7, 3, 2>($($arg),*),
+            "navy-planar-pulley" => $f::<scenario::PlanarPulley, 8, 4, 3>($($arg),*),
+            "navy-3d" => $f::<scenario::Crane3d, 11, 4, 3>($($arg),*),
+            other => Err(CliError::UnknownModel(other.to_string())),
+        }
+    };
 }
 
 fn main() -> ExitCode {
@@ -145,37 +200,138 @@ fn execute(command: Command) -> Result<(), CliError> {
     match command {
         Command::List => {
             let width = CATALOG.iter().map(|e| e.name.len()).max().unwrap_or(5);
-            println!("{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} description", "model", "n", "m", "a", "f", "reference");
+            println!(
+                "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} description",
+                "model", "n", "m", "a", "f", "reference"
+            );
             for e in CATALOG {
                 let reference = if e.reference { "yes" } else { "no" };
-                println!("{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {}", e.name, e.n, e.m, e.a, e.dof(), reference, e.description);
+                println!(
+                    "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {}",
+                    e.name,
+                    e.n,
+                    e.m,
+                    e.a,
+                    e.dof(),
+                    reference,
+                    e.description
+                );
             }
             Ok(())
         }
-        Command::Run { model, dt, tf, out, formulation, quiet } => {
+        Command::Run {
+            model,
+            scenario,
+            dt,
+            tf,
+            out,
+            formulation,
+            strict,
+            quiet,
+        } => {
+            let file = scenario.as_deref().map(ScenarioFile::load).transpose()?;
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&model));
-            let settings = RunSettings { name: &model, formulation, dt, out: &out, quiet };
-            match model.as_str() {
-                "navy-planar" => run(&navy_planar::PaperCase::new(tf.unwrap_or(4.0))?, &settings),
-                "navy-planar-pulley" => run(&navy_planar_pulley::PaperCase::new(tf.unwrap_or(4.0))?, &settings),
-                "navy-3d" => run(&navy_3d::PaperCase::new(tf.unwrap_or(navy_3d::TF))?, &settings),
-                _ => Err(CliError::UnknownModel(model)),
+            let overrides = Overrides {
+                dt,
+                tf,
+                formulation,
+            };
+            let settings = RunSettings {
+                name: &model,
+                out: &out,
+                quiet,
+            };
+            let summary = with_crane!(
+                model.as_str(),
+                run_model(&settings, file.as_ref(), &overrides)
+            )?;
+            let problems = report::infeasibilities(&summary);
+            if strict && !problems.is_empty() {
+                return Err(CliError::Infeasible {
+                    problems: problems.join("; "),
+                    out: out.display().to_string(),
+                });
             }
+            Ok(())
         }
-        Command::Bench { model, dt, repeat, json, formulation } => match model.as_str() {
-            "navy-planar" => bench(&navy_planar::PaperCase::new(4.0)?, &model, formulation, dt, repeat, json),
-            "navy-planar-pulley" => bench(&navy_planar_pulley::PaperCase::new(4.0)?, &model, formulation, dt, repeat, json),
-            "navy-3d" => bench(&navy_3d::PaperCase::new(navy_3d::TF)?, &model, formulation, dt, repeat, json),
-            _ => Err(CliError::UnknownModel(model)),
-        },
+        Command::Bench {
+            model,
+            dt,
+            repeat,
+            json,
+            formulation,
+        } => {
+            let overrides = Overrides {
+                dt: Some(dt),
+                tf: None,
+                formulation: Some(formulation),
+            };
+            with_crane!(
+                model.as_str(),
+                bench_model(&model, &overrides, repeat, json)
+            )
+        }
+        Command::Convergence {
+            model,
+            scenario,
+            formulation,
+            out,
+        } => {
+            let file = scenario.as_deref().map(ScenarioFile::load).transpose()?;
+            let out = out.unwrap_or_else(|| PathBuf::from("out").join(&model));
+            let overrides = Overrides {
+                dt: None,
+                tf: None,
+                formulation,
+            };
+            with_crane!(
+                model.as_str(),
+                convergence_model(&model, file.as_ref(), &overrides, &out)
+            )
+        }
     }
+}
+
+/// Build a model's case from the scenario and run it.
+fn run_model<C: scenario::Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    settings: &RunSettings,
+    file: Option<&ScenarioFile>,
+    overrides: &Overrides,
+) -> Result<report::Summary, CliError> {
+    let (case, run_settings) = scenario::build::<C, N, M, A>(settings.name, file, overrides)?;
+    run(&case, settings, &run_settings)
+}
+
+/// The convergence study of one model.
+fn convergence_model<
+    C: scenario::Crane<N, M, A>,
+    const N: usize,
+    const M: usize,
+    const A: usize,
+>(
+    name: &str,
+    file: Option<&ScenarioFile>,
+    overrides: &Overrides,
+    out: &std::path::Path,
+) -> Result<(), CliError> {
+    let (case, settings) = scenario::build::<C, N, M, A>(name, file, overrides)?;
+    convergence::run(&case, name, settings.formulation, out)
+}
+
+/// Build a model's paper case and time it.
+fn bench_model<C: scenario::Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    name: &str,
+    overrides: &Overrides,
+    repeat: usize,
+    json: bool,
+) -> Result<(), CliError> {
+    let (case, settings) = scenario::build::<C, N, M, A>(name, None, overrides)?;
+    bench(&case, name, settings.formulation, settings.dt, repeat, json)
 }
 
 /// What `crane run` was asked to do.
 struct RunSettings<'a> {
     name: &'a str,
-    formulation: Formulation,
-    dt: f64,
     out: &'a std::path::Path,
     quiet: bool,
 }
@@ -184,24 +340,41 @@ struct RunSettings<'a> {
 fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &C,
     settings: &RunSettings,
-) -> Result<(), CliError> {
-    let RunSettings { name, formulation, dt, out, quiet } = *settings;
+    scenario: &scenario::Settings,
+) -> Result<report::Summary, CliError> {
+    let RunSettings { name, out, quiet } = *settings;
+    let (dt, formulation) = (scenario.dt, scenario.formulation);
     let start = case.start()?;
     let options = Options::new(dt, case.tf());
     let clock = Instant::now();
     let mut progress = progress::Progress::new(name, quiet);
-    let solution = formulation.simulate(case, name, &start, &options, &mut |step, steps| progress.tick(step, steps));
+    let solution = formulation.simulate(case, name, &start, &options, &mut |step, steps| {
+        progress.tick(step, steps)
+    });
     progress.finish();
     let solution = solution?;
     let wall = clock.elapsed().as_secs_f64();
-    let references: Option<Vec<_>> = solution.states.iter().map(|s| case.reference(s.t)).collect();
-    let summary = report::summarize(name, formulation.name(), &solution, references.as_deref(), wall);
+    let references: Option<Vec<_>> = solution
+        .states
+        .iter()
+        .map(|s| case.reference(s.t))
+        .collect();
+    let summary = report::summarize(
+        name,
+        formulation.name(),
+        &solution,
+        references.as_deref(),
+        &scenario.limits,
+        wall,
+    );
     // the reference curves of the plots on a fine grid, whatever dt
     let (t0, tf) = (case.t0(), case.tf());
     let samples = solution.steps().max(800);
-    let fine: Option<Vec<_>> = references
-        .as_ref()
-        .and_then(|_| (0..=samples).map(|i| case.reference(t0 + (tf - t0) * i as f64 / samples as f64)).collect());
+    let fine: Option<Vec<_>> = references.as_ref().and_then(|_| {
+        (0..=samples)
+            .map(|i| case.reference(t0 + (tf - t0) * i as f64 / samples as f64))
+            .collect()
+    });
     output::write_all(out, &solution, fine.as_deref(), &summary)?;
     println!(
         "{name} ({}): {} steps of dt = {dt} s in {:.1} ms ({:.2} Newton iterations per step)",
@@ -214,7 +387,7 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
         println!("  {line}");
     }
     println!("wrote {}", out.display());
-    Ok(())
+    Ok(summary)
 }
 
 /// Time `repeat` runs of one case.

@@ -14,7 +14,11 @@ static FONT: Once = Once::new();
 fn register_font() {
     FONT.call_once(|| {
         // the embedded font is valid TrueType; registration only fails on invalid data
-        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular());
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            dejavu::sans::regular(),
+        );
     });
 }
 
@@ -39,8 +43,16 @@ const PALETTE: [RGBColor; 8] = [
 
 fn draw(title: &str, y_label: &str, series: &[Series]) -> Result<String, CliError> {
     register_font();
-    let failed = |e: String| CliError::Output { what: format!("plot '{title}'"), message: e };
-    let (mut x_min, mut x_max, mut y_min, mut y_max) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    let failed = |e: String| CliError::Output {
+        what: format!("plot '{title}'"),
+        message: e,
+    };
+    let (mut x_min, mut x_max, mut y_min, mut y_max) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
     for s in series {
         for &(x, y) in &s.points {
             if x.is_finite() && y.is_finite() {
@@ -97,7 +109,9 @@ fn draw(title: &str, y_label: &str, series: &[Series]) -> Result<String, CliErro
                     .draw(&DashedPathElement::new(sample, 6, 4, style))
                     .map_err(|e| failed(e.to_string()))?;
             } else {
-                legend_area.draw(&PathElement::new(sample, style)).map_err(|e| failed(e.to_string()))?;
+                legend_area
+                    .draw(&PathElement::new(sample, style))
+                    .map_err(|e| failed(e.to_string()))?;
             }
             legend_area
                 .draw(&Text::new(s.name.clone(), (46, y - 8), ("sans-serif", 15)))
@@ -123,7 +137,11 @@ fn curves<const N: usize, const M: usize, const A: usize>(
         .enumerate()
         .map(|(c, (name, k))| Series {
             name: name.clone(),
-            points: solution.states.iter().map(|s| (s.t, value(s, *k))).collect(),
+            points: solution
+                .states
+                .iter()
+                .map(|s| (s.t, value(s, *k)))
+                .collect(),
             color: PALETTE[c % PALETTE.len()],
             dashed: false,
         })
@@ -131,7 +149,11 @@ fn curves<const N: usize, const M: usize, const A: usize>(
     if let Some(refs) = references {
         for (c, (_, k)) in columns.iter().enumerate() {
             out.push(Series {
-                name: if c == 0 { "analytical reference".into() } else { String::new() },
+                name: if c == 0 {
+                    "analytical reference".into()
+                } else {
+                    String::new()
+                },
                 points: refs.iter().map(|s| (s.t, value(s, *k))).collect(),
                 color: BLACK,
                 dashed: true,
@@ -148,15 +170,43 @@ pub fn all<const N: usize, const M: usize, const A: usize>(
 ) -> Result<Vec<(String, String)>, CliError> {
     let info = solution.info;
     let title = |what: &str| format!("{} - {what} (dt = {} s)", info.name, solution.dt);
-    let inputs: Vec<(String, usize)> = info.inputs.iter().enumerate().map(|(k, n)| (n.to_string(), k)).collect();
-    let coords: Vec<(String, usize)> = info.coordinates.iter().enumerate().map(|(k, n)| (n.to_string(), k)).collect();
+    let inputs: Vec<(String, usize)> = info
+        .inputs
+        .iter()
+        .enumerate()
+        .map(|(k, n)| (n.to_string(), k))
+        .collect();
+    let coords: Vec<(String, usize)> = info
+        .coordinates
+        .iter()
+        .enumerate()
+        .map(|(k, n)| (n.to_string(), k))
+        .collect();
     let lambdas: Vec<(String, usize)> = (0..M).map(|i| (format!("lambda{}", i + 1), i)).collect();
     let mut plots = vec![
-        ("inputs.svg".to_string(), draw(&title("inputs u"), "u [N m]", &curves(solution, references, &inputs, |s, k| s.u[k]))?),
-        ("coordinates.svg".to_string(), draw(&title("coordinates q"), "q [m]", &curves(solution, references, &coords, |s, k| s.q[k]))?),
+        (
+            "inputs.svg".to_string(),
+            draw(
+                &title("inputs u"),
+                "u [N m]",
+                &curves(solution, references, &inputs, |s, k| s.u[k]),
+            )?,
+        ),
+        (
+            "coordinates.svg".to_string(),
+            draw(
+                &title("coordinates q"),
+                "q [m]",
+                &curves(solution, references, &coords, |s, k| s.q[k]),
+            )?,
+        ),
         (
             "multipliers.svg".to_string(),
-            draw(&title("multipliers lambda"), "lambda [N/m]", &curves(solution, references, &lambdas, |s, k| s.lambda[k]))?,
+            draw(
+                &title("multipliers lambda"),
+                "lambda [N/m]",
+                &curves(solution, references, &lambdas, |s, k| s.lambda[k]),
+            )?,
         ),
     ];
     if !info.ropes.is_empty() {
@@ -166,12 +216,124 @@ pub fn all<const N: usize, const M: usize, const A: usize>(
             .enumerate()
             .map(|(r, rope)| Series {
                 name: rope.tension.to_string(),
-                points: (0..solution.states.len()).map(|i| (solution.states[i].t, solution.tensions_at(i)[r])).collect(),
+                points: (0..solution.states.len())
+                    .map(|i| (solution.states[i].t, solution.tensions_at(i)[r]))
+                    .collect(),
                 color: PALETTE[r % PALETTE.len()],
                 dashed: false,
             })
             .collect();
-        plots.push(("tensions.svg".to_string(), draw(&title("rope tensions"), "N [N]", &series)?));
+        plots.push((
+            "tensions.svg".to_string(),
+            draw(&title("rope tensions"), "N [N]", &series)?,
+        ));
     }
     Ok(plots)
+}
+
+/// Log-log plot of a convergence study: the relative error `e_u` over `dt`
+/// (points joined by a line) with a dashed order-1 guide through the finest
+/// step, like the paper's Figs. 7 and 16.
+pub fn convergence(title: &str, rows: &[(f64, f64)]) -> Result<String, CliError> {
+    register_font();
+    let failed = |e: String| CliError::Output {
+        what: format!("plot '{title}'"),
+        message: e,
+    };
+    let finite: Vec<(f64, f64)> = rows
+        .iter()
+        .copied()
+        .filter(|&(d, e)| d > 0.0 && e > 0.0 && e.is_finite())
+        .collect();
+    let Some(&(dt_fine, e_fine)) = finite.last() else {
+        return Err(failed("no positive finite errors to plot".into()));
+    };
+    let guide: Vec<(f64, f64)> = finite
+        .iter()
+        .map(|&(d, _)| (d, e_fine * d / dt_fine))
+        .collect();
+    let (x_min, x_max) = finite
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &(d, _)| {
+            (lo.min(d), hi.max(d))
+        });
+    let (y_min, y_max) = finite
+        .iter()
+        .chain(&guide)
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &(_, e)| {
+            (lo.min(e), hi.max(e))
+        });
+    // half a decade of room on each side of the data
+    let (x_min, x_max, y_min, y_max) = (x_min / 1.5, x_max * 1.5, y_min / 2.0, y_max * 2.0);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (1000, 560)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| failed(e.to_string()))?;
+        let (plot_area, legend_area) = root.split_horizontally(820);
+        let mut chart = ChartBuilder::on(&plot_area)
+            .caption(title, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(90)
+            .build_cartesian_2d((x_min..x_max).log_scale(), (y_min..y_max).log_scale())
+            .map_err(|e| failed(e.to_string()))?;
+        chart
+            .configure_mesh()
+            .x_desc("time step dt [s]")
+            .y_desc("relative error e_u [-]")
+            .x_label_formatter(&|v| format!("{v}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style(("sans-serif", 15))
+            .draw()
+            .map_err(|e| failed(e.to_string()))?;
+        let color = PALETTE[0];
+        chart
+            .draw_series(LineSeries::new(
+                finite.iter().copied(),
+                ShapeStyle::from(&color).stroke_width(2),
+            ))
+            .map_err(|e| failed(e.to_string()))?;
+        chart
+            .draw_series(
+                finite
+                    .iter()
+                    .map(|&p| Circle::new(p, 5, ShapeStyle::from(&color).filled())),
+            )
+            .map_err(|e| failed(e.to_string()))?;
+        chart
+            .draw_series(DashedLineSeries::new(
+                guide.iter().copied(),
+                6,
+                4,
+                ShapeStyle::from(&BLACK).stroke_width(1),
+            ))
+            .map_err(|e| failed(e.to_string()))?;
+        let entries: [(&str, RGBColor, bool); 2] = [
+            ("e_u at t = 1.5 s", color, false),
+            ("order 1 (slope 1)", BLACK, true),
+        ];
+        let mut y = 60;
+        for (name, c, dashed) in entries {
+            let style = ShapeStyle::from(&c).stroke_width(if dashed { 1 } else { 2 });
+            let sample = vec![(8, y), (38, y)];
+            if dashed {
+                legend_area
+                    .draw(&DashedPathElement::new(sample, 6, 4, style))
+                    .map_err(|e| failed(e.to_string()))?;
+            } else {
+                legend_area
+                    .draw(&PathElement::new(sample, style))
+                    .map_err(|e| failed(e.to_string()))?;
+                legend_area
+                    .draw(&Circle::new((23, y), 5, style.filled()))
+                    .map_err(|e| failed(e.to_string()))?;
+            }
+            legend_area
+                .draw(&Text::new(name, (46, y - 8), ("sans-serif", 15)))
+                .map_err(|e| failed(e.to_string()))?;
+            y += 22;
+        }
+        root.present().map_err(|e| failed(e.to_string()))?;
+    }
+    Ok(svg)
 }

@@ -40,6 +40,16 @@ pub struct NewtonSummary {
     pub min_norm_steps: usize,
 }
 
+/// A torque limit from the scenario's `[limits]` and when it is first exceeded.
+#[derive(Debug, Clone, Serialize)]
+pub struct LimitSummary {
+    pub name: String,
+    pub limit: f64,
+    pub peak: f64,
+    /// First time `|u| > limit`, if ever.
+    pub first_violation: Option<f64>,
+}
+
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
     pub model: String,
@@ -53,6 +63,7 @@ pub struct Summary {
     pub wall_time_s: f64,
     pub peak_torque: Vec<Extreme>,
     pub ropes: Vec<RopeSummary>,
+    pub torque_limits: Vec<LimitSummary>,
     pub reference: Option<ReferenceErrors>,
 }
 
@@ -73,7 +84,11 @@ fn column_extremes<const K: usize, const N: usize, const M: usize, const A: usiz
                 .map(|s| (s.t, value(s, k)))
                 .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
                 .unwrap_or((f64::NAN, f64::NAN));
-            Extreme { name: names[k].to_string(), value: v, t }
+            Extreme {
+                name: names[k].to_string(),
+                value: v,
+                t,
+            }
         })
         .collect()
 }
@@ -83,6 +98,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
     formulation: &str,
     solution: &Solution<N, M, A>,
     references: Option<&[State<N, M, A>]>,
+    limits: &[(usize, f64)],
     wall_time_s: f64,
 ) -> Summary {
     let info = solution.info;
@@ -93,12 +109,36 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         .iter()
         .enumerate()
         .map(|(r, rope)| {
-            let series: Vec<(f64, f64)> = states.iter().enumerate().map(|(i, s)| (s.t, solution.tensions_at(i)[r])).collect();
+            let series: Vec<(f64, f64)> = states
+                .iter()
+                .enumerate()
+                .map(|(i, s)| (s.t, solution.tensions_at(i)[r]))
+                .collect();
             let peak = series.iter().fold(0.0f64, |m, (_, n)| m.max(n.abs()));
-            let (t_min, min_tension) =
-                series.iter().copied().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap_or((f64::NAN, f64::NAN));
-            let first_slack = series.iter().find(|(_, n)| *n < -SLACK_TOLERANCE * peak).map(|(t, _)| *t);
-            RopeSummary { name: rope.tension.to_string(), min_tension, t_min, first_slack }
+            let (t_min, min_tension) = series
+                .iter()
+                .copied()
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .unwrap_or((f64::NAN, f64::NAN));
+            let first_slack = series
+                .iter()
+                .find(|(_, n)| *n < -SLACK_TOLERANCE * peak)
+                .map(|(t, _)| *t);
+            RopeSummary {
+                name: rope.tension.to_string(),
+                min_tension,
+                t_min,
+                first_slack,
+            }
+        })
+        .collect();
+    let torque_limits = limits
+        .iter()
+        .map(|&(k, limit)| LimitSummary {
+            name: info.inputs[k].to_string(),
+            limit,
+            peak: states.iter().fold(0.0f64, |m, s| m.max(s.u[k].abs())),
+            first_violation: states.iter().find(|s| s.u[k].abs() > limit).map(|s| s.t),
         })
         .collect();
     let reference = references.map(|refs| {
@@ -107,7 +147,13 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         let pairs: Vec<State<N, M, A>> = states
             .iter()
             .zip(refs)
-            .map(|(s, r)| State { t: s.t, q: s.q - r.q, v: s.v - r.v, u: s.u - r.u, lambda: s.lambda - r.lambda })
+            .map(|(s, r)| State {
+                t: s.t,
+                q: s.q - r.q,
+                v: s.v - r.v,
+                u: s.u - r.u,
+                lambda: s.lambda - r.lambda,
+            })
             .collect();
         let e_u_at_1_5s = states
             .iter()
@@ -118,13 +164,20 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
             e_u_at_1_5s,
             max_abs_error_u: column_extremes::<A, N, M, A>(&pairs, info.inputs, |s, k| s.u[k]),
             max_abs_error_q: column_extremes::<N, N, M, A>(&pairs, info.coordinates, |s, k| s.q[k]),
-            max_abs_error_lambda: column_extremes::<M, N, M, A>(&pairs, &lambda_refs, |s, k| s.lambda[k]),
+            max_abs_error_lambda: column_extremes::<M, N, M, A>(&pairs, &lambda_refs, |s, k| {
+                s.lambda[k]
+            }),
         }
     });
     let newton = NewtonSummary {
         total_iterations: solution.newton_iterations.iter().sum(),
         mean_per_step: solution.mean_newton_iterations(),
-        max_per_step: solution.newton_iterations.iter().copied().max().unwrap_or(0),
+        max_per_step: solution
+            .newton_iterations
+            .iter()
+            .copied()
+            .max()
+            .unwrap_or(0),
         min_norm_steps: solution.min_norm_steps,
     };
     Summary {
@@ -139,6 +192,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         wall_time_s,
         peak_torque,
         ropes,
+        torque_limits,
         reference,
     }
 }
@@ -147,12 +201,35 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
 pub fn highlights(summary: &Summary) -> Vec<String> {
     let mut lines = Vec::new();
     for p in &summary.peak_torque {
-        lines.push(format!("peak |{}| = {:.3} N m at t = {:.3} s", p.name, p.value.abs(), p.t));
+        lines.push(format!(
+            "peak |{}| = {:.3} N m at t = {:.3} s",
+            p.name,
+            p.value.abs(),
+            p.t
+        ));
     }
     for r in &summary.ropes {
         match r.first_slack {
-            Some(t) => lines.push(format!("WARNING: rope {} goes slack at t = {t:.3} s (min tension {:.3e} N)", r.name, r.min_tension)),
-            None => lines.push(format!("rope {} stays taut: min tension {:.3} N at t = {:.3} s", r.name, r.min_tension, r.t_min)),
+            Some(t) => lines.push(format!(
+                "WARNING: rope {} goes slack at t = {t:.3} s (min tension {:.3e} N)",
+                r.name, r.min_tension
+            )),
+            None => lines.push(format!(
+                "rope {} stays taut: min tension {:.3} N at t = {:.3} s",
+                r.name, r.min_tension, r.t_min
+            )),
+        }
+    }
+    for l in &summary.torque_limits {
+        match l.first_violation {
+            Some(t) => lines.push(format!(
+                "WARNING: |{}| exceeds its limit {} N m first at t = {t:.3} s (peak {:.3} N m)",
+                l.name, l.limit, l.peak
+            )),
+            None => lines.push(format!(
+                "|{}| stays within its limit {} N m (peak {:.3} N m)",
+                l.name, l.limit, l.peak
+            )),
         }
     }
     if let Some(reference) = &summary.reference {
@@ -161,4 +238,25 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
         }
     }
     lines
+}
+
+/// What makes a run infeasible: slack ropes and violated torque limits (for `--strict`).
+pub fn infeasibilities(summary: &Summary) -> Vec<String> {
+    let mut out: Vec<String> = summary
+        .ropes
+        .iter()
+        .filter_map(|r| {
+            r.first_slack
+                .map(|t| format!("rope {} goes slack at t = {t:.3} s", r.name))
+        })
+        .collect();
+    out.extend(summary.torque_limits.iter().filter_map(|l| {
+        l.first_violation.map(|t| {
+            format!(
+                "|{}| exceeds its limit {} N m at t = {t:.3} s",
+                l.name, l.limit
+            )
+        })
+    }));
+    out
 }

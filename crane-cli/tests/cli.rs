@@ -1,0 +1,358 @@
+//! End-to-end tests of the `crane` binary: scenario errors, an example
+//! scenario's outputs, `--strict`, `convergence`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn crane(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_crane"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run crane")
+}
+
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../examples")
+        .join(name)
+}
+
+/// Run `crane run MODEL --scenario` on `toml`; expect a failure whose message
+/// contains every one of `needles` and no results written.
+fn expect_error(model: &str, toml: &str, needles: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("scenario.toml");
+    std::fs::write(&file, toml).unwrap();
+    let out = dir.path().join("out");
+    let result = crane(&[
+        "run",
+        model,
+        "--scenario",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        !result.status.success(),
+        "expected failure for {toml:?}; stderr: {stderr}"
+    );
+    for needle in needles {
+        assert!(
+            stderr.contains(needle),
+            "stderr for {toml:?} lacks {needle:?}: {stderr}"
+        );
+    }
+    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
+    assert!(
+        !out.join("results.csv").exists(),
+        "results.csv written despite the error"
+    );
+}
+
+#[test]
+fn unknown_key_is_named() {
+    expect_error(
+        "navy-planar",
+        "dt = 0.01\nspeed = 3.0\n",
+        &["`speed`", "unknown field", "line 2"],
+    );
+}
+
+#[test]
+fn unknown_key_in_a_table_is_named() {
+    expect_error(
+        "navy-planar",
+        "[limits]\nu1 = 100.0\n[extra]\nx = 1\n",
+        &["`extra`", "unknown field"],
+    );
+}
+
+#[test]
+fn wrong_type_is_named() {
+    expect_error(
+        "navy-planar",
+        "dt = \"fast\"\n",
+        &["key `dt`", "invalid type"],
+    );
+    expect_error(
+        "navy-planar",
+        "[parameters]\nm_l = \"heavy\"\n",
+        &["key `parameters.m_l`", "invalid type"],
+    );
+}
+
+#[test]
+fn wrong_coordinate_count_is_named() {
+    expect_error(
+        "navy-planar",
+        "start = [1.0, 2.0, 3.0]\n",
+        &["`start` needs 2 numbers for navy-planar (x, z), got 3"],
+    );
+    expect_error(
+        "navy-3d",
+        "end = [1.0, 2.0]\n",
+        &["`end` needs 3 numbers for navy-3d", "got 2"],
+    );
+    expect_error(
+        "navy-planar",
+        "p0 = [1.0]\n",
+        &["`p0` needs 5 numbers for navy-planar (L1, L2, L0, x0, z0), got 1"],
+    );
+}
+
+#[test]
+fn non_positive_dt_is_an_error() {
+    expect_error("navy-planar", "dt = 0.0\n", &["`dt` must be a positive"]);
+    expect_error("navy-planar", "dt = -0.01\n", &["`dt` must be a positive"]);
+}
+
+#[test]
+fn tf_not_after_t0_is_an_error() {
+    expect_error(
+        "navy-planar",
+        "t0 = 2.0\ntf = 1.0\n",
+        &["`tf` = 1 s must be after the start time t0 = 2 s"],
+    );
+    expect_error("navy-planar", "tf = 0.0\n", &["`tf`", "must be after"]);
+}
+
+#[test]
+fn unknown_parameter_is_named() {
+    expect_error(
+        "navy-planar",
+        "[parameters]\nmass = 3.0\n",
+        &["`parameters.mass`", "unknown parameter `mass`", "m_l"],
+    );
+}
+
+#[test]
+fn unknown_limit_input_is_named() {
+    expect_error(
+        "navy-planar",
+        "[limits]\nu7 = 3.0\n",
+        &["`limits.u7`", "u1, u2"],
+    );
+}
+
+#[test]
+fn inconsistent_start_names_the_constraint() {
+    // L1 = 8 instead of 5 sqrt 3: rope 1 cannot reach the pulley
+    expect_error(
+        "navy-planar",
+        "p0 = [8.0, 10.0, 5.0, 0.0, -5.0]\n",
+        &["inconsistent start", "constraint `rope1`"],
+    );
+}
+
+#[test]
+fn example_scenario_end_to_end() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fig5");
+    let scenario = example("navy-planar-fig5-8.toml");
+    let result = crane(&[
+        "run",
+        "navy-planar",
+        "--scenario",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    assert_eq!(
+        header,
+        [
+            "t", "L1", "L2", "L0", "x0", "z0", "x", "z", "u1", "u2", "lambda1", "lambda2",
+            "lambda3", "N1", "N2"
+        ]
+    );
+    assert_eq!(
+        csv.lines().count(),
+        1 + 401,
+        "header and 401 rows (t = 0..4 s, dt = 0.01 s)"
+    );
+    for name in [
+        "inputs.svg",
+        "coordinates.svg",
+        "multipliers.svg",
+        "tensions.svg",
+    ] {
+        let svg = std::fs::read_to_string(out.join(name)).unwrap();
+        assert!(
+            svg.len() > 1024 && svg.contains("<svg"),
+            "{name} is trivial"
+        );
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let limits = summary["torque_limits"].as_array().unwrap();
+    assert_eq!(limits.len(), 2);
+    assert!(limits.iter().all(|l| l["first_violation"].is_null()));
+    // same as the paper case without a scenario (eq. 48 at dt = 0.01)
+    let e_u = summary["reference"]["e_u_at_1_5s"].as_f64().unwrap();
+    assert!((e_u - 1.471e-3).abs() < 1e-5, "e_u = {e_u}");
+}
+
+#[test]
+fn command_line_overrides_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let scenario = example("navy-planar-fig5-8.toml");
+    let result = crane(&[
+        "run",
+        "navy-planar",
+        "--scenario",
+        scenario.to_str().unwrap(),
+        "--dt",
+        "0.02",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["dt"].as_f64(), Some(0.02));
+    assert_eq!(summary["steps"].as_u64(), Some(200));
+}
+
+#[test]
+fn strict_fails_on_a_violated_limit_but_writes_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("low.toml");
+    std::fs::write(&file, "dt = 0.01\n[limits]\nu2 = 50.0\n").unwrap();
+    let out = dir.path().join("out");
+    let args = [
+        "run",
+        "navy-planar",
+        "--scenario",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    // without --strict: a warning, exit 0
+    let lenient = crane(&args);
+    assert!(lenient.status.success());
+    let stdout = String::from_utf8_lossy(&lenient.stdout);
+    assert!(
+        stdout.contains("WARNING: |u2| exceeds its limit 50 N m"),
+        "{stdout}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(
+        summary["torque_limits"][0]["first_violation"]
+            .as_f64()
+            .is_some()
+    );
+    std::fs::remove_dir_all(&out).unwrap();
+    // with --strict: non-zero, results still written, and the message says so
+    let strict = crane(&[&args[..], &["--strict"]].concat());
+    let stderr = String::from_utf8_lossy(&strict.stderr);
+    assert!(!strict.status.success());
+    assert!(
+        stderr.contains("infeasible (--strict): |u2| exceeds its limit 50 N m"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("results were still written"), "{stderr}");
+    assert!(out.join("results.csv").exists());
+}
+
+#[test]
+fn strict_passes_a_feasible_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let scenario = example("navy-planar-pulley-fig14-17.toml");
+    let result = crane(&[
+        "run",
+        "navy-planar-pulley",
+        "--scenario",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--strict",
+        "--quiet",
+    ]);
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+}
+
+#[test]
+fn every_example_parses_and_builds() {
+    // a cheap check of all examples: a coarse dt override and a short run
+    for entry in std::fs::read_dir(example("")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "toml") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(
+            text.starts_with('#') && text.contains("Fig"),
+            "{}: comment header naming the figure",
+            path.display()
+        );
+        let model = text
+            .lines()
+            .find_map(|l| l.strip_prefix("model = "))
+            .unwrap()
+            .trim_matches('"');
+        let dir = tempfile::tempdir().unwrap();
+        let result = crane(&[
+            "run",
+            model,
+            "--scenario",
+            path.to_str().unwrap(),
+            "--dt",
+            "0.05",
+            "--out",
+            dir.path().to_str().unwrap(),
+            "--quiet",
+        ]);
+        assert!(
+            result.status.success(),
+            "{}: {}",
+            path.display(),
+            String::from_utf8_lossy(&result.stderr)
+        );
+    }
+}
+
+#[test]
+fn convergence_reports_first_order_and_writes_the_plot() {
+    let dir = tempfile::tempdir().unwrap();
+    let result = crane(&[
+        "convergence",
+        "navy-planar",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.path().join("convergence.csv")).unwrap();
+    let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
+    assert_eq!(last[0], "0.001");
+    let order: f64 = last[2].parse().unwrap();
+    assert!((order - 1.0).abs() < 0.05, "order {order}");
+    let svg = std::fs::read_to_string(dir.path().join("convergence.svg")).unwrap();
+    assert!(svg.len() > 1024 && svg.contains("<svg") && svg.contains("time step dt [s]"));
+}
