@@ -180,6 +180,7 @@ macro_rules! with_crane {
             "navy-planar" => $f::<scenario::Planar, 7, 3, 2>($($arg),*),
             "navy-planar-pulley" => $f::<scenario::PlanarPulley, 8, 4, 3>($($arg),*),
             "navy-3d" => $f::<scenario::Crane3d, 11, 4, 3>($($arg),*),
+            "navy-3d-pulley" => $f::<scenario::Crane3dPulley, 12, 5, 4>($($arg),*),
             other => Err(CliError::UnknownModel(other.to_string())),
         }
     };

@@ -26,8 +26,8 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use crane_models::{navy_3d, navy_planar, navy_planar_pulley};
-use crane_runtime::trajectory::{Poly9, ThreePhase, TrajectoryError};
+use crane_models::{navy_3d, navy_3d_pulley, navy_planar, navy_planar_pulley};
+use crane_runtime::trajectory::{Poly9, SmoothThreePhase, ThreePhase, TrajectoryError};
 use crane_runtime::{CraneModel, Error, Options, Solution, State, Trajectory, init};
 use nalgebra::SVector;
 use serde::Deserialize;
@@ -42,6 +42,9 @@ pub enum Kind {
     Poly9,
     /// Ramp, constant speed, ramp (eqs. 85-86).
     ThreePhase,
+    /// The same with ramps continuous up to the 6th derivative (bounded
+    /// slewing torque for the 3D crane with pulley mass, see ERRATA).
+    SmoothThreePhase,
 }
 
 /// A scenario file as written.
@@ -147,6 +150,7 @@ fn invalid(message: impl Into<String>) -> CliError {
 pub enum ScenarioPath<const A: usize> {
     Poly9(Poly9<A>),
     ThreePhase(ThreePhase<A>),
+    SmoothThreePhase(SmoothThreePhase<A>),
 }
 
 impl<const A: usize> Trajectory<A> for ScenarioPath<A> {
@@ -154,6 +158,7 @@ impl<const A: usize> Trajectory<A> for ScenarioPath<A> {
         match self {
             ScenarioPath::Poly9(p) => p.derivative(t, k),
             ScenarioPath::ThreePhase(p) => p.derivative(t, k),
+            ScenarioPath::SmoothThreePhase(p) => p.derivative(t, k),
         }
     }
 }
@@ -332,6 +337,43 @@ impl Crane<11, 4, 3> for Crane3d {
     }
 }
 
+/// The 3D crane with pulley mass (sect. 6.2), on the paper's three-phase path.
+pub struct Crane3dPulley;
+
+impl Crane<12, 5, 4> for Crane3dPulley {
+    type Model = navy_3d_pulley::Navy3dPulley;
+    fn model() -> Self::Model {
+        Self::Model::default()
+    }
+    fn defaults() -> PaperDefaults<4> {
+        let path = navy_3d_pulley::paper_path(navy_3d_pulley::TF).expect("paper path");
+        PaperDefaults {
+            kind: Kind::ThreePhase,
+            tau0: Some(navy_3d_pulley::TAU0),
+            t0: 0.0,
+            t1: navy_3d_pulley::TF,
+            start: path.derivative(0.0, 0),
+            end: path.derivative(navy_3d_pulley::TF, 0),
+            p0: navy_3d_pulley::paper_p0().to_vec(),
+        }
+    }
+    fn paper_path(t1: f64) -> Result<ScenarioPath<4>, TrajectoryError> {
+        navy_3d_pulley::paper_path(t1).map(ScenarioPath::ThreePhase)
+    }
+    fn reference(_: &Self::Model, _: &ScenarioPath<4>, _: f64) -> Option<State<12, 5, 4>> {
+        None
+    }
+    fn simulate_minimal(
+        _: &Self::Model,
+        _: &ScenarioPath<4>,
+        _: &State<12, 5, 4>,
+        _: &Options,
+        _: &mut dyn FnMut(usize, usize),
+    ) -> Option<Result<Solution<12, 5, 4>, Error>> {
+        None
+    }
+}
+
 /// A model on a scenario's path from a scenario's start: a [`crane_models::Case`].
 pub struct ScenarioCase<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> {
     pub model: C::Model,
@@ -502,13 +544,17 @@ pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
                 }
                 Poly9::new(t0, t1, start, end).map(ScenarioPath::Poly9)
             }
-            Kind::ThreePhase => {
+            Kind::ThreePhase | Kind::SmoothThreePhase => {
                 let tau0 = spec.tau0.or(defaults.tau0).ok_or_else(|| {
                     invalid(
-                        "`tau0` (ramp duration, s) is required for trajectory = \"three-phase\"",
+                        "`tau0` (ramp duration, s) is required for trajectory = \"three-phase\" and \"smooth-three-phase\"",
                     )
                 })?;
-                ThreePhase::new(t0, t1 - t0, tau0, start, end).map(ScenarioPath::ThreePhase)
+                if kind == Kind::ThreePhase {
+                    ThreePhase::new(t0, t1 - t0, tau0, start, end).map(ScenarioPath::ThreePhase)
+                } else {
+                    SmoothThreePhase::new(t0, t1 - t0, tau0, start, end).map(ScenarioPath::SmoothThreePhase)
+                }
             }
         }
     }
