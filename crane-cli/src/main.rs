@@ -13,6 +13,7 @@ mod plot;
 mod progress;
 mod report;
 mod scenario;
+mod snapshots;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -376,7 +377,10 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
             .map(|i| case.reference(t0 + (tf - t0) * i as f64 / samples as f64))
             .collect()
     });
-    output::write_all(out, &solution, fine.as_deref(), &summary)?;
+    let parameters = crane_runtime::CraneModel::parameter_values(case.model());
+    let snapshots = snapshots::svg(&solution.info, &parameters, &solution)?
+        .map(|svg| ("snapshots.svg".to_string(), svg));
+    output::write_all(out, &solution, fine.as_deref(), &summary, snapshots.as_slice())?;
     println!(
         "{name} ({}): {} steps of dt = {dt} s in {:.1} ms ({:.2} Newton iterations per step)",
         formulation.name(),

@@ -43,12 +43,14 @@ fn write_csv<const N: usize, const M: usize, const A: usize>(path: &Path, soluti
     writer.flush().map_err(io_error(format!("writing {}", path.display())))
 }
 
-/// Write `results.csv`, `summary.json` and the plots into `out`.
+/// Write `results.csv`, `summary.json`, the plots and the `extra` files
+/// (`(file name, text)`, e.g. `snapshots.svg`) into `out`.
 pub fn write_all<const N: usize, const M: usize, const A: usize>(
     out: &Path,
     solution: &Solution<N, M, A>,
     references: Option<&[State<N, M, A>]>,
     summary: &Summary,
+    extra: &[(String, String)],
 ) -> Result<(), CliError> {
     fs::create_dir_all(out).map_err(io_error(format!("creating {}", out.display())))?;
     let mut staged: Vec<(PathBuf, PathBuf)> = Vec::new();
@@ -64,7 +66,7 @@ pub fn write_all<const N: usize, const M: usize, const A: usize>(
             .map_err(|e| CliError::Output { what: "summary.json".into(), message: e.to_string() })?;
         let path = stage("summary.json");
         fs::write(&path, json + "\n").map_err(io_error(format!("writing {}", path.display())))?;
-        for (name, svg) in plot::all(solution, references)? {
+        for (name, svg) in plot::all(solution, references)?.into_iter().chain(extra.iter().cloned()) {
             let path = stage(&name);
             fs::write(&path, svg).map_err(io_error(format!("writing {}", path.display())))?;
         }

@@ -11,7 +11,8 @@ use crate::CliError;
 
 static FONT: Once = Once::new();
 
-fn register_font() {
+/// Register the embedded DejaVu Sans as `sans-serif` (once).
+pub(crate) fn register_font() {
     FONT.call_once(|| {
         // the embedded font is valid TrueType; registration only fails on invalid data
         let _ = plotters::style::register_font(
