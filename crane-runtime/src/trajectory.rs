@@ -149,6 +149,81 @@ impl<const A: usize> Trajectory<A> for Poly9<A> {
     }
 }
 
+/// The three phases shared by [`ThreePhase`] and [`SmoothThreePhase`]:
+/// `gamma(t) = gamma0 + (gammaf - gamma0) c(t - t0)`, the ramp `h` given by
+/// the coefficients of its polynomial.
+#[derive(Debug, Clone, PartialEq)]
+struct Phases<const A: usize> {
+    t0: f64,
+    tau: f64,
+    tau0: f64,
+    start: SVector<f64, A>,
+    end: SVector<f64, A>,
+    /// Coefficients of `h(s)/tau0`, `s = t/tau0`.
+    ramp: &'static [f64],
+}
+
+impl<const A: usize> Phases<A> {
+    fn new(
+        t0: f64,
+        tau: f64,
+        tau0: f64,
+        start: SVector<f64, A>,
+        end: SVector<f64, A>,
+        ramp: &'static [f64],
+    ) -> Result<Self, TrajectoryError> {
+        if !(t0.is_finite() && tau.is_finite() && tau > 0.0) {
+            return Err(TrajectoryError::TimeSpan { t0, tf: t0 + tau });
+        }
+        if !(tau0 > 0.0 && tau0 <= 0.5 * tau) {
+            return Err(TrajectoryError::Ramp { tau0, tau });
+        }
+        check_points(&start, &end)?;
+        Ok(Self { t0, tau, tau0, start, end, ramp })
+    }
+
+    /// `k`-th derivative of `h` at `t` (time since the ramp started).
+    fn ramp(&self, t: f64, k: usize) -> f64 {
+        self.tau0 * poly_derivative(self.ramp, t / self.tau0, k) / self.tau0.powi(k as i32)
+    }
+
+    /// `k`-th derivative of the scalar profile `c` at `t` (time since `t0`).
+    fn profile(&self, t: f64, k: usize) -> f64 {
+        let (tau, tau0) = (self.tau, self.tau0);
+        let cruise = tau - tau0;
+        if t <= 0.0 || t >= tau {
+            return match k {
+                0 if t <= 0.0 => 0.0,
+                0 => 1.0,
+                _ => 0.0,
+            };
+        }
+        if t < tau0 {
+            self.ramp(t, k) / cruise
+        } else if t < tau - tau0 {
+            match k {
+                0 => (t - 0.5 * tau0) / cruise,
+                1 => 1.0 / cruise,
+                _ => 0.0,
+            }
+        } else {
+            // d^k/dt^k h(tau - t) = (-1)^k h^(k)(tau - t)
+            let sign = if k.is_multiple_of(2) { 1.0 } else { -1.0 };
+            let value = -sign * self.ramp(tau - t, k) / cruise;
+            if k == 0 { 1.0 + value } else { value }
+        }
+    }
+
+    fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
+        let c = self.profile(t - self.t0, k);
+        if k == 0 {
+            self.start + (self.end - self.start) * c
+        } else {
+            (self.end - self.start) * c
+        }
+    }
+}
+
 /// Coefficients of `h(s)/tau0 = 7 s^5 - 14 s^6 + 10 s^7 - 5/2 s^8` (ERRATA, eq. 86).
 const RAMP: [f64; 9] = [0.0, 0.0, 0.0, 0.0, 0.0, 7.0, -14.0, 10.0, -2.5];
 
@@ -170,16 +245,10 @@ const RAMP: [f64; 9] = [0.0, 0.0, 0.0, 0.0, 0.0, 7.0, -14.0, 10.0, -2.5];
 /// assert!((path.derivative(10.0, 1)[0] - 1.0 / 15.0).abs() < 1e-15);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
-pub struct ThreePhase<const A: usize> {
-    t0: f64,
-    tau: f64,
-    tau0: f64,
-    start: SVector<f64, A>,
-    end: SVector<f64, A>,
-}
+pub struct ThreePhase<const A: usize>(Phases<A>);
 
 impl<const A: usize> ThreePhase<A> {
-    /// Motion from `start` at `t0` to `end` at `t0 + tau` with ramps of length `tau0`.
+    /// Motion from `start` at `t0` to `end` at `t0 + tau` with ramps of length `tau0` (`0 < tau0 <= tau/2`).
     pub fn new(
         t0: f64,
         tau: f64,
@@ -187,54 +256,13 @@ impl<const A: usize> ThreePhase<A> {
         start: SVector<f64, A>,
         end: SVector<f64, A>,
     ) -> Result<Self, TrajectoryError> {
-        if !(t0.is_finite() && tau.is_finite() && tau > 0.0) {
-            return Err(TrajectoryError::TimeSpan { t0, tf: t0 + tau });
-        }
-        if !(tau0 > 0.0 && tau0 <= 0.5 * tau) {
-            return Err(TrajectoryError::Ramp { tau0, tau });
-        }
-        check_points(&start, &end)?;
-        Ok(Self { t0, tau, tau0, start, end })
-    }
-
-    /// `k`-th derivative of `h` at `t` (time since the ramp started).
-    fn ramp(&self, t: f64, k: usize) -> f64 {
-        self.tau0 * poly_derivative(&RAMP, t / self.tau0, k) / self.tau0.powi(k as i32)
-    }
-
-    /// `k`-th derivative of the scalar profile `c` at `t` (time since `t0`).
-    fn profile(&self, t: f64, k: usize) -> f64 {
-        let (tau, tau0) = (self.tau, self.tau0);
-        let cruise = tau - tau0;
-        let t = t.clamp(0.0, tau);
-        if t <= 0.0 || t >= tau {
-            return if k == 0 { if t <= 0.0 { 0.0 } else { 1.0 } } else { 0.0 };
-        }
-        if t < tau0 {
-            self.ramp(t, k) / cruise
-        } else if t < tau - tau0 {
-            match k {
-                0 => (t - 0.5 * tau0) / cruise,
-                1 => 1.0 / cruise,
-                _ => 0.0,
-            }
-        } else {
-            // d^k/dt^k h(tau - t) = (-1)^k h^(k)(tau - t)
-            let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
-            let value = -sign * self.ramp(tau - t, k) / cruise;
-            if k == 0 { 1.0 + value } else { value }
-        }
+        Phases::new(t0, tau, tau0, start, end, &RAMP).map(Self)
     }
 }
 
 impl<const A: usize> Trajectory<A> for ThreePhase<A> {
     fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
-        let c = self.profile(t - self.t0, k);
-        if k == 0 {
-            self.start + (self.end - self.start) * c
-        } else {
-            (self.end - self.start) * c
-        }
+        self.0.derivative(t, k)
     }
 }
 
@@ -283,17 +311,10 @@ const SMOOTH_RAMP: [f64; 13] = [
 /// assert_eq!(path.derivative(20.0, 0)[0], 1.0);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
-pub struct SmoothThreePhase<const A: usize> {
-    t0: f64,
-    tau: f64,
-    tau0: f64,
-    start: SVector<f64, A>,
-    end: SVector<f64, A>,
-}
+pub struct SmoothThreePhase<const A: usize>(Phases<A>);
 
 impl<const A: usize> SmoothThreePhase<A> {
-    /// Motion from `start` at `t0` to `end` at `t0 + tau` with ramps of length
-    /// `tau0` (`0 < tau0 <= tau/2`).
+    /// Motion from `start` at `t0` to `end` at `t0 + tau` with ramps of length `tau0` (`0 < tau0 <= tau/2`).
     pub fn new(
         t0: f64,
         tau: f64,
@@ -301,57 +322,13 @@ impl<const A: usize> SmoothThreePhase<A> {
         start: SVector<f64, A>,
         end: SVector<f64, A>,
     ) -> Result<Self, TrajectoryError> {
-        if !(t0.is_finite() && tau.is_finite() && tau > 0.0) {
-            return Err(TrajectoryError::TimeSpan { t0, tf: t0 + tau });
-        }
-        if !(tau0 > 0.0 && tau0 <= 0.5 * tau) {
-            return Err(TrajectoryError::Ramp { tau0, tau });
-        }
-        check_points(&start, &end)?;
-        Ok(Self { t0, tau, tau0, start, end })
-    }
-
-    /// `k`-th derivative of `h` at `t` (time since the ramp started).
-    fn ramp(&self, t: f64, k: usize) -> f64 {
-        self.tau0 * poly_derivative(&SMOOTH_RAMP, t / self.tau0, k) / self.tau0.powi(k as i32)
-    }
-
-    /// `k`-th derivative of the scalar profile `c` at `t` (time since `t0`).
-    fn profile(&self, t: f64, k: usize) -> f64 {
-        let (tau, tau0) = (self.tau, self.tau0);
-        let cruise = tau - tau0;
-        if t <= 0.0 || t >= tau {
-            return match k {
-                0 if t <= 0.0 => 0.0,
-                0 => 1.0,
-                _ => 0.0,
-            };
-        }
-        if t < tau0 {
-            self.ramp(t, k) / cruise
-        } else if t < tau - tau0 {
-            match k {
-                0 => (t - 0.5 * tau0) / cruise,
-                1 => 1.0 / cruise,
-                _ => 0.0,
-            }
-        } else {
-            // d^k/dt^k h(tau - t) = (-1)^k h^(k)(tau - t)
-            let sign = if k.is_multiple_of(2) { 1.0 } else { -1.0 };
-            let value = -sign * self.ramp(tau - t, k) / cruise;
-            if k == 0 { 1.0 + value } else { value }
-        }
+        Phases::new(t0, tau, tau0, start, end, &SMOOTH_RAMP).map(Self)
     }
 }
 
 impl<const A: usize> Trajectory<A> for SmoothThreePhase<A> {
     fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
-        let c = self.profile(t - self.t0, k);
-        if k == 0 {
-            self.start + (self.end - self.start) * c
-        } else {
-            (self.end - self.start) * c
-        }
+        self.0.derivative(t, k)
     }
 }
 
