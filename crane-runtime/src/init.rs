@@ -165,8 +165,14 @@ where
     if p_guess.len() != p {
         return Err(wrong_length(p, p_guess.len(), "the guess for p0"));
     }
+    if !p_guess.iter().all(|x| x.is_finite()) {
+        return Err(Error::NonFinite { quantity: "guess for p0", t: t0 });
+    }
     let info = Mdl::INFO;
     let gamma = [0, 1, 2].map(|k| trajectory.derivative(t0, k));
+    if !gamma.iter().all(|g| g.iter().all(|x| x.is_finite())) {
+        return Err(Error::NonFinite { quantity: "load target gamma(t0)", t: t0 });
+    }
     let dim = N + M; // unknowns p (N - A), u (A), lambda (M); equations N + M
     let mut z = DVector::<f64>::zeros(dim);
     z.rows_mut(0, p).copy_from(&DVector::from_column_slice(p_guess));
@@ -204,6 +210,9 @@ where
     // Jacobian singular, DESIGN.md §3)
     {
         let (r, jac) = assemble(&z);
+        if !(r.iter().all(|x| x.is_finite()) && jac.iter().all(|x| x.is_finite())) {
+            return Err(Error::NonFinite { quantity: "static balance at the guess", t: t0 });
+        }
         if let Ok(ul) = jac.columns(p, A + M).into_owned().svd(true, true).solve(&(-&r), 1e-12) {
             z.rows_mut(p, A + M).copy_from(&ul);
         }
@@ -213,7 +222,7 @@ where
     let (mut r, mut jac) = assemble(&z);
     let mut norm = r.norm();
     loop {
-        if !norm.is_finite() {
+        if !(norm.is_finite() && jac.iter().all(|x| x.is_finite())) {
             return Err(Error::NonFinite { quantity: "static equilibrium iterate", t: t0 });
         }
         let (row_scale, col_scale) = equilibrate(&jac);
@@ -269,6 +278,10 @@ where
                 jac = jac_trial;
                 norm = trial_norm;
                 break;
+            }
+            if alpha < 1e-3 {
+                // every step length tried gave a non-finite residual
+                return Err(Error::NonFinite { quantity: "static equilibrium step", t: t0 });
             }
             alpha *= 0.5;
         }
