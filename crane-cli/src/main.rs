@@ -380,7 +380,11 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let parameters = crane_runtime::CraneModel::parameter_values(case.model());
     let snapshots = snapshots::svg(&solution.info, &parameters, &solution)?
         .map(|svg| ("snapshots.svg".to_string(), svg));
-    output::write_all(out, &solution, fine.as_deref(), &summary, snapshots.as_slice())?;
+    let derived = output::Derived {
+        names: case.derived_outputs(),
+        values: solution.states.iter().map(|s| case.derived(s)).collect(),
+    };
+    output::write_all(out, &solution, fine.as_deref(), &summary, &derived, snapshots.as_slice())?;
     println!(
         "{name} ({}): {} steps of dt = {dt} s in {:.1} ms ({:.2} Newton iterations per step)",
         formulation.name(),

@@ -13,13 +13,14 @@ use crate::report::Summary;
 
 /// Column names of `results.csv` (DESIGN.md §5): `t`, the coordinates, the
 /// inputs, `lambda1..lambdam`, the rope tensions.
-pub fn header<const N: usize, const M: usize, const A: usize>(solution: &Solution<N, M, A>) -> Vec<String> {
+pub fn header<const N: usize, const M: usize, const A: usize>(solution: &Solution<N, M, A>, derived: &Derived) -> Vec<String> {
     let info = solution.info;
     let mut names = vec!["t".to_string()];
     names.extend(info.coordinates.iter().map(|s| s.to_string()));
     names.extend(info.inputs.iter().map(|s| s.to_string()));
     names.extend((1..=M).map(|i| format!("lambda{i}")));
     names.extend(info.ropes.iter().map(|r| r.tension.to_string()));
+    names.extend(derived.names.iter().map(|s| s.to_string()));
     names
 }
 
@@ -28,16 +29,31 @@ fn io_error(context: impl Into<String>) -> impl FnOnce(std::io::Error) -> CliErr
     move |source| CliError::Io { context, source }
 }
 
-fn write_csv<const N: usize, const M: usize, const A: usize>(path: &Path, solution: &Solution<N, M, A>) -> Result<(), CliError> {
+/// Outputs derived from each state (e.g. the slewing angle), one row per state.
+pub struct Derived {
+    /// Column names.
+    pub names: &'static [&'static str],
+    /// `values[i]` belongs to state `i`.
+    pub values: Vec<Vec<f64>>,
+}
+
+fn write_csv<const N: usize, const M: usize, const A: usize>(
+    path: &Path,
+    solution: &Solution<N, M, A>,
+    derived: &Derived,
+) -> Result<(), CliError> {
     let failed = |e: csv::Error| CliError::Output { what: path.display().to_string(), message: e.to_string() };
     let mut writer = csv::Writer::from_path(path).map_err(failed)?;
-    writer.write_record(header(solution)).map_err(failed)?;
+    writer.write_record(header(solution, derived)).map_err(failed)?;
     let mut row: Vec<String> = Vec::new();
     for (i, s) in solution.states.iter().enumerate() {
         row.clear();
         row.push(format!("{}", s.t));
         row.extend(s.q.iter().chain(s.u.iter()).chain(s.lambda.iter()).map(|v| format!("{v:e}")));
         row.extend(solution.tensions_at(i).iter().map(|v| format!("{v:e}")));
+        if let Some(values) = derived.values.get(i) {
+            row.extend(values.iter().map(|v| format!("{v:e}")));
+        }
         writer.write_record(&row).map_err(failed)?;
     }
     writer.flush().map_err(io_error(format!("writing {}", path.display())))
@@ -50,6 +66,7 @@ pub fn write_all<const N: usize, const M: usize, const A: usize>(
     solution: &Solution<N, M, A>,
     references: Option<&[State<N, M, A>]>,
     summary: &Summary,
+    derived: &Derived,
     extra: &[(String, String)],
 ) -> Result<(), CliError> {
     fs::create_dir_all(out).map_err(io_error(format!("creating {}", out.display())))?;
@@ -61,7 +78,7 @@ pub fn write_all<const N: usize, const M: usize, const A: usize>(
             staged.push((temporary.clone(), final_path));
             temporary
         };
-        write_csv(&stage("results.csv"), solution)?;
+        write_csv(&stage("results.csv"), solution, derived)?;
         let json = serde_json::to_string_pretty(summary)
             .map_err(|e| CliError::Output { what: "summary.json".into(), message: e.to_string() })?;
         let path = stage("summary.json");

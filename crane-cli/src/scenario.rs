@@ -191,6 +191,15 @@ pub trait Crane<const N: usize, const M: usize, const A: usize> {
         options: &Options,
         progress: &mut dyn FnMut(usize, usize),
     ) -> Option<Result<Solution<N, M, A>, Error>>;
+    /// Names of derived outputs (see `crane_models::Case::derived_outputs`).
+    fn derived_outputs() -> &'static [&'static str] {
+        &[]
+    }
+    /// The derived outputs of a state.
+    fn derived(state: &State<N, M, A>) -> Vec<f64> {
+        let _ = state;
+        Vec::new()
+    }
 }
 
 fn finite_state<const N: usize, const M: usize, const A: usize>(
@@ -302,6 +311,12 @@ impl Crane<8, 4, 3> for PlanarPulley {
 }
 
 impl Crane<11, 4, 3> for Crane3d {
+    fn derived_outputs() -> &'static [&'static str] {
+        &["phi"]
+    }
+    fn derived(state: &State<11, 4, 3>) -> Vec<f64> {
+        vec![navy_3d::slewing_angle(state)]
+    }
     type Model = navy_3d::Navy3d;
     fn model() -> Self::Model {
         Self::Model::default()
@@ -341,6 +356,12 @@ impl Crane<11, 4, 3> for Crane3d {
 pub struct Crane3dPulley;
 
 impl Crane<12, 5, 4> for Crane3dPulley {
+    fn derived_outputs() -> &'static [&'static str] {
+        &["phi"]
+    }
+    fn derived(state: &State<12, 5, 4>) -> Vec<f64> {
+        vec![navy_3d_pulley::slewing_angle(state)]
+    }
     type Model = navy_3d_pulley::Navy3dPulley;
     fn model() -> Self::Model {
         Self::Model::default()
@@ -406,6 +427,12 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> crane_mo
     }
     fn reference(&self, t: f64) -> Option<State<N, M, A>> {
         C::reference(&self.model, &self.path, t)
+    }
+    fn derived_outputs(&self) -> &'static [&'static str] {
+        C::derived_outputs()
+    }
+    fn derived(&self, state: &State<N, M, A>) -> Vec<f64> {
+        C::derived(state)
     }
     fn simulate_minimal_with_progress(
         &self,

@@ -46,6 +46,18 @@ pub trait Case<const N: usize, const M: usize, const A: usize> {
     /// The analytical reference at `t`, if the crane has one.
     fn reference(&self, t: f64) -> Option<State<N, M, A>>;
 
+    /// Names of outputs derived from a state (e.g. the slewing angle `phi`
+    /// of the 3D cranes); columns of the results after the tensions.
+    fn derived_outputs(&self) -> &'static [&'static str] {
+        &[]
+    }
+
+    /// The derived outputs of `state`, in the order of [`derived_outputs`](Self::derived_outputs).
+    fn derived(&self, state: &State<N, M, A>) -> Vec<f64> {
+        let _ = state;
+        Vec::new()
+    }
+
     /// Run the inverse dynamics in minimal coordinates (eqs. 24a-e) from
     /// `start`, if the crane declares a minimal-coordinate map; `None` if not.
     fn simulate_minimal(&self, start: &State<N, M, A>, options: &Options) -> Option<Result<Solution<N, M, A>, Error>> {

@@ -104,6 +104,15 @@ impl crate::Case<11, 4, 3> for PaperCase {
 
     /// The flatness-based solution of [`reference`](super::reference) (the
     /// paper gives none for the 3D cranes).
+    fn derived_outputs(&self) -> &'static [&'static str] {
+        &["phi"]
+    }
+
+    /// The slewing angle `phi = atan2(y, x)` of the boom tip [rad].
+    fn derived(&self, state: &State<11, 4, 3>) -> Vec<f64> {
+        vec![slewing_angle(state)]
+    }
+
     fn reference(&self, t: f64) -> Option<State<11, 4, 3>> {
         let r = reference_at(&self.params(), &self.path, t)?;
         let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());

@@ -165,6 +165,15 @@ impl crate::Case<12, 5, 4> for PaperCase {
     }
 
     /// None: the paper gives no analytical solution for the 3D cranes.
+    fn derived_outputs(&self) -> &'static [&'static str] {
+        &["phi"]
+    }
+
+    /// The slewing angle `phi = atan2(y, x)` of the boom tip [rad].
+    fn derived(&self, state: &State<12, 5, 4>) -> Vec<f64> {
+        vec![slewing_angle(state)]
+    }
+
     fn reference(&self, _t: f64) -> Option<State<12, 5, 4>> {
         None
     }
