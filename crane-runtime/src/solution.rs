@@ -56,6 +56,39 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         self.newton_iterations.iter().sum::<usize>() as f64 / steps as f64
     }
 
+    /// Self-convergence without a reference: per input, the largest
+    /// `|u_k(dt) - u_k(dt/2)|` between this run and `finer`, a run of the
+    /// same case with half the step, over this run's times `t` with
+    /// `include(t)`, and the time where it occurs. For backward Euler it
+    /// halves with dt (`u(dt) = u + C(t) dt + O(dt^2)`). `None` if `finer`
+    /// does not have exactly twice the steps on the same time grid.
+    pub fn input_difference(
+        &self,
+        finer: &Solution<N, M, A>,
+        include: impl Fn(f64) -> bool,
+    ) -> Option<[(f64, f64); A]> {
+        if finer.steps() != 2 * self.steps() {
+            return None;
+        }
+        let mut worst = [(0.0, 0.0); A];
+        for (i, coarse) in self.states.iter().enumerate() {
+            let fine = &finer.states[2 * i];
+            if (coarse.t - fine.t).abs() > 1e-9 * coarse.t.abs().max(1.0) {
+                return None;
+            }
+            if !include(coarse.t) {
+                continue;
+            }
+            for (k, w) in worst.iter_mut().enumerate() {
+                let d = (coarse.u[k] - fine.u[k]).abs();
+                if d > w.0 {
+                    *w = (d, coarse.t);
+                }
+            }
+        }
+        Some(worst)
+    }
+
     /// The state whose time is nearest to `t`.
     pub fn state_near(&self, t: f64) -> Option<&State<N, M, A>> {
         self.states

@@ -14,23 +14,14 @@ mod gantry;
 #[path = "../examples/tower_crane.rs"]
 mod tower;
 
-/// `D(dt) = max |u(dt) - u(dt/2)|` over the coarse run's times (each is a
-/// time of the fine run), and where it sits.
+/// `D(dt) = max |u(dt) - u(dt/2)|` over the coarse run's times and inputs,
+/// and where it sits (`Solution::input_difference`).
 fn max_u_difference<const N: usize, const M: usize, const A: usize>(
     coarse: &Solution<N, M, A>,
     fine: &Solution<N, M, A>,
 ) -> (f64, f64) {
-    assert_eq!(2 * coarse.steps(), fine.steps());
-    let mut worst = (0.0, 0.0);
-    for (i, c) in coarse.states.iter().enumerate() {
-        let f = &fine.states[2 * i];
-        assert!((c.t - f.t).abs() < 1e-9, "{} vs {}", c.t, f.t);
-        let d = (c.u - f.u).amax();
-        if d > worst.0 {
-            worst = (d, c.t);
-        }
-    }
-    worst
+    let per_input = coarse.input_difference(fine, |_| true).expect("fine run has half the step");
+    per_input.into_iter().fold((0.0, 0.0), |w, d| if d.0 > w.0 { d } else { w })
 }
 
 /// Self-convergence of backward Euler (order 1): `u(dt) = u + C(t) dt +

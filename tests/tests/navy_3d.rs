@@ -557,20 +557,11 @@ fn u_converges_to_the_reference_with_order_one() {
     }
 }
 
-/// `max |u(dt) - u(dt/2)|` over the times of the coarse run (each one is a
-/// time of the fine run), and where it occurs.
+/// `max |u(dt) - u(dt/2)|` over the times of the coarse run and the inputs,
+/// and where it occurs (`Solution::input_difference`).
 fn max_u_difference(coarse: &Run, fine: &Run) -> (f64, f64) {
-    assert_eq!(2 * coarse.steps(), fine.steps());
-    let mut worst = (0.0, 0.0);
-    for (i, c) in coarse.states.iter().enumerate() {
-        let f = &fine.states[2 * i];
-        assert!((c.t - f.t).abs() < 1e-9, "{} vs {}", c.t, f.t);
-        let d = (c.u - f.u).amax();
-        if d > worst.0 {
-            worst = (d, c.t);
-        }
-    }
-    worst
+    let per_input = coarse.input_difference(fine, |_| true).expect("fine run has half the step");
+    per_input.into_iter().fold((0.0, 0.0), |w, d| if d.0 > w.0 { d } else { w })
 }
 
 /// Self-convergence without a reference: `D(dt) = max_t |u(dt) - u(dt/2)|`

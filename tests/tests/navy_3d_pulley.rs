@@ -229,25 +229,12 @@ fn runs_converge_and_ropes_stay_taut() {
     }
 }
 
-/// Per input, `max |u_k(dt) - u_k(dt/2)|` over the coarse run's times
-/// (each a time of the fine run) with `|t - switch| > window`, and where.
+/// Per input, `max |u_k(dt) - u_k(dt/2)|` over the coarse run's times with
+/// `|t - switch| > window`, and where (`Solution::input_difference`).
 fn max_u_difference(coarse: &Run, fine: &Run, window: f64) -> [(f64, f64); 4] {
-    assert_eq!(2 * coarse.steps(), fine.steps());
-    let mut worst = [(0.0, 0.0); 4];
-    for (i, c) in coarse.states.iter().enumerate() {
-        let f = &fine.states[2 * i];
-        assert!((c.t - f.t).abs() < 1e-9);
-        if SWITCHES.iter().any(|s| (c.t - s).abs() <= window) {
-            continue;
-        }
-        for (k, w) in worst.iter_mut().enumerate() {
-            let d = (c.u[k] - f.u[k]).abs();
-            if d > w.0 {
-                *w = (d, c.t);
-            }
-        }
-    }
-    worst
+    coarse
+        .input_difference(fine, |t| SWITCHES.iter().all(|s| (t - s).abs() > window))
+        .expect("fine run has half the step")
 }
 
 /// `D(dt)` for dt = 0.1, 0.05, 0.025 (against dt/2) and the ratios D(dt)/D(dt/2).
