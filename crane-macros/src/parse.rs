@@ -584,9 +584,10 @@ fn parse_section(
                 );
                 return;
             }
+            let end = expr_tokens.clone().into_iter().last().map(|tt| tt.span());
             match parse_expr.parse2(expr_tokens) {
                 Ok(expr) => store(&mut sections.kinetic, keyword, range, expr, cx),
-                Err(error) => cx.syn_error(error),
+                Err(error) => cx.syn_error(at_end_of(error, end)),
             }
         }
         "forces" => {
@@ -668,12 +669,36 @@ fn parse_items<T>(
             }
             continue;
         }
-        match parser.parse2(chunk) {
+        let end = chunk.clone().into_iter().last().map(|tt| tt.span());
+        // a token missing at the very end (`params { g }`: "expected `=`")
+        // is reported by syn at the macro call; move it to the chunk's end
+        let parse_chunk = |input: ParseStream| {
+            parser(input).map_err(|error| {
+                let missing_token = input.is_empty() && error.to_string().starts_with("expected `");
+                match end {
+                    Some(span) if missing_token => syn::Error::new(span, error.to_string()),
+                    _ => error,
+                }
+            })
+        };
+        match parse_chunk.parse2(chunk) {
             Ok(item) => items.push(item),
-            Err(error) => cx.syn_error(error),
+            Err(error) => cx.syn_error(at_end_of(error, end)),
         }
     }
     items
+}
+
+/// syn reports "unexpected end of input" at the macro call when a re-parsed
+/// chunk ends too early (`params { g }`); point at the chunk's last token
+/// instead, where the user has to continue.
+fn at_end_of(error: syn::Error, end: Option<Span>) -> syn::Error {
+    match end {
+        Some(span) if error.to_string().starts_with("unexpected end of input") => {
+            syn::Error::new(span, error.to_string())
+        }
+        _ => error,
+    }
 }
 
 fn parse_names(group: &TokenTree, cx: &Ctxt) -> Vec<Ident> {
