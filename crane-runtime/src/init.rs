@@ -12,6 +12,7 @@ use nalgebra::{DMatrix, DVector, SVector};
 
 use crate::error::Error;
 use crate::model::CraneModel;
+use crate::newton::normalised_residual;
 use crate::redundant::check_parameters;
 use crate::solution::State;
 use crate::trajectory::Trajectory;
@@ -242,12 +243,7 @@ where
             let size = z.rows_range(block.clone()).amax();
             step.rows_range(block).amax() <= 1e-11 * size
         });
-        let normalised = (0..dim)
-            .map(|i| {
-                let scale: f64 = (0..dim).map(|j| (jac[(i, j)] * z[j]).abs()).sum();
-                if scale > 0.0 { r[i].abs() / scale } else if r[i] == 0.0 { 0.0 } else { f64::INFINITY }
-            })
-            .fold(0.0, f64::max);
+        let normalised = normalised_residual(&r, &jac, &z, |_| 0.0);
         if converged_step || normalised <= 1e-14 || norm == 0.0 {
             let ratio = svd.singular_values.min() / sigma_max;
             if ratio < RANK_TOLERANCE {

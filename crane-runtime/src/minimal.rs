@@ -34,7 +34,7 @@ use num_dual::Dual64;
 use crate::error::Error;
 use crate::linsolve::DenseSolver;
 use crate::model::{MinimalMap, Scalar};
-use crate::newton::{Newton, NewtonOptions, NonlinearSystem};
+use crate::newton::{Newton, NewtonOptions, NonlinearSystem, normalised_residual};
 use crate::redundant::{
     Options, ServoTarget, StepReport, Stepper, check_parameters, check_target, run_steps, servo_target, step_count, step_error,
 };
@@ -166,17 +166,7 @@ where
                 jac[(F + i, s_col)] = p[(off + i, split + k)];
             }
         }
-        // normalise by |J| |z| (see the redundant scheme): round-off shows as ~1e-16
-        let mut normalised = 0.0f64;
-        for i in 0..Self::DIM {
-            let scale = (0..Self::DIM).map(|j| (jac[(i, j)] * z[j]).abs()).sum::<f64>();
-            if scale > 0.0 {
-                normalised = normalised.max(r[i].abs() / scale);
-            } else if r[i] != 0.0 {
-                normalised = f64::INFINITY;
-            }
-        }
-        normalised
+        normalised_residual(r, jac, z, |_| 0.0)
     }
 
     fn blocks(&self) -> &[Range<usize>] {

@@ -22,6 +22,30 @@ pub trait NonlinearSystem {
     fn blocks(&self) -> &[Range<usize>];
 }
 
+/// The residual normalised row by row, `max_i |r_i| / max(floor(i), sum_j
+/// |J_ij z_j|)`: `sum_j |J_ij z_j|` is the residual a relative perturbation of
+/// the unknowns causes, so round-off shows as ~1e-16 even in rows whose terms
+/// nearly vanish; `floor(i)` adds other sizes of row `i` (its largest term).
+/// A row with zero scale counts as converged only if its residual is exactly
+/// zero.
+pub fn normalised_residual(
+    r: &DVector<f64>,
+    jac: &DMatrix<f64>,
+    z: &DVector<f64>,
+    floor: impl Fn(usize) -> f64,
+) -> f64 {
+    let mut normalised = 0.0f64;
+    for i in 0..r.len() {
+        let scale = (0..z.len()).map(|j| (jac[(i, j)] * z[j]).abs()).sum::<f64>().max(floor(i));
+        if scale > 0.0 {
+            normalised = normalised.max(r[i].abs() / scale);
+        } else if r[i] != 0.0 {
+            normalised = f64::INFINITY;
+        }
+    }
+    normalised
+}
+
 /// Tolerances of [`Newton`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonOptions {

@@ -23,7 +23,7 @@ use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 use crate::error::Error;
 use crate::model::CraneModel;
-use crate::newton::{Newton, NewtonFailure, NewtonOptions, NonlinearSystem};
+use crate::newton::{Newton, NewtonFailure, NewtonOptions, NonlinearSystem, normalised_residual};
 use crate::solution::{Solution, State};
 use crate::trajectory::Trajectory;
 
@@ -150,24 +150,11 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
                 jac[(i, N + l)] = jac_g[(l, i)];
             }
         }
-        // Normalise each row by the size of what makes it up: its largest
-        // term, or |J| |z| (the residual a relative perturbation eps of the
-        // unknowns causes), whichever is larger. Round-off then shows as
-        // ~1e-16 even in rows whose terms nearly vanish (the load row of x
-        // when the load hangs straight below the pulley).
-        let mut normalised = 0.0f64;
-        for i in 0..N + M {
-            let mut scale = (0..N + M).map(|j| (jac[(i, j)] * z[j]).abs()).sum::<f64>();
-            if i < N {
-                scale = scale.max(inertia[i].abs()).max(applied[i].abs());
-            }
-            if scale > 0.0 {
-                normalised = normalised.max(r[i].abs() / scale);
-            } else if r[i] != 0.0 {
-                normalised = f64::INFINITY;
-            }
-        }
-        normalised
+        // dynamic rows also by their largest term (the load row of x nearly
+        // vanishes when the load hangs straight below the pulley)
+        normalised_residual(r, jac, z, |i| {
+            if i < N { inertia[i].abs().max(applied[i].abs()) } else { 0.0 }
+        })
     }
 
     fn blocks(&self) -> &[Range<usize>] {
