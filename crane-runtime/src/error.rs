@@ -5,8 +5,9 @@
 pub enum Error {
     /// Newton's method did not meet its tolerance within the iteration limit.
     #[error(
-        "Newton's method did not converge at t = {t} s after {iterations} iterations \
-         (residual {residual:.3e}); try a smaller dt or check that the path is reachable"
+        "Newton's method did not converge at t = {} s after {iterations} iterations \
+         (residual {residual:.3e}); try a smaller dt or check that the path is reachable",
+        Seconds::of(.t)
     )]
     NewtonNotConverged {
         /// Time of the step that failed.
@@ -17,7 +18,7 @@ pub enum Error {
         residual: f64,
     },
     /// The iteration matrix was singular and the minimum-norm fallback failed too.
-    #[error("singular iteration matrix at t = {t} s (LU pivot ratio {pivot_ratio:.1e})")]
+    #[error("singular iteration matrix at t = {} s (LU pivot ratio {pivot_ratio:.1e})", Seconds::of(.t))]
     SingularIterationMatrix {
         /// Time of the step that failed.
         t: f64,
@@ -25,7 +26,7 @@ pub enum Error {
         pivot_ratio: f64,
     },
     /// A quantity became NaN or infinite during a step.
-    #[error("non-finite {quantity} at t = {t} s")]
+    #[error("non-finite {quantity} at t = {} s", Seconds::of(.t))]
     NonFinite {
         /// What became non-finite.
         quantity: &'static str,
@@ -86,8 +87,9 @@ pub enum Error {
     /// The output Jacobian `D2 phi_x` of a minimal-coordinate map is singular
     /// or ill-conditioned: the split `mu = [mu1; mu2]` does not satisfy eq. (12) there.
     #[error(
-        "D2 phi_x is singular or ill-conditioned at t = {t} s (condition estimate {condition:.1e}): \
-         the split of the minimal coordinates violates eq. (12) on this path"
+        "D2 phi_x is singular or ill-conditioned at t = {} s (condition estimate {condition:.1e}): \
+         the split of the minimal coordinates violates eq. (12) on this path",
+        Seconds::of(.t)
     )]
     SingularOutputJacobian {
         /// Time of the step.
@@ -111,4 +113,85 @@ pub enum Error {
         /// Infinity norm of the residual at the last iterate.
         residual: f64,
     },
+    /// `step_to` was asked for a time that is not the next step's.
+    #[error("a step must go to t_n + dt = {} s, not {} s", Seconds::of(.expected), Seconds::of(.t))]
+    WrongStepTime {
+        /// The requested time.
+        t: f64,
+        /// `t_n + dt`.
+        expected: f64,
+    },
+    /// The run has more steps than can be held in memory.
+    #[error("a run of {steps:.3e} steps cannot be held in memory ({}); use a larger dt or a shorter span", Bytes::of(.bytes))]
+    TooManySteps {
+        /// Steps the run would take.
+        steps: f64,
+        /// Bytes its results would take (infinite if not even countable).
+        bytes: f64,
+    },
+}
+
+/// A time printed as a person writes it: the shortest decimal that reads back
+/// to within 1e-12 s (0.051, not 0.051000000000000004).
+pub struct Seconds(pub f64);
+
+impl Seconds {
+    /// For error messages: `Seconds::of(&t)`.
+    pub fn of(t: &f64) -> Self {
+        Seconds(*t)
+    }
+}
+
+impl std::fmt::Display for Seconds {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let t = self.0;
+        if !t.is_finite() {
+            return write!(f, "{t}");
+        }
+        for digits in 0..=12 {
+            let text = format!("{t:.digits$}");
+            if text.parse::<f64>().is_ok_and(|back| (back - t).abs() <= 1e-12 * t.abs().max(1.0)) {
+                return f.write_str(&text);
+            }
+        }
+        write!(f, "{t}")
+    }
+}
+
+/// A byte count in binary units.
+pub struct Bytes(pub f64);
+
+impl Bytes {
+    /// For error messages: `Bytes::of(&n)`.
+    pub fn of(n: &f64) -> Self {
+        Bytes(*n)
+    }
+}
+
+impl std::fmt::Display for Bytes {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let b = self.0;
+        if !b.is_finite() {
+            return f.write_str("more than can be addressed");
+        }
+        let (value, unit) = [(1u64 << 40, "TiB"), (1 << 30, "GiB"), (1 << 20, "MiB"), (1 << 10, "KiB")]
+            .into_iter()
+            .find(|&(size, _)| b >= size as f64)
+            .map_or((b, "B"), |(size, unit)| (b / size as f64, unit));
+        write!(f, "{value:.1} {unit}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn times_print_as_a_person_writes_them() {
+        assert_eq!(Seconds(0.051000000000000004).to_string(), "0.051");
+        assert_eq!(Seconds(1.5).to_string(), "1.5");
+        assert_eq!(Seconds(2.0).to_string(), "2");
+        assert_eq!(Seconds(1.0 / 3.0).to_string(), "0.333333333333");
+        assert_eq!(Bytes(3.5 * 1024.0 * 1024.0).to_string(), "3.5 MiB");
+    }
 }

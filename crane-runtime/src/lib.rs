@@ -59,6 +59,7 @@
 #![warn(missing_docs)]
 
 pub mod check;
+pub mod driver;
 pub mod error;
 pub mod init;
 pub mod linsolve;
@@ -66,13 +67,16 @@ pub mod minimal;
 pub mod model;
 pub mod newton;
 pub mod redundant;
+pub mod scheme;
 pub mod solution;
 pub mod trajectory;
 
 pub use error::Error;
 pub use model::{CraneModel, MinimalMap, ModelInfo, Rope, Scalar, UnknownParameter};
 pub use minimal::{MinimalStepper, simulate_minimal};
-pub use redundant::{Options, RedundantStepper, simulate};
+pub use driver::{Options, StepReport, Stepper};
+pub use redundant::{RedundantStepper, simulate};
+pub use scheme::Scheme;
 pub use solution::{Solution, State};
 pub use trajectory::Trajectory;
 

@@ -1,10 +1,13 @@
-//! Backward Euler for the minimally extended index-3 DAEs in minimal
-//! coordinates, paper eqs. (24a-e) with (24b-d) as corrected in ERRATA.
+//! The servo problem in minimal coordinates, paper eqs. (24a-e) with
+//! (24b-d) as corrected in ERRATA, on any [`Scheme`].
 //!
 //! With `mu = [mu1; mu2]`, `mu' = [nu1; mu2_hat]` and the reduced quantities
 //! `M~ = P^T M P`, `f~ = P^T f - P^T M P' mu'`, `B~^T = P^T B^T` (eqs. 18-19),
-//! the unknowns of a step are `mu1, mu2, mu2_hat, mu2_tilde, u`;
-//! `nu1 = (mu1 - mu1_n)/dt` (eq. 24a) is eliminated. Rows and unknowns are
+//! the unknowns of a step are `mu1, mu2, mu2_hat, mu2_tilde, u`; the
+//! scheme eliminates `nu1` and `nu1'` as affine functions of `mu1`
+//! (`nu1 = (mu1 - mu1_n)/dt`, eq. 24a, for backward Euler; below written
+//! for it, with `c (mu1 - mu1bar)` and `vbar` of [`crate::scheme`] in place
+//! of `mu1 - mu1_n` and `nu1_n` for BDF-k). Rows and unknowns are
 //! scaled so that the iteration matrix does not degrade with `dt`:
 //! ```text
 //! (24b) dt^2:  M~ [mu1 - mu1_n - dt nu1_n; s] - dt^2 f~ - B~^T ut            = 0   (f rows)
@@ -35,9 +38,12 @@ use crate::error::Error;
 use crate::linsolve::DenseSolver;
 use crate::model::{MinimalMap, Scalar};
 use crate::newton::{Newton, NewtonOptions, NonlinearSystem, normalised_residual};
-use crate::redundant::{
-    Options, ServoTarget, StepReport, Stepper, check_parameters, check_target, run_steps, servo_target, step_count, step_error,
+use crate::driver::{
+    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_time, check_target, record, servo_target,
+    step_count, step_error,
 };
+use crate::init;
+use crate::scheme::{History, Scheme, StepFormula};
 use crate::solution::{Solution, State};
 use crate::trajectory::Trajectory;
 
@@ -51,8 +57,8 @@ struct MinimalEquations<'m, Mdl, const N: usize, const M: usize, const A: usize,
     model: &'m Mdl,
     dt: f64,
     target: ServoTarget<A>,
-    mu_prev: SVector<f64, F>,
-    mu_dot_prev: SVector<f64, F>,
+    /// The scheme's affine maps `mu1 -> nu1, nu1'` for this step.
+    formula: StepFormula<F>,
     blocks: [Range<usize>; 4],
 }
 
@@ -75,12 +81,15 @@ where
         let split = F - A;
         let dt = self.dt;
         let mu = SVector::<T, F>::from_fn(|i, _| z(i));
-        let mu_dot = SVector::<T, F>::from_fn(|i, _| {
-            if i < split { (z(i) - self.mu_prev[i]) * (1.0 / dt) } else { z(F + i - split) * (1.0 / dt) }
-        });
-        let accel_dt2 = SVector::<T, F>::from_fn(|i, _| {
-            if i < split { z(i) - self.mu_prev[i] - dt * self.mu_dot_prev[i] } else { z(F + A + i - split) }
-        });
+        let mut mu_dot = SVector::<T, F>::zeros();
+        let mut accel_dt2 = SVector::<T, F>::zeros();
+        for i in 0..F {
+            (mu_dot[i], accel_dt2[i]) = if i < split {
+                self.formula.kinematics(i, z(i), dt) // eq. (24a)
+            } else {
+                (z(F + i - split) * (1.0 / dt), z(F + A + i - split))
+            };
+        }
         [mu, mu_dot, accel_dt2]
     }
 
@@ -218,7 +227,7 @@ where
     Err(Error::MinimalStartNotFound { iterations: MAX_ITERATIONS, residual: f64::NAN })
 }
 
-/// Backward Euler on eqs. (24a-e), one step at a time; [`step`](Self::step)
+/// Eqs. (24a-e) on a [`Scheme`], one step at a time; [`step`](Self::step)
 /// does not allocate.
 pub struct MinimalStepper<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize> {
     equations: MinimalEquations<'m, Mdl, N, M, A, F>,
@@ -228,6 +237,9 @@ pub struct MinimalStepper<'m, Mdl, Tr, const N: usize, const M: usize, const A: 
     /// Converged unknowns of the last three steps, newest first, for the predictor.
     history: [DVector<f64>; 3],
     known: usize,
+    scheme: Scheme,
+    /// Past `mu` and `mu'` (only the `mu1` rows are used by the scheme).
+    past: History<F>,
     state: State<N, M, A>,
     t0: f64,
     steps: usize,
@@ -244,14 +256,28 @@ where
     Mdl: MinimalMap<N, M, A, F>,
     Tr: Trajectory<A>,
 {
-    /// A stepper from a consistent redundant `start`, with `mu_guess` a rough
-    /// guess of the minimal coordinates there.
+    /// A backward-Euler stepper from a consistent redundant `start`, with
+    /// `mu_guess` a rough guess of the minimal coordinates there.
     pub fn new(
         model: &'m Mdl,
         trajectory: Tr,
         start: &State<N, M, A>,
         mu_guess: &SVector<f64, F>,
         dt: f64,
+        newton: NewtonOptions,
+    ) -> Result<Self, Error> {
+        Self::with_scheme(model, trajectory, start, mu_guess, dt, Scheme::BackwardEuler, newton)
+    }
+
+    /// A stepper on `scheme`; the scheme's history before the start comes
+    /// from [`init::history`].
+    pub fn with_scheme(
+        model: &'m Mdl,
+        trajectory: Tr,
+        start: &State<N, M, A>,
+        mu_guess: &SVector<f64, F>,
+        dt: f64,
+        scheme: Scheme,
         newton: NewtonOptions,
     ) -> Result<Self, Error> {
         if !(dt.is_finite() && dt > 0.0) {
@@ -271,12 +297,12 @@ where
         }
         // s = dt^2 mu2'' at the start: from rest it is 0 (gamma'' = 0 there);
         // otherwise Newton's first iterate corrects it
+        let past = init::history(&trajectory, start, mu, mu_dot);
         let equations = MinimalEquations {
             model,
             dt,
             target: [SVector::zeros(); 3],
-            mu_prev: mu,
-            mu_dot_prev: mu_dot,
+            formula: past.formula(scheme, dt),
             blocks: [0..F, F..F + A, F + A..F + 2 * A, F + 2 * A..dim],
         };
         let mut stepper = Self {
@@ -286,6 +312,8 @@ where
             history: [z.clone(), z.clone(), z.clone()],
             z,
             known: 1,
+            scheme,
+            past,
             state: *start,
             t0: start.t,
             steps: 0,
@@ -308,7 +336,12 @@ where
 
     /// The minimal coordinates `mu` and velocities `mu'` after the last step.
     pub fn minimal_state(&self) -> (SVector<f64, F>, SVector<f64, F>) {
-        (self.equations.mu_prev, self.equations.mu_dot_prev)
+        (*self.past.value(), *self.past.rate())
+    }
+
+    /// The scheme.
+    pub fn scheme(&self) -> Scheme {
+        self.scheme
     }
 
     /// Advance one step along the stepper's trajectory.
@@ -317,11 +350,14 @@ where
         self.step_to(t, &servo_target(&self.trajectory, t))
     }
 
-    /// Advance one step to time `t = t_n + dt` with the load target
+    /// Advance one step to time `t`, which must be `t_n + dt`
+    /// ([`Error::WrongStepTime`] otherwise), with the load target
     /// `gamma, gamma', gamma''` at `t`.
     pub fn step_to(&mut self, t: f64, target: &ServoTarget<A>) -> Result<StepReport, Error> {
+        check_step_time(t, self.state.t, self.equations.dt)?;
         check_target(target, t)?;
         self.equations.target = *target;
+        self.equations.formula = self.past.formula(self.scheme, self.equations.dt);
         // predictor: quadratic extrapolation of the last three steps; before
         // that, the previous step. (Measured on navy-planar, tf = 4 s: from
         // the previous step alone Newton fails by t = 0.8 s at dt = 0.1; a
@@ -362,8 +398,7 @@ where
         let lambda = SVector::<f64, M>::from_fn(|i, _| self.normal_rhs[i]);
         self.check_output_jacobian(&p, t)?;
         self.state = State { t, q, v, u, lambda };
-        self.equations.mu_prev = mu;
-        self.equations.mu_dot_prev = mu_dot;
+        self.past.push(mu, mu_dot);
         let [h0, h1, h2] = &mut self.history;
         std::mem::swap(h1, h2);
         std::mem::swap(h0, h1);
@@ -404,7 +439,7 @@ where
     }
 }
 
-/// Integrate eqs. (24a-e) from the redundant `start` to `options.tf`;
+/// Integrate eqs. (24a-e) from the redundant `start` to `options.tf` with `options.scheme`;
 /// `mu_guess` is a rough guess of the minimal coordinates at the start.
 pub fn simulate_minimal<Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize>(
     model: &Mdl,
@@ -434,8 +469,9 @@ where
     Tr: Trajectory<A>,
 {
     let steps = step_count(start.t, options.tf, options.dt)?;
-    let mut stepper = MinimalStepper::new(model, trajectory, start, mu_guess, options.dt, options.newton)?;
-    run_steps(model, start, &mut stepper, steps, options.dt, &mut progress)
+    let mut stepper =
+        MinimalStepper::with_scheme(model, trajectory, start, mu_guess, options.dt, options.scheme, options.newton)?;
+    record(model, start, &mut stepper, steps, options.dt, &mut progress)
 }
 
 impl<Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize> Stepper<N, M, A>

@@ -3,7 +3,8 @@
 
 use nalgebra::SVector;
 
-use crate::model::ModelInfo;
+use crate::error::Error;
+use crate::model::{CraneModel, ModelInfo};
 
 /// The crane's state at one time: what the scheme of eqs. (22a-d) computes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,6 +40,42 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
 }
 
 impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
+    /// An empty solution with room for `states` states, or
+    /// [`Error::TooManySteps`] if that much cannot be reserved.
+    pub fn with_capacity(info: ModelInfo, dt: f64, states: usize) -> Result<Self, Error> {
+        let ropes = info.ropes.len();
+        let per_state = std::mem::size_of::<State<N, M, A>>() + std::mem::size_of::<usize>() + ropes * 8;
+        let too_many = || Error::TooManySteps {
+            steps: states.saturating_sub(1) as f64,
+            bytes: states as f64 * per_state as f64,
+        };
+        let mut solution = Solution { info, dt, states: Vec::new(), newton_iterations: Vec::new(), tensions: Vec::new(), min_norm_steps: 0 };
+        solution.states.try_reserve_exact(states).map_err(|_| too_many())?;
+        solution.newton_iterations.try_reserve_exact(states).map_err(|_| too_many())?;
+        solution.tensions.try_reserve_exact(states.checked_mul(ropes).ok_or_else(too_many)?).map_err(|_| too_many())?;
+        Ok(solution)
+    }
+
+    /// Append a state with its Newton counts and rope tensions `N = lambda L`
+    /// (`lengths` is scratch space, one entry per rope). Does not allocate
+    /// within the reserved capacity.
+    pub fn push<Mdl: CraneModel<N, M, A>>(
+        &mut self,
+        model: &Mdl,
+        state: &State<N, M, A>,
+        iterations: usize,
+        min_norm_steps: usize,
+        lengths: &mut [f64],
+    ) {
+        self.states.push(*state);
+        self.newton_iterations.push(iterations);
+        self.min_norm_steps += min_norm_steps;
+        model.rope_lengths(&state.q, lengths);
+        for (rope, length) in self.info.ropes.iter().zip(lengths.iter()) {
+            self.tensions.push(state.lambda[rope.constraint] * length);
+        }
+    }
+
     /// Number of time steps taken (states minus the start).
     pub fn steps(&self) -> usize {
         self.states.len().saturating_sub(1)

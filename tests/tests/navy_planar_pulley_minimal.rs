@@ -297,9 +297,8 @@ fn minimal_coordinates_are_exact_when_newton_iterates_to_round_off() {
             .simulate_minimal(
                 &start,
                 &Options {
-                    dt: *dt,
-                    tf: case.tf(),
                     newton,
+                    ..Options::new(*dt, case.tf())
                 },
             )
             .unwrap()
