@@ -26,7 +26,12 @@ pub struct Options {
 impl Options {
     /// `dt` and `tf` with backward Euler and default Newton tolerances.
     pub fn new(dt: f64, tf: f64) -> Self {
-        Self { dt, tf, scheme: Scheme::default(), newton: NewtonOptions::default() }
+        Self {
+            dt,
+            tf,
+            scheme: Scheme::default(),
+            newton: NewtonOptions::default(),
+        }
     }
 
     /// The same settings with another scheme.
@@ -57,7 +62,10 @@ pub trait Stepper<const N: usize, const M: usize, const A: usize> {
 }
 
 /// The load target `gamma, gamma', gamma''` of the step to `t`.
-pub(crate) fn servo_target<const A: usize>(trajectory: &impl Trajectory<A>, t: f64) -> ServoTarget<A> {
+pub(crate) fn servo_target<const A: usize>(
+    trajectory: &impl Trajectory<A>,
+    t: f64,
+) -> ServoTarget<A> {
     [0, 1, 2].map(|k| trajectory.derivative(t, k))
 }
 
@@ -66,26 +74,53 @@ pub(crate) fn check_target<const A: usize>(target: &ServoTarget<A>, t: f64) -> R
     if target.iter().all(|x| x.iter().all(|v| v.is_finite())) {
         Ok(())
     } else {
-        Err(Error::NonFinite { quantity: "load target gamma(t)", t })
+        Err(Error::NonFinite {
+            quantity: "load target gamma(t)",
+            t,
+        })
     }
 }
 
 /// Refuse a step to `t` that is not `t_n + dt` (to 1e-9 of the step).
 pub(crate) fn check_step_time(t: f64, t_prev: f64, dt: f64) -> Result<(), Error> {
-    if (t - (t_prev + dt)).abs() <= 1e-9 * dt { Ok(()) } else { Err(Error::WrongStepTime { t, expected: t_prev + dt }) }
+    if (t - (t_prev + dt)).abs() <= 1e-9 * dt {
+        Ok(())
+    } else {
+        Err(Error::WrongStepTime {
+            t,
+            expected: t_prev + dt,
+        })
+    }
 }
 
 /// The runtime error for a failed Newton solve of the step to `t`.
 pub(crate) fn step_error(failure: NewtonFailure, t: f64) -> Error {
     match failure {
-        NewtonFailure::NotConverged { iterations, residual } => Error::NewtonNotConverged { t, iterations, residual },
-        NewtonFailure::Singular { pivot_ratio } => Error::SingularIterationMatrix { t, pivot_ratio },
-        NewtonFailure::NonFinite => Error::NonFinite { quantity: "Newton iterate", t },
+        NewtonFailure::NotConverged {
+            iterations,
+            residual,
+        } => Error::NewtonNotConverged {
+            t,
+            iterations,
+            residual,
+        },
+        NewtonFailure::Singular { pivot_ratio } => {
+            Error::SingularIterationMatrix { t, pivot_ratio }
+        }
+        NewtonFailure::NonFinite => Error::NonFinite {
+            quantity: "Newton iterate",
+            t,
+        },
     }
 }
 
 /// Refuse NaN or infinite parameters before they turn into NaN results.
-pub(crate) fn check_parameters<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+pub(crate) fn check_parameters<
+    Mdl: CraneModel<N, M, A>,
+    const N: usize,
+    const M: usize,
+    const A: usize,
+>(
     model: &Mdl,
 ) -> Result<(), Error> {
     for (name, value) in Mdl::INFO.parameters.iter().zip(model.parameter_values()) {
@@ -113,7 +148,10 @@ pub fn step_count(t0: f64, tf: f64, dt: f64) -> Result<usize, Error> {
     }
     // beyond 2^53 steps the times t0 + i dt no longer differ step by step
     if steps >= 2f64.powi(53) {
-        return Err(Error::TooManySteps { steps, bytes: f64::INFINITY });
+        return Err(Error::TooManySteps {
+            steps,
+            bytes: f64::INFINITY,
+        });
     }
     Ok(steps as usize)
 }
@@ -151,7 +189,13 @@ where
     let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
     solution.push(model, start, 0, 0, &mut lengths);
     run(stepper, steps, |step, state, report| {
-        solution.push(model, state, report.iterations, report.min_norm_steps, &mut lengths);
+        solution.push(
+            model,
+            state,
+            report.iterations,
+            report.min_norm_steps,
+            &mut lengths,
+        );
         progress(step, steps);
         Ok(())
     })?;

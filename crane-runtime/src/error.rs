@@ -64,7 +64,9 @@ pub enum Error {
         value: f64,
     },
     /// A user-given start violates an equation that a consistent start must satisfy.
-    #[error("inconsistent start: {equation} is violated by {residual:.3e} (tolerance {tolerance:.1e})")]
+    #[error(
+        "inconsistent start: {equation} is violated by {residual:.3e} (tolerance {tolerance:.1e})"
+    )]
     InconsistentStart {
         /// The violated equation, named as in the model, e.g. "constraint `hoist` (g = 0)".
         equation: String,
@@ -98,7 +100,9 @@ pub enum Error {
         condition: f64,
     },
     /// Solving `phi(mu0) = q0` for the minimal start did not converge.
-    #[error("no minimal coordinates mu0 with phi(mu0) = q0 found from the guess: residual {residual:.3e} after {iterations} iterations")]
+    #[error(
+        "no minimal coordinates mu0 with phi(mu0) = q0 found from the guess: residual {residual:.3e} after {iterations} iterations"
+    )]
     MinimalStartNotFound {
         /// Iterations taken.
         iterations: usize,
@@ -106,7 +110,9 @@ pub enum Error {
         residual: f64,
     },
     /// The static-equilibrium Newton iteration did not converge.
-    #[error("no static equilibrium found from the guess: residual {residual:.3e} after {iterations} iterations")]
+    #[error(
+        "no static equilibrium found from the guess: residual {residual:.3e} after {iterations} iterations"
+    )]
     EquilibriumNotFound {
         /// Iterations taken.
         iterations: usize,
@@ -150,7 +156,10 @@ impl std::fmt::Display for Seconds {
         }
         for digits in 0..=12 {
             let text = format!("{t:.digits$}");
-            if text.parse::<f64>().is_ok_and(|back| (back - t).abs() <= 1e-12 * t.abs().max(1.0)) {
+            if text
+                .parse::<f64>()
+                .is_ok_and(|back| (back - t).abs() <= 1e-12 * t.abs().max(1.0))
+            {
                 return f.write_str(&text);
             }
         }
@@ -174,10 +183,15 @@ impl std::fmt::Display for Bytes {
         if !b.is_finite() {
             return f.write_str("more than can be addressed");
         }
-        let (value, unit) = [(1u64 << 40, "TiB"), (1 << 30, "GiB"), (1 << 20, "MiB"), (1 << 10, "KiB")]
-            .into_iter()
-            .find(|&(size, _)| b >= size as f64)
-            .map_or((b, "B"), |(size, unit)| (b / size as f64, unit));
+        let (value, unit) = [
+            (1u64 << 40, "TiB"),
+            (1 << 30, "GiB"),
+            (1 << 20, "MiB"),
+            (1 << 10, "KiB"),
+        ]
+        .into_iter()
+        .find(|&(size, _)| b >= size as f64)
+        .map_or((b, "B"), |(size, unit)| (b / size as f64, unit));
         write!(f, "{value:.1} {unit}")
     }
 }

@@ -10,11 +10,10 @@
 
 use nalgebra::{DMatrix, DVector, SVector};
 
-
+use crate::driver::check_parameters;
 use crate::error::Error;
 use crate::model::CraneModel;
 use crate::newton::normalised_residual;
-use crate::driver::check_parameters;
 use crate::scheme::History;
 use crate::solution::State;
 use crate::trajectory::Trajectory;
@@ -77,7 +76,10 @@ where
         v[p + k] = gamma[1][k];
     }
     if !(q.iter().all(|x| x.is_finite()) && v.iter().all(|x| x.is_finite())) {
-        return Err(Error::NonFinite { quantity: "start state", t: t0 });
+        return Err(Error::NonFinite {
+            quantity: "start state",
+            t: t0,
+        });
     }
 
     // g = 0 (eq. 22d); g carries a factor 1/2 of squared lengths
@@ -90,9 +92,11 @@ where
     // G q' = 0 (eq. 23)
     let jac_g = model.constraint_jacobian(&q);
     let gv = jac_g * v;
-    worst_row(gv.as_slice(), CONSISTENCY_TOLERANCE * scale * v.amax().max(1.0), |i| {
-        format!("velocity constraint of `{}` (eq. 23)", info.constraints[i])
-    })?;
+    worst_row(
+        gv.as_slice(),
+        CONSISTENCY_TOLERANCE * scale * v.amax().max(1.0),
+        |i| format!("velocity constraint of `{}` (eq. 23)", info.constraints[i]),
+    )?;
 
     // static balance: B^T u - G^T lambda = M q'' - f, least squares in (u, lambda)
     let mut accel = SVector::<f64, N>::zeros();
@@ -103,20 +107,32 @@ where
     let bt = model.input_matrix(&q);
     let mut balance = DMatrix::<f64>::zeros(N, A + M);
     balance.view_mut((0, 0), (N, A)).copy_from(&bt);
-    balance.view_mut((0, A), (N, M)).copy_from(&(-jac_g.transpose()));
+    balance
+        .view_mut((0, A), (N, M))
+        .copy_from(&(-jac_g.transpose()));
     let rhs_dyn = DVector::from_column_slice(rhs.as_slice());
     let solution = balance
         .clone()
         .svd(true, true)
         .solve(&rhs_dyn, 1e-14)
-        .map_err(|_| Error::NonFinite { quantity: "static balance", t: t0 })?;
+        .map_err(|_| Error::NonFinite {
+            quantity: "static balance",
+            t: t0,
+        })?;
     let at_rest = v.iter().all(|x| *x == 0.0);
     if at_rest {
         let residual = &balance * &solution - &rhs_dyn;
         let force_scale = rhs.amax().max((&balance * &solution).amax()).max(1.0);
-        worst_row(residual.as_slice(), CONSISTENCY_TOLERANCE * force_scale, |i| {
-            format!("static balance of coordinate `{}` (eq. 1a)", info.coordinates[i])
-        })?;
+        worst_row(
+            residual.as_slice(),
+            CONSISTENCY_TOLERANCE * force_scale,
+            |i| {
+                format!(
+                    "static balance of coordinate `{}` (eq. 1a)",
+                    info.coordinates[i]
+                )
+            },
+        )?;
     }
     Ok(State {
         t: t0,
@@ -128,7 +144,11 @@ where
 }
 
 /// Error naming the row with the largest residual if it exceeds `tolerance`.
-fn worst_row(residual: &[f64], tolerance: f64, name: impl Fn(usize) -> String) -> Result<(), Error> {
+fn worst_row(
+    residual: &[f64],
+    tolerance: f64,
+    name: impl Fn(usize) -> String,
+) -> Result<(), Error> {
     let (index, value) = residual
         .iter()
         .enumerate()
@@ -136,7 +156,11 @@ fn worst_row(residual: &[f64], tolerance: f64, name: impl Fn(usize) -> String) -
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .unwrap_or((0, 0.0));
     if value > tolerance || value.is_nan() {
-        return Err(Error::InconsistentStart { equation: name(index), residual: value, tolerance });
+        return Err(Error::InconsistentStart {
+            equation: name(index),
+            residual: value,
+            tolerance,
+        });
     }
     Ok(())
 }
@@ -169,16 +193,23 @@ where
         return Err(wrong_length(p, p_guess.len(), "the guess for p0"));
     }
     if !p_guess.iter().all(|x| x.is_finite()) {
-        return Err(Error::NonFinite { quantity: "guess for p0", t: t0 });
+        return Err(Error::NonFinite {
+            quantity: "guess for p0",
+            t: t0,
+        });
     }
     let info = Mdl::INFO;
     let gamma = [0, 1, 2].map(|k| trajectory.derivative(t0, k));
     if !gamma.iter().all(|g| g.iter().all(|x| x.is_finite())) {
-        return Err(Error::NonFinite { quantity: "load target gamma(t0)", t: t0 });
+        return Err(Error::NonFinite {
+            quantity: "load target gamma(t0)",
+            t: t0,
+        });
     }
     let dim = N + M; // unknowns p (N - A), u (A), lambda (M); equations N + M
     let mut z = DVector::<f64>::zeros(dim);
-    z.rows_mut(0, p).copy_from(&DVector::from_column_slice(p_guess));
+    z.rows_mut(0, p)
+        .copy_from(&DVector::from_column_slice(p_guess));
 
     let assemble = |z: &DVector<f64>| -> (DVector<f64>, DMatrix<f64>) {
         let mut q = SVector::<f64, N>::zeros();
@@ -195,17 +226,21 @@ where
         let lambda = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
         let jac_g = model.constraint_jacobian(&q);
         let bt = model.input_matrix(&q);
-        let balance = model.forces(&q, &v) + bt * u - jac_g.tr_mul(&lambda) - model.mass_matrix() * accel;
+        let balance =
+            model.forces(&q, &v) + bt * u - jac_g.tr_mul(&lambda) - model.mass_matrix() * accel;
         let mut r = DVector::zeros(dim);
         r.rows_mut(0, N).copy_from(&balance);
         r.rows_mut(N, M).copy_from(&model.constraints(&q));
         let (df_dq, _) = model.force_jacobians(&q, &v);
-        let d_balance = df_dq + model.input_jacobian(&q, &u) - model.constraint_hessian(&q, &lambda);
+        let d_balance =
+            df_dq + model.input_jacobian(&q, &u) - model.constraint_hessian(&q, &lambda);
         let mut jac = DMatrix::zeros(dim, dim);
-        jac.view_mut((0, 0), (N, p)).copy_from(&d_balance.columns(0, p));
+        jac.view_mut((0, 0), (N, p))
+            .copy_from(&d_balance.columns(0, p));
         jac.view_mut((N, 0), (M, p)).copy_from(&jac_g.columns(0, p));
         jac.view_mut((0, p), (N, A)).copy_from(&bt);
-        jac.view_mut((0, N), (N, M)).copy_from(&(-jac_g.transpose()));
+        jac.view_mut((0, N), (N, M))
+            .copy_from(&(-jac_g.transpose()));
         (r, jac)
     };
 
@@ -214,9 +249,17 @@ where
     {
         let (r, jac) = assemble(&z);
         if !(r.iter().all(|x| x.is_finite()) && jac.iter().all(|x| x.is_finite())) {
-            return Err(Error::NonFinite { quantity: "static balance at the guess", t: t0 });
+            return Err(Error::NonFinite {
+                quantity: "static balance at the guess",
+                t: t0,
+            });
         }
-        if let Ok(ul) = jac.columns(p, A + M).into_owned().svd(true, true).solve(&(-&r), 1e-12) {
+        if let Ok(ul) = jac
+            .columns(p, A + M)
+            .into_owned()
+            .svd(true, true)
+            .solve(&(-&r), 1e-12)
+        {
             z.rows_mut(p, A + M).copy_from(&ul);
         }
     }
@@ -226,7 +269,10 @@ where
     let mut norm = r.norm();
     loop {
         if !(norm.is_finite() && jac.iter().all(|x| x.is_finite())) {
-            return Err(Error::NonFinite { quantity: "static equilibrium iterate", t: t0 });
+            return Err(Error::NonFinite {
+                quantity: "static equilibrium iterate",
+                t: t0,
+            });
         }
         let (row_scale, col_scale) = equilibrate(&jac);
         let scaled = DMatrix::from_fn(dim, dim, |i, j| jac[(i, j)] * row_scale[i] * col_scale[j]);
@@ -235,7 +281,10 @@ where
         let rhs = DVector::from_fn(dim, |i, _| -r[i] * row_scale[i]);
         let step_scaled = svd
             .solve(&rhs, 1e-12 * sigma_max)
-            .map_err(|_| Error::NonFinite { quantity: "static equilibrium step", t: t0 })?;
+            .map_err(|_| Error::NonFinite {
+                quantity: "static equilibrium step",
+                t: t0,
+            })?;
         let step = DVector::from_fn(dim, |j, _| step_scaled[j] * col_scale[j]);
         // converged when each block's step (p, u, lambda) is below 1e-11 of the
         // block's size, or the residual is at round-off relative to |J| |z|
@@ -250,7 +299,10 @@ where
             let ratio = svd.singular_values.min() / sigma_max;
             if ratio < RANK_TOLERANCE {
                 let free = free_direction(&svd, &col_scale, p, info.coordinates);
-                return Err(Error::NonUniqueEquilibrium { singular_value_ratio: ratio, free });
+                return Err(Error::NonUniqueEquilibrium {
+                    singular_value_ratio: ratio,
+                    free,
+                });
             }
             return Ok(State {
                 t: t0,
@@ -262,7 +314,10 @@ where
         }
         iterations += 1;
         if iterations > STATIC_MAX_ITERATIONS {
-            return Err(Error::EquilibriumNotFound { iterations, residual: r.amax() });
+            return Err(Error::EquilibriumNotFound {
+                iterations,
+                residual: r.amax(),
+            });
         }
         // backtracking on the residual norm
         let mut alpha = 1.0;
@@ -279,7 +334,10 @@ where
             }
             if alpha < 1e-3 {
                 // every step length tried gave a non-finite residual
-                return Err(Error::NonFinite { quantity: "static equilibrium step", t: t0 });
+                return Err(Error::NonFinite {
+                    quantity: "static equilibrium step",
+                    t: t0,
+                });
             }
             alpha *= 0.5;
         }
@@ -289,10 +347,20 @@ where
 /// Row and column scale factors making every row and column of `jac` have
 /// largest entry about 1 (columns first, then rows).
 fn equilibrate(jac: &DMatrix<f64>) -> (Vec<f64>, Vec<f64>) {
-    let inv = |m: f64| if m > 0.0 && m.is_finite() { 1.0 / m } else { 1.0 };
+    let inv = |m: f64| {
+        if m > 0.0 && m.is_finite() {
+            1.0 / m
+        } else {
+            1.0
+        }
+    };
     let cols: Vec<f64> = jac.column_iter().map(|c| inv(c.amax())).collect();
     let rows: Vec<f64> = (0..jac.nrows())
-        .map(|i| inv((0..jac.ncols()).map(|j| (jac[(i, j)] * cols[j]).abs()).fold(0.0, f64::max)))
+        .map(|i| {
+            inv((0..jac.ncols())
+                .map(|j| (jac[(i, j)] * cols[j]).abs())
+                .fold(0.0, f64::max))
+        })
         .collect();
     (rows, cols)
 }
@@ -305,9 +373,13 @@ fn free_direction(
     p: usize,
     coordinates: &[&str],
 ) -> String {
-    let Some(v_t) = svd.v_t.as_ref() else { return "an unknown direction".into() };
+    let Some(v_t) = svd.v_t.as_ref() else {
+        return "an unknown direction".into();
+    };
     let smallest = svd.singular_values.imin();
-    let direction: Vec<f64> = (0..col_scale.len()).map(|j| v_t[(smallest, j)] * col_scale[j]).collect();
+    let direction: Vec<f64> = (0..col_scale.len())
+        .map(|j| v_t[(smallest, j)] * col_scale[j])
+        .collect();
     let largest = direction[..p].iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if largest == 0.0 {
         return "the inputs and multipliers".into();
@@ -321,13 +393,18 @@ fn free_direction(
 
 /// Whether `start` is at rest on its path: `v0 = 0` and `gamma' = gamma'' = 0`
 /// at `t0` (to round-off), as at the start of a rest-to-rest move.
-pub fn at_rest<Tr, const N: usize, const M: usize, const A: usize>(trajectory: &Tr, start: &State<N, M, A>) -> bool
+pub fn at_rest<Tr, const N: usize, const M: usize, const A: usize>(
+    trajectory: &Tr,
+    start: &State<N, M, A>,
+) -> bool
 where
     Tr: Trajectory<A>,
 {
     let scale = start.q.amax().max(1.0);
     let resting = |x: &SVector<f64, A>| x.amax() <= 1e-14 * scale;
-    start.v.amax() <= 1e-14 * scale && resting(&trajectory.derivative(start.t, 1)) && resting(&trajectory.derivative(start.t, 2))
+    start.v.amax() <= 1e-14 * scale
+        && resting(&trajectory.derivative(start.t, 1))
+        && resting(&trajectory.derivative(start.t, 2))
 }
 
 /// The history a multistep scheme starts from, for the discretised
@@ -353,5 +430,9 @@ pub fn history<Tr, const K: usize, const N: usize, const M: usize, const A: usiz
 where
     Tr: Trajectory<A>,
 {
-    if at_rest(trajectory, start) { History::at_rest(y0) } else { History::start(y0, v0) }
+    if at_rest(trajectory, start) {
+        History::at_rest(y0)
+    } else {
+        History::start(y0, v0)
+    }
 }

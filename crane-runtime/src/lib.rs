@@ -71,10 +71,10 @@ pub mod scheme;
 pub mod solution;
 pub mod trajectory;
 
-pub use error::Error;
-pub use model::{CraneModel, MinimalMap, ModelInfo, Rope, Scalar, UnknownParameter};
-pub use minimal::{MinimalStepper, simulate_minimal};
 pub use driver::{Options, StepReport, Stepper};
+pub use error::Error;
+pub use minimal::{MinimalStepper, simulate_minimal};
+pub use model::{CraneModel, MinimalMap, ModelInfo, Rope, Scalar, UnknownParameter};
 pub use redundant::{RedundantStepper, simulate};
 pub use scheme::Scheme;
 pub use solution::{Solution, State};

@@ -34,15 +34,15 @@ use std::ops::Range;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use num_dual::Dual64;
 
+use crate::driver::{
+    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_time, check_target,
+    record, servo_target, step_count, step_error,
+};
 use crate::error::Error;
+use crate::init;
 use crate::linsolve::DenseSolver;
 use crate::model::{MinimalMap, Scalar};
-use crate::newton::{Newton, NewtonOptions, NonlinearSystem, normalised_residual};
-use crate::driver::{
-    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_time, check_target, record, servo_target,
-    step_count, step_error,
-};
-use crate::init;
+use crate::newton::{Newton, NewtonFailure, NewtonOptions, NonlinearSystem, normalised_residual};
 use crate::scheme::{History, Scheme, StepFormula};
 use crate::solution::{Solution, State};
 use crate::trajectory::Trajectory;
@@ -70,7 +70,8 @@ struct Residual<T: Scalar, const F: usize, const A: usize> {
     position: SVector<T, A>,
 }
 
-impl<Mdl, const N: usize, const M: usize, const A: usize, const F: usize> MinimalEquations<'_, Mdl, N, M, A, F>
+impl<Mdl, const N: usize, const M: usize, const A: usize, const F: usize>
+    MinimalEquations<'_, Mdl, N, M, A, F>
 where
     Mdl: MinimalMap<N, M, A, F>,
 {
@@ -108,7 +109,9 @@ where
         let qdd_dt2 = p * accel_dt2 + curvature * T::from(dt2);
         // (24b) * dt^2: M~ (dt^2 mu'') = dt^2 f~ + B~^T (dt^2 u)
         let f_reduced = p.tr_mul(&model.forces(&q, &v)) - pt_m * curvature;
-        let dynamics = pt_m * (p * accel_dt2) - f_reduced * T::from(dt2) - p.tr_mul(&(model.input_matrix(&q) * u_scaled));
+        let dynamics = pt_m * (p * accel_dt2)
+            - f_reduced * T::from(dt2)
+            - p.tr_mul(&(model.input_matrix(&q) * u_scaled));
         let off = N - A;
         let mut acceleration = SVector::<T, A>::zeros();
         let mut velocity = SVector::<T, A>::zeros();
@@ -120,11 +123,19 @@ where
             velocity[k] = v_dt[off + k] - dt * self.target[1][k]; // (24d)
             position[k] = q[off + k] - self.target[0][k]; // (24e)
         }
-        Residual { dynamics, acceleration, velocity, position }
+        Residual {
+            dynamics,
+            acceleration,
+            velocity,
+            position,
+        }
     }
 }
 
-fn write_residual<T: Scalar, const F: usize, const A: usize>(r: &Residual<T, F, A>, mut out: impl FnMut(usize, T)) {
+fn write_residual<T: Scalar, const F: usize, const A: usize>(
+    r: &Residual<T, F, A>,
+    mut out: impl FnMut(usize, T),
+) {
     for i in 0..F {
         out(i, r.dynamics[i]);
     }
@@ -196,18 +207,22 @@ where
     const MAX_ITERATIONS: usize = 50;
     let mut mu = *mu_guess;
     let scale = start.q.amax().max(1.0);
-    let least_squares = |p: &SMatrix<f64, N, F>, rhs: &SVector<f64, N>| -> Option<SVector<f64, F>> {
-        let a = DMatrix::from_column_slice(N, F, p.as_slice());
-        let b = DVector::from_column_slice(rhs.as_slice());
-        let x = a.svd(true, true).solve(&b, 1e-14).ok()?;
-        Some(SVector::from_column_slice(x.as_slice()))
-    };
+    let least_squares =
+        |p: &SMatrix<f64, N, F>, rhs: &SVector<f64, N>| -> Option<SVector<f64, F>> {
+            let a = DMatrix::from_column_slice(N, F, p.as_slice());
+            let b = DVector::from_column_slice(rhs.as_slice());
+            let x = a.svd(true, true).solve(&b, 1e-14).ok()?;
+            Some(SVector::from_column_slice(x.as_slice()))
+        };
     for iteration in 0..=MAX_ITERATIONS {
         let residual = start.q - model.phi(&mu);
         let p = model.null_space(&mu);
         let converged = residual.amax() <= 1e-12 * scale;
         if converged {
-            let mu_dot = least_squares(&p, &start.v).ok_or(Error::NonFinite { quantity: "minimal start velocity", t: start.t })?;
+            let mu_dot = least_squares(&p, &start.v).ok_or(Error::NonFinite {
+                quantity: "minimal start velocity",
+                t: start.t,
+            })?;
             if (p * mu_dot - start.v).amax() > 1e-9 * start.v.amax().max(1.0) {
                 return Err(Error::InconsistentStart {
                     equation: "q0' = P mu0' (eq. 8)".into(),
@@ -218,18 +233,34 @@ where
             return Ok((mu, mu_dot));
         }
         if iteration == MAX_ITERATIONS || !residual.amax().is_finite() {
-            return Err(Error::MinimalStartNotFound { iterations: iteration, residual: residual.amax() });
+            return Err(Error::MinimalStartNotFound {
+                iterations: iteration,
+                residual: residual.amax(),
+            });
         }
-        let step = least_squares(&p, &residual)
-            .ok_or(Error::MinimalStartNotFound { iterations: iteration, residual: residual.amax() })?;
+        let step = least_squares(&p, &residual).ok_or(Error::MinimalStartNotFound {
+            iterations: iteration,
+            residual: residual.amax(),
+        })?;
         mu += step;
     }
-    Err(Error::MinimalStartNotFound { iterations: MAX_ITERATIONS, residual: f64::NAN })
+    Err(Error::MinimalStartNotFound {
+        iterations: MAX_ITERATIONS,
+        residual: f64::NAN,
+    })
 }
 
 /// Eqs. (24a-e) on a [`Scheme`], one step at a time; [`step`](Self::step)
 /// does not allocate.
-pub struct MinimalStepper<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize> {
+pub struct MinimalStepper<
+    'm,
+    Mdl,
+    Tr,
+    const N: usize,
+    const M: usize,
+    const A: usize,
+    const F: usize,
+> {
     equations: MinimalEquations<'m, Mdl, N, M, A, F>,
     trajectory: Tr,
     newton: Newton,
@@ -251,7 +282,8 @@ pub struct MinimalStepper<'m, Mdl, Tr, const N: usize, const M: usize, const A: 
     unit: DVector<f64>,
 }
 
-impl<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize> MinimalStepper<'m, Mdl, Tr, N, M, A, F>
+impl<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize>
+    MinimalStepper<'m, Mdl, Tr, N, M, A, F>
 where
     Mdl: MinimalMap<N, M, A, F>,
     Tr: Trajectory<A>,
@@ -266,7 +298,15 @@ where
         dt: f64,
         newton: NewtonOptions,
     ) -> Result<Self, Error> {
-        Self::with_scheme(model, trajectory, start, mu_guess, dt, Scheme::BackwardEuler, newton)
+        Self::with_scheme(
+            model,
+            trajectory,
+            start,
+            mu_guess,
+            dt,
+            Scheme::BackwardEuler,
+            newton,
+        )
     }
 
     /// A stepper on `scheme`; the scheme's history before the start comes
@@ -366,12 +406,34 @@ where
         // from 0.1 to 0.001.)
         let [h0, h1, h2] = &self.history;
         for i in 0..self.z.len() {
-            self.z[i] = if self.known >= 3 { 3.0 * h0[i] - 3.0 * h1[i] + h2[i] } else { h0[i] };
+            self.z[i] = if self.known >= 3 {
+                3.0 * h0[i] - 3.0 * h1[i] + h2[i]
+            } else {
+                h0[i]
+            };
         }
-        let converged =
-            self.newton.solve(&mut self.equations, &mut self.z).map_err(|failure| step_error(failure, t))?;
+        let converged = match self.newton.solve(&mut self.equations, &mut self.z) {
+            Ok(converged) => converged,
+            // the extrapolation can overshoot where the solution turns along
+            // the weakly determined pulley direction: retry from the last step
+            Err(first) if self.known >= 3 => {
+                self.z.copy_from(&self.history[0]);
+                let mut retried = self
+                    .newton
+                    .solve(&mut self.equations, &mut self.z)
+                    .map_err(|failure| step_error(failure, t))?;
+                if let NewtonFailure::NotConverged { iterations, .. } = first {
+                    retried.iterations += iterations;
+                }
+                retried
+            }
+            Err(failure) => return Err(step_error(failure, t)),
+        };
         self.accept(t)?;
-        Ok(StepReport { iterations: converged.iterations, min_norm_steps: converged.min_norm_steps })
+        Ok(StepReport {
+            iterations: converged.iterations,
+            min_norm_steps: converged.min_norm_steps,
+        })
     }
 
     /// Take the converged unknowns as the new state: minimal and redundant
@@ -389,12 +451,16 @@ where
         let qdd = (p * accel_dt2) / dt2 + model.null_space_rate(&mu, &mu_dot) * mu_dot;
         // G G^T lambda = G (f + B^T u - M q'')
         let jac_g = model.constraint_jacobian(&q);
-        let rhs = model.forces(&q, &v) + model.input_matrix(&q) * u - model.mass_matrix::<f64>() * qdd;
+        let rhs =
+            model.forces(&q, &v) + model.input_matrix(&q) * u - model.mass_matrix::<f64>() * qdd;
         self.normal.copy_from(&(jac_g * jac_g.transpose()));
         self.normal_rhs.copy_from(&(jac_g * rhs));
         self.lambda_solver
             .solve(&self.normal, &mut self.normal_rhs)
-            .map_err(|s| Error::SingularIterationMatrix { t, pivot_ratio: s.pivot_ratio })?;
+            .map_err(|s| Error::SingularIterationMatrix {
+                t,
+                pivot_ratio: s.pivot_ratio,
+            })?;
         let lambda = SVector::<f64, M>::from_fn(|i, _| self.normal_rhs[i]);
         self.check_output_jacobian(&p, t)?;
         self.state = State { t, q, v, u, lambda };
@@ -417,13 +483,19 @@ where
                 self.output_jacobian[(i, k)] = p[(off + i, split + k)];
             }
         }
-        let norm1 = |m: &DMatrix<f64>| m.column_iter().map(|c| c.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max);
+        let norm1 = |m: &DMatrix<f64>| {
+            m.column_iter()
+                .map(|c| c.iter().map(|x| x.abs()).sum::<f64>())
+                .fold(0.0, f64::max)
+        };
         let d_norm = norm1(&self.output_jacobian);
         let mut inverse_norm = 0.0f64;
         for k in 0..A {
             self.unit.fill(0.0);
             self.unit[k] = 1.0;
-            let kind = self.output_solver.solve(&self.output_jacobian, &mut self.unit);
+            let kind = self
+                .output_solver
+                .solve(&self.output_jacobian, &mut self.unit);
             let column = if kind == Ok(crate::linsolve::SolveKind::Lu) {
                 self.unit.iter().map(|x| x.abs()).sum::<f64>()
             } else {
@@ -456,7 +528,14 @@ where
 }
 
 /// [`simulate_minimal`], calling `progress(step, steps)` after every step.
-pub fn simulate_minimal_with_progress<Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize>(
+pub fn simulate_minimal_with_progress<
+    Mdl,
+    Tr,
+    const N: usize,
+    const M: usize,
+    const A: usize,
+    const F: usize,
+>(
     model: &Mdl,
     trajectory: Tr,
     start: &State<N, M, A>,
@@ -469,8 +548,15 @@ where
     Tr: Trajectory<A>,
 {
     let steps = step_count(start.t, options.tf, options.dt)?;
-    let mut stepper =
-        MinimalStepper::with_scheme(model, trajectory, start, mu_guess, options.dt, options.scheme, options.newton)?;
+    let mut stepper = MinimalStepper::with_scheme(
+        model,
+        trajectory,
+        start,
+        mu_guess,
+        options.dt,
+        options.scheme,
+        options.newton,
+    )?;
     record(model, start, &mut stepper, steps, options.dt, &mut progress)
 }
 

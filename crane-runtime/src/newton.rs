@@ -36,7 +36,10 @@ pub fn normalised_residual(
 ) -> f64 {
     let mut normalised = 0.0f64;
     for i in 0..r.len() {
-        let scale = (0..z.len()).map(|j| (jac[(i, j)] * z[j]).abs()).sum::<f64>().max(floor(i));
+        let scale = (0..z.len())
+            .map(|j| (jac[(i, j)] * z[j]).abs())
+            .sum::<f64>()
+            .max(floor(i));
         if scale > 0.0 {
             normalised = normalised.max(r[i].abs() / scale);
         } else if r[i] != 0.0 {
@@ -67,7 +70,12 @@ impl Default for NewtonOptions {
     /// `rtol = 1e-10`, `atol = 1e-14`, `residual_tol = 1e-13` (a few
     /// hundred ulps), at most 30 iterations.
     fn default() -> Self {
-        Self { rtol: 1e-10, atol: 1e-14, residual_tol: 1e-13, max_iterations: 30 }
+        Self {
+            rtol: 1e-10,
+            atol: 1e-14,
+            residual_tol: 1e-13,
+            max_iterations: 30,
+        }
     }
 }
 
@@ -122,7 +130,10 @@ impl Newton {
     /// Workspace for systems of dimension `n` whose matrices are equilibrated
     /// before each solve (see [`DenseSolver::equilibrated`]).
     pub fn equilibrated(n: usize, options: NewtonOptions) -> Self {
-        Self { solver: DenseSolver::equilibrated(n), ..Self::new(n, options) }
+        Self {
+            solver: DenseSolver::equilibrated(n),
+            ..Self::new(n, options)
+        }
     }
 
     /// The tolerances in use.
@@ -153,7 +164,9 @@ impl Newton {
             let kind = self
                 .solver
                 .solve(&self.jac, &mut self.residual)
-                .map_err(|singular| NewtonFailure::Singular { pivot_ratio: singular.pivot_ratio })?;
+                .map_err(|singular| NewtonFailure::Singular {
+                    pivot_ratio: singular.pivot_ratio,
+                })?;
             if kind == SolveKind::MinNorm {
                 min_norm_steps += 1;
             }
@@ -162,13 +175,17 @@ impl Newton {
                 return Err(NewtonFailure::NonFinite);
             }
             *z -= dz;
-            let converged = residual_converged || system.blocks().iter().all(|block| {
-                let step = dz.rows_range(block.clone()).amax();
-                let size = z.rows_range(block.clone()).amax();
-                step <= self.options.rtol * size + self.options.atol
-            });
+            let converged = residual_converged
+                || system.blocks().iter().all(|block| {
+                    let step = dz.rows_range(block.clone()).amax();
+                    let size = z.rows_range(block.clone()).amax();
+                    step <= self.options.rtol * size + self.options.atol
+                });
             if converged {
-                return Ok(Converged { iterations: iteration, min_norm_steps });
+                return Ok(Converged {
+                    iterations: iteration,
+                    min_norm_steps,
+                });
             }
         }
         system.evaluate(z, &mut self.residual, &mut self.jac);

@@ -26,8 +26,8 @@ use std::ops::Range;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 use crate::driver::{
-    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_time, check_target, record, servo_target,
-    step_count, step_error,
+    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_time, check_target,
+    record, servo_target, step_count, step_error,
 };
 use crate::error::Error;
 use crate::init;
@@ -114,7 +114,9 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
         for j in 0..p {
             // d a_j/d p_j = c^2/dt^2, d v_j/d p_j = c/dt (scaled by dt^2)
             for i in 0..N {
-                jac[(i, j)] = da * self.mass[(i, j)] - dt2 * df_dq[(i, j)] - dv * df_dv[(i, j)]
+                jac[(i, j)] = da * self.mass[(i, j)]
+                    - dt2 * df_dq[(i, j)]
+                    - dv * df_dv[(i, j)]
                     - dbu_dq[(i, j)]
                     + dgl_dq[(i, j)];
             }
@@ -135,7 +137,11 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
         // dynamic rows also by their largest term (the load row of x nearly
         // vanishes when the load hangs straight below the pulley)
         normalised_residual(r, jac, z, |i| {
-            if i < N { inertia[i].abs().max(applied[i].abs()) } else { 0.0 }
+            if i < N {
+                inertia[i].abs().max(applied[i].abs())
+            } else {
+                0.0
+            }
         })
     }
 
@@ -161,7 +167,8 @@ pub struct RedundantStepper<'m, Mdl, Tr, const N: usize, const M: usize, const A
     steps: usize,
 }
 
-impl<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize> RedundantStepper<'m, Mdl, Tr, N, M, A>
+impl<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize>
+    RedundantStepper<'m, Mdl, Tr, N, M, A>
 where
     Mdl: CraneModel<N, M, A>,
     Tr: Trajectory<A>,
@@ -254,7 +261,10 @@ where
         // predictor: the scheme's extrapolation for p, previous scaled u and lambda
         let predicted = self.history.predict(self.scheme, dt);
         self.z.rows_mut(0, p).copy_from(&predicted.rows(0, p));
-        let converged = self.newton.solve(eq, &mut self.z).map_err(|failure| step_error(failure, t))?;
+        let converged = self
+            .newton
+            .solve(eq, &mut self.z)
+            .map_err(|failure| step_error(failure, t))?;
         let [q, v, _] = eq.kinematics(&self.z);
         self.state = State {
             t,
@@ -265,7 +275,10 @@ where
         };
         self.history.push(q, v);
         self.steps += 1;
-        Ok(StepReport { iterations: converged.iterations, min_norm_steps: converged.min_norm_steps })
+        Ok(StepReport {
+            iterations: converged.iterations,
+            min_norm_steps: converged.min_norm_steps,
+        })
     }
 }
 
@@ -298,12 +311,19 @@ where
     Tr: Trajectory<A>,
 {
     let steps = step_count(start.t, options.tf, options.dt)?;
-    let mut stepper =
-        RedundantStepper::with_scheme(model, trajectory, start, options.dt, options.scheme, options.newton)?;
+    let mut stepper = RedundantStepper::with_scheme(
+        model,
+        trajectory,
+        start,
+        options.dt,
+        options.scheme,
+        options.newton,
+    )?;
     record(model, start, &mut stepper, steps, options.dt, &mut progress)
 }
 
-impl<Mdl, Tr, const N: usize, const M: usize, const A: usize> Stepper<N, M, A> for RedundantStepper<'_, Mdl, Tr, N, M, A>
+impl<Mdl, Tr, const N: usize, const M: usize, const A: usize> Stepper<N, M, A>
+    for RedundantStepper<'_, Mdl, Tr, N, M, A>
 where
     Mdl: CraneModel<N, M, A>,
     Tr: Trajectory<A>,

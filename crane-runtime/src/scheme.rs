@@ -79,7 +79,13 @@ pub struct Formula {
 
 impl Scheme {
     /// All schemes, in order.
-    pub const ALL: [Scheme; 5] = [Scheme::BackwardEuler, Scheme::Bdf2, Scheme::Bdf3, Scheme::Bdf4, Scheme::Bdf5];
+    pub const ALL: [Scheme; 5] = [
+        Scheme::BackwardEuler,
+        Scheme::Bdf2,
+        Scheme::Bdf3,
+        Scheme::Bdf4,
+        Scheme::Bdf5,
+    ];
 
     /// BDF of order `k` (1 = backward Euler), if `1 <= k <= 5`.
     pub fn bdf(k: usize) -> Option<Scheme> {
@@ -121,12 +127,28 @@ fn bdf_formula(k: usize) -> Formula {
         1 => (1.0, &[-1.0]),
         2 => (2.0 / 3.0, &[-4.0 / 3.0, 1.0 / 3.0]),
         3 => (6.0 / 11.0, &[-18.0 / 11.0, 9.0 / 11.0, -2.0 / 11.0]),
-        4 => (12.0 / 25.0, &[-48.0 / 25.0, 36.0 / 25.0, -16.0 / 25.0, 3.0 / 25.0]),
-        _ => (60.0 / 137.0, &[-300.0 / 137.0, 300.0 / 137.0, -200.0 / 137.0, 75.0 / 137.0, -12.0 / 137.0]),
+        4 => (
+            12.0 / 25.0,
+            &[-48.0 / 25.0, 36.0 / 25.0, -16.0 / 25.0, 3.0 / 25.0],
+        ),
+        _ => (
+            60.0 / 137.0,
+            &[
+                -300.0 / 137.0,
+                300.0 / 137.0,
+                -200.0 / 137.0,
+                75.0 / 137.0,
+                -12.0 / 137.0,
+            ],
+        ),
     };
     let mut padded = [0.0; MAX_STEPS];
     padded[..alpha.len()].copy_from_slice(alpha);
-    Formula { steps: alpha.len(), c: 1.0 / beta, alpha: padded }
+    Formula {
+        steps: alpha.len(),
+        c: 1.0 / beta,
+        alpha: padded,
+    }
 }
 
 impl fmt::Display for Scheme {
@@ -189,7 +211,8 @@ impl<const K: usize> StepFormula<K> {
         // dt^2 a = dt^2 rate (v - vbar) = (c dt) (v - vbar) ... written so
         // that backward Euler reads y - y_n - dt v_n exactly
         let c_dt = self.rate * dt;
-        let accel_dt2 = (y - self.value_offset[i]) * (c_dt * c_dt) - self.rate_offset[i] * (c_dt * dt);
+        let accel_dt2 =
+            (y - self.value_offset[i]) * (c_dt * c_dt) - self.rate_offset[i] * (c_dt * dt);
         (v, accel_dt2)
     }
 }
@@ -198,13 +221,21 @@ impl<const K: usize> History<K> {
     /// A history at rest: every past value `y0`, every past rate zero (the
     /// exact past of a crane that rests before `t0`).
     pub fn at_rest(y0: SVector<f64, K>) -> Self {
-        Self { values: [y0; MAX_STEPS], rates: [SVector::zeros(); MAX_STEPS], known: MAX_STEPS }
+        Self {
+            values: [y0; MAX_STEPS],
+            rates: [SVector::zeros(); MAX_STEPS],
+            known: MAX_STEPS,
+        }
     }
 
     /// A history that knows only the start `(y0, v0)`; the first steps then
     /// use lower orders (see [`History::formula`]).
     pub fn start(y0: SVector<f64, K>, v0: SVector<f64, K>) -> Self {
-        Self { values: [y0; MAX_STEPS], rates: [v0; MAX_STEPS], known: 1 }
+        Self {
+            values: [y0; MAX_STEPS],
+            rates: [v0; MAX_STEPS],
+            known: 1,
+        }
     }
 
     /// A history from past values and rates, newest (`t0`) first.
@@ -253,7 +284,11 @@ impl<const K: usize> History<K> {
             value_offset -= self.values[j] * formula.alpha[j];
             rate_offset -= self.rates[j] * formula.alpha[j];
         }
-        StepFormula { rate: formula.c / dt, value_offset, rate_offset }
+        StepFormula {
+            rate: formula.c / dt,
+            value_offset,
+            rate_offset,
+        }
     }
 
     /// Predictor for the next value: the polynomial through the last
@@ -293,7 +328,13 @@ mod tests {
             assert_eq!(f.steps, k);
             for degree in 0..=k {
                 let y = |t: f64| t.powi(degree as i32);
-                let dy = |t: f64| if degree == 0 { 0.0 } else { degree as f64 * t.powi(degree as i32 - 1) };
+                let dy = |t: f64| {
+                    if degree == 0 {
+                        0.0
+                    } else {
+                        degree as f64 * t.powi(degree as i32 - 1)
+                    }
+                };
                 let dt = 0.5;
                 let t_new = 1.0;
                 let past: Vec<_> = (1..=k).map(|j| vector![y(t_new - j as f64 * dt)]).collect();
@@ -301,7 +342,11 @@ mod tests {
                 assert_eq!(history.order(scheme), k);
                 let step = history.formula(scheme, dt);
                 let (v, _) = step.kinematics(0, y(t_new), dt);
-                assert!((v - dy(t_new)).abs() < 1e-12, "{scheme} degree {degree}: {v} vs {}", dy(t_new));
+                assert!(
+                    (v - dy(t_new)).abs() < 1e-12,
+                    "{scheme} degree {degree}: {v} vs {}",
+                    dy(t_new)
+                );
             }
         }
     }
@@ -322,7 +367,11 @@ mod tests {
     fn predictor_extrapolates_polynomials() {
         for scheme in Scheme::ALL {
             let k = scheme.order().min(MAX_STEPS - 1);
-            let y = |t: f64| (0..=k).map(|i| t.powi(i as i32) / (i + 1) as f64).sum::<f64>();
+            let y = |t: f64| {
+                (0..=k)
+                    .map(|i| t.powi(i as i32) / (i + 1) as f64)
+                    .sum::<f64>()
+            };
             let past: Vec<_> = (0..MAX_STEPS).map(|j| vector![y(-(j as f64))]).collect();
             let history = History::<1>::from_past(&past, &past);
             let p = history.predict(scheme, 1.0)[0];

@@ -82,7 +82,7 @@ pub mod prelude {
     pub use crane_runtime::nalgebra::{SMatrix, SVector};
     pub use crane_runtime::trajectory::{FromFn, Poly9, ThreePhase, Trajectory};
     pub use crane_runtime::{
-        CraneModel, Error, MinimalMap, MinimalStepper, Options, RedundantStepper, Solution, State, init, simulate,
-        simulate_minimal,
+        CraneModel, Error, MinimalMap, MinimalStepper, Options, RedundantStepper, Scheme, Solution, State, Stepper,
+        init, simulate, simulate_minimal,
     };
 }
