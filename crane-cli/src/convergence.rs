@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use crane_models::Case;
-use crane_runtime::Options;
+use crane_runtime::{Options, Scheme};
 
 use crate::{CliError, Formulation, plot};
 
@@ -21,6 +21,7 @@ pub fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &C,
     name: &str,
     formulation: Formulation,
+    scheme: Scheme,
     out: &Path,
 ) -> Result<(), CliError> {
     if !(case.t0() < T_ERROR && T_ERROR <= case.tf()) {
@@ -38,13 +39,14 @@ pub fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let start = case.start()?;
     let mut rows: Vec<(f64, f64)> = Vec::new();
     println!(
-        "{name} ({}): relative error of u at t = {T_ERROR} s, eq. (48)",
-        formulation.name()
+        "{name} ({}, {scheme}, order {}): relative error of u at t = {T_ERROR} s, eq. (48)",
+        formulation.name(),
+        scheme.order()
     );
     println!("{:>8}  {:>12}  {:>8}", "dt [s]", "e_u", "order");
     for dt in DTS {
         // the state at 1.5 s does not depend on later steps: stop there
-        let options = Options::new(dt, T_ERROR);
+        let options = Options::new(dt, T_ERROR).with_scheme(scheme);
         let solution = formulation.simulate(case, name, &start, &options, &mut |_, _| {})?;
         let state = solution
             .states
@@ -77,10 +79,10 @@ pub fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
         let _ = writeln!(csv, "{dt},{e:e},{order}");
     }
     let title = format!(
-        "{name} ({}) - relative error of u at t = {T_ERROR} s, eq. (48)",
+        "{name} ({}, {scheme}) - relative error of u at t = {T_ERROR} s, eq. (48)",
         formulation.name()
     );
-    let svg = plot::convergence(&title, &rows)?;
+    let svg = plot::convergence(&title, &rows, scheme.order())?;
     for (file, text) in [("convergence.csv", csv), ("convergence.svg", svg)] {
         let path = out.join(file);
         std::fs::write(&path, text).map_err(|source| CliError::Io {

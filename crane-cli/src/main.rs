@@ -2,9 +2,9 @@
 //!
 //! ```text
 //! crane list
-//! crane run navy-planar [--scenario FILE.toml] [--dt 0.01] [--tf 4] [--out out/navy-planar] [--strict]
-//! crane convergence navy-planar [--formulation minimal]
-//! crane bench navy-planar [--dt 0.01] [--repeat 20] [--json]
+//! crane run navy-planar [--scenario FILE.toml] [--dt 0.01] [--tf 4] [--scheme bdf4] [--out out/navy-planar] [--strict]
+//! crane convergence navy-planar [--formulation minimal] [--scheme bdf4]
+//! crane bench navy-planar [--dt 0.01] [--scheme bdf4] [--repeat 20] [--json]
 //! ```
 
 mod convergence;
@@ -21,12 +21,12 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 use crane_models::{CATALOG, Case};
-use crane_runtime::Options;
+use crane_runtime::{Options, Scheme};
 use scenario::{Overrides, ScenarioFile};
 
 /// Inverse dynamics of underactuated cranes: the torques that move the load
-/// exactly along a prescribed path (backward Euler on the minimally extended
-/// index-3 DAEs).
+/// exactly along a prescribed path (backward Euler or BDF-k on the minimally
+/// extended index-3 DAEs).
 #[derive(Parser, Debug)]
 #[command(name = "crane", version, about)]
 struct Cli {
@@ -59,6 +59,10 @@ enum Command {
         /// Redundant coordinates (eqs. 22a-d) or minimal coordinates (eqs. 24a-e) (default redundant).
         #[arg(long, value_enum)]
         formulation: Option<Formulation>,
+        /// Time-discretisation scheme: backward-euler (the paper's, default;
+        /// also bdf1), bdf2, bdf3, bdf4 or bdf5 (order k).
+        #[arg(long, value_name = "SCHEME")]
+        scheme: Option<Scheme>,
         /// Exit non-zero if a rope goes slack or an input exceeds its limit
         /// (the results are still written).
         #[arg(long)]
@@ -83,10 +87,15 @@ enum Command {
         /// Redundant coordinates (eqs. 22a-d) or minimal coordinates (eqs. 24a-e).
         #[arg(long, value_enum, default_value_t = Formulation::Redundant)]
         formulation: Formulation,
+        /// Time-discretisation scheme: backward-euler (the paper's, default;
+        /// also bdf1), bdf2, bdf3, bdf4 or bdf5 (order k).
+        #[arg(long, value_name = "SCHEME")]
+        scheme: Option<Scheme>,
     },
     /// Convergence study: the relative error of u at t = 1.5 s (eq. 48) for
     /// dt = 0.1 ... 0.001 and the observed orders; writes convergence.svg
-    /// (log-log, like Figs. 7 and 16) and convergence.csv.
+    /// (log-log, like Figs. 7 and 16, with the slope of the scheme's order)
+    /// and convergence.csv.
     Convergence {
         /// Model name (see `crane list`); it needs an analytical reference.
         model: String,
@@ -96,6 +105,10 @@ enum Command {
         /// Redundant coordinates (eqs. 22a-d) or minimal coordinates (eqs. 24a-e) (default redundant).
         #[arg(long, value_enum)]
         formulation: Option<Formulation>,
+        /// Time-discretisation scheme: backward-euler (the paper's, default;
+        /// also bdf1), bdf2, bdf3, bdf4 or bdf5 (order k).
+        #[arg(long, value_name = "SCHEME")]
+        scheme: Option<Scheme>,
         /// Output directory (default out/MODEL).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -228,6 +241,7 @@ fn execute(command: Command) -> Result<(), CliError> {
             tf,
             out,
             formulation,
+            scheme,
             strict,
             quiet,
         } => {
@@ -237,6 +251,7 @@ fn execute(command: Command) -> Result<(), CliError> {
                 dt,
                 tf,
                 formulation,
+                scheme,
             };
             let settings = RunSettings {
                 name: &model,
@@ -262,11 +277,13 @@ fn execute(command: Command) -> Result<(), CliError> {
             repeat,
             json,
             formulation,
+            scheme,
         } => {
             let overrides = Overrides {
                 dt: Some(dt),
                 tf: None,
                 formulation: Some(formulation),
+                scheme,
             };
             with_crane!(
                 model.as_str(),
@@ -277,6 +294,7 @@ fn execute(command: Command) -> Result<(), CliError> {
             model,
             scenario,
             formulation,
+            scheme,
             out,
         } => {
             let file = scenario.as_deref().map(ScenarioFile::load).transpose()?;
@@ -285,6 +303,7 @@ fn execute(command: Command) -> Result<(), CliError> {
                 dt: None,
                 tf: None,
                 formulation,
+                scheme,
             };
             with_crane!(
                 model.as_str(),
@@ -317,7 +336,7 @@ fn convergence_model<
     out: &std::path::Path,
 ) -> Result<(), CliError> {
     let (case, settings) = scenario::build::<C, N, M, A>(name, file, overrides)?;
-    convergence::run(&case, name, settings.formulation, out)
+    convergence::run(&case, name, settings.formulation, settings.scheme, out)
 }
 
 /// Build a model's paper case and time it.
@@ -328,7 +347,7 @@ fn bench_model<C: scenario::Crane<N, M, A>, const N: usize, const M: usize, cons
     json: bool,
 ) -> Result<(), CliError> {
     let (case, settings) = scenario::build::<C, N, M, A>(name, None, overrides)?;
-    bench(&case, name, settings.formulation, settings.dt, repeat, json)
+    bench(&case, name, settings.formulation, settings.scheme, settings.dt, repeat, json)
 }
 
 /// What `crane run` was asked to do.
@@ -347,7 +366,7 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let RunSettings { name, out, quiet } = *settings;
     let (dt, formulation) = (scenario.dt, scenario.formulation);
     let start = case.start()?;
-    let options = Options::new(dt, case.tf());
+    let options = Options::new(dt, case.tf()).with_scheme(scenario.scheme);
     let clock = Instant::now();
     let mut progress = progress::Progress::new(name, quiet);
     let solution = formulation.simulate(case, name, &start, &options, &mut |step, steps| {
@@ -356,38 +375,32 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     progress.finish();
     let solution = solution?;
     let wall = clock.elapsed().as_secs_f64();
-    let references: Option<Vec<_>> = solution
-        .states
-        .iter()
-        .map(|s| case.reference(s.t))
-        .collect();
+    // the reference is evaluated where it is needed, never stored per step
+    let (t0, tf) = (case.t0(), case.tf());
+    let reference_at = |t: f64| case.reference(t);
+    let has_reference = case.reference(t0).is_some();
     let summary = report::summarize(
         name,
         formulation.name(),
         &solution,
-        references.as_deref(),
+        has_reference.then_some(&reference_at as &dyn Fn(f64) -> Option<crane_runtime::State<N, M, A>>),
         &scenario.limits,
         wall,
     );
-    // the reference curves of the plots on a fine grid, whatever dt
-    let (t0, tf) = (case.t0(), case.tf());
-    let samples = solution.steps().max(800);
-    let fine: Option<Vec<_>> = references.as_ref().and_then(|_| {
-        (0..=samples)
-            .map(|i| case.reference(t0 + (tf - t0) * i as f64 / samples as f64))
-            .collect()
-    });
+    // the reference curves of the plots on a grid as fine as the plot shows
+    let samples = solution.steps().clamp(800, plot::MAX_POINTS);
+    let fine: Option<Vec<_>> = has_reference
+        .then(|| (0..=samples).map(|i| case.reference(t0 + (tf - t0) * i as f64 / samples as f64)).collect())
+        .flatten();
     let parameters = crane_runtime::CraneModel::parameter_values(case.model());
     let snapshots = snapshots::svg(&solution.info, &parameters, &solution)?
         .map(|svg| ("snapshots.svg".to_string(), svg));
-    let derived = output::Derived {
-        names: case.derived_outputs(),
-        values: solution.states.iter().map(|s| case.derived(s)).collect(),
-    };
+    let derived = output::Derived { names: case.derived_outputs(), values: &|s| case.derived(s) };
     output::write_all(out, &solution, fine.as_deref(), &summary, &derived, snapshots.as_slice())?;
     println!(
-        "{name} ({}): {} steps of dt = {dt} s in {:.1} ms ({:.2} Newton iterations per step)",
+        "{name} ({}, {}): {} steps of dt = {dt} s in {:.1} ms ({:.2} Newton iterations per step)",
         formulation.name(),
+        scenario.scheme,
         solution.steps(),
         wall * 1e3,
         solution.mean_newton_iterations()
@@ -404,6 +417,7 @@ fn bench<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &C,
     name: &str,
     formulation: Formulation,
+    scheme: Scheme,
     dt: f64,
     repeat: usize,
     json: bool,
@@ -412,7 +426,7 @@ fn bench<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
         return Err(CliError::NoRepeats);
     }
     let start = case.start()?;
-    let options = Options::new(dt, case.tf());
+    let options = Options::new(dt, case.tf()).with_scheme(scheme);
     let mut times = Vec::with_capacity(repeat);
     let mut steps = 0;
     let mut iterations = 0.0;
@@ -428,14 +442,14 @@ fn bench<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let median = times[times.len() / 2];
     if json {
         let value = serde_json::json!({
-            "model": name, "formulation": formulation.name(), "dt": dt, "steps": steps, "repeat": repeat,
+            "model": name, "formulation": formulation.name(), "scheme": scheme.name(), "dt": dt, "steps": steps, "repeat": repeat,
             "median_run_s": median, "median_step_s": median / steps as f64,
             "mean_newton_iterations": iterations,
         });
         println!("{value}");
     } else {
         println!(
-            "{name} ({}): dt = {dt} s, {steps} steps, {repeat} runs: median {:.3} ms per run, {:.2} us per step, {:.2} Newton iterations per step",
+            "{name} ({}, {scheme}): dt = {dt} s, {steps} steps, {repeat} runs: median {:.3} ms per run, {:.2} us per step, {:.2} Newton iterations per step",
             formulation.name(),
             median * 1e3,
             median / steps as f64 * 1e6,

@@ -13,7 +13,10 @@ use crate::report::Summary;
 
 /// Column names of `results.csv` (DESIGN.md §5): `t`, the coordinates, the
 /// inputs, `lambda1..lambdam`, the rope tensions.
-pub fn header<const N: usize, const M: usize, const A: usize>(solution: &Solution<N, M, A>, derived: &Derived) -> Vec<String> {
+pub fn header<const N: usize, const M: usize, const A: usize>(
+    solution: &Solution<N, M, A>,
+    derived: &Derived<N, M, A>,
+) -> Vec<String> {
     let info = solution.info;
     let mut names = vec!["t".to_string()];
     names.extend(info.coordinates.iter().map(|s| s.to_string()));
@@ -29,18 +32,19 @@ fn io_error(context: impl Into<String>) -> impl FnOnce(std::io::Error) -> CliErr
     move |source| CliError::Io { context, source }
 }
 
-/// Outputs derived from each state (e.g. the slewing angle), one row per state.
-pub struct Derived {
+/// Outputs derived from each state (e.g. the slewing angle), computed as
+/// the rows are written.
+pub struct Derived<'a, const N: usize, const M: usize, const A: usize> {
     /// Column names.
     pub names: &'static [&'static str],
-    /// `values[i]` belongs to state `i`.
-    pub values: Vec<Vec<f64>>,
+    /// The values of a state, in the order of `names`.
+    pub values: &'a dyn Fn(&State<N, M, A>) -> Vec<f64>,
 }
 
 fn write_csv<const N: usize, const M: usize, const A: usize>(
     path: &Path,
     solution: &Solution<N, M, A>,
-    derived: &Derived,
+    derived: &Derived<N, M, A>,
 ) -> Result<(), CliError> {
     let failed = |e: csv::Error| CliError::Output { what: path.display().to_string(), message: e.to_string() };
     let mut writer = csv::Writer::from_path(path).map_err(failed)?;
@@ -51,9 +55,7 @@ fn write_csv<const N: usize, const M: usize, const A: usize>(
         row.push(format!("{}", s.t));
         row.extend(s.q.iter().chain(s.u.iter()).chain(s.lambda.iter()).map(|v| format!("{v:e}")));
         row.extend(solution.tensions_at(i).iter().map(|v| format!("{v:e}")));
-        if let Some(values) = derived.values.get(i) {
-            row.extend(values.iter().map(|v| format!("{v:e}")));
-        }
+        row.extend((derived.values)(s).iter().map(|v| format!("{v:e}")));
         writer.write_record(&row).map_err(failed)?;
     }
     writer.flush().map_err(io_error(format!("writing {}", path.display())))
@@ -66,7 +68,7 @@ pub fn write_all<const N: usize, const M: usize, const A: usize>(
     solution: &Solution<N, M, A>,
     references: Option<&[State<N, M, A>]>,
     summary: &Summary,
-    derived: &Derived,
+    derived: &Derived<N, M, A>,
     extra: &[(String, String)],
 ) -> Result<(), CliError> {
     fs::create_dir_all(out).map_err(io_error(format!("creating {}", out.display())))?;

@@ -55,6 +55,8 @@ pub struct Summary {
     pub model: String,
     pub description: String,
     pub formulation: String,
+    /// The time-discretisation scheme, e.g. `backward-euler` or `bdf4`.
+    pub scheme: String,
     pub dt: f64,
     pub t0: f64,
     pub tf: f64,
@@ -93,11 +95,36 @@ fn column_extremes<const K: usize, const N: usize, const M: usize, const A: usiz
         .collect()
 }
 
+/// Largest `|value|` per column over a stream of vectors, and when.
+struct StreamingExtremes<const K: usize> {
+    worst: [(f64, f64); K],
+}
+
+impl<const K: usize> StreamingExtremes<K> {
+    fn new() -> Self {
+        Self { worst: [(f64::NAN, f64::NAN); K] }
+    }
+
+    fn add(&mut self, t: f64, values: &nalgebra::SVector<f64, K>) {
+        for (w, &v) in self.worst.iter_mut().zip(values.iter()) {
+            if w.1.is_nan() || v.abs() > w.1.abs() {
+                *w = (t, v);
+            }
+        }
+    }
+
+    fn into_extremes(self, names: &[&str]) -> Vec<Extreme> {
+        self.worst.iter().zip(names).map(|(&(t, value), name)| Extreme { name: name.to_string(), value, t }).collect()
+    }
+}
+
+/// The summary of a run; `references(t)` is the analytical reference at `t`
+/// where the model has one.
 pub fn summarize<const N: usize, const M: usize, const A: usize>(
     model: &str,
     formulation: &str,
     solution: &Solution<N, M, A>,
-    references: Option<&[State<N, M, A>]>,
+    references: Option<&dyn Fn(f64) -> Option<State<N, M, A>>>,
     limits: &[(usize, f64)],
     wall_time_s: f64,
 ) -> Summary {
@@ -109,21 +136,11 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         .iter()
         .enumerate()
         .map(|(r, rope)| {
-            let series: Vec<(f64, f64)> = states
-                .iter()
-                .enumerate()
-                .map(|(i, s)| (s.t, solution.tensions_at(i)[r]))
-                .collect();
-            let peak = series.iter().fold(0.0f64, |m, (_, n)| m.max(n.abs()));
-            let (t_min, min_tension) = series
-                .iter()
-                .copied()
-                .min_by(|a, b| a.1.total_cmp(&b.1))
-                .unwrap_or((f64::NAN, f64::NAN));
-            let first_slack = series
-                .iter()
-                .find(|(_, n)| *n < -SLACK_TOLERANCE * peak)
-                .map(|(t, _)| *t);
+            let series = || states.iter().enumerate().map(|(i, s)| (s.t, solution.tensions_at(i)[r]));
+            let peak = series().fold(0.0f64, |m, (_, n)| m.max(n.abs()));
+            let (t_min, min_tension) =
+                series().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap_or((f64::NAN, f64::NAN));
+            let first_slack = series().find(|(_, n)| *n < -SLACK_TOLERANCE * peak).map(|(t, _)| t);
             RopeSummary {
                 name: rope.tension.to_string(),
                 min_tension,
@@ -141,32 +158,29 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
             first_violation: states.iter().find(|s| s.u[k].abs() > limit).map(|s| s.t),
         })
         .collect();
-    let reference = references.map(|refs| {
+    let reference = references.map(|reference_at| {
         let lambda_names: Vec<String> = (1..=M).map(|i| format!("lambda{i}")).collect();
         let lambda_refs: Vec<&str> = lambda_names.iter().map(String::as_str).collect();
-        let pairs: Vec<State<N, M, A>> = states
-            .iter()
-            .zip(refs)
-            .map(|(s, r)| State {
-                t: s.t,
-                q: s.q - r.q,
-                v: s.v - r.v,
-                u: s.u - r.u,
-                lambda: s.lambda - r.lambda,
-            })
-            .collect();
-        let e_u_at_1_5s = states
-            .iter()
-            .zip(refs)
-            .find(|(s, _)| (s.t - 1.5).abs() < 0.5 * solution.dt)
-            .map(|(s, r)| (s.u - r.u).norm() / r.u.norm());
+        // one pass over the states, the reference evaluated at each: no copy
+        // of the run (a run of 2e6 steps would otherwise hold 2 x 320 MB)
+        let mut u = StreamingExtremes::<A>::new();
+        let mut q = StreamingExtremes::<N>::new();
+        let mut lambda = StreamingExtremes::<M>::new();
+        let mut e_u_at_1_5s = None;
+        for s in states {
+            let Some(r) = reference_at(s.t) else { continue };
+            u.add(s.t, &(s.u - r.u));
+            q.add(s.t, &(s.q - r.q));
+            lambda.add(s.t, &(s.lambda - r.lambda));
+            if e_u_at_1_5s.is_none() && (s.t - 1.5).abs() < 0.5 * solution.dt {
+                e_u_at_1_5s = Some((s.u - r.u).norm() / r.u.norm());
+            }
+        }
         ReferenceErrors {
             e_u_at_1_5s,
-            max_abs_error_u: column_extremes::<A, N, M, A>(&pairs, info.inputs, |s, k| s.u[k]),
-            max_abs_error_q: column_extremes::<N, N, M, A>(&pairs, info.coordinates, |s, k| s.q[k]),
-            max_abs_error_lambda: column_extremes::<M, N, M, A>(&pairs, &lambda_refs, |s, k| {
-                s.lambda[k]
-            }),
+            max_abs_error_u: u.into_extremes(info.inputs),
+            max_abs_error_q: q.into_extremes(info.coordinates),
+            max_abs_error_lambda: lambda.into_extremes(&lambda_refs),
         }
     });
     let newton = NewtonSummary {
@@ -184,6 +198,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         model: model.to_string(),
         description: info.description.to_string(),
         formulation: formulation.to_string(),
+        scheme: solution.scheme.name().to_string(),
         dt: solution.dt,
         t0: states.first().map_or(f64::NAN, |s| s.t),
         tf: states.last().map_or(f64::NAN, |s| s.t),

@@ -6,6 +6,7 @@
 //! dt = 0.01                 # time step, s
 //! tf = 4.0                  # end of the run, s (default: end of the motion)
 //! formulation = "redundant" # or "minimal"
+//! scheme = "bdf4"           # backward-euler (default, also bdf1), bdf2 .. bdf5
 //! p0 = [8.66, 10, 5, 0, -5] # start of the robot coordinates (default: the paper's)
 //! trajectory = "poly9"      # or "three-phase" (then tau0 = ramp duration, s)
 //! start = [0.0, -10.0]      # load coordinates at t0
@@ -28,7 +29,7 @@ use std::path::Path;
 
 use crane_models::{navy_3d, navy_3d_pulley, navy_planar, navy_planar_pulley};
 use crane_runtime::trajectory::{Poly9, SmoothThreePhase, ThreePhase, TrajectoryError};
-use crane_runtime::{CraneModel, Error, Options, Solution, State, Trajectory, init};
+use crane_runtime::{CraneModel, Error, Options, Scheme, Solution, State, Trajectory, init};
 use nalgebra::SVector;
 use serde::Deserialize;
 
@@ -56,6 +57,8 @@ pub struct ScenarioFile {
     pub dt: Option<f64>,
     pub tf: Option<f64>,
     pub formulation: Option<Formulation>,
+    /// Time-discretisation scheme, by name (`bdf4`).
+    pub scheme: Option<String>,
     pub p0: Option<Vec<f64>>,
     /// Profile of the load path.
     pub trajectory: Option<Kind>,
@@ -450,12 +453,14 @@ pub struct Overrides {
     pub dt: Option<f64>,
     pub tf: Option<f64>,
     pub formulation: Option<Formulation>,
+    pub scheme: Option<Scheme>,
 }
 
 /// Everything a run needs besides the case.
 pub struct Settings {
     pub dt: f64,
     pub formulation: Formulation,
+    pub scheme: Scheme,
     /// `(input index, limit)` pairs.
     pub limits: Vec<(usize, f64)>,
 }
@@ -518,6 +523,11 @@ pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         .formulation
         .or(file.formulation)
         .unwrap_or(Formulation::Redundant);
+    let scheme = match (overrides.scheme, &file.scheme) {
+        (Some(scheme), _) => scheme,
+        (None, Some(name)) => name.parse().map_err(|e| invalid(format!("`scheme`: {e}")))?,
+        (None, None) => Scheme::default(),
+    };
     let t0 = spec.t0.unwrap_or(defaults.t0);
     if !t0.is_finite() {
         return Err(invalid(format!("`t0` must be finite, got {t0}")));
@@ -638,6 +648,7 @@ pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         Settings {
             dt,
             formulation,
+            scheme,
             limits,
         },
     ))

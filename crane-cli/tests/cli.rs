@@ -356,3 +356,68 @@ fn convergence_reports_first_order_and_writes_the_plot() {
     let svg = std::fs::read_to_string(dir.path().join("convergence.svg")).unwrap();
     assert!(svg.len() > 1024 && svg.contains("<svg") && svg.contains("time step dt [s]"));
 }
+
+/// `--scheme` and the scenario key `scheme` select the scheme: summary.json
+/// names it and its e_u(1.5 s) is the one of the same run through the API
+/// (navy-planar, BDF-4, dt = 0.02: about 1e-6 against 2.9e-3 for backward
+/// Euler); an unknown scheme is an error naming the key.
+#[test]
+fn the_scheme_takes_effect_from_the_flag_and_the_file() {
+    use crane_models::Case;
+    use crane_runtime::{Options, Scheme, simulate};
+    let case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
+    let api = |scheme: Scheme| {
+        let run = simulate(case.model(), case.path(), &case.start().unwrap(), &Options::new(0.02, 4.0).with_scheme(scheme)).unwrap();
+        let state = run.state_near(1.5).unwrap();
+        let reference = case.reference(state.t).unwrap();
+        (state.u - reference.u).norm() / reference.u.norm()
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("scenario.toml");
+    std::fs::write(&file, "scheme = \"bdf3\"\ndt = 0.02\n").unwrap();
+    let summary = |args: &[&str], out: &str| {
+        let out = dir.path().join(out);
+        let mut all = vec!["run", "navy-planar", "--quiet", "--out", out.to_str().unwrap()];
+        all.extend_from_slice(args);
+        let result = crane(&all);
+        assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+        let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        (json["scheme"].as_str().unwrap().to_string(), json["reference"]["e_u_at_1_5s"].as_f64().unwrap())
+    };
+    let (name, e) = summary(&["--dt", "0.02", "--scheme", "bdf4"], "flag");
+    assert_eq!(name, "bdf4");
+    assert!((e - api(Scheme::Bdf4)).abs() <= 1e-12 * e, "{e} vs {}", api(Scheme::Bdf4));
+    assert!(e < 2e-6, "{e}");
+    let (name, e) = summary(&["--scenario", file.to_str().unwrap()], "file");
+    assert_eq!(name, "bdf3");
+    assert!((e - api(Scheme::Bdf3)).abs() <= 1e-12 * e);
+    // the flag overrides the file; the default is backward Euler
+    let (name, _) = summary(&["--scenario", file.to_str().unwrap(), "--scheme", "bdf1"], "both");
+    assert_eq!(name, "backward-euler");
+    let (name, e) = summary(&["--dt", "0.02"], "default");
+    assert_eq!(name, "backward-euler");
+    assert!((e - api(Scheme::BackwardEuler)).abs() <= 1e-12 * e && e > 1e-3);
+    expect_error("navy-planar", "scheme = \"rk4\"\n", &["`scheme`", "unknown scheme `rk4`", "bdf5"]);
+}
+
+/// `crane convergence --scheme bdf2` measures order 2 and draws the slope-2
+/// guide; `crane bench --json` names the scheme.
+#[test]
+fn convergence_and_bench_take_the_scheme() {
+    let dir = tempfile::tempdir().unwrap();
+    let result = crane(&["convergence", "navy-planar", "--scheme", "bdf2", "--out", dir.path().to_str().unwrap()]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let csv = std::fs::read_to_string(dir.path().join("convergence.csv")).unwrap();
+    // dt = 0.01 -> 0.005: e_u 3.6e-5 -> 8.7e-6, order 2.05
+    let row = csv.lines().find(|l| l.starts_with("0.005,")).unwrap();
+    let order: f64 = row.split(',').nth(2).unwrap().parse().unwrap();
+    assert!((order - 2.0).abs() < 0.1, "order {order}");
+    let svg = std::fs::read_to_string(dir.path().join("convergence.svg")).unwrap();
+    assert!(svg.contains("order 2 (slope 2)") && svg.contains("bdf2"));
+    let result = crane(&["bench", "navy-planar", "--scheme", "bdf4", "--repeat", "2", "--json"]);
+    assert!(result.status.success());
+    let json: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
+    assert_eq!(json["scheme"], "bdf4");
+    assert_eq!(json["steps"], 400);
+    assert!(json["median_step_s"].as_f64().unwrap() > 0.0);
+}

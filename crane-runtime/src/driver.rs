@@ -179,13 +179,13 @@ pub fn record<Mdl, const N: usize, const M: usize, const A: usize>(
     start: &State<N, M, A>,
     stepper: &mut impl Stepper<N, M, A>,
     steps: usize,
-    dt: f64,
+    options: &Options,
     progress: &mut impl FnMut(usize, usize),
 ) -> Result<Solution<N, M, A>, Error>
 where
     Mdl: CraneModel<N, M, A>,
 {
-    let mut solution = Solution::with_capacity(Mdl::INFO, dt, steps + 1)?;
+    let mut solution = Solution::with_capacity(Mdl::INFO, options.dt, options.scheme, steps + 1)?;
     let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
     solution.push(model, start, 0, 0, &mut lengths);
     run(stepper, steps, |step, state, report| {

@@ -319,7 +319,7 @@ where
         options.scheme,
         options.newton,
     )?;
-    record(model, start, &mut stepper, steps, options.dt, &mut progress)
+    record(model, start, &mut stepper, steps, options, &mut progress)
 }
 
 impl<Mdl, Tr, const N: usize, const M: usize, const A: usize> Stepper<N, M, A>

@@ -5,6 +5,7 @@ use nalgebra::SVector;
 
 use crate::error::Error;
 use crate::model::{CraneModel, ModelInfo};
+use crate::scheme::Scheme;
 
 /// The crane's state at one time: what the scheme of eqs. (22a-d) computes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,6 +29,8 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     pub info: ModelInfo,
     /// Time step.
     pub dt: f64,
+    /// The scheme that computed it.
+    pub scheme: Scheme,
     /// States at `t0, t0 + dt, ..., tf`; the first is the consistent start.
     pub states: Vec<State<N, M, A>>,
     /// Newton iterations of each step (0 for the start).
@@ -42,7 +45,7 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
 impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
     /// An empty solution with room for `states` states, or
     /// [`Error::TooManySteps`] if that much cannot be reserved.
-    pub fn with_capacity(info: ModelInfo, dt: f64, states: usize) -> Result<Self, Error> {
+    pub fn with_capacity(info: ModelInfo, dt: f64, scheme: Scheme, states: usize) -> Result<Self, Error> {
         let ropes = info.ropes.len();
         let per_state =
             std::mem::size_of::<State<N, M, A>>() + std::mem::size_of::<usize>() + ropes * 8;
@@ -53,6 +56,7 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         let mut solution = Solution {
             info,
             dt,
+            scheme,
             states: Vec::new(),
             newton_iterations: Vec::new(),
             tensions: Vec::new(),
