@@ -46,10 +46,10 @@ enum Command {
         /// (see examples/); flags given on the command line override it.
         #[arg(long, value_name = "FILE.toml")]
         scenario: Option<PathBuf>,
-        /// Time step [s] (default 0.01).
+        /// Time step in s (default 0.01).
         #[arg(long)]
         dt: Option<f64>,
-        /// End time [s] of the run (and of the motion unless the scenario sets t1;
+        /// End time in s of the run (and of the motion unless the scenario sets t1;
         /// the paper uses 4 and 15 for navy-planar).
         #[arg(long)]
         tf: Option<f64>,
@@ -75,7 +75,7 @@ enum Command {
     Bench {
         /// Model name (see `crane list`).
         model: String,
-        /// Time step [s].
+        /// Time step in s.
         #[arg(long, default_value_t = 0.01)]
         dt: f64,
         /// Number of timed runs.

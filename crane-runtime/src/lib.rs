@@ -3,9 +3,18 @@
 //! A crane declared with `crane_model!` implements [`CraneModel`]. Given a
 //! load path `gamma(t)` ([`trajectory`]), a consistent start ([`init`]) and a
 //! time step, [`redundant::simulate`] integrates the minimally extended
-//! index-3 DAEs of the paper in redundant coordinates with backward Euler
-//! (eqs. 22a-d) and returns the inputs `u`, coordinates `q`, multipliers
-//! `lambda` and rope tensions of every step ([`Solution`]).
+//! index-3 DAEs of the paper in redundant coordinates (eqs. 22a-d) and
+//! returns the inputs `u`, coordinates `q`, multipliers `lambda` and rope
+//! tensions of every step ([`Solution`]); [`minimal::simulate_minimal`] does
+//! the same in minimal coordinates (eqs. 24a-e).
+//!
+//! Problems and schemes sit on separate axes: a problem ([`redundant`],
+//! [`minimal`]) says which equations and unknowns a step has; a [`Scheme`]
+//! ([`scheme`]: backward Euler, the paper's and the default, or BDF-2..5)
+//! says how the rates at the new time follow from the new value and the
+//! history; [`driver`] holds what both share (the [`Options`], the
+//! [`Stepper`] interface, the run loop with its observers). A new scheme
+//! touches no problem and a new problem no scheme.
 //!
 //! # Worked example: a planar gantry crane
 //!

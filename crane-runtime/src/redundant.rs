@@ -39,6 +39,7 @@ use crate::trajectory::Trajectory;
 
 /// The residual of eqs. (22b-d) at one step, as a [`NonlinearSystem`] in the
 /// unknowns `z = [p; dt^2 u; dt^2 lambda]`.
+#[derive(Clone)]
 struct StepEquations<'m, Mdl, const N: usize, const M: usize, const A: usize> {
     model: &'m Mdl,
     mass: SMatrix<f64, N, N>,
@@ -153,7 +154,9 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
 /// Eqs. (22a-d) on a [`Scheme`], one step at a time.
 ///
 /// Built from a consistent start (see [`crate::init`]); after construction
-/// [`step`](Self::step) does not allocate.
+/// [`step`](Self::step) does not allocate. A clone continues independently
+/// from the same state and history.
+#[derive(Clone)]
 pub struct RedundantStepper<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize> {
     equations: StepEquations<'m, Mdl, N, M, A>,
     trajectory: Tr,

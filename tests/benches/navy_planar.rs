@@ -2,7 +2,8 @@
 //! full runs at dt = 0.01 (400 steps) and dt = 0.001 (4000 steps) and single
 //! steps, in redundant (eqs. 22a-d) and minimal (eqs. 24a-e) coordinates, and
 //! for `navy-planar` the generated model against a hand-written one (the
-//! target: generated code costs no more than hand-written code).
+//! target: generated code costs no more than hand-written code); per scheme
+//! (backward Euler, BDF-2..5) a full run and one step (`schemes/...`).
 //!
 //! Run with `cargo bench -p crane-tests`.
 
@@ -11,7 +12,7 @@ use std::hint::black_box;
 
 use crane_models::{Case, navy_planar, navy_planar_pulley};
 use crane_runtime::newton::NewtonOptions;
-use crane_runtime::{CraneModel, Options, RedundantStepper, State, simulate};
+use crane_runtime::{CraneModel, Options, RedundantStepper, Scheme, State, simulate};
 use crane_tests::handwritten::HandNavyPlanar;
 
 /// Redundant runs and one step with `model` on the navy-planar maneuver.
@@ -50,6 +51,35 @@ fn formulations<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize
     }
 }
 
+/// Per scheme on navy-planar: the full run at dt = 0.01 and one step at
+/// t = 1.5 s from a stepper that got there itself (so its history is full);
+/// and the runs of the work-precision table: per scheme the largest dt
+/// (dividing 1.5 s and 4 s) with e_u(1.5 s) <= 1e-6 (README).
+fn schemes(c: &mut Criterion) {
+    let case = navy_planar::PaperCase::new(4.0).unwrap();
+    let start = case.start().unwrap();
+    for scheme in Scheme::ALL {
+        let options = Options::new(0.01, 4.0).with_scheme(scheme);
+        c.bench_function(&format!("schemes/navy-planar/{scheme}/run dt=0.01"), |b| {
+            b.iter(|| simulate(black_box(case.model()), case.path(), &start, &options).unwrap())
+        });
+        let mut at_1_5 =
+            RedundantStepper::with_scheme(case.model(), case.path(), &start, 0.01, scheme, NewtonOptions::default()).unwrap();
+        for _ in 0..150 {
+            at_1_5.step().unwrap();
+        }
+        c.bench_function(&format!("schemes/navy-planar/{scheme}/one step dt=0.01"), |b| {
+            b.iter_batched_ref(|| at_1_5.clone(), |stepper| stepper.step().unwrap(), BatchSize::SmallInput)
+        });
+    }
+    for (scheme, dt) in [(Scheme::Bdf2, 0.00125), (Scheme::Bdf3, 0.00625), (Scheme::Bdf4, 0.02), (Scheme::Bdf5, 0.02)] {
+        let options = Options::new(dt, 4.0).with_scheme(scheme);
+        c.bench_function(&format!("schemes/navy-planar/{scheme}/run dt={dt}"), |b| {
+            b.iter(|| simulate(black_box(case.model()), case.path(), &start, &options).unwrap())
+        });
+    }
+}
+
 fn benches(c: &mut Criterion) {
     redundant_runs(c, "generated", &navy_planar::NavyPlanar::default());
     redundant_runs(c, "hand-written", &HandNavyPlanar::default());
@@ -57,5 +87,5 @@ fn benches(c: &mut Criterion) {
     formulations(c, "navy-planar-pulley", &navy_planar_pulley::PaperCase::new(4.0).unwrap());
 }
 
-criterion_group!(navy_planar, benches);
+criterion_group!(navy_planar, benches, schemes);
 criterion_main!(navy_planar);

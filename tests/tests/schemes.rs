@@ -137,14 +137,13 @@ fn assert_order<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize
     table
 }
 
-#[test]
-fn navy_planar_converges_with_order_k_in_both_formulations() {
-    let case = navy_planar::PaperCase::new(4.0).unwrap();
+/// Every scheme in both formulations of one crane; each order more accurate
+/// than the one before it at dt = 0.01.
+fn assert_orders_of_every_scheme<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(name: &str, case: &C) {
     for formulation in [Formulation::Redundant, Formulation::Minimal] {
         let mut previous = f64::INFINITY;
         for scheme in Scheme::ALL {
-            let table = assert_order("navy-planar", &case, formulation, scheme);
-            // each order is more accurate than the one before it at dt = 0.01
+            let table = assert_order(name, case, formulation, scheme);
             assert!(table[1] < previous, "{formulation:?} {scheme}: {table:?}");
             previous = table[1];
         }
@@ -152,16 +151,13 @@ fn navy_planar_converges_with_order_k_in_both_formulations() {
 }
 
 #[test]
+fn navy_planar_converges_with_order_k_in_both_formulations() {
+    assert_orders_of_every_scheme("navy-planar", &navy_planar::PaperCase::new(4.0).unwrap());
+}
+
+#[test]
 fn navy_planar_pulley_converges_with_order_k_in_both_formulations() {
-    let case = navy_planar_pulley::PaperCase::new(4.0).unwrap();
-    for formulation in [Formulation::Redundant, Formulation::Minimal] {
-        let mut previous = f64::INFINITY;
-        for scheme in Scheme::ALL {
-            let table = assert_order("navy-planar-pulley", &case, formulation, scheme);
-            assert!(table[1] < previous, "{formulation:?} {scheme}: {table:?}");
-            previous = table[1];
-        }
-    }
+    assert_orders_of_every_scheme("navy-planar-pulley", &navy_planar_pulley::PaperCase::new(4.0).unwrap());
 }
 
 /// Backward Euler is the paper's scheme and the default: its e_u at

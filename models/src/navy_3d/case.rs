@@ -108,7 +108,7 @@ impl crate::Case<11, 4, 3> for PaperCase {
         &["phi"]
     }
 
-    /// The slewing angle `phi = atan2(y, x)` of the boom tip [rad].
+    /// The slewing angle `phi = atan2(y, x)` of the boom tip, in rad.
     fn derived(&self, state: &State<11, 4, 3>) -> Vec<f64> {
         vec![slewing_angle(state)]
     }

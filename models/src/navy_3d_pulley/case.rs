@@ -169,7 +169,7 @@ impl crate::Case<12, 5, 4> for PaperCase {
         &["phi"]
     }
 
-    /// The slewing angle `phi = atan2(y, x)` of the boom tip [rad].
+    /// The slewing angle `phi = atan2(y, x)` of the boom tip, in rad.
     fn derived(&self, state: &State<12, 5, 4>) -> Vec<f64> {
         vec![slewing_angle(state)]
     }
