@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crane_models::Case;
+use crane_models::{Case, Crane};
 use crane_runtime::{Options, Scheme};
 
 use crate::{CliError, Formulation, plot};
@@ -17,9 +17,8 @@ pub const DTS: [f64; 6] = [0.1, 0.05, 0.02, 0.01, 0.005, 0.001];
 pub const T_ERROR: f64 = 1.5;
 
 /// Run the study on `case` and write `convergence.svg` and `convergence.csv` into `out`.
-pub fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    case: &C,
-    name: &str,
+pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
     formulation: Formulation,
     scheme: Scheme,
     out: &Path,
@@ -31,6 +30,7 @@ pub fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
             case.tf()
         )));
     }
+    let name = C::NAME;
     let reference = case.reference(T_ERROR).ok_or_else(|| {
         CliError::Convergence(format!(
             "{name} has no analytical reference at t = {T_ERROR} s to measure the error against"
@@ -47,7 +47,7 @@ pub fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     for dt in DTS {
         // the state at 1.5 s does not depend on later steps: stop there
         let options = Options::new(dt, T_ERROR).with_scheme(scheme);
-        let solution = formulation.simulate(case, name, &start, &options, &mut |_, _| {})?;
+        let solution = formulation.simulate(case, &start, &options, &mut |_, _| {})?;
         let state = solution
             .states
             .iter()

@@ -20,7 +20,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Parser, Subcommand};
-use crane_models::{CATALOG, Case};
+use crane_models::registry::{self, Visit};
+use crane_models::{CATALOG, Case, Crane};
 use crane_runtime::{Options, Scheme};
 use scenario::{Overrides, ScenarioFile};
 
@@ -135,25 +136,18 @@ impl Formulation {
     }
 
     /// Integrate `case` from `start` with this formulation.
-    fn simulate<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    fn simulate<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         self,
-        case: &C,
-        name: &str,
+        case: &Case<C, N, M, A>,
         start: &crane_runtime::State<N, M, A>,
         options: &Options,
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<crane_runtime::Solution<N, M, A>, CliError> {
         match self {
-            Formulation::Redundant => Ok(crane_runtime::redundant::simulate_with_progress(
-                case.model(),
-                case.path(),
-                start,
-                options,
-                progress,
-            )?),
+            Formulation::Redundant => Ok(case.simulate_with_progress(start, options, progress)?),
             Formulation::Minimal => case
                 .simulate_minimal_with_progress(start, options, progress)
-                .ok_or_else(|| CliError::NoMinimalMap(name.to_string()))?
+                .ok_or_else(|| CliError::NoMinimalMap(C::NAME.to_string()))?
                 .map_err(CliError::from),
         }
     }
@@ -187,17 +181,37 @@ enum CliError {
     Convergence(String),
 }
 
-/// Call `$f::<Crane, N, M, A>($args)` for the model named `$model`.
-macro_rules! with_crane {
-    ($model:expr, $f:ident ( $($arg:expr),* $(,)? )) => {
-        match $model {
-            "navy-planar" => $f::<scenario::Planar, 7, 3, 2>($($arg),*),
-            "navy-planar-pulley" => $f::<scenario::PlanarPulley, 8, 4, 3>($($arg),*),
-            "navy-3d" => $f::<scenario::Crane3d, 11, 4, 3>($($arg),*),
-            "navy-3d-pulley" => $f::<scenario::Crane3dPulley, 12, 5, 4>($($arg),*),
-            other => Err(CliError::UnknownModel(other.to_string())),
+/// A command on one crane, run by [`registry::visit`] with the crane's
+/// description and sizes.
+enum Job<'a> {
+    Run { settings: RunSettings<'a>, file: Option<&'a ScenarioFile>, overrides: Overrides },
+    Bench { overrides: Overrides, repeat: usize, json: bool },
+    Convergence { file: Option<&'a ScenarioFile>, overrides: Overrides, out: &'a std::path::Path },
+}
+
+impl Visit for Job<'_> {
+    type Output = Result<Option<report::Summary>, CliError>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        match self {
+            Job::Run { settings, file, overrides } => {
+                let (case, run_settings) = scenario::build::<C, N, M, A>(file, &overrides)?;
+                run(&case, &settings, &run_settings).map(Some)
+            }
+            Job::Bench { overrides, repeat, json } => {
+                let (case, settings) = scenario::build::<C, N, M, A>(None, &overrides)?;
+                bench(&case, settings.formulation, settings.scheme, settings.dt, repeat, json).map(|()| None)
+            }
+            Job::Convergence { file, overrides, out } => {
+                let (case, settings) = scenario::build::<C, N, M, A>(file, &overrides)?;
+                convergence::run(&case, settings.formulation, settings.scheme, out).map(|()| None)
+            }
         }
-    };
+    }
+}
+
+/// Run `job` on the built-in crane `name`.
+fn dispatch(name: &str, job: Job) -> Result<Option<report::Summary>, CliError> {
+    registry::visit(name, job).unwrap_or_else(|| Err(CliError::UnknownModel(name.to_string())))
 }
 
 fn main() -> ExitCode {
@@ -216,19 +230,20 @@ fn execute(command: Command) -> Result<(), CliError> {
         Command::List => {
             let width = CATALOG.iter().map(|e| e.name.len()).max().unwrap_or(5);
             println!(
-                "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} description",
-                "model", "n", "m", "a", "f", "reference"
+                "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} description",
+                "model", "n", "m", "a", "f", "reference", "minimal"
             );
+            let yes = |b: bool| if b { "yes" } else { "no" };
             for e in CATALOG {
-                let reference = if e.reference { "yes" } else { "no" };
                 println!(
-                    "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {}",
+                    "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} {}",
                     e.name,
                     e.n,
                     e.m,
                     e.a,
                     e.dof(),
-                    reference,
+                    yes(e.reference),
+                    yes(e.minimal),
                     e.description
                 );
             }
@@ -258,10 +273,8 @@ fn execute(command: Command) -> Result<(), CliError> {
                 out: &out,
                 quiet,
             };
-            let summary = with_crane!(
-                model.as_str(),
-                run_model(&settings, file.as_ref(), &overrides)
-            )?;
+            let summary = dispatch(&model, Job::Run { settings, file: file.as_ref(), overrides })?
+                .expect("a run returns its summary");
             let problems = report::infeasibilities(&summary);
             if strict && !problems.is_empty() {
                 return Err(CliError::Infeasible {
@@ -285,10 +298,7 @@ fn execute(command: Command) -> Result<(), CliError> {
                 formulation: Some(formulation),
                 scheme,
             };
-            with_crane!(
-                model.as_str(),
-                bench_model(&model, &overrides, repeat, json)
-            )
+            dispatch(&model, Job::Bench { overrides, repeat, json }).map(|_| ())
         }
         Command::Convergence {
             model,
@@ -305,49 +315,9 @@ fn execute(command: Command) -> Result<(), CliError> {
                 formulation,
                 scheme,
             };
-            with_crane!(
-                model.as_str(),
-                convergence_model(&model, file.as_ref(), &overrides, &out)
-            )
+            dispatch(&model, Job::Convergence { file: file.as_ref(), overrides, out: &out }).map(|_| ())
         }
     }
-}
-
-/// Build a model's case from the scenario and run it.
-fn run_model<C: scenario::Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    settings: &RunSettings,
-    file: Option<&ScenarioFile>,
-    overrides: &Overrides,
-) -> Result<report::Summary, CliError> {
-    let (case, run_settings) = scenario::build::<C, N, M, A>(settings.name, file, overrides)?;
-    run(&case, settings, &run_settings)
-}
-
-/// The convergence study of one model.
-fn convergence_model<
-    C: scenario::Crane<N, M, A>,
-    const N: usize,
-    const M: usize,
-    const A: usize,
->(
-    name: &str,
-    file: Option<&ScenarioFile>,
-    overrides: &Overrides,
-    out: &std::path::Path,
-) -> Result<(), CliError> {
-    let (case, settings) = scenario::build::<C, N, M, A>(name, file, overrides)?;
-    convergence::run(&case, name, settings.formulation, settings.scheme, out)
-}
-
-/// Build a model's paper case and time it.
-fn bench_model<C: scenario::Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    name: &str,
-    overrides: &Overrides,
-    repeat: usize,
-    json: bool,
-) -> Result<(), CliError> {
-    let (case, settings) = scenario::build::<C, N, M, A>(name, None, overrides)?;
-    bench(&case, name, settings.formulation, settings.scheme, settings.dt, repeat, json)
 }
 
 /// What `crane run` was asked to do.
@@ -358,8 +328,8 @@ struct RunSettings<'a> {
 }
 
 /// Run one case and write its outputs.
-fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    case: &C,
+fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
     settings: &RunSettings,
     scenario: &scenario::Settings,
 ) -> Result<report::Summary, CliError> {
@@ -369,7 +339,7 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let options = Options::new(dt, case.tf()).with_scheme(scenario.scheme);
     let clock = Instant::now();
     let mut progress = progress::Progress::new(name, quiet);
-    let solution = formulation.simulate(case, name, &start, &options, &mut |step, steps| {
+    let solution = formulation.simulate(case, &start, &options, &mut |step, steps| {
         progress.tick(step, steps)
     });
     progress.finish();
@@ -378,7 +348,7 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     // the reference is evaluated where it is needed, never stored per step
     let (t0, tf) = (case.t0(), case.tf());
     let reference_at = |t: f64| case.reference(t);
-    let has_reference = case.reference(t0).is_some();
+    let has_reference = C::HAS_REFERENCE && case.reference(t0).is_some();
     let summary = report::summarize(
         name,
         formulation.name(),
@@ -392,8 +362,7 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let fine: Option<Vec<_>> = has_reference
         .then(|| (0..=samples).map(|i| case.reference(t0 + (tf - t0) * i as f64 / samples as f64)).collect())
         .flatten();
-    let parameters = crane_runtime::CraneModel::parameter_values(case.model());
-    let snapshots = snapshots::svg(&solution.info, &parameters, &solution)?
+    let snapshots = snapshots::svg(C::drawing(case.model()), &solution)?
         .map(|svg| ("snapshots.svg".to_string(), svg));
     let derived = output::Derived { names: case.derived_outputs(), values: &|s| case.derived(s) };
     output::write_all(out, &solution, fine.as_deref(), &summary, &derived, snapshots.as_slice())?;
@@ -413,9 +382,8 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
 }
 
 /// Time `repeat` runs of one case.
-fn bench<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    case: &C,
-    name: &str,
+fn bench<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
     formulation: Formulation,
     scheme: Scheme,
     dt: f64,
@@ -425,15 +393,16 @@ fn bench<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
     if repeat == 0 {
         return Err(CliError::NoRepeats);
     }
+    let name = C::NAME;
     let start = case.start()?;
     let options = Options::new(dt, case.tf()).with_scheme(scheme);
     let mut times = Vec::with_capacity(repeat);
     let mut steps = 0;
     let mut iterations = 0.0;
-    formulation.simulate(case, name, &start, &options, &mut |_, _| {})?; // warm-up
+    formulation.simulate(case, &start, &options, &mut |_, _| {})?; // warm-up
     for _ in 0..repeat {
         let clock = Instant::now();
-        let solution = formulation.simulate(case, name, &start, &options, &mut |_, _| {})?;
+        let solution = formulation.simulate(case, &start, &options, &mut |_, _| {})?;
         times.push(clock.elapsed().as_secs_f64());
         steps = solution.steps();
         iterations = solution.mean_newton_iterations();

@@ -2,10 +2,10 @@
 //! load's path and the pulley's trajectory, like the paper's Figs. 10, 19, 23
 //! and 26.
 //!
-//! Each built-in model has a small geometric description ([`geometry`]): its
-//! fixed points (winches, boom foot and tip) from the parameters, and for a
-//! state `q` the boom, the ropes (straight lines between winch points, the
-//! main pulley B and the load C), B and C. The planar cranes are drawn in the
+//! Each built-in model has a small geometric description (its `drawing`, in
+//! crane-models): its fixed points (winches, boom foot and tip) from the
+//! parameters, and for a state `q` the boom, the ropes (straight lines
+//! between winch points, the main pulley B and the load C), B and C. The planar cranes are drawn in the
 //! (x, z) plane, the 3D cranes in a cabinet projection of (x, y, z) (y drawn
 //! at 45 degrees, shortened by half); both with equal scales on both axes.
 
@@ -19,138 +19,9 @@ use crate::plot::register_font;
 /// Number of instants drawn, evenly spaced from `t0` to `tf`.
 pub const SNAPSHOTS: usize = 7;
 
-type P3 = [f64; 3];
-
-/// The crane in one state.
-struct Pose {
-    /// The boom as a polyline (foot to tip).
-    boom: Vec<P3>,
-    /// Rope segments.
-    ropes: Vec<[P3; 2]>,
-    /// Main pulley B.
-    pulley: P3,
-    /// Load C.
-    load: P3,
-}
-
-/// The crane's pose as a function of the coordinates `q`.
-type PoseFn = Box<dyn Fn(&[f64]) -> Pose>;
-
-/// How a model is drawn.
-struct Geometry {
-    /// 3D (cabinet projection) or planar (x, z).
-    spatial: bool,
-    /// Labelled points that do not move: (label, point).
-    fixed: Vec<(&'static str, P3)>,
-    /// The crane in state `q`.
-    pose: PoseFn,
-    /// What the ropes are, for the legend.
-    ropes: &'static str,
-}
-
-fn scale(p: P3, f: f64) -> P3 {
-    [p[0] * f, p[1] * f, p[2] * f]
-}
-
-/// The drawing of the built-in model whose type is `name` (`ModelInfo::name`),
-/// with parameters looked up by `param`; `None` for other models.
-fn geometry(name: &str, param: &dyn Fn(&str) -> Option<f64>) -> Option<Geometry> {
-    let g = |key: &str| param(key);
-    match name {
-        // q = [L1, L2, L0, x0, z0 | x, z]; tip P at the origin, winch 1 at
-        // A = -l (sin alpha, cos alpha) on the boom (eqs. 25-33)
-        "NavyPlanar" => {
-            let (alpha, l) = (g("alpha")?, g("l")?);
-            let a = [-l * alpha.sin(), 0.0, -l * alpha.cos()];
-            let p = [0.0; 3];
-            Some(Geometry {
-                spatial: false,
-                fixed: vec![("A", a), ("P", p)],
-                pose: Box::new(move |q| {
-                    let b = [q[3], 0.0, q[4]];
-                    let c = [q[5], 0.0, q[6]];
-                    Pose {
-                        boom: vec![a, p],
-                        ropes: vec![[a, b], [p, b], [b, c]],
-                        pulley: b,
-                        load: c,
-                    }
-                }),
-                ropes: "ropes A-B (L1), P-B-C (L2)",
-            })
-        }
-        // q = [L1, L2, L3, L0, x0 | x, z, z0]; tip S at the origin, winch 3 at
-        // P = -s (sin, cos), winch 1 at A = -(l + s) (sin, cos) (eqs. 49-56)
-        "NavyPlanarPulley" => {
-            let (alpha, l, s) = (g("alpha")?, g("l")?, g("s")?);
-            let dir = [-alpha.sin(), 0.0, -alpha.cos()];
-            let (a, p, tip) = (scale(dir, l + s), scale(dir, s), [0.0; 3]);
-            Some(Geometry {
-                spatial: false,
-                fixed: vec![("A", a), ("P", p), ("S", tip)],
-                pose: Box::new(move |q| {
-                    let b = [q[4], 0.0, q[7]];
-                    let c = [q[5], 0.0, q[6]];
-                    Pose {
-                        boom: vec![a, tip],
-                        ropes: vec![[a, b], [tip, b], [p, b], [b, c]],
-                        pulley: b,
-                        load: c,
-                    }
-                }),
-                ropes: "ropes A-B (L1), S-B (L2), P-B-C (L3)",
-            })
-        }
-        // q = [L1, L2, L0, x0, y0, z0, x2, y2 | x, y, z]; boom from O to the
-        // tip P = (x2, y2, (k + l) cos alpha), winch 1 at A = beta1 P (eqs. 68-78)
-        "Navy3d" => {
-            let (alpha, k, l, beta1) = (g("alpha")?, g("k")?, g("l")?, g("beta1")?);
-            let height = (k + l) * alpha.cos();
-            Some(Geometry {
-                spatial: true,
-                fixed: vec![("O", [0.0; 3])],
-                pose: Box::new(move |q| {
-                    let p = [q[6], q[7], height];
-                    let a = scale(p, beta1);
-                    let b = [q[3], q[4], q[5]];
-                    let c = [q[8], q[9], q[10]];
-                    Pose {
-                        boom: vec![[0.0; 3], p],
-                        ropes: vec![[a, b], [p, b], [b, c]],
-                        pulley: b,
-                        load: c,
-                    }
-                }),
-                ropes: "ropes A-B (L1), P-B-C (L2)",
-            })
-        }
-        // q = [L1, L2, L3, L0, x0, y0, x3, y3 | x, y, z, z0]; P = (x3, y3,
-        // (k + l) cos alpha), A = beta1 P, S = beta2 P the boom tip (eqs. 89-93)
-        "Navy3dPulley" => {
-            let (alpha, k, l) = (g("alpha")?, g("k")?, g("l")?);
-            let (beta1, beta2) = (g("beta1")?, g("beta2")?);
-            let height = (k + l) * alpha.cos();
-            Some(Geometry {
-                spatial: true,
-                fixed: vec![("O", [0.0; 3])],
-                pose: Box::new(move |q| {
-                    let p = [q[6], q[7], height];
-                    let (a, s) = (scale(p, beta1), scale(p, beta2));
-                    let b = [q[4], q[5], q[11]];
-                    let c = [q[8], q[9], q[10]];
-                    Pose {
-                        boom: vec![[0.0; 3], scale(p, beta1.max(beta2).max(1.0))],
-                        ropes: vec![[a, b], [s, b], [p, b], [b, c]],
-                        pulley: b,
-                        load: c,
-                    }
-                }),
-                ropes: "ropes A-B (L1), S-B (L2), P-B-C (L3)",
-            })
-        }
-        _ => None,
-    }
-}
+/// The built-in models' drawings live with the models
+/// (`Crane::drawing` in crane-models).
+use crane_models::drawing::{Drawing as Geometry, P3, Pose};
 
 /// Cabinet projection for the 3D cranes: y at 45 degrees, shortened by half.
 const OBLIQUE: f64 = 0.5 * std::f64::consts::FRAC_1_SQRT_2;
@@ -199,21 +70,14 @@ fn instants(times: &[f64], count: usize) -> Vec<usize> {
     out
 }
 
-/// `snapshots.svg` of a run of the built-in model `info.name` with parameter
-/// values `parameters` (in the order of `info.parameters`); `None` for a
-/// model without a drawing.
+/// `snapshots.svg` of a run drawn with `drawing`; `None` for a model
+/// without one.
 pub fn svg<const N: usize, const M: usize, const A: usize>(
-    info: &ModelInfo,
-    parameters: &[f64],
+    drawing: Option<Geometry>,
     solution: &Solution<N, M, A>,
 ) -> Result<Option<String>, CliError> {
-    let param = |key: &str| {
-        info.parameters
-            .iter()
-            .position(|p| *p == key)
-            .and_then(|i| parameters.get(i).copied())
-    };
-    let Some(geometry) = geometry(info.name, &param) else {
+    let info = &solution.info;
+    let Some(geometry) = drawing else {
         return Ok(None);
     };
     let times: Vec<f64> = solution.states.iter().map(|s| s.t).collect();
@@ -537,12 +401,9 @@ mod tests {
 
     #[test]
     fn planar_geometry_matches_the_constraints() {
-        let params = |k: &str| match k {
-            "alpha" => Some(std::f64::consts::FRAC_PI_3),
-            "l" => Some(10.0),
-            _ => None,
-        };
-        let g = geometry("NavyPlanar", &params).unwrap();
+        use crane_models::Crane;
+        let model = crane_models::navy_planar::NavyPlanar::default();
+        let g = crane_models::navy_planar::Description::drawing(&model).unwrap();
         // eq. (46): pulley at (0, -5), load at (0, -10)
         let q = [8.660254037844386, 10.0, 5.0, 0.0, -5.0, 0.0, -10.0];
         let pose = (g.pose)(&q);
@@ -553,6 +414,5 @@ mod tests {
             (len(&pose.ropes[2]) - (q[1] - q[2])).abs() < 1e-9,
             "L2 - L0"
         );
-        assert!(geometry("Other", &params).is_none());
     }
 }

@@ -363,7 +363,6 @@ fn convergence_reports_first_order_and_writes_the_plot() {
 /// Euler); an unknown scheme is an error naming the key.
 #[test]
 fn the_scheme_takes_effect_from_the_flag_and_the_file() {
-    use crane_models::Case;
     use crane_runtime::{Options, Scheme, simulate};
     let case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
     let api = |scheme: Scheme| {

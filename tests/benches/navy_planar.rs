@@ -10,7 +10,7 @@
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
-use crane_models::{Case, navy_planar, navy_planar_pulley};
+use crane_models::{Case, Crane, navy_planar, navy_planar_pulley};
 use crane_runtime::newton::NewtonOptions;
 use crane_runtime::{CraneModel, Options, RedundantStepper, Scheme, State, simulate};
 use crane_tests::handwritten::HandNavyPlanar;
@@ -38,7 +38,7 @@ fn redundant_runs<Mdl: CraneModel<7, 3, 2>>(c: &mut Criterion, label: &str, mode
 }
 
 /// Full runs at dt = 0.01 of a case in both formulations.
-fn formulations<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(c: &mut Criterion, name: &str, case: &C) {
+fn formulations<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(c: &mut Criterion, name: &str, case: &Case<C, N, M, A>) {
     let start = case.start().unwrap();
     let options = Options::new(0.01, case.tf());
     c.bench_function(&format!("{name}/redundant/run dt=0.01"), |b| {

@@ -6,7 +6,7 @@
 
 use crane_models::navy_planar_pulley::NavyPlanarPulley;
 use crane_models::navy_planar_pulley::reference::{
-    PulleyParams, ReferenceState, reference, reference_at,
+    ReferenceState, reference, reference_at,
 };
 use crane_runtime::{CraneModel, Trajectory};
 use nalgebra::{SMatrix, SVector};
@@ -40,8 +40,8 @@ impl Trajectory<3> for PaperPath {
     }
 }
 
-fn params_of(model: &NavyPlanarPulley) -> PulleyParams {
-    PulleyParams::from_values(&model.parameter_values()).expect("12 parameters")
+fn params_of(model: &NavyPlanarPulley) -> NavyPlanarPulley {
+    model.clone()
 }
 
 /// `n` equally spaced times strictly inside `(0, tf)`.
@@ -185,7 +185,7 @@ fn rope_tensions_are_consistent_and_positive() {
 /// are not used (Appendix B: `u` depends on `y, ..., y''''`).
 #[test]
 fn reference_uses_derivatives_up_to_four() {
-    let params = PulleyParams::default();
+    let params = NavyPlanarPulley::default();
     let path = PaperPath { tf: 4.0 };
     let derivs: [SVector<f64, 3>; 5] = std::array::from_fn(|k| path.derivative(1.5, k));
     let s = reference(&params, &derivs);

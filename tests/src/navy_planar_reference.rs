@@ -3,7 +3,8 @@
 //! independent transcriptions of the paper that must agree.
 
 use crate::handwritten::HandNavyPlanar;
-use crane_models::navy_planar::reference::{PlanarParams, ReferenceState, reference, reference_at};
+use crane_models::navy_planar::NavyPlanar;
+use crane_models::navy_planar::reference::{ReferenceState, reference, reference_at};
 use crane_runtime::{CraneModel, Trajectory};
 use nalgebra::{SMatrix, SVector};
 
@@ -37,8 +38,12 @@ impl Trajectory<2> for PaperPath {
     }
 }
 
-fn params_of(model: &HandNavyPlanar) -> PlanarParams {
-    PlanarParams::from_values(&model.parameter_values()).expect("8 parameters")
+fn params_of(model: &HandNavyPlanar) -> NavyPlanar {
+    let mut params = NavyPlanar::default();
+    for (name, value) in <NavyPlanar as CraneModel<7, 3, 2>>::INFO.parameters.iter().zip(model.parameter_values()) {
+        params.set_parameter(name, value).expect("the same parameters");
+    }
+    params
 }
 
 /// `n` equally spaced times strictly inside `(0, tf)`.
@@ -173,7 +178,7 @@ fn rope_tensions_are_consistent_and_nonnegative() {
 /// fourth are not used (eqs. 111-112).
 #[test]
 fn reference_uses_derivatives_up_to_four() {
-    let params = PlanarParams::default();
+    let params = NavyPlanar::default();
     let path = PaperPath { tf: 4.0 };
     let derivs: [SVector<f64, 2>; 5] = std::array::from_fn(|k| path.derivative(1.5, k));
     let s = reference(&params, &derivs);

@@ -8,8 +8,7 @@
 use std::f64::consts::PI;
 use std::time::Instant;
 
-use crane_models::Case;
-use crane_models::navy_3d::reference::{Params3d, reference_at};
+use crane_models::navy_3d::reference::reference_at;
 use crane_models::navy_3d::{Navy3d, PaperCase, TF, paper_p0, slewing_angle};
 use crane_runtime::check::{SampleBox, check_derivatives};
 use crane_runtime::{CraneModel, Error, Options, Solution, Trajectory, init, simulate};
@@ -77,11 +76,11 @@ fn generated_derivatives_match_central_differences() {
 /// `G1^T` and `G2^T` (81), `M = diag(M1, M2)` (74) with `M = J_b/r^2` (72) and
 /// the load term of (72) including `y` (ERRATA), `f` and `B^T` (80 with
 /// ERRATA: 8 rows, slewing column `-y2/r^2`, `x2/r^2` from eq. 79).
-struct Paper(Params3d);
+struct Paper(Navy3d);
 
 impl Paper {
     fn r(&self) -> f64 {
-        self.0.r()
+        (self.0.k + self.0.l) * self.0.alpha.sin()
     }
 
     fn z2(&self) -> f64 {
@@ -188,8 +187,11 @@ fn generated_model_matches_the_paper_equations() {
         .collect();
     assert_eq!(ropes, [("N1", 1), ("N2", 3)]);
     assert_eq!((Navy3d::N, Navy3d::M, Navy3d::A), (11, 4, 3));
-    let paper = Paper(Params3d::from_values(&generated.parameter_values()).unwrap());
-    assert_eq!(paper.0, Params3d::default());
+    // the declared defaults are the values of sect. 6.1.1 (J_b = M r^2 =
+    // 6.4 * 75, beta1 = 1/2, g = 9.81): m_l, J_b, J1, J2, r1, r2, alpha, k, l, beta1, g
+    let pi = std::f64::consts::PI;
+    assert_eq!(generated.parameter_values(), [100.0, 480.0, 0.1, 0.1, 0.1, 0.1, pi / 3.0, 5.0, 5.0, 0.5, 9.81]);
+    let paper = Paper(generated.clone());
     // implicit parameters (ERRATA): r = (k + l) sin(alpha) = 5 sqrt 3, M = J_b / r^2 = 6.4 kg
     assert!((paper.r() - 5.0 * 3f64.sqrt()).abs() < 1e-14);
     assert!((paper.0.J_b / (paper.r() * paper.r()) - 6.4).abs() < 1e-13);
@@ -414,7 +416,7 @@ fn static_solve_finds_the_regular_end_equilibrium() {
 fn reference_satisfies_the_equations_of_motion() {
     let case = case();
     let model = case.model();
-    let params = case.params();
+    let params = case.model().clone();
     let mut worst = [0.0f64; 3];
     for i in 0..=400 {
         let t = TF * i as f64 / 400.0;

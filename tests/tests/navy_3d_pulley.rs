@@ -8,7 +8,6 @@
 
 use std::time::Instant;
 
-use crane_models::Case;
 use crane_models::navy_3d_pulley::{Navy3dPulley, PaperCase, TF, paper_p0, slewing_angle};
 use crane_runtime::check::{SampleBox, check_derivatives};
 use crane_runtime::{CraneModel, Options, Solution, init, simulate};

@@ -3,7 +3,6 @@
 //! the same motion.
 
 use crane_macros::crane_model;
-use crane_models::Case;
 use crane_models::navy_planar::PaperCase;
 use crane_runtime::{Error, Options, Solution, init, simulate_minimal};
 

@@ -2,7 +2,6 @@
 //! consistent start, convergence of u to the analytical solution of Appendix A
 //! (Figs. 5-7, eq. 48), the long maneuver of Fig. 9, and rope tensions (Fig. 8).
 
-use crane_models::Case;
 use crane_models::navy_planar::{NavyPlanar, PaperCase, paper_p0};
 use crane_runtime::{Error, Options, Solution, init, simulate};
 

@@ -5,8 +5,7 @@
 //! (Figs. 14-16, eq. 48), the long maneuver of Fig. 18, and rope tensions
 //! (Fig. 17).
 
-use crane_models::Case;
-use crane_models::navy_planar_pulley::reference::{PulleyParams, reference_at};
+use crane_models::navy_planar_pulley::reference::reference_at;
 use crane_models::navy_planar_pulley::{NavyPlanarPulley, PaperCase, paper_p0};
 use crane_runtime::check::{SampleBox, check_derivatives};
 use crane_runtime::{CraneModel, Error, Options, Rope, Solution, init, simulate};
@@ -52,7 +51,7 @@ fn generated_derivatives_match_central_differences() {
 /// The paper's equations transcribed by hand: `g` (55), `G = [G1 G2]` from
 /// `G1^T` (57) and `G2^T` (58), `M = diag(M1, M2)` (53), `f` and `B^T` (56
 /// with ERRATA: one row per entry of `p`).
-struct Paper(PulleyParams);
+struct Paper(NavyPlanarPulley);
 
 impl Paper {
     fn constraints(&self, q: &SVector<f64, 8>) -> SVector<f64, 4> {
@@ -138,11 +137,14 @@ impl Paper {
 #[test]
 fn generated_model_matches_the_paper_equations() {
     let generated = NavyPlanarPulley::default();
-    let paper = Paper(PulleyParams::default());
+    // the declared defaults are the values of sect. 5.2.3 (and g = 9.81):
+    // m_l, m0, J1, J2, J3, r1, r2, r3, alpha, l, s, g
+    let pi = std::f64::consts::PI;
     assert_eq!(
-        PulleyParams::from_values(&generated.parameter_values()),
-        Some(paper.0)
+        generated.parameter_values(),
+        [100.0, 150.0, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, pi / 3.0, 10.0, 5.0, 9.81]
     );
+    let paper = Paper(generated.clone());
     let sample = sample_box();
     let mut rng = SmallRng::seed_from_u64(23);
     let close = |a: &[f64], b: &[f64], what: &str| {
@@ -452,7 +454,7 @@ fn coordinates_and_multipliers_follow_the_reference() {
 fn ropes_stay_taut_along_the_maneuver() {
     for tf in [4.0, 15.0] {
         let case = PaperCase::new(tf).unwrap();
-        let params = case.params();
+        let params = case.model().clone();
         let solution = run(&case, 0.01);
         let (mut min, mut peak, mut worst) = ([f64::INFINITY; 3], [0.0f64; 3], [0.0f64; 3]);
         for (i, state) in solution.states.iter().enumerate() {

@@ -2,7 +2,6 @@
 //! eqs. 59-63 with ERRATA (60); scheme 24a-e) and the commutative diagram of
 //! Fig. 1: redundant and minimal formulations describe the same motion.
 
-use crane_models::Case;
 use crane_models::navy_planar_pulley::{NavyPlanarPulley, PaperCase, minimal_guess};
 use crane_runtime::check::check_minimal_map;
 use crane_runtime::{MinimalMap, Options, Solution, simulate};

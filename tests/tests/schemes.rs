@@ -6,7 +6,7 @@
 //! exact gamma''), and a start in the middle of the move (not at rest, so the
 //! scheme starts itself) keeps order k at t = 1.5 s.
 
-use crane_models::Case;
+use crane_models::{Case, Crane};
 use crane_models::{navy_3d, navy_3d_pulley, navy_planar, navy_planar_pulley};
 use crane_runtime::{Options, Scheme, Solution, State, init, simulate};
 
@@ -14,8 +14,8 @@ use crane_runtime::{Options, Scheme, Solution, State, init, simulate};
 const T_ERROR: f64 = 1.5;
 
 /// Relative error of u at t = 1.5 s, eq. (48).
-fn e_u<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    case: &C,
+fn e_u<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
     run: &Solution<N, M, A>,
 ) -> f64 {
     let state = run.state_near(T_ERROR).expect("a step at 1.5 s");
@@ -39,8 +39,8 @@ enum Formulation {
 const T_END: f64 = 2.0;
 
 /// The paper's move of `case` from its consistent start to 2 s.
-fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    case: &C,
+fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
     formulation: Formulation,
     scheme: Scheme,
     dt: f64,
@@ -57,8 +57,8 @@ fn run<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
 }
 
 /// The largest relative error `|u - u_ref| / |u_ref|` over `[1, 2]` s.
-fn window_error<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    case: &C,
+fn window_error<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
     run: &Solution<N, M, A>,
 ) -> f64 {
     run.states
@@ -86,9 +86,9 @@ fn window_error<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize
 ///   [1, 2] s, which does not depend on where the error crosses zero: in
 ///   [k - 0.3, k + 0.7] between dt = 0.02 and 0.01 (0.04 and 0.02 for
 ///   BDF-5, whose error at 0.01 is within a factor 10 of the floor).
-fn assert_order<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(
+fn assert_order<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     name: &str,
-    case: &C,
+    case: &Case<C, N, M, A>,
     formulation: Formulation,
     scheme: Scheme,
 ) -> [f64; 3] {
@@ -139,7 +139,7 @@ fn assert_order<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize
 
 /// Every scheme in both formulations of one crane; each order more accurate
 /// than the one before it at dt = 0.01.
-fn assert_orders_of_every_scheme<C: Case<N, M, A>, const N: usize, const M: usize, const A: usize>(name: &str, case: &C) {
+fn assert_orders_of_every_scheme<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(name: &str, case: &Case<C, N, M, A>) {
     for formulation in [Formulation::Redundant, Formulation::Minimal] {
         let mut previous = f64::INFINITY;
         for scheme in Scheme::ALL {

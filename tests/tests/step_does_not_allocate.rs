@@ -9,7 +9,6 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use crane_models::Case;
 use crane_models::navy_planar::{PaperCase, minimal_guess};
 use crane_runtime::newton::NewtonOptions;
 use crane_runtime::{MinimalStepper, RedundantStepper, Scheme, Stepper};

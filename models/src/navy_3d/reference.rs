@@ -55,84 +55,15 @@
 //! `A`, which is the paper's `p0` (eq. 87), the limit `t -> 0+` of this
 //! solution (all functions involved are smooth there, as in Appendix A).
 
+use super::model::Navy3d;
 use crane_runtime::{Scalar, Trajectory};
 use nalgebra::SVector;
 use num_dual::Dual2;
 use std::f64::consts::PI;
 
-/// Parameters of the 3D crane (sect. 6.1.1), in the order of the model's
-/// parameter list: `m_l, J_b, J1, J2, r1, r2, alpha, k, l, beta1, g`.
-#[allow(non_snake_case)]
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Params3d {
-    /// Load mass, kg.
-    pub m_l: f64,
-    /// Moment of inertia of the crane about the `Z`-axis, kg m^2.
-    pub J_b: f64,
-    /// Inertia of winch 1, kg m^2.
-    pub J1: f64,
-    /// Inertia of winch 2, kg m^2.
-    pub J2: f64,
-    /// Radius of winch 1, m.
-    pub r1: f64,
-    /// Radius of winch 2, m.
-    pub r2: f64,
-    /// Boom angle with the vertical, rad.
-    pub alpha: f64,
-    /// Boom part `k`, m.
-    pub k: f64,
-    /// Boom part `l`, m.
-    pub l: f64,
-    /// Winch 1 at `A = beta1 P`.
-    pub beta1: f64,
-    /// Gravity, m/s^2.
-    pub g: f64,
-}
-
-impl Default for Params3d {
-    /// The values of sect. 6.1.1 (`J_b = M r^2 = 6.4 * 75`, `beta1 = 1/2`, `g = 9.81`).
-    fn default() -> Self {
-        Self {
-            m_l: 100.0,
-            J_b: 480.0,
-            J1: 0.1,
-            J2: 0.1,
-            r1: 0.1,
-            r2: 0.1,
-            alpha: PI / 3.0,
-            k: 5.0,
-            l: 5.0,
-            beta1: 0.5,
-            g: 9.81,
-        }
-    }
-}
-
-impl Params3d {
-    /// From values in the model's parameter order; `None` for another length.
-    pub fn from_values(values: &[f64]) -> Option<Self> {
-        match *values {
-            [m_l, j_b, j1, j2, r1, r2, alpha, k, l, beta1, g] => Some(Self {
-                m_l,
-                J_b: j_b,
-                J1: j1,
-                J2: j2,
-                r1,
-                r2,
-                alpha,
-                k,
-                l,
-                beta1,
-                g,
-            }),
-            _ => None,
-        }
-    }
-
-    /// Radius `r = (k + l) sin(alpha)` of the circle of the boom tip `P`.
-    pub fn r(&self) -> f64 {
-        (self.k + self.l) * self.alpha.sin()
-    }
+/// Radius `r = (k + l) sin(alpha)` of the circle of the boom tip `P`.
+pub fn boom_radius(model: &Navy3d) -> f64 {
+    (model.k + model.l) * model.alpha.sin()
 }
 
 type V3<T> = [T; 3];
@@ -173,11 +104,11 @@ pub struct FlatConfiguration<T: Scalar> {
 /// the boom's cone (`z'' + g <= 0` or a rope tilted so far that the cone
 /// intersection does not exist).
 pub fn flat_configuration<T: Scalar>(
-    params: &Params3d,
+    params: &Navy3d,
     x: V3<T>,
     xdd: V3<T>,
 ) -> Option<FlatConfiguration<T>> {
-    let Params3d {
+    let Navy3d {
         m_l,
         alpha,
         k,
@@ -272,7 +203,7 @@ pub struct ReferenceState {
 /// The flatness-based reference from the load path's derivatives
 /// `derivs[k] = x^(k)`, `k = 0..=4`; `None` where
 /// [`flat_configuration`] has no solution.
-pub fn reference(params: &Params3d, derivs: &[SVector<f64, 3>; 5]) -> Option<ReferenceState> {
+pub fn reference(params: &Navy3d, derivs: &[SVector<f64, 3>; 5]) -> Option<ReferenceState> {
     let taylor = |k: usize, i: usize| Dual2::new(derivs[k][i], derivs[k + 1][i], derivs[k + 2][i]);
     let flat = flat_configuration(
         params,
@@ -289,7 +220,7 @@ pub fn reference(params: &Params3d, derivs: &[SVector<f64, 3>; 5]) -> Option<Ref
     let lambda4 = n2 / (l2 - l0);
 
     // boom rows (x2, y2): M P'' = u3/r^2 (-y2, x2) - lambda1 (x2, y2) + F
-    let Params3d {
+    let Navy3d {
         J_b,
         J1,
         J2,
@@ -297,7 +228,7 @@ pub fn reference(params: &Params3d, derivs: &[SVector<f64, 3>; 5]) -> Option<Ref
         r2,
         ..
     } = *params;
-    let r = params.r();
+    let r = boom_radius(params);
     let mass = J_b / (r * r);
     let b1 = params.beta1;
     let (x0, y0, x2, y2) = (q[3], q[4], q[6], q[7]);
@@ -327,7 +258,7 @@ pub fn reference(params: &Params3d, derivs: &[SVector<f64, 3>; 5]) -> Option<Ref
 
 /// [`reference()`] at time `t` of a load path.
 pub fn reference_at(
-    params: &Params3d,
+    params: &Navy3d,
     path: &impl Trajectory<3>,
     t: f64,
 ) -> Option<ReferenceState> {

@@ -2,11 +2,13 @@
 //!
 //! - [`model`]: the crane declared with `crane_model!` (eqs. 25-35);
 //! - [`reference`](mod@reference): the analytical flatness-based solution of Appendix A;
-//! - [`case`]: the paper's maneuver (eqs. 41-47) as a [`Case`](crate::Case).
+//! - [`description`]: the crane as a built-in [`Crane`](crate::Crane): the
+//!   paper's manoeuvre (eqs. 41-47), the reference on any path, minimal
+//!   coordinates, the drawing.
 
-pub mod case;
+pub mod description;
 pub mod model;
 pub mod reference;
 
-pub use case::{PaperCase, minimal_guess, paper_p0, paper_path};
+pub use description::{Description, PaperCase, minimal_guess, paper_p0};
 pub use model::NavyPlanar;

@@ -30,70 +30,12 @@
 //! `p0 = [5 sqrt 3, 10, 5, 0, -5]` with `N1 = lambda1 = 0` (up to round-off
 //! from `cos(pi/2)`).
 
+use super::model::NavyPlanar;
 use crane_runtime::{Scalar, Trajectory};
 use nalgebra::SVector;
 use num_dual::Dual2;
 use std::f64::consts::PI;
 
-/// Parameters of the planar crane (sect. 5.1.3), in the order of the
-/// model's parameter list: `m_l, J1, J2, r1, r2, alpha, l, g`.
-#[allow(non_snake_case)]
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PlanarParams {
-    /// Load mass `m_l`, in kg.
-    pub m_l: f64,
-    /// Moment of inertia of winch 1, in kg m^2.
-    pub J1: f64,
-    /// Moment of inertia of winch 2, in kg m^2.
-    pub J2: f64,
-    /// Radius of winch 1, in m.
-    pub r1: f64,
-    /// Radius of winch 2, in m.
-    pub r2: f64,
-    /// Angle of the boom with the vertical, in rad.
-    pub alpha: f64,
-    /// Distance `l = |PA|` between the winches on the boom, in m.
-    pub l: f64,
-    /// Gravitational acceleration, in m/s^2.
-    pub g: f64,
-}
-
-impl Default for PlanarParams {
-    /// The values of sect. 5.1.3 (and `g = 9.81`).
-    fn default() -> Self {
-        Self {
-            m_l: 100.0,
-            J1: 0.1,
-            J2: 0.1,
-            r1: 0.1,
-            r2: 0.1,
-            alpha: PI / 3.0,
-            l: 10.0,
-            g: 9.81,
-        }
-    }
-}
-
-impl PlanarParams {
-    /// From values in the order `m_l, J1, J2, r1, r2, alpha, l, g` (as
-    /// returned by the model's `parameter_values()`); `None` for a slice of
-    /// another length.
-    pub fn from_values(values: &[f64]) -> Option<Self> {
-        match *values {
-            [m_l, j1, j2, r1, r2, alpha, l, g] => Some(Self {
-                m_l,
-                J1: j1,
-                J2: j2,
-                r1,
-                r2,
-                alpha,
-                l,
-                g,
-            }),
-            _ => None,
-        }
-    }
-}
 
 /// The algebraic part of the flatness solution, eqs. (101)-(109), for one
 /// scalar type.
@@ -123,13 +65,13 @@ pub struct FlatConfiguration<T: Scalar> {
 /// [`reference()`]). Requires `z'' + g > 0` (the hoist rope can only pull the
 /// load upwards).
 pub fn flat_configuration<T: Scalar>(
-    params: &PlanarParams,
+    params: &NavyPlanar,
     x: [T; 2],
     xdd: [T; 2],
 ) -> FlatConfiguration<T> {
     let [x, z] = x;
     let [xdd, zdd] = xdd;
-    let PlanarParams {
+    let NavyPlanar {
         m_l, alpha, l, g, ..
     } = *params;
     let zg = zdd + g;
@@ -198,7 +140,7 @@ pub struct ReferenceState {
 ///
 /// `q` depends on `x, x''`; `q'` additionally on `x', x'''`; `q''` and `u`
 /// on all of them up to `x''''` (eqs. 111-112).
-pub fn reference(params: &PlanarParams, derivs: &[SVector<f64, 2>; 5]) -> ReferenceState {
+pub fn reference(params: &NavyPlanar, derivs: &[SVector<f64, 2>; 5]) -> ReferenceState {
     // Second-order Taylor expansions in time of the position and of the acceleration.
     let taylor = |k: usize, i: usize| Dual2::new(derivs[k][i], derivs[k + 1][i], derivs[k + 2][i]);
     let flat = flat_configuration(
@@ -231,7 +173,7 @@ pub fn reference(params: &PlanarParams, derivs: &[SVector<f64, 2>; 5]) -> Refere
 }
 
 /// [`reference()`] at time `t` of a load path.
-pub fn reference_at(params: &PlanarParams, path: &impl Trajectory<2>, t: f64) -> ReferenceState {
+pub fn reference_at(params: &NavyPlanar, path: &impl Trajectory<2>, t: f64) -> ReferenceState {
     let derivs = std::array::from_fn(|k| path.derivative(t, k));
     reference(params, &derivs)
 }
@@ -280,7 +222,7 @@ mod tests {
     /// unit tests need no model (`crane-tests` repeats the check with the
     /// hand-written model).
     fn constraints_and_jacobian(
-        p: &PlanarParams,
+        p: &NavyPlanar,
         q: &SVector<f64, 7>,
     ) -> (SVector<f64, 3>, SMatrix<f64, 3, 7>) {
         let [l1, l2, l0, x0, z0, x, z] = [q[0], q[1], q[2], q[3], q[4], q[5], q[6]];
@@ -300,7 +242,7 @@ mod tests {
     }
 
     /// `M q'' - f - B^T u + G^T lambda` (eq. 1a with (29), (34), (35)).
-    fn residual(p: &PlanarParams, s: &ReferenceState) -> SVector<f64, 7> {
+    fn residual(p: &NavyPlanar, s: &ReferenceState) -> SVector<f64, 7> {
         let (_, jac) = constraints_and_jacobian(p, &s.q);
         let mass = SVector::<f64, 7>::from_column_slice(&[
             p.J1 / (p.r1 * p.r1),
@@ -321,7 +263,7 @@ mod tests {
     /// Eqs. (46)-(47) at t0, with the slack rope 1.
     #[test]
     fn paper_start() {
-        let p = PlanarParams::default();
+        let p = NavyPlanar::default();
         let s = reference_at(&p, &PaperPath, 0.0);
         let expected = [5.0 * 3f64.sqrt(), 10.0, 5.0, 0.0, -5.0, 0.0, -10.0];
         for (i, e) in expected.iter().enumerate() {
@@ -365,7 +307,7 @@ mod tests {
     /// The end state is a regular equilibrium with the load at rest at gammaf.
     #[test]
     fn paper_end_is_equilibrium() {
-        let p = PlanarParams::default();
+        let p = NavyPlanar::default();
         let s = reference_at(&p, &PaperPath, 4.0);
         assert_eq!((s.q[5], s.q[6]), (-3.0, -14.0));
         assert!(s.v.amax() < 1e-12 && s.a.amax() < 1e-12);
@@ -383,7 +325,7 @@ mod tests {
     /// the massless pulley, rows `x, z` Newton's law (101) for the load.
     #[test]
     fn satisfies_constraints_and_equations_of_motion() {
-        let p = PlanarParams::default();
+        let p = NavyPlanar::default();
         let scale = p.m_l * p.g;
         for t in times(50) {
             let s = reference_at(&p, &PaperPath, t);
@@ -410,7 +352,7 @@ mod tests {
     /// measured 1.2e-5) and drop by a factor of 4 when `h` is halved.
     #[test]
     fn dual_derivatives_match_finite_differences() {
-        let p = PlanarParams::default();
+        let p = NavyPlanar::default();
         let q_at = |t: f64| reference_at(&p, &PaperPath, t).q;
         let worst_errors = |h: f64| {
             times(50).fold((0.0f64, 0.0f64), |(ev, ea), t| {
@@ -435,11 +377,4 @@ mod tests {
         }
     }
 
-    #[test]
-    fn params_from_values() {
-        let p = PlanarParams::default();
-        let values = [p.m_l, p.J1, p.J2, p.r1, p.r2, p.alpha, p.l, p.g];
-        assert_eq!(PlanarParams::from_values(&values), Some(p));
-        assert_eq!(PlanarParams::from_values(&values[..7]), None);
-    }
 }

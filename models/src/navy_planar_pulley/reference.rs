@@ -34,94 +34,11 @@
 //! (122a), `N1 = lambda1 L1`, `N2 = lambda3 L2` from (122b, c); the unit tests
 //! check both routes against each other.
 
+use super::model::NavyPlanarPulley;
 use crane_runtime::{Scalar, Trajectory};
 use nalgebra::SVector;
 use num_dual::Dual2;
-use std::f64::consts::PI;
 
-/// Parameters of the crane (sect. 5.2.3), in the order of the model's
-/// parameter list: `m_l, m0, J1, J2, J3, r1, r2, r3, alpha, l, s, g`.
-#[allow(non_snake_case)]
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PulleyParams {
-    /// Load mass `m_l`, in kg.
-    pub m_l: f64,
-    /// Mass of the main pulley `m0`, in kg.
-    pub m0: f64,
-    /// Moment of inertia of winch 1, in kg m^2.
-    pub J1: f64,
-    /// Moment of inertia of winch 2, in kg m^2.
-    pub J2: f64,
-    /// Moment of inertia of winch 3, in kg m^2.
-    pub J3: f64,
-    /// Radius of winch 1, in m.
-    pub r1: f64,
-    /// Radius of winch 2, in m.
-    pub r2: f64,
-    /// Radius of winch 3, in m.
-    pub r3: f64,
-    /// Angle of the boom with the vertical, in rad.
-    pub alpha: f64,
-    /// Distance `l = |PA|` between winches 3 and 1, in m.
-    pub l: f64,
-    /// Distance `s = |SP|` between winches 2 and 3, in m.
-    pub s: f64,
-    /// Gravitational acceleration, in m/s^2.
-    pub g: f64,
-}
-
-impl Default for PulleyParams {
-    /// The values of sect. 5.2.3 (and `g = 9.81`).
-    fn default() -> Self {
-        Self {
-            m_l: 100.0,
-            m0: 150.0,
-            J1: 0.1,
-            J2: 0.1,
-            J3: 0.1,
-            r1: 0.1,
-            r2: 0.1,
-            r3: 0.1,
-            alpha: PI / 3.0,
-            l: 10.0,
-            s: 5.0,
-            g: 9.81,
-        }
-    }
-}
-
-impl PulleyParams {
-    /// From values in the order `m_l, m0, J1, J2, J3, r1, r2, r3, alpha, l,
-    /// s, g` (as returned by the model's `parameter_values()`); `None` for a
-    /// slice of another length.
-    pub fn from_values(values: &[f64]) -> Option<Self> {
-        match *values {
-            [m_l, m0, j1, j2, j3, r1, r2, r3, alpha, l, s, g] => Some(Self {
-                m_l,
-                m0,
-                J1: j1,
-                J2: j2,
-                J3: j3,
-                r1,
-                r2,
-                r3,
-                alpha,
-                l,
-                s,
-                g,
-            }),
-            _ => None,
-        }
-    }
-
-    /// The values in the model's parameter order (inverse of [`Self::from_values`]).
-    pub fn values(&self) -> [f64; 12] {
-        [
-            self.m_l, self.m0, self.J1, self.J2, self.J3, self.r1, self.r2, self.r3, self.alpha,
-            self.l, self.s, self.g,
-        ]
-    }
-}
 
 /// The algebraic part of the flatness solution (steps 1-3 of the module
 /// docs) for one scalar type.
@@ -148,13 +65,13 @@ pub struct FlatConfiguration<T: Scalar> {
 /// [`reference()`]). Requires `z'' + g > 0` and `z0 > z` (the load hangs
 /// below the pulley on a rope that pulls).
 pub fn flat_configuration<T: Scalar>(
-    params: &PulleyParams,
+    params: &NavyPlanarPulley,
     y: [T; 3],
     ydd: [T; 2],
 ) -> FlatConfiguration<T> {
     let [x, z, z0] = y;
     let [xdd, zdd] = ydd;
-    let PulleyParams {
+    let NavyPlanarPulley {
         m_l,
         alpha,
         l,
@@ -199,12 +116,12 @@ pub fn flat_configuration<T: Scalar>(
 /// The determinant is `(l + s)(z0 sin(alpha) - x0 cos(alpha))`: regular
 /// unless the pulley lies on the boom line (ropes 1 and 2 collinear).
 pub fn pulley_multipliers<T: Scalar>(
-    params: &PulleyParams,
+    params: &NavyPlanarPulley,
     flat: &FlatConfiguration<T>,
     x0dd: T,
     z0dd: T,
 ) -> [T; 2] {
-    let PulleyParams {
+    let NavyPlanarPulley {
         m0, alpha, l, s, g, ..
     } = *params;
     let (sin_a, cos_a) = alpha.sin_cos();
@@ -244,7 +161,7 @@ pub struct ReferenceState {
 ///
 /// `q` depends on `y, y''`; `q'` additionally on `y', y'''`; `q''`, `lambda1`,
 /// `lambda3` and `u` on all of them up to `y''''`.
-pub fn reference(params: &PulleyParams, derivs: &[SVector<f64, 3>; 5]) -> ReferenceState {
+pub fn reference(params: &NavyPlanarPulley, derivs: &[SVector<f64, 3>; 5]) -> ReferenceState {
     // Second-order Taylor expansions in time of the outputs and of their accelerations.
     let taylor = |k: usize, i: usize| Dual2::new(derivs[k][i], derivs[k + 1][i], derivs[k + 2][i]);
     let flat = flat_configuration(
@@ -267,7 +184,7 @@ pub fn reference(params: &PulleyParams, derivs: &[SVector<f64, 3>; 5]) -> Refere
     let lambda = SVector::<f64, 4>::new(lambda1, re.lambda2, lambda3, re.lambda4);
 
     // (124a)-(124c): J_i/r_i^2 L_i'' = (tension term) + u_i/r_i.
-    let PulleyParams {
+    let NavyPlanarPulley {
         J1,
         J2,
         J3,
@@ -294,7 +211,7 @@ pub fn reference(params: &PulleyParams, derivs: &[SVector<f64, 3>; 5]) -> Refere
 }
 
 /// [`reference()`] at time `t` of a path of the flat outputs `[x, z, z0]`.
-pub fn reference_at(params: &PulleyParams, path: &impl Trajectory<3>, t: f64) -> ReferenceState {
+pub fn reference_at(params: &NavyPlanarPulley, path: &impl Trajectory<3>, t: f64) -> ReferenceState {
     let derivs = std::array::from_fn(|k| path.derivative(t, k));
     reference(params, &derivs)
 }
@@ -342,7 +259,7 @@ mod tests {
     /// these unit tests need no model (`crane-tests` repeats the checks with
     /// the generated model).
     fn constraints_and_jacobian(
-        p: &PulleyParams,
+        p: &NavyPlanarPulley,
         q: &SVector<f64, 8>,
     ) -> (SVector<f64, 4>, SMatrix<f64, 4, 8>) {
         let [l1, l2, l3, l0, x0, x, z, z0] = [q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7]];
@@ -367,7 +284,7 @@ mod tests {
     }
 
     /// `M q'' - f - B^T u + G^T lambda` (eq. 1a with (53), (56)-(58)).
-    fn residual(p: &PulleyParams, s: &ReferenceState) -> SVector<f64, 8> {
+    fn residual(p: &NavyPlanarPulley, s: &ReferenceState) -> SVector<f64, 8> {
         let (_, jac) = constraints_and_jacobian(p, &s.q);
         let mass = SVector::<f64, 8>::from_column_slice(&[
             p.J1 / (p.r1 * p.r1),
@@ -394,7 +311,7 @@ mod tests {
     /// lambda1`, in z `30 lambda1 = m0 g = 1471.5`.
     #[test]
     fn paper_start() {
-        let p = PulleyParams::default();
+        let p = NavyPlanarPulley::default();
         let s = reference_at(&p, &PaperPath { tf: 4.0 }, 0.0);
         let s3 = 3f64.sqrt();
         let expected = [
@@ -442,7 +359,7 @@ mod tests {
     /// The end state is an equilibrium with everything at rest at gammaf.
     #[test]
     fn paper_end_is_equilibrium() {
-        let p = PulleyParams::default();
+        let p = NavyPlanarPulley::default();
         for tf in [4.0, 15.0] {
             let s = reference_at(&p, &PaperPath { tf }, tf);
             assert_eq!((s.q[5], s.q[6], s.q[7]), (-2.0, -16.0, -15.0));
@@ -460,7 +377,7 @@ mod tests {
     /// fix `x0, lambda4`.
     #[test]
     fn satisfies_constraints_and_equations_of_motion() {
-        let p = PulleyParams::default();
+        let p = NavyPlanarPulley::default();
         let scale = (p.m_l + p.m0) * p.g;
         for tf in [4.0, 15.0] {
             for t in times(tf, 50) {
@@ -489,7 +406,7 @@ mod tests {
     /// `(sin(theta), -cos(theta))`.
     #[test]
     fn newton_way_agrees_with_direct_way() {
-        let p = PulleyParams::default();
+        let p = NavyPlanarPulley::default();
         let path = PaperPath { tf: 4.0 };
         for t in std::iter::once(0.0).chain(times(4.0, 20)) {
             let s = reference_at(&p, &path, t);
@@ -556,7 +473,7 @@ mod tests {
     /// small and drop by about 4 when `h` is halved.
     #[test]
     fn dual_derivatives_match_finite_differences() {
-        let p = PulleyParams::default();
+        let p = NavyPlanarPulley::default();
         let path = PaperPath { tf: 4.0 };
         let q_at = |t: f64| reference_at(&p, &path, t).q;
         let worst_errors = |h: f64| {
@@ -582,10 +499,4 @@ mod tests {
         }
     }
 
-    #[test]
-    fn params_from_values() {
-        let p = PulleyParams::default();
-        assert_eq!(PulleyParams::from_values(&p.values()), Some(p));
-        assert_eq!(PulleyParams::from_values(&p.values()[..11]), None);
-    }
 }

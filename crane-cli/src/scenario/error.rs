@@ -1,0 +1,67 @@
+//! What can be wrong with a scenario, each variant naming the key.
+
+use crane_runtime::UnknownParameter;
+use crane_runtime::scheme::UnknownScheme;
+use crane_runtime::trajectory::TrajectoryError;
+
+/// Errors of a scenario, each naming the key (as written in the file).
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    #[error("reading scenario {path}: {source}")]
+    Read { path: String, source: std::io::Error },
+    #[error("scenario {path}: {message}")]
+    Parse { path: String, message: String },
+    #[error("scenario: `model` is \"{given}\" but the command runs {running}")]
+    WrongModel { given: String, running: String },
+    #[error("scenario: `{key}` must be a positive number of seconds, got {value}")]
+    NotPositiveTime { key: &'static str, value: f64 },
+    #[error("scenario: `{key}` must be finite, got {value}")]
+    NotFinite { key: String, value: f64 },
+    #[error("scenario: `t1` and `duration` both given; give one")]
+    EndTwice,
+    #[error("scenario: `tf` = {tf} s must be after the start time t0 = {t0} s")]
+    EndBeforeStart { tf: f64, t0: f64 },
+    #[error("scenario: `t1` = {t1} s must be after `t0` = {t0} s")]
+    MotionEndsBeforeStart { t1: f64, t0: f64 },
+    #[error("scenario: `{key}` needs {expected} numbers for {model} ({names}), got {found}")]
+    WrongCount { key: &'static str, expected: usize, model: String, names: String, found: usize },
+    #[error("scenario: `{key}`: entry {index} ({name}) is not finite")]
+    EntryNotFinite { key: &'static str, index: usize, name: String },
+    #[error("scenario: `tau0` applies only to trajectory = \"three-phase\" and \"smooth-three-phase\"")]
+    RampWithoutPhases,
+    #[error(
+        "scenario: `tau0` (ramp duration, s) is required for trajectory = \"three-phase\" and \"smooth-three-phase\""
+    )]
+    RampMissing,
+    #[error("scenario: the load path (keys `trajectory`, `tau0`, `start`, `end`, `t0`, `t1`): {0}")]
+    Path(TrajectoryError),
+    #[error("scenario: `parameters.{key}`: {source}")]
+    Parameter { key: String, source: UnknownParameter },
+    #[error("scenario: `limits.{key}`: {model} has no input `{key}`; its inputs are {inputs}")]
+    UnknownInput { key: String, model: String, inputs: String },
+    #[error("scenario: `limits.{key}` must be a positive number, got {value}")]
+    LimitNotPositive { key: String, value: f64 },
+    #[error("scenario: `scheme`: {0}")]
+    Scheme(UnknownScheme),
+}
+
+impl ScenarioError {
+    /// The key the error is about, as written in the file (`parameters.m_l`),
+    /// if it is about one key.
+    pub fn key(&self) -> Option<String> {
+        use ScenarioError::*;
+        match self {
+            Read { .. } | Parse { .. } | EndTwice => None,
+            WrongModel { .. } => Some("model".into()),
+            NotPositiveTime { key, .. } | WrongCount { key, .. } | EntryNotFinite { key, .. } => Some(key.to_string()),
+            NotFinite { key, .. } => Some(key.clone()),
+            EndBeforeStart { .. } => Some("tf".into()),
+            MotionEndsBeforeStart { .. } => Some("t1".into()),
+            RampWithoutPhases | RampMissing => Some("tau0".into()),
+            Path(_) => Some("trajectory".into()),
+            Parameter { key, .. } => Some(format!("parameters.{key}")),
+            UnknownInput { key, .. } | LimitNotPositive { key, .. } => Some(format!("limits.{key}")),
+            Scheme(_) => Some("scheme".into()),
+        }
+    }
+}

@@ -1,0 +1,107 @@
+//! The scenario file's schema as written (TOML), and reading it: unknown
+//! keys and wrong types are errors naming the key, its table, line and
+//! column.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use serde::Deserialize;
+
+use super::ScenarioError;
+use crate::Formulation;
+
+/// Trajectory profile.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Kind {
+    /// Rest-to-rest 5-6-7-8-9 polynomial (eqs. 41-45).
+    Poly9,
+    /// Ramp, constant speed, ramp (eqs. 85-86).
+    ThreePhase,
+    /// The same with ramps continuous up to the 6th derivative (bounded
+    /// slewing torque for the 3D crane with pulley mass, see ERRATA).
+    SmoothThreePhase,
+}
+
+/// A scenario file as written.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScenarioFile {
+    /// Optional: the model the file is written for (checked).
+    pub model: Option<String>,
+    pub dt: Option<f64>,
+    pub tf: Option<f64>,
+    pub formulation: Option<Formulation>,
+    /// Time-discretisation scheme, by name (`bdf4`).
+    pub scheme: Option<String>,
+    pub p0: Option<Vec<f64>>,
+    /// Profile of the load path.
+    pub trajectory: Option<Kind>,
+    /// Ramp duration of `three-phase`, s.
+    pub tau0: Option<f64>,
+    /// Load coordinates at `t0`.
+    pub start: Option<Vec<f64>>,
+    /// Load coordinates at `t1`.
+    pub end: Option<Vec<f64>>,
+    /// Start of the motion (and of the run), s.
+    pub t0: Option<f64>,
+    /// End of the motion, s.
+    pub t1: Option<f64>,
+    /// `t1 - t0`, s (instead of `t1`).
+    pub duration: Option<f64>,
+    #[serde(default)]
+    pub parameters: BTreeMap<String, f64>,
+    #[serde(default)]
+    pub limits: BTreeMap<String, f64>,
+}
+
+impl ScenarioFile {
+    /// Read and parse a scenario file (unknown keys and wrong types are errors naming the key).
+    pub fn load(path: &Path) -> Result<Self, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Read {
+            path: path.display().to_string(),
+            source,
+        })?;
+        toml::from_str(&text).map_err(|e| ScenarioError::Parse {
+            path: path.display().to_string(),
+            message: describe(&text, &e),
+        })
+    }
+}
+
+/// One line for a TOML error: the key it is about (with its table), the
+/// message and the position.
+fn describe(text: &str, error: &toml::de::Error) -> String {
+    let message = error.message().trim_end().replace('\n', " ");
+    let Some(span) = error.span() else {
+        return message;
+    };
+    let before = &text[..span.start.min(text.len())];
+    let line_no = before.matches('\n').count() + 1;
+    let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+    let mut table = String::new();
+    for line in before.lines() {
+        let line = line.trim();
+        if line.starts_with('[') && !line.contains('=') {
+            table = line
+                .trim_matches(|c| c == '[' || c == ']')
+                .trim()
+                .to_string();
+        }
+    }
+    let line = text[before.rfind('\n').map_or(0, |i| i + 1)..]
+        .lines()
+        .next()
+        .unwrap_or("");
+    let key = line
+        .split_once('=')
+        .map(|(k, _)| k.trim().trim_matches('"').to_string())
+        .filter(|k| !k.is_empty());
+    let at = format!("line {line_no}, column {column}");
+    match key {
+        Some(key) if table.is_empty() => format!("key `{key}`: {message} ({at})"),
+        Some(key) => format!("key `{table}.{key}`: {message} ({at})"),
+        None => format!("{message} ({at})"),
+    }
+}
+

@@ -1,0 +1,141 @@
+//! [`Case`]: a built-in crane with parameters, on a load path, from a start:
+//! what a run needs. The default manoeuvre is one case; a scenario file
+//! makes another from the same crane.
+
+use std::marker::PhantomData;
+
+use crane_runtime::trajectory::TrajectoryError;
+use crane_runtime::{Error, Options, Solution, State, init, redundant};
+
+use crate::crane::Crane;
+use crate::path::Path;
+
+/// A crane `C` with its model's parameters on a path from a start `p0`,
+/// run from the path's `t0` to `tf`.
+///
+/// ```
+/// use crane_models::navy_planar::PaperCase;
+/// use crane_runtime::Options;
+///
+/// let case = PaperCase::new(4.0).unwrap();         // sect. 5.1.3, tf = 4 s
+/// let start = case.start().unwrap();               // eq. (46), checked
+/// let run = case.simulate(&start, &Options::new(0.01, case.tf())).unwrap();
+/// let e_u = case.relative_input_error(run.state_near(1.5).unwrap()).unwrap(); // eq. (48)
+/// assert!(e_u < 2e-3);
+/// ```
+pub struct Case<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> {
+    /// The crane with its parameters.
+    pub model: C::Model,
+    /// The load path `gamma(t)`.
+    pub path: Path<A>,
+    /// The robot coordinates at `t0`.
+    pub p0: Vec<f64>,
+    /// End of the run, s.
+    pub tf: f64,
+    crane: PhantomData<C>,
+}
+
+impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Clone for Case<C, N, M, A> {
+    fn clone(&self) -> Self {
+        Self { model: self.model.clone(), path: self.path.clone(), p0: self.p0.clone(), tf: self.tf, crane: PhantomData }
+    }
+}
+
+impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, N, M, A> {
+    /// `model` on `path` from `p0`, run to `tf`.
+    pub fn from_parts(model: C::Model, path: Path<A>, p0: Vec<f64>, tf: f64) -> Self {
+        Self { model, path, p0, tf, crane: PhantomData }
+    }
+
+    /// The default manoeuvre with the motion ending at `t1` (and the run
+    /// with it), e.g. `navy_planar::PaperCase::new(4.0)` for Figs. 5-8.
+    pub fn new(t1: f64) -> Result<Self, TrajectoryError> {
+        let maneuver = C::maneuver();
+        let path = Path::new(crate::path::PathSpec { t1, ..maneuver.path })?;
+        Ok(Self::from_parts(C::Model::default(), path, maneuver.p0, t1))
+    }
+
+    /// The default manoeuvre as it is.
+    pub fn maneuver() -> Result<Self, TrajectoryError> {
+        Self::new(C::maneuver().path.t1)
+    }
+
+    /// The crane.
+    pub fn model(&self) -> &C::Model {
+        &self.model
+    }
+
+    /// The load path.
+    pub fn path(&self) -> &Path<A> {
+        &self.path
+    }
+
+    /// Start of the run (and of the motion), s.
+    pub fn t0(&self) -> f64 {
+        self.path.spec().t0
+    }
+
+    /// End of the run, s.
+    pub fn tf(&self) -> f64 {
+        self.tf
+    }
+
+    /// The consistent start at `t0` from `p0` at rest, checked against the
+    /// model's equations (eqs. 22d, 23 and the static balance).
+    pub fn start(&self) -> Result<State<N, M, A>, Error> {
+        init::check_start(&self.model, &self.path, self.t0(), &self.p0, None)
+    }
+
+    /// The analytical reference at `t`, if the crane has one.
+    pub fn reference(&self, t: f64) -> Option<State<N, M, A>> {
+        C::reference(&self.model, &self.path, t)
+    }
+
+    /// The relative error `|u - u_ref| / |u_ref|` of a state (eq. 48 at
+    /// t = 1.5 s), if the crane has a reference.
+    pub fn relative_input_error(&self, state: &State<N, M, A>) -> Option<f64> {
+        let reference = self.reference(state.t)?;
+        Some((state.u - reference.u).norm() / reference.u.norm())
+    }
+
+    /// The run in redundant coordinates (eqs. 22a-d) from `start`.
+    pub fn simulate(&self, start: &State<N, M, A>, options: &Options) -> Result<Solution<N, M, A>, Error> {
+        self.simulate_with_progress(start, options, &mut |_, _| {})
+    }
+
+    /// [`simulate`](Self::simulate), calling `progress(step, steps)` after every step.
+    pub fn simulate_with_progress(
+        &self,
+        start: &State<N, M, A>,
+        options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<Solution<N, M, A>, Error> {
+        redundant::simulate_with_progress(&self.model, &self.path, start, options, progress)
+    }
+
+    /// The run in minimal coordinates (eqs. 24a-e) from `start`, if the crane
+    /// declares a minimal map; `None` if not.
+    pub fn simulate_minimal(&self, start: &State<N, M, A>, options: &Options) -> Option<Result<Solution<N, M, A>, Error>> {
+        self.simulate_minimal_with_progress(start, options, &mut |_, _| {})
+    }
+
+    /// [`simulate_minimal`](Self::simulate_minimal) with progress.
+    pub fn simulate_minimal_with_progress(
+        &self,
+        start: &State<N, M, A>,
+        options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Option<Result<Solution<N, M, A>, Error>> {
+        C::simulate_minimal(&self.model, &self.path, start, options, progress)
+    }
+
+    /// Names of the derived outputs.
+    pub fn derived_outputs(&self) -> &'static [&'static str] {
+        C::derived_outputs()
+    }
+
+    /// The derived outputs of `state`.
+    pub fn derived(&self, state: &State<N, M, A>) -> Vec<f64> {
+        C::derived(&self.model, state)
+    }
+}

@@ -1,0 +1,87 @@
+//! [`Crane`]: everything the tool knows about one built-in crane, in one
+//! place: the model, its default manoeuvre as data, its analytical reference
+//! on any path (where it has one), its minimal-coordinate run (where it has a
+//! map), derived outputs and its drawing. The command line, the tests and
+//! the exports all reach a crane through this trait and the
+//! [`registry`](crate::registry).
+
+use crane_runtime::{CraneModel, Error, Options, Solution, State};
+
+use crate::drawing::Drawing;
+use crate::path::{Path, PathSpec};
+
+/// A crane's default manoeuvre: the load path and the start of the robot
+/// coordinates `p0` (checked for consistency when a run starts).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Maneuver<const A: usize> {
+    /// The load path.
+    pub path: PathSpec<A>,
+    /// The robot coordinates at `t0`, in the model's order.
+    pub p0: Vec<f64>,
+}
+
+/// One built-in crane. Implemented by a unit type per model module
+/// (`navy_planar::Description`, ...), listed once in the registry.
+pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
+    /// The crane declared with `crane_model!`; its `Default` has the paper's
+    /// (or the example's) parameters.
+    type Model: CraneModel<N, M, A> + Clone + Default;
+
+    /// The name on the command line, e.g. `navy-planar`.
+    const NAME: &'static str;
+    /// One line on what it is.
+    const DESCRIPTION: &'static str;
+    /// Whether [`reference`](Self::reference) gives an analytical solution.
+    const HAS_REFERENCE: bool = false;
+    /// Whether [`simulate_minimal`](Self::simulate_minimal) runs.
+    const HAS_MINIMAL_MAP: bool = false;
+
+    /// The default manoeuvre.
+    fn maneuver() -> Maneuver<A>;
+
+    /// The analytical reference at `t` on `path` for `model`'s parameters,
+    /// if the crane has one (and it is finite there).
+    fn reference(model: &Self::Model, path: &Path<A>, t: f64) -> Option<State<N, M, A>> {
+        let _ = (model, path, t);
+        None
+    }
+
+    /// The run in minimal coordinates (eqs. 24a-e) from `start`, if the crane
+    /// declares a minimal map (with its rough guess of `mu` at the start).
+    fn simulate_minimal(
+        model: &Self::Model,
+        path: &Path<A>,
+        start: &State<N, M, A>,
+        options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Option<Result<Solution<N, M, A>, Error>> {
+        let _ = (model, path, start, options, progress);
+        None
+    }
+
+    /// Names of outputs derived from a state (e.g. the slewing angle `phi`);
+    /// columns of `results.csv` after the tensions.
+    fn derived_outputs() -> &'static [&'static str] {
+        &[]
+    }
+
+    /// The derived outputs of `state`, in the order of [`derived_outputs`](Self::derived_outputs).
+    fn derived(model: &Self::Model, state: &State<N, M, A>) -> Vec<f64> {
+        let _ = (model, state);
+        Vec::new()
+    }
+
+    /// How the crane is drawn with `model`'s parameters.
+    fn drawing(model: &Self::Model) -> Option<Drawing> {
+        let _ = model;
+        None
+    }
+}
+
+/// A reference state if all of it is finite (the flatness formulas can
+/// leave their domain on a user's path).
+pub fn finite_state<const N: usize, const M: usize, const A: usize>(state: State<N, M, A>) -> Option<State<N, M, A>> {
+    let finite = |s: &[f64]| s.iter().all(|x| x.is_finite());
+    (finite(state.q.as_slice()) && finite(state.v.as_slice()) && finite(state.u.as_slice()) && finite(state.lambda.as_slice()))
+        .then_some(state)
+}

@@ -1,0 +1,51 @@
+//! The 3D gantry crane as a built-in crane: a rest-to-rest move of the load
+//! from `(0, 0, -5)` to `(6, 3, -3)` in 8 s from the load hanging at rest
+//! straight below the trolley, and the drawing.
+
+use nalgebra::vector;
+
+use super::model::Gantry3d;
+use crate::case::Case;
+use crate::crane::{Crane, Maneuver};
+use crate::drawing::{Drawing, Pose};
+use crate::path::{PathSpec, Profile};
+
+/// The 3D gantry crane: bridge, trolley, hoist, load on one rope.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Description;
+
+/// The crane on its default move.
+pub type DefaultCase = Case<Description, 6, 1, 3>;
+
+/// End time of the default move, s.
+pub const TF: f64 = 8.0;
+
+impl Crane<6, 1, 3> for Description {
+    type Model = Gantry3d;
+    const NAME: &'static str = "gantry-3d";
+    const DESCRIPTION: &'static str = "3D gantry crane: bridge, trolley, hoist winch, one rope";
+
+    /// Poly9 (eqs. 41-45) from `(0, 0, -5)` to `(6, 3, -3)` in [`TF`]; the
+    /// start `p0 = [X, Y, L] = [0, 0, 5]`: at rest below the trolley.
+    fn maneuver() -> Maneuver<3> {
+        Maneuver {
+            path: PathSpec { profile: Profile::Poly9, t0: 0.0, t1: TF, start: vector![0.0, 0.0, -5.0], end: vector![6.0, 3.0, -3.0] },
+            p0: vec![0.0, 0.0, 5.0],
+        }
+    }
+
+    /// `q = [X, Y, L | x, y, z]`: the bridge at `X` spanning `y` from -10 to
+    /// 10 m at height 0, the trolley `(X, Y, 0)`, the rope to the load.
+    fn drawing(_: &Gantry3d) -> Option<Drawing> {
+        Some(Drawing {
+            spatial: true,
+            fixed: vec![("O", [0.0; 3])],
+            pose: Box::new(|q| {
+                let trolley = [q[0], q[1], 0.0];
+                let load = [q[3], q[4], q[5]];
+                Pose { boom: vec![[q[0], -10.0, 0.0], [q[0], 10.0, 0.0]], ropes: vec![[trolley, load]], pulley: trolley, load }
+            }),
+            ropes: "bridge at X, trolley B, rope B-C (L)",
+        })
+    }
+}
