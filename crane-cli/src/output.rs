@@ -11,7 +11,7 @@ use crate::CliError;
 use crate::plot;
 use crate::report::Summary;
 
-/// Column names of `results.csv` (DESIGN.md §5): `t`, the coordinates, the
+/// Column names of `results.csv` (docs/numerics.md): `t`, the coordinates, the
 /// inputs, `lambda1..lambdam`, the rope tensions.
 pub fn header<const N: usize, const M: usize, const A: usize>(
     solution: &Solution<N, M, A>,

@@ -95,7 +95,7 @@ pub struct Constraint {
     pub rope: Option<Rope>,
 }
 
-/// A rope: tension `N = lambda * L` (ERRATA, "Conventions").
+/// A rope: tension `N = lambda * L` (docs/errata.md, "Conventions").
 pub struct Rope {
     /// Name of the tension.
     pub tension: Ident,

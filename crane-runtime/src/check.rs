@@ -1,5 +1,5 @@
 //! Check every generated derivative of a model against central finite
-//! differences at random points (DESIGN.md §4).
+//! differences at random points (docs/numerics.md).
 //!
 //! Central differences with step `h = 1e-6 (1 + |q_j|)` have truncation error
 //! `O(h^2 |f'''|)` ~ 1e-12 and round-off `O(eps |f| / h)` ~ 1e-10 relative to

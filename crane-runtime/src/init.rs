@@ -1,4 +1,4 @@
-//! Consistent initial values (paper sect. 4.1 and DESIGN.md §3).
+//! Consistent initial values (paper sect. 4.1 and docs/numerics.md).
 //!
 //! A start at `t0` must satisfy the constraints `g(p0, gamma(t0)) = 0`
 //! (eq. 22d), the velocity constraints `G1 v0 + G2 gamma'(t0) = 0` (eq. 23)
@@ -245,7 +245,7 @@ where
     };
 
     // start u, lambda from the balance at the guess (zero would make the
-    // Jacobian singular, DESIGN.md §3)
+    // Jacobian singular, docs/numerics.md)
     {
         let (r, jac) = assemble(&z);
         if !(r.iter().all(|x| x.is_finite()) && jac.iter().all(|x| x.is_finite())) {

@@ -2,14 +2,14 @@
 //! allocation-free after construction.
 //!
 //! LU with partial pivoting; when the pivots say the matrix is singular to
-//! working precision (the paper's degenerate starts, see DESIGN.md §3) the
+//! working precision (the paper's degenerate starts, see docs/numerics.md) the
 //! solver takes the minimum-norm least-squares step instead, computed from the
 //! regularised normal equations `(J^T J + eps^2 I) dz = J^T r`.
 
 use nalgebra::{DMatrix, DVector};
 
 /// Smallest-to-largest LU pivot ratio below which the matrix is treated as
-/// singular to working precision (DESIGN.md §3: "about 1e-14").
+/// singular to working precision (docs/numerics.md: "about 1e-14").
 pub const SINGULAR_PIVOT_RATIO: f64 = 1e-14;
 
 /// Regularisation of the minimum-norm fallback relative to the largest
@@ -67,7 +67,7 @@ impl DenseSolver {
     /// Workspace that first equilibrates each matrix: columns, then rows,
     /// scaled by powers of two to largest entry about 1 (exact in floating
     /// point), so that unknowns and equations of very different units do not
-    /// spoil the pivoting or the singularity test (DESIGN.md §3, minimal
+    /// spoil the pivoting or the singularity test (docs/numerics.md, minimal
     /// coordinates: condition 1e16 without it).
     pub fn equilibrated(n: usize) -> Self {
         Self { equilibrate: true, scaled: DMatrix::zeros(n, n), ..Self::new(n) }

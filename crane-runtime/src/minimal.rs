@@ -1,5 +1,5 @@
 //! The servo problem in minimal coordinates, paper eqs. (24a-e) with
-//! (24b-d) as corrected in ERRATA, on any [`Scheme`].
+//! (24b-d) as corrected in docs/errata.md, on any [`Scheme`].
 //!
 //! With `mu = [mu1; mu2]`, `mu' = [nu1; mu2_hat]` and the reduced quantities
 //! `M~ = P^T M P`, `f~ = P^T f - P^T M P' mu'`, `B~^T = P^T B^T` (eqs. 18-19),
@@ -18,10 +18,10 @@
 //! ```
 //! The iteration matrix is the exact Jacobian, by forward-mode dual numbers
 //! pushed through the generated `phi`, `P`, `P'` and the model functions;
-//! it is equilibrated before each solve (DESIGN.md §3: `M~` is singular along
+//! it is equilibrated before each solve (docs/numerics.md: `M~` is singular along
 //! the whole motion for a massless pulley, the full system is regular but
 //! badly scaled). Newton starts from a quadratic extrapolation of the last
-//! three steps (DESIGN.md §3: from the previous step alone it fails near the
+//! three steps (docs/numerics.md: from the previous step alone it fails near the
 //! degenerate start).
 //!
 //! Results are reported in redundant terms, `q = phi(mu)`, `q' = P mu'`, with

@@ -18,7 +18,7 @@ pub trait Scalar: DualNum<Primitive = f64> + Copy + nalgebra::Scalar {}
 impl<T: DualNum<Primitive = f64> + Copy + nalgebra::Scalar> Scalar for T {}
 
 /// A rope of the crane: the constraint `1/2 (|r_i - r_j|^2 - L^2)` that
-/// models it, and the name of its tension `N = lambda * L` (see ERRATA,
+/// models it, and the name of its tension `N = lambda * L` (see docs/errata.md,
 /// "Conventions").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Rope {

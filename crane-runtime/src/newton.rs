@@ -60,7 +60,7 @@ pub struct NewtonOptions {
     /// A normalised residual (see [`NonlinearSystem::evaluate`]) at or below
     /// this is converged whatever the update: near a singular iteration matrix
     /// round-off in the update exceeds `rtol` although the equations hold to
-    /// working precision (DESIGN.md §3, dt = 0.001).
+    /// working precision (docs/numerics.md, dt = 0.001).
     pub residual_tol: f64,
     /// Iteration limit per solve.
     pub max_iterations: usize,

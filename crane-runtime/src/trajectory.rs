@@ -4,7 +4,7 @@
 //! Every trajectory gives exact time derivatives of any order: the scheme of
 //! eqs. (22a-d) needs `gamma`, `gamma'` and `gamma''`, the analytical references
 //! need derivatives up to order 4 (Appendix A), and the 3D crane with pulley
-//! mass up to order 6 (ERRATA).
+//! mass up to order 6 (docs/errata.md).
 
 use nalgebra::SVector;
 
@@ -224,10 +224,10 @@ impl<const A: usize> Phases<A> {
     }
 }
 
-/// Coefficients of `h(s)/tau0 = 7 s^5 - 14 s^6 + 10 s^7 - 5/2 s^8` (ERRATA, eq. 86).
+/// Coefficients of `h(s)/tau0 = 7 s^5 - 14 s^6 + 10 s^7 - 5/2 s^8` (docs/errata.md, eq. 86).
 const RAMP: [f64; 9] = [0.0, 0.0, 0.0, 0.0, 0.0, 7.0, -14.0, 10.0, -2.5];
 
-/// The three-phase path of eqs. (82), (85), (86) as corrected in ERRATA:
+/// The three-phase path of eqs. (82), (85), (86) as corrected in docs/errata.md:
 /// accelerate during `tau0`, move at constant speed, decelerate during `tau0`.
 ///
 /// `gamma(t) = gamma0 + (gammaf - gamma0) c(t - t0)` with
@@ -293,7 +293,7 @@ const SMOOTH_RAMP: [f64; 13] = [
 /// meeting the cruise line with derivatives up to order 6 at `s = 1`).
 ///
 /// The 3D crane with pulley mass (paper sect. 6.2) needs the load path's
-/// derivatives up to order 6 for its slewing torque (ERRATA): on the paper's
+/// derivatives up to order 6 for its slewing torque (docs/errata.md): on the paper's
 /// C4 profile [`ThreePhase`] that torque has impulses at the switches, on this
 /// one it is bounded. Same constructor as [`ThreePhase`]; the ramps are
 /// steeper in the middle: for the same `tau0` the peak of `h''` is

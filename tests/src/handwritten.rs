@@ -9,7 +9,7 @@
 //!
 //! Coordinates `q = [L1, L2, L0, x0, z0, x, z]` (eqs. 25-26), inputs
 //! `u = [u1, u2]`, constraints `[rope1, rope0, hoist]` in the order of (33).
-//! Equations of motion (ERRATA, "Conventions"):
+//! Equations of motion (docs/errata.md, "Conventions"):
 //! `M q'' = f + B^T u - G^T lambda`, `G = dg/dq`.
 
 use crane_runtime::{CraneModel, ModelInfo, Rope, Scalar, UnknownParameter};
@@ -45,7 +45,7 @@ pub struct HandNavyPlanar {
 }
 
 impl Default for HandNavyPlanar {
-    /// The parameters of sect. 5.1.3 (and `g = 9.81`, ERRATA).
+    /// The parameters of sect. 5.1.3 (and `g = 9.81`, docs/errata.md).
     fn default() -> Self {
         Self {
             m_l: 100.0,
@@ -196,7 +196,7 @@ impl CraneModel<7, 3, 2> for HandNavyPlanar {
         (SMatrix::zeros(), SMatrix::zeros())
     }
 
-    /// `B^T = [B1^T; 0]`, eq. (34) (5x2 `B1^T`, see ERRATA): `1/r1` in the row
+    /// `B^T = [B1^T; 0]`, eq. (34) (5x2 `B1^T`, see docs/errata.md): `1/r1` in the row
     /// of `L1`, `1/r2` in the row of `L2`.
     fn input_matrix<T: Scalar>(&self, _q: &SVector<T, 7>) -> SMatrix<T, 7, 2> {
         let mut b = SMatrix::<T, 7, 2>::zeros();

@@ -1,6 +1,6 @@
 //! The 3D US Navy crane with massless pulley (paper, sect. 6.1): the
 //! generated model against finite differences and a transcription of
-//! eqs. (74), (78), (80), (81) with ERRATA; the paper's degenerate start (87);
+//! eqs. (74), (78), (80), (81) with docs/errata.md; the paper's degenerate start (87);
 //! the 20 s maneuver of eqs. (82)-(86) (Fig. 22): convergence, rope
 //! tensions, first-order convergence of u, the slewing angle; and the
 //! flatness-based reference of `navy_3d::reference` (not in the paper).
@@ -74,8 +74,8 @@ fn generated_derivatives_match_central_differences() {
 
 /// The paper's equations transcribed by hand: `g` (78), `G = [G1 G2]` from
 /// `G1^T` and `G2^T` (81), `M = diag(M1, M2)` (74) with `M = J_b/r^2` (72) and
-/// the load term of (72) including `y` (ERRATA), `f` and `B^T` (80 with
-/// ERRATA: 8 rows, slewing column `-y2/r^2`, `x2/r^2` from eq. 79).
+/// the load term of (72) including `y` (docs/errata.md), `f` and `B^T` (80 with
+/// docs/errata.md: 8 rows, slewing column `-y2/r^2`, `x2/r^2` from eq. 79).
 struct Paper(Navy3d);
 
 impl Paper {
@@ -192,7 +192,7 @@ fn generated_model_matches_the_paper_equations() {
     let pi = std::f64::consts::PI;
     assert_eq!(generated.parameter_values(), [100.0, 480.0, 0.1, 0.1, 0.1, 0.1, pi / 3.0, 5.0, 5.0, 0.5, 9.81]);
     let paper = Paper(generated.clone());
-    // implicit parameters (ERRATA): r = (k + l) sin(alpha) = 5 sqrt 3, M = J_b / r^2 = 6.4 kg
+    // implicit parameters (docs/errata.md): r = (k + l) sin(alpha) = 5 sqrt 3, M = J_b / r^2 = 6.4 kg
     assert!((paper.r() - 5.0 * 3f64.sqrt()).abs() < 1e-14);
     assert!((paper.0.J_b / (paper.r() * paper.r()) - 6.4).abs() < 1e-13);
 
@@ -249,7 +249,7 @@ fn generated_model_matches_the_paper_equations() {
 // The start (87)-(88) and static equilibria
 
 /// The paper's start passes the consistency check; it is the t -> 0 limit
-/// of the flatness solution, with rope L1 slack (ERRATA, "Degenerate starts").
+/// of the flatness solution, with rope L1 slack (docs/errata.md, "Degenerate starts").
 #[test]
 fn paper_start_is_consistent() {
     let case = case();
@@ -503,7 +503,7 @@ fn paper_runs_converge_and_ropes_stay_taut() {
     }
 }
 
-/// ERRATA, "Where the discretisation error sits", holds in 3D too: the servo
+/// docs/errata.md, "Where the discretisation error sits", holds in 3D too: the servo
 /// constraints (with the exact gamma'') and the massless rows fix q and the
 /// rope multipliers lambda2..4 algebraically at each step, so backward Euler
 /// reproduces them to round-off; its O(dt) error sits in u and in lambda1
@@ -571,7 +571,7 @@ fn max_u_difference(coarse: &Run, fine: &Run) -> (f64, f64) {
 /// O(dt^2)`, so `D(dt) = dt/2 max|C| + O(dt^2)` and `D(dt)/D(dt/2) -> 2`
 /// (order 2 would give 4, no convergence 1). The largest difference sits
 /// two steps after the switch to the braking phase at t = 15 s, where the
-/// path's 5th derivative jumps (ERRATA (86): the profile is only C4), so the
+/// path's 5th derivative jumps (docs/errata.md (86): the profile is only C4), so the
 /// error constant there is a fixed multiple of dt in step units and the
 /// ratio still tends to 2; the O(dt^2) term makes it approach 2 from below
 /// (measured 1.72, 1.86, 1.93). Band [1.6, 2.2]: observed orders 0.68-1.14.

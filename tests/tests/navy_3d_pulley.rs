@@ -1,9 +1,9 @@
 //! The 3D US Navy crane with pulley mass (paper, sect. 6.2): the generated
 //! model against finite differences; the paper's start (99)-(100) with
-//! ERRATA (99), a regular static equilibrium; the 20 s maneuver of
+//! docs/errata.md (99), a regular static equilibrium; the 20 s maneuver of
 //! sect. 6.2.1 (Fig. 25): convergence, rope tensions, first-order
 //! self-convergence of u; and the slewing torque u4 at the phase switches on
-//! the paper's C4 profile (impulses, ERRATA) against the C6 profile
+//! the paper's C4 profile (impulses, docs/errata.md) against the C6 profile
 //! `SmoothThreePhase` (bounded).
 
 use std::time::Instant;
@@ -81,13 +81,13 @@ fn generated_derivatives_match_central_differences() {
         (Navy3dPulley::N, Navy3dPulley::M, Navy3dPulley::A),
         (12, 5, 4)
     );
-    // implicit parameter (ERRATA): M = J_b / r^2 = 6.4 kg with r = (k + l) sin(alpha)
+    // implicit parameter (docs/errata.md): M = J_b / r^2 = 6.4 kg with r = (k + l) sin(alpha)
     let m = Navy3dPulley::default();
     let r = (m.k + m.l) * m.alpha.sin();
     assert!((m.J_b / (r * r) - 6.4).abs() < 1e-13);
 }
 
-/// The paper's start (99)-(100) with ERRATA (99) is a regular equilibrium:
+/// The paper's start (99)-(100) with docs/errata.md (99) is a regular equilibrium:
 /// the load rope is vertical (N3 = m_l g), rope L1 horizontal, rope L2 runs
 /// from the pulley up to S = 3/2 P and carries the pulley's weight:
 /// `N2 * 5 / L2 = m0 g`, `N1 = N2 * (5/2 sqrt 3) / L2 = m0 g sqrt(3)/2`.
@@ -140,7 +140,7 @@ fn paper_start_is_consistent() {
 }
 
 /// From a perturbed guess the static solve recovers the start: the
-/// equilibrium is regular (ERRATA), unlike sect. 6.1's start (87).
+/// equilibrium is regular (docs/errata.md), unlike sect. 6.1's start (87).
 #[test]
 fn static_equilibrium_recovers_the_start() {
     let case = PaperCase::new(TF).unwrap();
@@ -264,7 +264,7 @@ fn self_convergence(case: &PaperCase, window: f64, label: &str) -> [Vec<f64>; 4]
 /// Backward Euler is first order in u: D(dt) = dt/2 max|C| + O(dt^2), so
 /// D(dt)/D(dt/2) -> 2 (order 2 would give 4, no convergence 1). Paper
 /// profile: u1..u3 over the whole run; u4 outside 0.35 s (3.5 coarse steps)
-/// around the switches, where its exact value has impulses (ERRATA).
+/// around the switches, where its exact value has impulses (docs/errata.md).
 #[test]
 fn u_converges_with_order_one_paper_profile() {
     let case = PaperCase::new(TF).unwrap();

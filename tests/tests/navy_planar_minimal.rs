@@ -59,8 +59,8 @@ fn minimal_formulation_converges_with_order_one_tf15() {
 
 /// Fig. 1: the two formulations approach each other as dt shrinks. The
 /// largest difference in u over the whole run decreases with dt (about
-/// 7 dt N m, DESIGN.md §3). Both schemes reproduce q exactly in exact
-/// arithmetic (ERRATA), so the q difference is round-off amplified by the
+/// 7 dt N m, docs/numerics.md). Both schemes reproduce q exactly in exact
+/// arithmetic (docs/errata.md), so the q difference is round-off amplified by the
 /// minimal scheme's conditioning: with the residual test at 1e-13 and
 /// condition numbers up to ~1e6 after the first 0.05 s, below 1e-6 m. In the
 /// first 0.05 s, next to the degenerate start (pivot ratios 1e-12..1e-10), the

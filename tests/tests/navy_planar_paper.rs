@@ -51,7 +51,7 @@ fn paper_start_is_consistent_and_matches_appendix_a() {
     // (force scale m_l g ~ 1e3: 1e-10 relative)
     assert!((start.u - reference.u).amax() < 1e-7, "{} vs {}", start.u, reference.u);
     assert!((start.lambda - reference.lambda).amax() < 1e-7, "{} vs {}", start.lambda, reference.lambda);
-    // the slack rope L1 of the degenerate start (ERRATA)
+    // the slack rope L1 of the degenerate start (docs/errata.md)
     assert!(start.lambda[0].abs() < 1e-10);
 }
 
@@ -128,7 +128,7 @@ fn u_converges_with_order_one_tf15() {
     assert_first_order(&PaperCase::new(15.0).unwrap());
 }
 
-/// ERRATA, "Where the discretisation error sits": for the massless pulley the
+/// docs/errata.md, "Where the discretisation error sits": for the massless pulley the
 /// coordinates are fixed algebraically at each step by the servo constraints
 /// (which use the exact gamma'') and the massless rows, so backward Euler
 /// reproduces q (and lambda) to round-off while u carries the O(dt) error.

@@ -1,6 +1,6 @@
 //! The planar US Navy crane with pulley mass (paper, sect. 5.2): the
 //! generated model against finite differences and a transcription of
-//! eqs. (53), (55)-(58); the paper's start (66) with ERRATA as a regular
+//! eqs. (53), (55)-(58); the paper's start (66) with docs/errata.md as a regular
 //! equilibrium; convergence of u to the analytical solution of Appendix B
 //! (Figs. 14-16, eq. 48), the long maneuver of Fig. 18, and rope tensions
 //! (Fig. 17).
@@ -50,7 +50,7 @@ fn generated_derivatives_match_central_differences() {
 
 /// The paper's equations transcribed by hand: `g` (55), `G = [G1 G2]` from
 /// `G1^T` (57) and `G2^T` (58), `M = diag(M1, M2)` (53), `f` and `B^T` (56
-/// with ERRATA: one row per entry of `p`).
+/// with docs/errata.md: one row per entry of `p`).
 struct Paper(NavyPlanarPulley);
 
 impl Paper {
@@ -241,7 +241,7 @@ fn run(case: &PaperCase, dt: f64) -> Solution<8, 4, 3> {
     .expect("the run converges")
 }
 
-/// Eq. (66) with ERRATA is the flatness solution at t0; `u` and `lambda` of
+/// Eq. (66) with docs/errata.md is the flatness solution at t0; `u` and `lambda` of
 /// the static balance agree with Appendix B.
 #[test]
 fn paper_start_is_consistent_and_matches_appendix_b() {
@@ -287,7 +287,7 @@ fn paper_start_is_consistent_and_matches_appendix_b() {
 }
 
 /// The printed (66), `[10, 15, 13.23, 10, -5/2 sqrt 3]`, has L2 and L3
-/// swapped (ERRATA): the consistency check refuses it and names rope 2.
+/// swapped (docs/errata.md): the consistency check refuses it and names rope 2.
 #[test]
 fn printed_p0_is_refused() {
     let case = PaperCase::new(4.0).unwrap();
@@ -305,7 +305,7 @@ fn printed_p0_is_refused() {
     }
 }
 
-/// The start is a regular equilibrium (ERRATA, "Degenerate starts"): the
+/// The start is a regular equilibrium (docs/errata.md, "Degenerate starts"): the
 /// static solve recovers it from a perturbed guess, and the reference.
 #[test]
 fn static_solve_recovers_the_paper_start() {
@@ -401,7 +401,7 @@ fn u_converges_with_order_one_tf15() {
     assert_first_order(&PaperCase::new(15.0).unwrap());
 }
 
-/// ERRATA, "Where the discretisation error sits": the servo constraints (with
+/// docs/errata.md, "Where the discretisation error sits": the servo constraints (with
 /// the exact gamma'') and the load rows fix `q` and `lambda2`, `lambda4`
 /// algebraically at each step, so backward Euler reproduces them to
 /// round-off. `lambda1`, `lambda3` come from the pulley's rows (124e, f),

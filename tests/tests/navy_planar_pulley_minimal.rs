@@ -1,5 +1,5 @@
 //! The planar crane with pulley mass in minimal coordinates (sect. 5.2.2,
-//! eqs. 59-63 with ERRATA (60); scheme 24a-e) and the commutative diagram of
+//! eqs. 59-63 with docs/errata.md (60); scheme 24a-e) and the commutative diagram of
 //! Fig. 1: redundant and minimal formulations describe the same motion.
 
 use crane_models::navy_planar_pulley::{NavyPlanarPulley, PaperCase, minimal_guess};
@@ -77,7 +77,7 @@ fn minimal_map_satisfies_the_constraints_and_its_derivatives_check() {
     assert!(report.worst() < 1e-6, "{report}");
 }
 
-/// The paper's start (eqs. 66-67, ERRATA) is `mu = [pi/3, pi/3, 0, 5]`, and
+/// The paper's start (eqs. 66-67, docs/errata.md) is `mu = [pi/3, pi/3, 0, 5]`, and
 /// [`minimal_guess`] inverts the map exactly along the reference solution.
 #[test]
 fn minimal_guess_inverts_the_map_along_the_reference() {
@@ -217,7 +217,7 @@ fn differences(
 /// approach each other as dt shrinks.
 ///
 /// - `u` (and `lambda1`, `lambda3`) carry backward Euler's first-order error
-///   through second differences (ERRATA, "Where the discretisation error
+///   through second differences (docs/errata.md, "Where the discretisation error
 ///   sits"), discretised differently in `q` (redundant) and `mu` (minimal):
 ///   their difference shrinks like dt (measured 7.7 dt .. 8.3 dt N m), with
 ///   observed order 1 between the two smallest steps.
@@ -281,7 +281,7 @@ fn redundant_and_minimal_formulations_agree_as_dt_shrinks() {
 /// 2.5e-14 m), 1e-11 m being three orders of magnitude below the 6e-9 m the
 /// residual exit leaves. (At dt = 0.001 the update test alone is not met: the
 /// round-off in the update exceeds it at t = 1.255 s, which is what the
-/// residual exit is for, DESIGN.md §3.)
+/// residual exit is for, docs/numerics.md.)
 #[test]
 fn minimal_coordinates_are_exact_when_newton_iterates_to_round_off() {
     use crane_runtime::newton::NewtonOptions;

@@ -45,9 +45,11 @@ pub enum ScenarioError {
     Scheme(UnknownScheme),
 }
 
+#[cfg(test)]
 impl ScenarioError {
     /// The key the error is about, as written in the file (`parameters.m_l`),
-    /// if it is about one key.
+    /// if it is about one key (the property test checks that the message
+    /// names it).
     pub fn key(&self) -> Option<String> {
         use ScenarioError::*;
         match self {

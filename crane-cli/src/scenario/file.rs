@@ -19,7 +19,7 @@ pub enum Kind {
     /// Ramp, constant speed, ramp (eqs. 85-86).
     ThreePhase,
     /// The same with ramps continuous up to the 6th derivative (bounded
-    /// slewing torque for the 3D crane with pulley mass, see ERRATA).
+    /// slewing torque for the 3D crane with pulley mass, see docs/errata.md).
     SmoothThreePhase,
 }
 

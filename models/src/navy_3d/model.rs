@@ -1,12 +1,12 @@
 //! The three-dimensional US Navy crane with neglected pulley mass, in
-//! redundant coordinates (paper, sect. 6.1, eqs. 68-81, with ERRATA).
+//! redundant coordinates (paper, sect. 6.1, eqs. 68-81, with docs/errata.md).
 //!
 //! `n = 11` coordinates `q = [L1, L2, L0, x0, y0, z0, x2, y2 | x, y, z]`
 //! (eqs. 68-69), `m = 4` constraints (eq. 78), `a = 3` inputs: the torques
 //! `u1`, `u2` of the two winches and the slewing torque `u3` about the
 //! vertical `Z`-axis; `f = 7` degrees of freedom.
 //!
-//! Geometry (ERRATA, "Implicit parameters"): the boom of length `k + l`
+//! Geometry (docs/errata.md, "Implicit parameters"): the boom of length `k + l`
 //! stands on the `Z`-axis at the origin `O` and makes the angle `alpha` with
 //! the vertical. Its tip `P = (x2, y2, z2)`, where winch 2 hoists the load,
 //! moves on the circle `x2^2 + y2^2 = r^2` (eq. 71) at the fixed height
@@ -21,11 +21,11 @@
 //! `M = J_b / r^2` (eqs. 70-72), a constant coefficient. The slewing torque
 //! acts through the forces `F_x = -y2/r^2 u3`, `F_y = x2/r^2 u3` conjugate
 //! to `(x2, y2)` (eq. 79), which is the slewing column of `B1^T` (eq. 80
-//! with ERRATA: `-y2/r^2`, `x2/r^2`, not `-y2/r2`, `y2/r2`).
+//! with docs/errata.md: `-y2/r^2`, `x2/r^2`, not `-y2/r2`, `y2/r2`).
 //!
 //! The mass matrix (eq. 74) is singular: the pulley `(x0, y0, z0)` is
 //! massless and `L0` carries no inertia. `crane_model!` derives `G` (eq. 81),
-//! `M` (eq. 74), `f` and `B^T` (eq. 80 with ERRATA: 8 rows each).
+//! `M` (eq. 74), `f` and `B^T` (eq. 80 with docs/errata.md: 8 rows each).
 
 use crane_macros::crane_model;
 
@@ -64,17 +64,17 @@ crane_model! {
             l = 5.0,
             /// Position of winch 1 on the boom, `A = beta1 P` (sect. 6.1).
             beta1 = 0.5,
-            /// Gravity, m/s^2 (ERRATA: implicit, 9.81 throughout).
+            /// Gravity, m/s^2 (docs/errata.md: implicit, 9.81 throughout).
             g = 9.81
         }
         robot  [L1, L2, L0, x0, y0, z0, x2, y2]   // p, eq. (68)
         load   [x, y, z]                          // x, eq. (69)
         inputs [u1, u2, u3]
-        // eq. (72) with ERRATA (the load term includes y'^2), M = J_b / r^2
+        // eq. (72) with docs/errata.md (the load term includes y'^2), M = J_b / r^2
         kinetic = 0.5*J_b/((k + l)*sin(alpha))^2*(dot(x2)^2 + dot(y2)^2)
                 + 0.5*J1/r1^2*dot(L1)^2 + 0.5*J2/r2^2*dot(L2)^2
                 + 0.5*m_l*(dot(x)^2 + dot(y)^2 + dot(z)^2);
-        // eq. (80) with ERRATA: slewing column -y2/r^2, x2/r^2 (eq. 79)
+        // eq. (80) with docs/errata.md: slewing column -y2/r^2, x2/r^2 (eq. 79)
         forces {
             L1: u1/r1,
             L2: u2/r2,

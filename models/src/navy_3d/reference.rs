@@ -27,7 +27,7 @@
 //! with the boom tip `P` as origin, "vertical" `d` (so that the load rope
 //! is "vertical", `theta = 0`), boom angle `alpha'` between `b` and `d`, and
 //! `l' = |PA| = (1 - beta1)(k + l)`: with `x'` the load's offset from `P`
-//! perpendicular to `d`, eqs. (105)-(108) with ERRATA give
+//! perpendicular to `d`, eqs. (105)-(108) with docs/errata.md give
 //! ```text
 //! d' sin(alpha') = -x',    sin(beta) = (1 - d'/l') sin(alpha'),
 //! gamma = (beta - alpha' + pi)/2,

@@ -1,5 +1,5 @@
 //! The three-dimensional US Navy crane with nonzero pulley mass, in
-//! redundant coordinates (paper, sect. 6.2, eqs. 89-96, with ERRATA).
+//! redundant coordinates (paper, sect. 6.2, eqs. 89-96, with docs/errata.md).
 //!
 //! `n = 12` coordinates `q = [L1, L2, L3, L0, x0, y0, x3, y3 | x, y, z, z0]`
 //! (eqs. 89-90), `m = 5` constraints (eq. 93), `a = 4` inputs: the torques
@@ -8,7 +8,7 @@
 //! with pulley mass (sect. 5.2) the pulley's height `z0` is the fourth flat
 //! output, so `m0` sits in `M1` (rows `x0`, `y0`) and in `M2` (row `z0`).
 //!
-//! Geometry (sect. 6.2 and ERRATA, "Implicit parameters"): the boom stands on
+//! Geometry (sect. 6.2 and docs/errata.md, "Implicit parameters"): the boom stands on
 //! the `Z`-axis at the origin and makes the angle `alpha` with the vertical;
 //! the point `P = (x3, y3, z3)` at distance `k + l` from the origin, where
 //! winch 3 sits, moves on the circle `x3^2 + y3^2 = r^2` at the fixed height
@@ -23,7 +23,7 @@
 //! `1/2 M (x3'^2 + y3'^2)`, `M = J_b / r^2 = 6.4 kg` (as in sect. 6.1), and
 //! the slewing torque through `F_x = -y3/r^2 u4`, `F_y = x3/r^2 u4` (eq. 79).
 //!
-//! Corrections used (ERRATA): the load entries of `M2` (eq. 92) are `m_l`,
+//! Corrections used (docs/errata.md): the load entries of `M2` (eq. 92) are `m_l`,
 //! not `m`; `B1^T` and `f1` (eq. 94) have 8 rows, the slewing column is
 //! `-y3/r^2`, `x3/r^2`, and `f2 = [0, 0, -m_l g, -m0 g]`. `crane_model!`
 //! derives `G` (eqs. 95-96), `M`, `f` and `B^T` from the declarations below.
@@ -38,7 +38,7 @@ crane_model! {
     /// torque `u4` turning the crane (inertia `J_b` about `Z`), `P` on its
     /// circle of radius `r = (k + l) sin(alpha)` at height
     /// `z3 = (k + l) cos(alpha)`. Coordinates eqs. (89)-(90), kinetic energy
-    /// (91)-(92), constraints (93), forces (94), all with ERRATA.
+    /// (91)-(92), constraints (93), forces (94), all with docs/errata.md.
     pub struct Navy3dPulley {
         params {
             /// Load mass `m_l`, kg (sect. 6.2.1).
@@ -70,20 +70,20 @@ crane_model! {
             /// Position of winch 1 on the boom, `A = beta1 P` (sect. 6.2).
             beta1 = 0.5,
             /// Position of winch 2 on the boom, `S = beta2 P` (sect. 6.2,
-            /// ERRATA: `beta2 = 3/2`, so `|PS| = s = 5 m`).
+            /// docs/errata.md: `beta2 = 3/2`, so `|PS| = s = 5 m`).
             beta2 = 1.5,
-            /// Gravity, m/s^2 (ERRATA: implicit, 9.81 throughout).
+            /// Gravity, m/s^2 (docs/errata.md: implicit, 9.81 throughout).
             g = 9.81,
         }
         robot  [L1, L2, L3, L0, x0, y0, x3, y3]   // p, eq. (89)
         load   [x, y, z, z0]                      // x, eq. (90)
         inputs [u1, u2, u3, u4]
-        // eqs. (91)-(92) with ERRATA (m_l for the load), M = J_b / r^2
+        // eqs. (91)-(92) with docs/errata.md (m_l for the load), M = J_b / r^2
         kinetic = 0.5*J1/r1^2*dot(L1)^2 + 0.5*J2/r2^2*dot(L2)^2 + 0.5*J3/r3^2*dot(L3)^2
                 + 0.5*m0*(dot(x0)^2 + dot(y0)^2 + dot(z0)^2)
                 + 0.5*J_b/((k + l)*sin(alpha))^2*(dot(x3)^2 + dot(y3)^2)
                 + 0.5*m_l*(dot(x)^2 + dot(y)^2 + dot(z)^2);
-        // eq. (94) with ERRATA: slewing column -y3/r^2, x3/r^2; f2 = [0, 0, -m_l g, -m0 g]
+        // eq. (94) with docs/errata.md: slewing column -y3/r^2, x3/r^2; f2 = [0, 0, -m_l g, -m0 g]
         forces {
             L1: u1/r1,
             L2: u2/r2,

@@ -11,7 +11,7 @@
 //! the triangle PAB: `phi_p` and `phi_x` are eqs. (37) and (38), and
 //! `D2 phi_x` is eq. (40). Here `d = l sin(gamma - beta)/sin(gamma)` is `L0`,
 //! the distance from the boom tip P to the pulley (not Appendix A's `d`, see
-//! ERRATA, eq. 105), and `L = L2 - L0` is the length of the load rope.
+//! docs/errata.md, eq. 105), and `L = L2 - L0` is the length of the load rope.
 
 use crane_macros::crane_model;
 

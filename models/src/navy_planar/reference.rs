@@ -1,5 +1,5 @@
 //! Analytical flatness-based solution of the planar US Navy crane with
-//! massless main pulley (paper, Appendix A, eqs. 101-110, with the ERRATA
+//! massless main pulley (paper, Appendix A, eqs. 101-110, with the docs/errata.md
 //! for (105) and (108)).
 //!
 //! Geometry: winch 2 at the boom tip `P` (the origin), winch 1 at
@@ -18,7 +18,7 @@
 //! # The degenerate start
 //! At the paper's start (46) the load hangs at rest straight below `P`
 //! (`x = 0`, `x'' = 0`): rope `L1` is slack and the static balance alone
-//! leaves the pulley height free (ERRATA, "Degenerate starts"). The
+//! leaves the pulley height free (docs/errata.md, "Degenerate starts"). The
 //! formulas below are nevertheless regular there and need no special case:
 //! `theta = 0` (102) and the load-rope line passes through `P`, so `D = P`,
 //! `d = 0` (105), `beta = alpha`, `gamma = pi/2` (107): `AB` is perpendicular
@@ -46,7 +46,7 @@ pub struct FlatConfiguration<T: Scalar> {
     /// Angle of the load rope `BC` with the vertical (eq. 102).
     pub theta: T,
     /// `d = |PD|`, `D` where the load-rope line meets the boom line (eq. 105,
-    /// ERRATA); positive when `D` lies on the ray from `P` towards `A`.
+    /// docs/errata.md); positive when `D` lies on the ray from `P` towards `A`.
     pub d: T,
     /// Angle `APB` at the boom tip (eq. 105).
     pub beta: T,
@@ -59,7 +59,7 @@ pub struct FlatConfiguration<T: Scalar> {
 }
 
 /// Coordinates and tensions from the load position `x = [x, z]` and its
-/// acceleration `xdd = [x'', z'']`, eqs. (101)-(109) with the ERRATA.
+/// acceleration `xdd = [x'', z'']`, eqs. (101)-(109) with the docs/errata.md.
 ///
 /// Generic so that dual numbers can carry time derivatives through it (see
 /// [`reference()`]). Requires `z'' + g > 0` (the hoist rope can only pull the
@@ -80,7 +80,7 @@ pub fn flat_configuration<T: Scalar>(
     let theta = (-xdd).atan2(zg);
     let (sin_t, cos_t) = theta.sin_cos();
 
-    // (105) with ERRATA: D = C + s (sin theta, -cos theta) = -d (sin alpha, cos alpha);
+    // (105) with docs/errata.md: D = C + s (sin theta, -cos theta) = -d (sin alpha, cos alpha);
     // eliminating s gives d sin(alpha + theta) = -(x cos theta + z sin theta).
     let sin_at = (theta + alpha).sin();
     let d = -(x * cos_t + z * sin_t) / sin_at;
@@ -89,7 +89,7 @@ pub fn flat_configuration<T: Scalar>(
     // (107): AB bisects the angle PBC (force balance (106) at the massless pulley).
     let gamma = (beta - alpha - theta + PI) * 0.5;
 
-    // (108), law of sines in the triangle PAB, with ERRATA x0 = -L0 sin(alpha - beta).
+    // (108), law of sines in the triangle PAB, with docs/errata.md x0 = -L0 sin(alpha - beta).
     let sin_g = gamma.sin();
     let l1 = beta.sin() * l / sin_g;
     let l0 = (gamma - beta).sin() * l / sin_g;

@@ -18,7 +18,7 @@
 //!
 //! The `minimal` block is the map to the minimal coordinates of sect. 5.2.2,
 //! `mu = [beta | gamma, theta, L]` (eqs. 59, 63), from the law of sines in
-//! the triangle PAB (`|PA| = l`): `phi_p` is eq. (60) as corrected in ERRATA
+//! the triangle PAB (`|PA| = l`): `phi_p` is eq. (60) as corrected in docs/errata.md
 //! (its printed rows 2 and 3 are garbled; with `p` of eq. (49) they are
 //! `L2 = sqrt(x0^2 + z0^2)` and `L3 = L0 + L`), `phi_x` is eq. (61), the
 //! pulley position `(x0, z0)` eq. (62).
@@ -38,7 +38,7 @@
 //! `-L l sin(beta) cos(alpha - beta) / sin^2(gamma + theta + alpha - beta)`:
 //! regular for a load rope of positive length unless `PB` is along the boom
 //! (`beta = 0`) or horizontal (`cos(alpha - beta) = 0`); at the paper's start
-//! (eqs. 66-67, ERRATA) `mu = [pi/3 | pi/3, 0, 5]`.
+//! (eqs. 66-67, docs/errata.md) `mu = [pi/3 | pi/3, 0, 5]`.
 
 use crane_macros::crane_model;
 
@@ -97,7 +97,7 @@ crane_model! {
             let d = l*sin(psi)/sin(psi - beta);            // = L0 = |PB|, law of sines
             x0 = -s*sin(alpha) - d*sin(alpha - beta);      // eq. (62)
             z0 = -s*cos(alpha) - d*cos(alpha - beta);
-            L1 = l*sin(beta)/sin(psi - beta);              // eq. (60) with ERRATA
+            L1 = l*sin(beta)/sin(psi - beta);              // eq. (60) with docs/errata.md
             L2 = sqrt(x0^2 + z0^2);
             L3 = d + L;
             L0 = d;

@@ -1,6 +1,6 @@
 //! Analytical flatness-based solution of the planar US Navy crane with
 //! pulley mass (paper, Appendix B), by the "direct way" of eqs. (124a-o)
-//! with the ERRATA for (124h) (`m_l g`, not `m g`).
+//! with the docs/errata.md for (124h) (`m_l g`, not `m g`).
 //!
 //! Geometry (eq. 55): winch 2 at `S` (the origin), winch 3 at
 //! `P = -s (sin(alpha), cos(alpha))`, winch 1 at
@@ -59,7 +59,7 @@ pub struct FlatConfiguration<T: Scalar> {
 
 /// Coordinates and the multipliers of rope 3 from the flat outputs
 /// `y = [x, z, z0]` and the load's acceleration `ydd = [x'', z'']`,
-/// eqs. (124g, h, i, j, k, l, d) with ERRATA (124h).
+/// eqs. (124g, h, i, j, k, l, d) with docs/errata.md (124h).
 ///
 /// Generic so that dual numbers can carry time derivatives through it (see
 /// [`reference()`]). Requires `z'' + g > 0` and `z0 > z` (the load hangs
@@ -82,7 +82,7 @@ pub fn flat_configuration<T: Scalar>(
     let zg = zdd + g;
     let (sin_a, cos_a) = alpha.sin_cos();
 
-    // (124h) with ERRATA: m_l z'' = -lambda4 (z - z0) - m_l g.
+    // (124h) with docs/errata.md: m_l z'' = -lambda4 (z - z0) - m_l g.
     let lambda4 = zg * m_l / (z0 - z);
     // (124g): m_l x'' = -lambda4 (x - x0), i.e. (116a).
     let x0 = x + xdd * m_l / lambda4;
@@ -305,7 +305,7 @@ mod tests {
         mass.component_mul(&s.a) - rhs
     }
 
-    /// Eqs. (64), (66) with ERRATA, (67) at t0: a regular static equilibrium,
+    /// Eqs. (64), (66) with docs/errata.md, (67) at t0: a regular static equilibrium,
     /// values worked out by hand: `lambda4 = m_l g / 5 = 196.2`, `lambda2 =
     /// lambda4 5/10 = 98.1`; the pulley balance in x gives `lambda3 = 2
     /// lambda1`, in z `30 lambda1 = m0 g = 1471.5`.
