@@ -46,12 +46,28 @@ pub(super) fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream
                 .map(|&(_, id)| id)
         })
         .collect();
+    let reachable = arena.reachable(roots.iter().copied());
+    let bound_order = bound_order(arena, &roots, &reachable);
 
+    let mut printer = Printer {
+        model,
+        arena,
+        mode,
+        bound: HashMap::new(),
+    };
+    let mut statements = reads(model, mode, &reachable);
+    statements.extend(common_subexpressions(model, &mut printer, &bound_order));
+    statements.extend(writes(&printer, outputs));
+    statements
+}
+
+/// The nodes to bind to a `let`, children first: those that would be
+/// printed twice or more if inlined.
+fn bound_order(arena: &Arena, roots: &[Id], reachable: &[Id]) -> Vec<Id> {
     // How often each node would be printed if inlined; bind those printed
     // twice or more. Parents have larger ids than their children.
-    let reachable = arena.reachable(roots.iter().copied());
     let mut uses: HashMap<Id, usize> = HashMap::new();
-    for &r in &roots {
+    for &r in roots {
         *uses.entry(r).or_default() += 1;
     }
     let mut bound_order = Vec::new();
@@ -67,13 +83,13 @@ pub(super) fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream
         }
     }
     bound_order.reverse();
+    bound_order
+}
 
-    let mut printer = Printer {
-        model,
-        arena,
-        mode,
-        bound: HashMap::new(),
-    };
+/// `let name = ...;` for every parameter, coordinate, velocity, input and
+/// minimal coordinate among `reachable`, in declaration order.
+fn reads(model: &Model, mode: Mode, reachable: &[Id]) -> TokenStream {
+    let arena = &model.arena;
     let mut statements = TokenStream::new();
 
     // reads of parameters and coordinates, in declaration order
@@ -127,6 +143,13 @@ pub(super) fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream
             }
         });
     }
+    statements
+}
+
+/// `let name = value;` for the nodes of `bound_order`, which the printer
+/// then reads by name.
+fn common_subexpressions(model: &Model, printer: &mut Printer<'_>, bound_order: &[Id]) -> TokenStream {
+    let mut statements = TokenStream::new();
 
     // common subexpressions, children first; the user's name for the value
     // of a `let` (the first of equal ones), `tN` for the others
@@ -135,7 +158,7 @@ pub(super) fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream
         let_names.entry(*id).or_insert(name);
     }
     let mut temporaries = 0;
-    for &id in &bound_order {
+    for &id in bound_order {
         let value = printer.print_node(id);
         let value = printer.value(value);
         let name = match let_names.get(&id) {
@@ -148,7 +171,14 @@ pub(super) fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream
         statements.extend(quote!(let #name = #value;));
         printer.bound.insert(id, name);
     }
+    statements
+}
 
+/// The outputs: each new matrix from zeros, then its nonzero entries (all
+/// entries of a `&mut [f64]` parameter).
+fn writes(printer: &Printer<'_>, outputs: &[Output]) -> TokenStream {
+    let arena = printer.arena;
+    let mut statements = TokenStream::new();
     for output in outputs {
         let var = &output.var;
         let writes: Vec<&(TokenStream, Id)> = output
