@@ -28,7 +28,7 @@ use std::collections::HashMap;
 
 use proc_macro2::Ident;
 
-use super::{Kind, Lowerer, Place, RESERVED, join};
+use super::resolve::{Kind, Lowerer, Names, Place, RESERVED, join};
 use crate::expr::{Id, Sym};
 use crate::model::Minimal;
 use crate::parse::{MinimalDecl, MinimalStmt, Section};
@@ -287,7 +287,7 @@ fn taken_by(lower: &Lowerer<'_>, ident: &Ident) -> Option<String> {
 }
 
 /// The explanation of what may stand left of `=`.
-fn left_hand_sides(names: &super::Names) -> String {
+fn left_hand_sides(names: &Names) -> String {
     format!(
         "the left-hand sides of `minimal` are the redundant coordinates ({}); write `let name = ...;` for an \
          abbreviation",

@@ -1,0 +1,77 @@
+//! Checks of the `sample` section: the box the generated self-test draws its
+//! random points from.
+
+use proc_macro2::Ident;
+
+use super::resolve::{Lowerer, Place};
+use crate::model::SelfTest;
+use crate::parse::Expr;
+
+/// Check the `sample` section: a constant range for every coordinate and, if
+/// any minimal coordinate is named, for every minimal coordinate.
+pub(super) fn check_sample(
+    section: &crate::parse::Section<Vec<crate::parse::SampleDecl>>,
+    coords: &[Ident],
+    mu: Option<&[Ident]>,
+    lower: &mut Lowerer,
+) -> Option<SelfTest> {
+    let mut q_ranges: Vec<Option<(Expr, Expr)>> = vec![None; coords.len()];
+    let mut mu_ranges: Vec<Option<(Expr, Expr)>> = vec![None; mu.map_or(0, <[Ident]>::len)];
+    for item in &section.body {
+        lower.lower(&item.low, Place::ParamDefault);
+        lower.lower(&item.high, Place::ParamDefault);
+        let slot = if let Some(i) = coords.iter().position(|c| *c == item.name) {
+            &mut q_ranges[i]
+        } else if let Some(k) = mu.and_then(|mu| mu.iter().position(|c| *c == item.name)) {
+            &mut mu_ranges[k]
+        } else {
+            lower.cx.error_at(
+                item.name.span(),
+                format!(
+                    "`{}` in `sample` is not a coordinate{}: give a range for each coordinate, e.g. `{} = 1.0 .. 10.0`",
+                    item.name,
+                    if mu.is_some() { " or minimal coordinate" } else { "" },
+                    coords.first().map_or("x".to_string(), ToString::to_string),
+                ),
+            );
+            continue;
+        };
+        if slot.is_some() {
+            lower.cx.error_at(item.name.span(), format!("duplicate range for `{}` in `sample`", item.name));
+        }
+        *slot = Some((item.low.clone(), item.high.clone()));
+    }
+    let missing = |ranges: &[Option<(Expr, Expr)>], names: &[Ident]| -> Vec<String> {
+        ranges.iter().zip(names).filter(|(r, _)| r.is_none()).map(|(_, n)| n.to_string()).collect()
+    };
+    let q_missing = missing(&q_ranges, coords);
+    if !q_missing.is_empty() {
+        lower.cx.error_at(
+            section.keyword.span(),
+            format!(
+                "`sample` needs a range for every coordinate; missing: {} (write e.g. `{} = -10.0 .. 10.0`)",
+                q_missing.join(", "),
+                q_missing[0]
+            ),
+        );
+        return None;
+    }
+    let mu_ranges = match mu {
+        Some(mu) if mu_ranges.iter().any(Option::is_some) => {
+            let mu_missing = missing(&mu_ranges, mu);
+            if !mu_missing.is_empty() {
+                lower.cx.error_at(
+                    section.keyword.span(),
+                    format!(
+                        "`sample` names minimal coordinates but not all of them; missing: {}",
+                        mu_missing.join(", ")
+                    ),
+                );
+                return None;
+            }
+            Some(mu_ranges.into_iter().flatten().collect())
+        }
+        _ => None,
+    };
+    Some(SelfTest { q: q_ranges.into_iter().flatten().collect(), mu: mu_ranges })
+}

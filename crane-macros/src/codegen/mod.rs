@@ -1,0 +1,101 @@
+//! Code generation: a checked [`Model`] and its [`Kernels`] → Rust items.
+//!
+//! Only printing happens here. Each generated function reads the parameters
+//! and coordinates it needs into locals named as declared
+//! (`let m_l = T::from(self.m_l);`, `let L1 = q[0];`), binds every
+//! subexpression used more than once to a `let tN` (common-subexpression
+//! elimination, read off the hash-consed graph), starts its outputs from
+//! zeros and writes only the nonzero entries.
+//!
+//! The code is generic over `T: ::crane_runtime::Scalar`, which supports
+//! `T op T` and `T op f64` but not `f64 op T`; the printer therefore keeps
+//! numeric constants to the right (`x * 2.0`, `x - 1.0`, `r.recip()`).
+//! Internal names (`q`, `v`, `lambda`, `mu`, `mu_dot`, `out`, `tN`, `dot_x`)
+//! are `Span::mixed_site()` so they cannot collide with the user's names.
+//! A common subexpression that is the value of a `let` of a `minimal` block
+//! is bound under the user's name instead of a `tN`.
+//!
+//! [`generate`] emits the pieces in order: the struct (`model_struct`), its
+//! inherent items (`inherent`), the `CraneModel` impl (`model_impl`), the
+//! items of a `minimal` block (`minimal`) and the self-test (`self_test`).
+//! They share the expression printer (`printer`), the function bodies
+//! (`body`) and the `f64` code of constants (`constants`); `stub` is what is
+//! emitted after errors.
+
+mod body;
+mod constants;
+mod inherent;
+mod minimal;
+mod model_impl;
+mod model_struct;
+mod printer;
+mod self_test;
+mod stub;
+
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::quote;
+
+use crate::model::{Kernels, Model};
+use inherent::inherent_impl;
+use minimal::generate_minimal;
+use model_impl::crane_model_impl;
+use model_struct::model_struct;
+use self_test::self_test;
+
+pub use stub::stub;
+
+fn internal(name: &str) -> Ident {
+    Ident::new(name, Span::mixed_site())
+}
+
+fn index(i: usize) -> Literal {
+    Literal::usize_unsuffixed(i)
+}
+
+fn doc(text: impl AsRef<str>) -> TokenStream {
+    let text = format!(" {}", text.as_ref());
+    quote!(#[doc = #text])
+}
+
+fn names_list(idents: &[Ident]) -> String {
+    idents
+        .iter()
+        .map(|i| format!("`{i}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn str_list(idents: impl IntoIterator<Item = String>) -> TokenStream {
+    let items: Vec<String> = idents.into_iter().collect();
+    quote!(&[#(#items),*])
+}
+
+/// The complete expansion for a checked model.
+pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
+    let runtime = &model.runtime;
+    let lints = quote!(#[allow(non_snake_case, unused_variables, clippy::too_many_lines, clippy::unreadable_literal)]);
+    let model_struct = model_struct(model);
+    let inherent = inherent_impl(model, k, &lints);
+    let crane_model = crane_model_impl(model, k, &lints);
+    let minimal_items = match (&model.minimal, &k.minimal) {
+        (Some(minimal), Some(kernels)) => generate_minimal(model, minimal, kernels, &lints),
+        _ => TokenStream::new(),
+    };
+    let self_test = self_test(model);
+    quote! {
+        #model_struct
+
+        // the model functions, naming the runtime crate through one alias
+        const _: () = {
+        use #runtime as __crane_runtime;
+
+        #inherent
+
+        #crane_model
+
+        #minimal_items
+        };
+
+        #self_test
+    }
+}
