@@ -31,11 +31,12 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         )));
     }
     let name = C::NAME;
-    let reference = case.reference(T_ERROR).ok_or_else(|| {
+    let no_reference = || {
         CliError::Convergence(format!(
             "{name} has no analytical reference at t = {T_ERROR} s to measure the error against"
         ))
-    })?;
+    };
+    case.reference(T_ERROR).ok_or_else(no_reference)?;
     let start = case.start()?;
     let mut rows: Vec<(f64, f64)> = Vec::new();
     println!(
@@ -55,7 +56,7 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             .ok_or_else(|| {
                 CliError::Convergence(format!("dt = {dt} s: no step at t = {T_ERROR} s"))
             })?;
-        let error = (state.u - reference.u).norm() / reference.u.norm();
+        let error = case.relative_input_error(state).ok_or_else(no_reference)?;
         let order = rows
             .last()
             .map(|&(dt0, e0)| (e0 / error).ln() / (dt0 / dt).ln());
@@ -65,10 +66,7 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         }
         rows.push((dt, error));
     }
-    std::fs::create_dir_all(out).map_err(|source| CliError::Io {
-        context: format!("creating {}", out.display()),
-        source,
-    })?;
+    let mut staged = crate::output::Staged::new(out)?;
     let mut csv = String::from("dt,e_u,order\n");
     for (i, &(dt, e)) in rows.iter().enumerate() {
         let order = if i == 0 {
@@ -83,13 +81,9 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         formulation.name()
     );
     let svg = plot::convergence(&title, &rows, scheme.order())?;
-    for (file, text) in [("convergence.csv", csv), ("convergence.svg", svg)] {
-        let path = out.join(file);
-        std::fs::write(&path, text).map_err(|source| CliError::Io {
-            context: format!("writing {}", path.display()),
-            source,
-        })?;
-    }
+    staged.text("convergence.csv", csv)?;
+    staged.text("convergence.svg", svg)?;
+    staged.commit()?;
     println!("wrote {}", out.join("convergence.svg").display());
     Ok(())
 }

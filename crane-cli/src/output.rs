@@ -61,6 +61,56 @@ fn write_csv<const N: usize, const M: usize, const A: usize>(
     writer.flush().map_err(io_error(format!("writing {}", path.display())))
 }
 
+/// The files of one command's output, written under temporary names
+/// (`.NAME.partial`) and renamed together by [`commit`](Self::commit): an
+/// error before the commit removes them, so no partial file ever looks like
+/// a result. Every file `crane` writes goes through one of these.
+pub struct Staged {
+    dir: PathBuf,
+    files: Vec<(PathBuf, PathBuf)>,
+    committed: bool,
+}
+
+impl Staged {
+    /// Output into `dir` (created if missing).
+    pub fn new(dir: &Path) -> Result<Self, CliError> {
+        fs::create_dir_all(dir).map_err(io_error(format!("creating {}", dir.display())))?;
+        Ok(Self { dir: dir.to_path_buf(), files: Vec::new(), committed: false })
+    }
+
+    /// The temporary path to write `name` to.
+    pub fn path(&mut self, name: &str) -> PathBuf {
+        let temporary = self.dir.join(format!(".{name}.partial"));
+        self.files.push((temporary.clone(), self.dir.join(name)));
+        temporary
+    }
+
+    /// Write `name` with `text`.
+    pub fn text(&mut self, name: &str, text: impl AsRef<[u8]>) -> Result<(), CliError> {
+        let path = self.path(name);
+        fs::write(&path, text).map_err(io_error(format!("writing {}", path.display())))
+    }
+
+    /// Rename every file to its final name.
+    pub fn commit(mut self) -> Result<(), CliError> {
+        self.committed = true;
+        for (temporary, final_path) in &self.files {
+            fs::rename(temporary, final_path).map_err(io_error(format!("renaming to {}", final_path.display())))?;
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        if !self.committed {
+            for (temporary, _) in &self.files {
+                let _ = fs::remove_file(temporary);
+            }
+        }
+    }
+}
+
 /// Write `results.csv`, `summary.json`, the plots and the `extra` files
 /// (`(file name, text)`, e.g. `snapshots.svg`) into `out`.
 pub fn write_all<const N: usize, const M: usize, const A: usize>(
@@ -71,34 +121,14 @@ pub fn write_all<const N: usize, const M: usize, const A: usize>(
     derived: &Derived<N, M, A>,
     extra: &[(String, String)],
 ) -> Result<(), CliError> {
-    fs::create_dir_all(out).map_err(io_error(format!("creating {}", out.display())))?;
-    let mut staged: Vec<(PathBuf, PathBuf)> = Vec::new();
-    let result = (|| {
-        let mut stage = |name: &str| {
-            let final_path = out.join(name);
-            let temporary = out.join(format!(".{name}.partial"));
-            staged.push((temporary.clone(), final_path));
-            temporary
-        };
-        write_csv(&stage("results.csv"), solution, derived)?;
-        let json = serde_json::to_string_pretty(summary)
-            .map_err(|e| CliError::Output { what: "summary.json".into(), message: e.to_string() })?;
-        let path = stage("summary.json");
-        fs::write(&path, json + "\n").map_err(io_error(format!("writing {}", path.display())))?;
-        for (name, svg) in plot::all(solution, references)?.into_iter().chain(extra.iter().cloned()) {
-            let path = stage(&name);
-            fs::write(&path, svg).map_err(io_error(format!("writing {}", path.display())))?;
-        }
-        Ok(())
-    })();
-    if let Err(error) = result {
-        for (temporary, _) in &staged {
-            let _ = fs::remove_file(temporary);
-        }
-        return Err(error);
+    let mut staged = Staged::new(out)?;
+    let csv = staged.path("results.csv");
+    write_csv(&csv, solution, derived)?;
+    let json = serde_json::to_string_pretty(summary)
+        .map_err(|e| CliError::Output { what: "summary.json".into(), message: e.to_string() })?;
+    staged.text("summary.json", json + "\n")?;
+    for (name, svg) in plot::all(solution, references)?.into_iter().chain(extra.iter().cloned()) {
+        staged.text(&name, svg)?;
     }
-    for (temporary, final_path) in &staged {
-        fs::rename(temporary, final_path).map_err(io_error(format!("renaming to {}", final_path.display())))?;
-    }
-    Ok(())
+    staged.commit()
 }
