@@ -2,6 +2,7 @@
 //! hand-written model, numerical solutions against the analytical references.
 
 pub mod handwritten;
+pub mod kit;
 
 #[cfg(test)]
 mod navy_planar_reference;

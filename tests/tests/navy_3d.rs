@@ -12,6 +12,7 @@ use crane_models::navy_3d::reference::reference_at;
 use crane_models::navy_3d::{Navy3d, PaperCase, TF, paper_p0, slewing_angle};
 use crane_runtime::check::{SampleBox, check_derivatives};
 use crane_runtime::{CraneModel, Error, Options, Solution, Trajectory, init, simulate};
+use crane_tests::kit;
 use nalgebra::{SMatrix, SVector};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
@@ -559,13 +560,6 @@ fn u_converges_to_the_reference_with_order_one() {
     }
 }
 
-/// `max |u(dt) - u(dt/2)|` over the times of the coarse run and the inputs,
-/// and where it occurs (`Solution::input_difference`).
-fn max_u_difference(coarse: &Run, fine: &Run) -> (f64, f64) {
-    let per_input = coarse.input_difference(fine, |_| true).expect("fine run has half the step");
-    per_input.into_iter().fold((0.0, 0.0), |w, d| if d.0 > w.0 { d } else { w })
-}
-
 /// Self-convergence without a reference: `D(dt) = max_t |u(dt) - u(dt/2)|`
 /// halves as dt halves. For a first-order method `u(dt) = u + C(t) dt +
 /// O(dt^2)`, so `D(dt) = dt/2 max|C| + O(dt^2)` and `D(dt)/D(dt/2) -> 2`
@@ -582,7 +576,7 @@ fn u_converges_with_order_one_between_step_sizes() {
     let runs: Vec<Run> = dts.iter().map(|&dt| run(&case, dt).0).collect();
     let diffs: Vec<(f64, f64)> = runs
         .windows(2)
-        .map(|w| max_u_difference(&w[0], &w[1]))
+        .map(|w| kit::largest_input_difference(&w[0], &w[1], |_| true))
         .collect();
     for ((d, at), dt) in diffs.iter().zip(dts) {
         println!(

@@ -4,7 +4,8 @@
 
 use crane_macros::crane_model;
 use crane_models::navy_planar::PaperCase;
-use crane_runtime::{Error, Options, Solution, init, simulate_minimal};
+use crane_runtime::{Error, Options, Scheme, Solution, init, simulate_minimal};
+use crane_tests::kit::{self, Formulation};
 
 const DTS: [f64; 6] = [0.1, 0.05, 0.02, 0.01, 0.005, 0.001];
 
@@ -18,33 +19,9 @@ fn run_redundant(case: &PaperCase, dt: f64) -> Solution<7, 3, 2> {
     crane_runtime::simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf())).unwrap()
 }
 
-/// Relative error of u at t = 1.5 s (eq. 48).
-fn e_u(case: &PaperCase, solution: &Solution<7, 3, 2>) -> f64 {
-    let state = solution.state_near(1.5).unwrap();
-    let reference = case.reference(state.t).unwrap();
-    (state.u - reference.u).norm() / reference.u.norm()
-}
-
-/// e_u decreases monotonically with dt and the observed order between the two
-/// smallest steps is 1 (backward Euler), within [0.9, 1.1].
-fn assert_first_order(tf: f64, dts: &[f64]) {
-    let case = PaperCase::new(tf).unwrap();
-    let errors: Vec<f64> = dts.iter().map(|&dt| e_u(&case, &run_minimal(&case, dt))).collect();
-    for (dt, e) in dts.iter().zip(&errors) {
-        println!("minimal, tf = {tf}: dt = {dt:<6} e_u = {e:.4e}");
-    }
-    for w in errors.windows(2) {
-        assert!(w[1] < w[0], "e_u must decrease with dt: {errors:?}");
-    }
-    let n = dts.len();
-    let order = (errors[n - 2] / errors[n - 1]).ln() / (dts[n - 2] / dts[n - 1]).ln();
-    println!("observed order between dt = {} and {}: {order:.4}", dts[n - 2], dts[n - 1]);
-    assert!((0.9..=1.1).contains(&order), "observed order {order}");
-}
-
 #[test]
 fn minimal_formulation_converges_with_order_one_tf4() {
-    assert_first_order(4.0, &DTS);
+    kit::assert_order(&PaperCase::new(4.0).unwrap(), Formulation::Minimal, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
 }
 
 /// The slow maneuver of Fig. 9 down to dt = 0.005. At dt = 0.001 Newton fails
@@ -54,7 +31,7 @@ fn minimal_formulation_converges_with_order_one_tf4() {
 /// The redundant scheme does not have this problem (see navy_planar_paper.rs).
 #[test]
 fn minimal_formulation_converges_with_order_one_tf15() {
-    assert_first_order(15.0, &DTS[..5]);
+    kit::assert_order(&PaperCase::new(15.0).unwrap(), Formulation::Minimal, Scheme::BackwardEuler, &DTS[..5], 0.9..=1.1);
 }
 
 /// Fig. 1: the two formulations approach each other as dt shrinks. The

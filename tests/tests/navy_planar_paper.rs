@@ -3,38 +3,14 @@
 //! (Figs. 5-7, eq. 48), the long maneuver of Fig. 9, and rope tensions (Fig. 8).
 
 use crane_models::navy_planar::{NavyPlanar, PaperCase, paper_p0};
-use crane_runtime::{Error, Options, Solution, init, simulate};
+use crane_runtime::{Error, Options, Scheme, Solution, init, simulate};
+use crane_tests::kit::{self, Formulation};
 
 const DTS: [f64; 6] = [0.1, 0.05, 0.02, 0.01, 0.005, 0.001];
 
 fn run(case: &PaperCase, dt: f64) -> Solution<7, 3, 2> {
     let start = case.start().expect("the paper's start is consistent");
     simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf())).expect("the run converges")
-}
-
-/// Relative error of u at t = 1.5 s, eq. (48).
-fn e_u(case: &PaperCase, solution: &Solution<7, 3, 2>) -> f64 {
-    let state = solution.state_near(1.5).unwrap();
-    assert!((state.t - 1.5).abs() < 1e-9);
-    let reference = case.reference(state.t).unwrap();
-    (state.u - reference.u).norm() / reference.u.norm()
-}
-
-/// e_u for every dt decreases monotonically and the observed order between
-/// the two smallest dt is 1 (backward Euler), within [0.9, 1.1].
-fn assert_first_order(case: &PaperCase) -> Vec<f64> {
-    let errors: Vec<f64> = DTS.iter().map(|&dt| e_u(case, &run(case, dt))).collect();
-    for (dt, e) in DTS.iter().zip(&errors) {
-        println!("tf = {}: dt = {dt:<6} e_u = {e:.4e}", case.tf());
-    }
-    for w in errors.windows(2) {
-        assert!(w[1] < w[0], "e_u must decrease with dt: {errors:?}");
-    }
-    let n = DTS.len();
-    let order = (errors[n - 2] / errors[n - 1]).ln() / (DTS[n - 2] / DTS[n - 1]).ln();
-    println!("observed order between dt = {} and {}: {order:.4}", DTS[n - 2], DTS[n - 1]);
-    assert!((0.9..=1.1).contains(&order), "observed order {order}");
-    errors
 }
 
 #[test]
@@ -118,14 +94,14 @@ fn static_solve_finds_a_regular_equilibrium() {
 
 #[test]
 fn u_converges_with_order_one_tf4() {
-    let errors = assert_first_order(&PaperCase::new(4.0).unwrap());
+    let errors = kit::assert_order(&PaperCase::new(4.0).unwrap(), Formulation::Redundant, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
     // Fig. 7 (left): errors of a few percent at dt = 0.1 down to ~1e-4
     assert!(errors[0] < 0.05 && errors[5] < 1e-3, "{errors:?}");
 }
 
 #[test]
 fn u_converges_with_order_one_tf15() {
-    assert_first_order(&PaperCase::new(15.0).unwrap());
+    kit::assert_order(&PaperCase::new(15.0).unwrap(), Formulation::Redundant, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
 }
 
 /// docs/errata.md, "Where the discretisation error sits": for the massless pulley the

@@ -8,7 +8,8 @@
 use crane_models::navy_planar_pulley::reference::reference_at;
 use crane_models::navy_planar_pulley::{NavyPlanarPulley, PaperCase, paper_p0};
 use crane_runtime::check::{SampleBox, check_derivatives};
-use crane_runtime::{CraneModel, Error, Options, Rope, Solution, init, simulate};
+use crane_runtime::{CraneModel, Error, Options, Rope, Scheme, Solution, init, simulate};
+use crane_tests::kit::{self, Formulation};
 use nalgebra::{SMatrix, SVector};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
@@ -360,45 +361,15 @@ fn static_solve_recovers_the_paper_start() {
 // ---------------------------------------------------------------------------
 // Convergence (Figs. 14-16, 18)
 
-/// Relative error of u at t = 1.5 s, eq. (48).
-fn e_u(case: &PaperCase, solution: &Solution<8, 4, 3>) -> f64 {
-    let state = solution.state_near(1.5).unwrap();
-    assert!((state.t - 1.5).abs() < 1e-9);
-    let reference = case.reference(state.t).unwrap();
-    (state.u - reference.u).norm() / reference.u.norm()
-}
-
-/// e_u for every dt decreases monotonically and the observed order between
-/// the two smallest dt is 1 (backward Euler), within [0.9, 1.1].
-fn assert_first_order(case: &PaperCase) -> Vec<f64> {
-    let errors: Vec<f64> = DTS.iter().map(|&dt| e_u(case, &run(case, dt))).collect();
-    for (dt, e) in DTS.iter().zip(&errors) {
-        println!("tf = {}: dt = {dt:<6} e_u = {e:.4e}", case.tf());
-    }
-    for w in errors.windows(2) {
-        assert!(w[1] < w[0], "e_u must decrease with dt: {errors:?}");
-    }
-    let n = DTS.len();
-    let order = (errors[n - 2] / errors[n - 1]).ln() / (DTS[n - 2] / DTS[n - 1]).ln();
-    println!(
-        "tf = {}: observed order between dt = {} and {}: {order:.4}",
-        case.tf(),
-        DTS[n - 2],
-        DTS[n - 1]
-    );
-    assert!((0.9..=1.1).contains(&order), "observed order {order}");
-    errors
-}
-
 #[test]
 fn u_converges_with_order_one_tf4() {
-    let errors = assert_first_order(&PaperCase::new(4.0).unwrap());
+    let errors = kit::assert_order(&PaperCase::new(4.0).unwrap(), Formulation::Redundant, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
     assert!(errors[0] < 0.1 && errors[5] < 1e-3, "{errors:?}");
 }
 
 #[test]
 fn u_converges_with_order_one_tf15() {
-    assert_first_order(&PaperCase::new(15.0).unwrap());
+    kit::assert_order(&PaperCase::new(15.0).unwrap(), Formulation::Redundant, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
 }
 
 /// docs/errata.md, "Where the discretisation error sits": the servo constraints (with

@@ -4,7 +4,8 @@
 
 use crane_models::navy_planar_pulley::{NavyPlanarPulley, PaperCase, minimal_guess};
 use crane_runtime::check::check_minimal_map;
-use crane_runtime::{MinimalMap, Options, Solution, simulate};
+use crane_runtime::{MinimalMap, Options, Scheme, Solution, simulate};
+use crane_tests::kit::{self, Formulation};
 use nalgebra::{SMatrix, SVector};
 
 const DTS: [f64; 6] = [0.1, 0.05, 0.02, 0.01, 0.005, 0.001];
@@ -138,50 +139,16 @@ fn output_jacobian_is_regular() {
 // ---------------------------------------------------------------------------
 // Convergence (eq. 48)
 
-/// Relative error of u at t = 1.5 s (eq. 48).
-fn e_u(case: &PaperCase, solution: &Solution<8, 4, 3>) -> f64 {
-    let state = solution.state_near(1.5).unwrap();
-    assert!((state.t - 1.5).abs() < 1e-9);
-    let reference = case.reference(state.t).unwrap();
-    (state.u - reference.u).norm() / reference.u.norm()
-}
-
-/// e_u of the minimal scheme decreases monotonically with dt and the observed
-/// order between the two smallest steps is 1 (backward Euler), in [0.9, 1.1].
-/// The redundant scheme's e_u is printed beside it for comparison.
-fn assert_first_order(tf: f64) {
-    let case = PaperCase::new(tf).unwrap();
-    let errors: Vec<f64> = DTS
-        .iter()
-        .map(|&dt| e_u(&case, &run_minimal(&case, dt)))
-        .collect();
-    for (dt, e) in DTS.iter().zip(&errors) {
-        let redundant = e_u(&case, &run_redundant(&case, *dt));
-        println!("tf = {tf}: dt = {dt:<6} e_u minimal = {e:.4e}, redundant = {redundant:.4e}");
-    }
-    for w in errors.windows(2) {
-        assert!(w[1] < w[0], "e_u must decrease with dt: {errors:?}");
-    }
-    let n = DTS.len();
-    let order = (errors[n - 2] / errors[n - 1]).ln() / (DTS[n - 2] / DTS[n - 1]).ln();
-    println!(
-        "tf = {tf}: observed order between dt = {} and {}: {order:.4}",
-        DTS[n - 2],
-        DTS[n - 1]
-    );
-    assert!((0.9..=1.1).contains(&order), "observed order {order}");
-}
-
 #[test]
 fn minimal_formulation_converges_with_order_one_tf4() {
-    assert_first_order(4.0);
+    kit::assert_order(&PaperCase::new(4.0).unwrap(), Formulation::Minimal, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
 }
 
 /// The slow maneuver of Fig. 18; unlike the massless-pulley crane's
 /// degenerate start, the regular start (66) lets it run down to dt = 0.001.
 #[test]
 fn minimal_formulation_converges_with_order_one_tf15() {
-    assert_first_order(15.0);
+    kit::assert_order(&PaperCase::new(15.0).unwrap(), Formulation::Minimal, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
 }
 
 // ---------------------------------------------------------------------------

@@ -9,30 +9,7 @@
 use crane_models::{Case, Crane};
 use crane_models::{navy_3d, navy_3d_pulley, navy_planar, navy_planar_pulley};
 use crane_runtime::{Options, Scheme, Solution, State, init, simulate};
-
-/// Time of the error measure, eq. (48).
-const T_ERROR: f64 = 1.5;
-
-/// Relative error of u at t = 1.5 s, eq. (48).
-fn e_u<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    case: &Case<C, N, M, A>,
-    run: &Solution<N, M, A>,
-) -> f64 {
-    let state = run.state_near(T_ERROR).expect("a step at 1.5 s");
-    assert!(
-        (state.t - T_ERROR).abs() < 1e-9,
-        "no step at 1.5 s: {}",
-        state.t
-    );
-    let reference = case.reference(state.t).expect("an analytical reference");
-    (state.u - reference.u).norm() / reference.u.norm()
-}
-
-#[derive(Clone, Copy, Debug)]
-enum Formulation {
-    Redundant,
-    Minimal,
-}
+use crane_tests::kit::{self, Formulation, T_ERROR, e_u};
 
 /// End of the runs: the order is also measured on the largest relative
 /// error of u over [1, 2] s (below).
@@ -45,15 +22,7 @@ fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     scheme: Scheme,
     dt: f64,
 ) -> Solution<N, M, A> {
-    let start = case.start().expect("the paper's start is consistent");
-    let options = Options::new(dt, T_END).with_scheme(scheme);
-    let result = match formulation {
-        Formulation::Redundant => simulate(case.model(), case.path(), &start, &options),
-        Formulation::Minimal => case
-            .simulate_minimal(&start, &options)
-            .expect("the crane has a minimal map"),
-    };
-    result.unwrap_or_else(|e| panic!("{scheme} {formulation:?} at dt = {dt}: {e}"))
+    kit::run_to(case, formulation, scheme, dt, T_END)
 }
 
 /// The largest relative error `|u - u_ref| / |u_ref|` over `[1, 2]` s.
@@ -265,22 +234,6 @@ fn a_start_in_mid_move_keeps_order_k() {
     }
 }
 
-/// `D(dt) = max |u_k(dt) - u_k(dt/2)|` over the coarse run's times `t` with
-/// `include(t)`, per input, for the runs at `dts[i]` and `dts[i + 1] = dts[i]/2`.
-fn self_differences<const N: usize, const M: usize, const A: usize>(
-    runs: &[Solution<N, M, A>],
-    include: impl Fn(f64) -> bool + Copy,
-) -> Vec<[f64; A]> {
-    runs.windows(2)
-        .map(|pair| {
-            pair[0]
-                .input_difference(&pair[1], include)
-                .expect("half the step")
-                .map(|(d, _)| d)
-        })
-        .collect()
-}
-
 /// Self-convergence of BDF-k without a reference: `u(dt) = u + C(t) dt^k +
 /// ...`, so `D(dt)/D(dt/2) -> 2^k`; the check is that the ratio lies within
 /// 25 % of `2^k` (k = 2: [3, 5]; 3: [6, 10]; 4: [12, 20]) for the given
@@ -343,7 +296,7 @@ fn navy_3d_self_converges_with_order_k() {
                 .unwrap()
             })
             .into();
-        let all_inputs: Vec<[f64; 1]> = self_differences(&runs, away)
+        let all_inputs: Vec<[f64; 1]> = kit::input_differences(&runs, away)
             .iter()
             .map(|d| [d.iter().fold(0.0f64, |m, x| m.max(*x))])
             .collect();
@@ -388,7 +341,7 @@ fn navy_3d_pulley_smooth_self_converges_with_order_k() {
         assert_self_convergence::<12, 5, 4>(
             "navy-3d-pulley (smooth)",
             scheme,
-            &self_differences(&runs, away),
+            &kit::input_differences(&runs, away),
             inputs,
             1,
         );
