@@ -3,7 +3,7 @@
 //! taken from the generated model (no sizes written by hand).
 //!
 //! Adding a built-in crane: a module with its declaration and a
-//! [`Crane`](crate::Crane) description, and one line in the `registry!`
+//! [`Crane`] description, and one line in the `registry!`
 //! call at the end of this file.
 //!
 //! ```
