@@ -309,3 +309,44 @@ fn static_solve_with_a_nan_guess_is_an_error() {
         Err(_) => panic!("init::static_equilibrium did not return within 10 s on a NaN guess"),
     }
 }
+
+// ---------------------------------------------------------------------------
+// Each error a user can meet, triggered on purpose, with its message (the
+// properties above also accept a runtime that always fails; these do not).
+
+/// Newton limited to one iteration with no tolerance to meet: the first step
+/// fails, named by its time as a person writes it.
+#[test]
+fn newton_not_converged_names_the_step() {
+    use crane_runtime::newton::NewtonOptions;
+    let case = PaperCase::new(4.0).unwrap();
+    let start = case.start().unwrap();
+    let newton = NewtonOptions { max_iterations: 1, rtol: 0.0, atol: 0.0, residual_tol: 0.0 };
+    let error = simulate(case.model(), case.path(), &start, &Options { newton, ..Options::new(0.01, 4.0) }).unwrap_err();
+    assert!(matches!(error, Error::NewtonNotConverged { iterations: 1, t, .. } if (t - 0.01).abs() < 1e-15), "{error:?}");
+    let message = error.to_string();
+    assert!(message.starts_with("Newton's method did not converge at t = 0.01 s after 1 iterations"), "{message}");
+}
+
+/// A path that turns NaN at t = 0.5 s stops the run there with a typed error.
+#[test]
+fn a_nan_in_the_path_is_reported_at_its_time() {
+    let case = PaperCase::new(4.0).unwrap();
+    let start = case.start().unwrap();
+    let paper = case.path().clone();
+    let path = FromFn(move |t: f64, k: usize| if t >= 0.5 { SVector::from([f64::NAN; 2]) } else { paper.derivative(t, k) });
+    let error = simulate(case.model(), path, &start, &Options::new(0.01, 4.0)).unwrap_err();
+    assert!(matches!(error, Error::NonFinite { quantity: "load target gamma(t)", t } if (t - 0.5).abs() < 1e-9), "{error:?}");
+    assert_eq!(error.to_string(), "non-finite load target gamma(t) at t = 0.5 s");
+}
+
+/// A minimal-coordinate guess from which Gauss-Newton cannot reach `q0`.
+#[test]
+fn minimal_start_not_found_is_reported() {
+    use crane_runtime::minimal::minimal_start;
+    let case = PaperCase::new(4.0).unwrap();
+    let start = case.start().unwrap();
+    let error = minimal_start(case.model(), &start, &SVector::from([f64::NAN; 4])).unwrap_err();
+    assert!(matches!(error, Error::MinimalStartNotFound { .. }), "{error:?}");
+    assert!(error.to_string().starts_with("no minimal coordinates mu0 with phi(mu0) = q0 found"), "{error}");
+}

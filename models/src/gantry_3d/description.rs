@@ -1,14 +1,16 @@
 //! The 3D gantry crane as a built-in crane: a rest-to-rest move of the load
 //! from `(0, 0, -5)` to `(6, 3, -3)` in 8 s from the load hanging at rest
-//! straight below the trolley, and the drawing.
+//! straight below the trolley, its flatness-based reference and the drawing.
 
+use crane_runtime::State;
 use nalgebra::vector;
 
 use super::model::Gantry3d;
+use super::reference::reference_at;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver};
+use crate::crane::{Crane, Maneuver, finite_state};
 use crate::drawing::{Drawing, Pose};
-use crate::path::{PathSpec, Profile};
+use crate::path::{Path, PathSpec, Profile};
 
 /// The 3D gantry crane: bridge, trolley, hoist, load on one rope.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -24,6 +26,7 @@ impl Crane<6, 1, 3> for Description {
     type Model = Gantry3d;
     const NAME: &'static str = "gantry-3d";
     const DESCRIPTION: &'static str = "3D gantry crane: bridge, trolley, hoist winch, one rope";
+    const HAS_REFERENCE: bool = true;
 
     /// Poly9 (eqs. 41-45) from `(0, 0, -5)` to `(6, 3, -3)` in [`TF`]; the
     /// start `p0 = [X, Y, L] = [0, 0, 5]`: at rest below the trolley.
@@ -32,6 +35,12 @@ impl Crane<6, 1, 3> for Description {
             path: PathSpec { profile: Profile::Poly9, t0: 0.0, t1: TF, start: vector![0.0, 0.0, -5.0], end: vector![6.0, 3.0, -3.0] },
             p0: vec![0.0, 0.0, 5.0],
         }
+    }
+
+    /// The flatness-based solution of [`reference`](super::reference).
+    fn reference(model: &Gantry3d, path: &Path<3>, t: f64) -> Option<State<6, 1, 3>> {
+        let r = reference_at(model, path, t);
+        finite_state(State { t, q: r.q, v: r.v, u: r.u, lambda: r.lambda })
     }
 
     /// `q = [X, Y, L | x, y, z]`: the bridge at `X` spanning `y` from -10 to
