@@ -420,3 +420,172 @@ fn convergence_and_bench_take_the_scheme() {
     assert_eq!(json["steps"], 400);
     assert!(json["median_step_s"].as_f64().unwrap() > 0.0);
 }
+
+/// `results.csv` of a run, as (header, rows of numbers).
+fn results(dir: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut reader = csv::Reader::from_path(dir.join("results.csv")).unwrap();
+    let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+    let rows = reader
+        .records()
+        .map(|r| r.unwrap().iter().map(|v| v.parse::<f64>().unwrap()).collect())
+        .collect();
+    (header, rows)
+}
+
+/// Run `crane run MODEL ARGS --out DIR/NAME --quiet`; expect success.
+fn run_ok(model: &str, args: &[&str], dir: &Path, name: &str) -> std::path::PathBuf {
+    let out = dir.join(name);
+    let mut all = vec!["run", model, "--quiet", "--out", out.to_str().unwrap()];
+    all.extend_from_slice(args);
+    let result = crane(&all);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    out
+}
+
+/// Every value of `column` equals the API's `value(state, tension)` (the CSV
+/// holds the shortest decimal that reads back to the same f64).
+fn assert_column<const N: usize, const M: usize, const A: usize>(
+    header: &[String],
+    rows: &[Vec<f64>],
+    column: &str,
+    run: &crane_runtime::Solution<N, M, A>,
+    value: impl Fn(&crane_runtime::State<N, M, A>, &[f64]) -> f64,
+) {
+    let c = header.iter().position(|h| h == column).unwrap_or_else(|| panic!("no column {column}: {header:?}"));
+    assert_eq!(rows.len(), run.states.len());
+    for (i, (row, state)) in rows.iter().zip(&run.states).enumerate() {
+        assert_eq!(row[c], value(state, run.tensions_at(i)), "{column} at row {i}");
+    }
+}
+
+/// results.csv holds, column by name, exactly what the same run through the
+/// API gives: time, coordinates, inputs, multipliers, tensions (a swapped or
+/// shifted column fails).
+#[test]
+fn results_csv_columns_are_the_api_s_values() {
+    use crane_runtime::{Options, Scheme};
+    let dir = tempfile::tempdir().unwrap();
+    let out = run_ok("navy-planar", &["--dt", "0.02", "--scheme", "bdf2"], dir.path(), "csv");
+    let (header, rows) = results(&out);
+    assert_eq!(header, ["t", "L1", "L2", "L0", "x0", "z0", "x", "z", "u1", "u2", "lambda1", "lambda2", "lambda3", "N1", "N2"]);
+    let case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
+    let run = case.simulate(&case.start().unwrap(), &Options::new(0.02, 4.0).with_scheme(Scheme::Bdf2)).unwrap();
+    assert_column(&header, &rows, "t", &run, |s, _| s.t);
+    for (k, name) in ["L1", "L2", "L0", "x0", "z0", "x", "z"].iter().enumerate() {
+        assert_column(&header, &rows, name, &run, |s, _| s.q[k]);
+    }
+    assert_column(&header, &rows, "u1", &run, |s, _| s.u[0]);
+    assert_column(&header, &rows, "u2", &run, |s, _| s.u[1]);
+    for k in 0..3 {
+        assert_column(&header, &rows, &format!("lambda{}", k + 1), &run, |s, _| s.lambda[k]);
+    }
+    assert_column(&header, &rows, "N1", &run, |_, n| n[0]);
+    assert_column(&header, &rows, "N2", &run, |_, n| n[1]);
+}
+
+/// Each scenario key changes what it should: `[parameters]` the model, the
+/// path kind the path, `formulation` the scheme of eqs. (24); each run equals
+/// the API's run of the case the key describes and differs from the default.
+#[test]
+fn scenario_keys_take_effect() {
+    use crane_models::navy_3d_pulley;
+    use crane_runtime::{CraneModel, Options};
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, text: &str| {
+        let file = dir.path().join(name);
+        std::fs::write(&file, text).unwrap();
+        file
+    };
+    let u_column = |out: &Path, name: &str| {
+        let (header, rows) = results(out);
+        let c = header.iter().position(|h| h == name).unwrap();
+        rows.iter().map(|r| r[c]).collect::<Vec<f64>>()
+    };
+    let default = run_ok("navy-planar", &["--dt", "0.02"], dir.path(), "default");
+    // [parameters]: the load mass
+    let file = write("mass.toml", "dt = 0.02\n[parameters]\nm_l = 120.0\n");
+    let heavy = run_ok("navy-planar", &["--scenario", file.to_str().unwrap()], dir.path(), "heavy");
+    let mut case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
+    case.model.set_parameter("m_l", 120.0).unwrap();
+    let api = case.simulate(&case.start().unwrap(), &Options::new(0.02, 4.0)).unwrap();
+    assert_eq!(u_column(&heavy, "u2"), api.states.iter().map(|s| s.u[1]).collect::<Vec<_>>());
+    assert_ne!(u_column(&heavy, "u2"), u_column(&default, "u2"));
+    // formulation
+    let file = write("minimal.toml", "dt = 0.02\nformulation = \"minimal\"\n");
+    let minimal = run_ok("navy-planar", &["--scenario", file.to_str().unwrap()], dir.path(), "minimal");
+    let case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
+    let api = case.simulate_minimal(&case.start().unwrap(), &Options::new(0.02, 4.0)).unwrap().unwrap();
+    assert_eq!(u_column(&minimal, "u1"), api.states.iter().map(|s| s.u[0]).collect::<Vec<_>>());
+    assert_ne!(u_column(&minimal, "u1"), u_column(&default, "u1"));
+    // path kind: the C6 profile of the 3D crane with pulley mass
+    let file = write("smooth.toml", "dt = 0.1\ntrajectory = \"smooth-three-phase\"\n");
+    let smooth = run_ok("navy-3d-pulley", &["--scenario", file.to_str().unwrap()], dir.path(), "smooth");
+    let paper = run_ok("navy-3d-pulley", &["--dt", "0.1"], dir.path(), "paper");
+    let case = navy_3d_pulley::PaperCase::smooth(navy_3d_pulley::TF).unwrap();
+    let api = case.simulate(&case.start().unwrap(), &Options::new(0.1, case.tf())).unwrap();
+    assert_eq!(u_column(&smooth, "u4"), api.states.iter().map(|s| s.u[3]).collect::<Vec<_>>());
+    assert_ne!(u_column(&smooth, "u4"), u_column(&paper, "u4"));
+}
+
+/// `crane list` shows every model of the registry with its sizes.
+#[test]
+fn list_shows_the_registry() {
+    let result = crane(&["list"]);
+    assert!(result.status.success());
+    let text = String::from_utf8_lossy(&result.stdout);
+    assert_eq!(crane_models::CATALOG.len(), 6);
+    for e in crane_models::CATALOG {
+        let line = text.lines().find(|l| l.split_whitespace().next() == Some(e.name)).unwrap_or_else(|| panic!("{}: {text}", e.name));
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        assert_eq!(fields[1..5], [e.n, e.m, e.a, e.dof()].map(|v| v.to_string()), "{line}");
+    }
+}
+
+/// `crane convergence --formulation minimal` measures backward Euler's
+/// order 1 in minimal coordinates (0.996 between the two smallest steps).
+#[test]
+fn convergence_in_minimal_coordinates() {
+    let dir = tempfile::tempdir().unwrap();
+    let result = crane(&["convergence", "navy-planar", "--formulation", "minimal", "--out", dir.path().to_str().unwrap()]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let csv = std::fs::read_to_string(dir.path().join("convergence.csv")).unwrap();
+    let order: f64 = csv.lines().last().unwrap().split(',').nth(2).unwrap().parse().unwrap();
+    assert!((order - 1.0).abs() < 0.05, "order {order}");
+}
+
+/// The paper's move in 2 s instead of 4 makes rope 1 push (at t = 1.06 s):
+/// summary.json says so, the results are written, and `--strict` fails.
+#[test]
+fn a_slack_rope_is_reported_and_strict_fails_on_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("fast.toml");
+    std::fs::write(&file, "duration = 2.0\n").unwrap();
+    let out = run_ok("navy-planar", &["--scenario", file.to_str().unwrap()], dir.path(), "fast");
+    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let rope = summary["ropes"].as_array().unwrap().iter().find(|r| r["name"] == "N1").unwrap();
+    let slack = rope["first_slack"].as_f64().expect("rope N1 goes slack");
+    assert!((slack - 1.06).abs() < 0.02, "{slack}");
+    assert!(rope["min_tension"].as_f64().unwrap() < -100.0);
+    let strict_out = dir.path().join("strict");
+    let result = crane(&["run", "navy-planar", "--scenario", file.to_str().unwrap(), "--strict", "--quiet", "--out", strict_out.to_str().unwrap()]);
+    assert!(!result.status.success());
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(stderr.contains("rope N1 goes slack at t = 1.060 s"), "{stderr}");
+    assert!(strict_out.join("results.csv").exists(), "--strict still writes the results");
+}
+
+/// A run that fails in its middle (an unreachable end point: Newton fails at
+/// t = 0.23 s) leaves no results.csv and no partial files.
+#[test]
+fn a_failure_in_mid_run_leaves_no_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("far.toml");
+    std::fs::write(&file, "end = [8.0, -14.0]\nduration = 2.0\n").unwrap();
+    let out = dir.path().join("far");
+    let result = crane(&["run", "navy-planar", "--scenario", file.to_str().unwrap(), "--quiet", "--out", out.to_str().unwrap()]);
+    assert!(!result.status.success());
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(stderr.contains("did not converge at t = 0.23 s"), "{stderr}");
+    let left: Vec<_> = std::fs::read_dir(&out).map(|d| d.map(|e| e.unwrap().file_name()).collect()).unwrap_or_default();
+    assert!(left.is_empty(), "files left behind: {left:?}");
+}
