@@ -455,6 +455,7 @@ fn reference_satisfies_the_equations_of_motion() {
 #[test]
 fn paper_runs_converge_and_ropes_stay_taut() {
     let case = case();
+    let mut lowest_n1 = Vec::new();
     for dt in [0.1, 0.01] {
         let (solution, secs) = run(&case, dt);
         assert_eq!(solution.steps(), (TF / dt).round() as usize);
@@ -490,7 +491,7 @@ fn paper_runs_converge_and_ropes_stay_taut() {
             .collect();
         println!(
             "dt = {dt}: {} steps in {:.2} ms ({:.2} us/step), {:.2} Newton iterations/step, {} min-norm steps; \
-             peak tension {peak:.1} N, lowest N1, N2 after t0: {:.3}, {:.1} N; peak |u| = {peak_u:.1?}",
+             peak tension {peak:.1} N, lowest N1, N2 after t0: {:.3e}, {:.1} N; peak |u| = {peak_u:.1?}",
             solution.steps(),
             secs * 1e3,
             secs * 1e6 / solution.steps() as f64,
@@ -501,7 +502,15 @@ fn paper_runs_converge_and_ropes_stay_taut() {
         );
         // after t0 rope L1 is taut: the pulley leaves the vertical through P
         assert!(lowest[0] > 0.0 && lowest[1] > 0.0, "{lowest:?}");
+        lowest_n1.push(lowest[0]);
     }
+    // N1 is 0 at the degenerate start and grows like t^3 (with the load's
+    // x'', which starts like t^3 on the C4 ramp): its lowest value after t0,
+    // at the first step, falls by 10^3 from dt = 0.1 to 0.01 (measured
+    // 5.6e-2 and 5.6e-5 N), so the positive sign above is a measured value
+    // of the expected size, not round-off
+    let ratio = lowest_n1[0] / lowest_n1[1];
+    assert!((500.0..=2000.0).contains(&ratio), "N1 after t0 scales like dt^3: {lowest_n1:?}");
 }
 
 /// docs/errata.md, "Where the discretisation error sits", holds in 3D too: the servo
@@ -553,11 +562,16 @@ fn u_converges_to_the_reference_with_order_one() {
         println!("dt = {dt:<6}: max |u - u_ref| = {e:.4e} N m at t = {at:.4} s");
         errors.push(e);
     }
-    for (w, dt) in errors.windows(2).zip(dts) {
-        let order = (w[0] / w[1]).log2();
+    // The largest error sits one step after the switch to the braking phase
+    // at t = 15 s, where the path's 5th derivative jumps (the C4 profile of
+    // eq. 86), so its O(dt^2) part is large: the orders approach 1 from below
+    // (measured 0.81, 0.87, 0.94). Band [0.75, 1.1], and they must rise.
+    let orders: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
+    for (order, dt) in orders.iter().zip(dts) {
         println!("observed order from dt = {dt} to {}: {order:.3}", dt / 2.0);
-        assert!((0.75..=1.1).contains(&order), "order {order}: {errors:?}");
+        assert!((0.75..=1.1).contains(order), "order {order}: {errors:?}");
     }
+    assert!(orders.windows(2).all(|w| w[1] > w[0]), "the orders approach 1: {orders:?}");
 }
 
 /// Self-convergence without a reference: `D(dt) = max_t |u(dt) - u(dt/2)|`

@@ -119,8 +119,10 @@ fn coordinates_and_multipliers_follow_the_reference() {
         lambda_err = lambda_err.max((state.lambda - reference.lambda).amax() / reference.lambda.amax());
     }
     println!("dt = 0.1: max |q - q_ref| = {q_err:.2e} m, max relative lambda error {lambda_err:.2e}");
-    assert!(q_err < 1e-8, "{q_err}");
-    assert!(lambda_err < 1e-8, "{lambda_err}");
+    // measured 1.1e-12 m and 2.9e-13: round-off of the 10-15 m coordinates
+    // and of the multipliers; bounds 10x above
+    assert!(q_err < 1e-11, "{q_err}");
+    assert!(lambda_err < 3e-12, "{lambda_err}");
 }
 
 #[test]

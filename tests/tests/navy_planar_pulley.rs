@@ -463,7 +463,10 @@ fn ropes_stay_taut_along_the_maneuver() {
         // N3 = lambda4 (L3 - L0) is fixed algebraically (see above), N1 and N2
         // carry the O(dt) error of lambda1, lambda3 (measured 4.8e-2 and
         // 8.1e-3 at tf = 4 s, 1.6e-4 and 2.9e-5 at tf = 15 s)
-        assert!(relative[2] < 1e-10, "N3 is exact: {relative:?}");
-        assert!(relative[0] < 0.1 && relative[1] < 0.02, "{relative:?}");
+        assert!(relative[2] < 1e-13, "N3 is exact: {relative:?}");
+        // the O(dt) errors as measured, 25 % above: backward Euler's error
+        // constant is reproducible to far better than that
+        let bound = if tf < 10.0 { [6e-2, 1e-2] } else { [2e-4, 4e-5] };
+        assert!(relative[0] < bound[0] && relative[1] < bound[1], "{relative:?}");
     }
 }
