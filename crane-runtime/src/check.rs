@@ -1,10 +1,22 @@
 //! Check every generated derivative of a model against central finite
 //! differences at random points (docs/numerics.md).
 //!
-//! Central differences with step `h = 1e-6 (1 + |q_j|)` have truncation error
-//! `O(h^2 |f'''|)` ~ 1e-12 and round-off `O(eps |f| / h)` ~ 1e-10 relative to
-//! the function's size, so a correct derivative shows a normwise relative
-//! error around 1e-9 or below and a wrong one an error of order 1.
+//! Two independent measures per derivative, and the larger counts:
+//!
+//! - central differences with step `h = 1e-6 (1 + |q_j|)` of the generated
+//!   value functions: truncation error `O(h^2 |f'''|)` ~ 1e-12 and round-off
+//!   `O(eps |f| / h)` ~ 1e-10 relative to the function's size, judged
+//!   normwise (`max |A - FD| / max |A|`): ~1e-9 for a correct derivative;
+//! - forward-mode dual numbers pushed through the same value functions,
+//!   exact to round-off, judged entry by entry against each entry's own size
+//!   with a floor of 1e-12 of the matrix's largest entry
+//!   (`max_ij |A_ij - D_ij| / max(|A_ij|, |D_ij|, 1e-12 max|A|)`): ~1e-15
+//!   for a correct derivative, and O(1) for a wrong entry however small
+//!   next to the others (the normwise measure passes a wrong entry below
+//!   1e-6 of the largest).
+//!
+//! A correct derivative therefore shows a worst error around 1e-9 or below,
+//! a wrong one an error of order 1.
 //!
 //! ```
 //! # use crane_runtime::check::{check_derivatives, SampleBox};
@@ -21,6 +33,7 @@ use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 
 use crate::model::{CraneModel, MinimalMap};
+use num_dual::Dual64;
 
 /// Where to sample: a box for the coordinates and symmetric ranges for the
 /// velocities, multipliers and inputs.
@@ -91,6 +104,42 @@ fn relative_error<const R: usize, const C: usize>(a: &SMatrix<f64, R, C>, b: &SM
     if size == 0.0 { 0.0 } else { (a - b).amax() / size }
 }
 
+/// Entry-wise relative error, each entry against its own size with a floor
+/// of 1e-12 of the largest entry.
+fn entrywise_error<const R: usize, const C: usize>(a: &SMatrix<f64, R, C>, b: &SMatrix<f64, R, C>) -> f64 {
+    let floor = 1e-12 * a.amax().max(b.amax());
+    a.iter()
+        .zip(b.iter())
+        .map(|(x, y)| {
+            let scale = x.abs().max(y.abs()).max(floor);
+            if scale == 0.0 { 0.0 } else { (x - y).abs() / scale }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Jacobian of `func` at `x` by forward-mode dual numbers, column by column.
+fn dual_jacobian<const R: usize, const N: usize>(
+    x: &SVector<f64, N>,
+    func: impl Fn(&SVector<Dual64, N>) -> SVector<Dual64, R>,
+) -> SMatrix<f64, R, N> {
+    let mut jac = SMatrix::<f64, R, N>::zeros();
+    for j in 0..N {
+        let seeded = SVector::<Dual64, N>::from_fn(|i, _| Dual64::new(x[i], if i == j { 1.0 } else { 0.0 }));
+        jac.set_column(j, &func(&seeded).map(|d| d.eps));
+    }
+    jac
+}
+
+/// The larger of the normwise central-difference error and the entry-wise
+/// dual-number error of `derivative`.
+fn both_errors<const R: usize, const C: usize>(
+    derivative: &SMatrix<f64, R, C>,
+    central: &SMatrix<f64, R, C>,
+    dual: &SMatrix<f64, R, C>,
+) -> f64 {
+    relative_error(derivative, central).max(entrywise_error(derivative, dual))
+}
+
 /// Central-difference Jacobian of `func` at `x`, column `j` with step `h_j = 1e-6 (1 + |x_j|)`.
 fn central_jacobian<const R: usize, const N: usize>(
     x: &SVector<f64, N>,
@@ -108,6 +157,7 @@ fn central_jacobian<const R: usize, const N: usize>(
 }
 
 /// Compare the model's generated derivatives with central finite differences
+/// and with dual numbers (see the module docs)
 /// at `points` random points drawn from `sample` (seeded, reproducible):
 /// `G` against `g`, `d(G^T lambda)/dq` against `G^T lambda`, `df/dq` and
 /// `df/dq'` against `f`, `d(B^T u)/dq` against `B^T u`, and `M` against the
@@ -141,20 +191,33 @@ where
         let u = SVector::<f64, A>::from_fn(|_, _| rng.random_range(-1.0..=1.0) * sample.input);
 
         let (df_dq, df_dv) = model.force_jacobians(&q, &v);
+        let dual = |x: &SVector<f64, N>| x.map(Dual64::from);
+        let (v_d, lambda_d, u_d) = (dual(&v), lambda.map(Dual64::from), u.map(Dual64::from));
         let errors = [
-            relative_error(
+            both_errors(
                 &model.constraint_jacobian(&q),
                 &central_jacobian(&q, |q| model.constraints(q)),
+                &dual_jacobian(&q, |q| model.constraints(q)),
             ),
-            relative_error(
+            both_errors(
                 &model.constraint_hessian(&q, &lambda),
                 &central_jacobian(&q, |q| model.constraint_jacobian(q).tr_mul(&lambda)),
+                &dual_jacobian(&q, |q| model.constraint_jacobian(q).tr_mul(&lambda_d)),
             ),
-            relative_error(&df_dq, &central_jacobian(&q, |q| model.forces(q, &v))),
-            relative_error(&df_dv, &central_jacobian(&v, |v| model.forces(&q, v))),
-            relative_error(
+            both_errors(
+                &df_dq,
+                &central_jacobian(&q, |q| model.forces(q, &v)),
+                &dual_jacobian(&q, |q| model.forces(q, &v_d)),
+            ),
+            both_errors(
+                &df_dv,
+                &central_jacobian(&v, |v| model.forces(&q, v)),
+                &dual_jacobian(&v, |v| model.forces(&dual(&q), v)),
+            ),
+            both_errors(
                 &model.input_jacobian(&q, &u),
                 &central_jacobian(&q, |q| model.input_matrix(q) * u),
+                &dual_jacobian(&q, |q| model.input_matrix(q) * u_d),
             ),
         ];
         for (entry, error) in worst.iter_mut().zip(errors) {

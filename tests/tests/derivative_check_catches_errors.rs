@@ -1,7 +1,8 @@
 //! The derivative checks that the generated self-tests and users rely on must
-//! fail on a wrong derivative: a model whose `G` has one wrong entry, and one
-//! whose constraint Hessian is missing a term, are caught with O(1) errors,
-//! while the correct model passes with ~1e-9.
+//! fail on a wrong derivative: a model whose `G` has one wrong entry, one
+//! whose `G` has a wrong entry 5e-9 the size of the largest, and one whose
+//! constraint Hessian is missing a term, are caught with O(1) errors, while
+//! the correct model passes with ~1e-9.
 
 use crane_runtime::check::{SampleBox, check_derivatives};
 use crane_runtime::{CraneModel, ModelInfo, Scalar, UnknownParameter};
@@ -16,6 +17,9 @@ enum Flaw {
     Jacobian,
     /// The `rope1` term missing from `d(G^T lambda)/dq`.
     Hessian,
+    /// A structural zero of `G` (`dg_hoist/dL1`) set to 1e-7, about 5e-9 of
+    /// the largest entry: below what central differences can see normwise.
+    SmallEntry,
 }
 
 /// The hand-written planar crane with one deliberately wrong derivative.
@@ -39,6 +43,9 @@ impl CraneModel<7, 3, 2> for Broken {
         let mut jac = self.model.constraint_jacobian(q);
         if self.flaw == Flaw::Jacobian {
             jac[(2, 5)] = jac[(2, 5)] * 2.0;
+        }
+        if self.flaw == Flaw::SmallEntry {
+            jac[(2, 0)] = jac[(2, 0)] + T::from(1e-7);
         }
         jac
     }
@@ -103,4 +110,15 @@ fn the_correct_model_passes() {
     let report = check_derivatives(&Broken { model: HandNavyPlanar::default(), flaw: Flaw::None }, &sample(), 50, 3);
     // central differences on quadratic constraints: round-off only, ~1e-10
     assert!(report.worst() < 1e-6, "{report}");
+}
+
+/// A wrong entry far below the matrix's size: the normwise central-difference
+/// error is about 5e-9 (it would pass), the entry-wise dual-number
+/// comparison sees it as wrong by 100 %.
+#[test]
+fn a_wrong_small_entry_is_caught() {
+    let report = check_derivatives(&Broken { model: HandNavyPlanar::default(), flaw: Flaw::SmallEntry }, &sample(), 50, 4);
+    println!("{report}");
+    assert!(report.get("G = dg/dq").unwrap().worst_relative_error > 0.5, "{report}");
+    assert!(report.get("df/dq").unwrap().worst_relative_error < 1e-6);
 }
