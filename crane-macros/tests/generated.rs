@@ -681,3 +681,65 @@ fn trolley_map_with_colliding_names() {
     }
     assert_eq!(Trolley::MINIMAL_SPLIT, 1);
 }
+
+// --- the values of `Awkward` against hand-written formulas at random points
+
+/// `g`, `f`, `B^T`, `M` and the rope length of `Awkward`, written out by hand
+/// from its declaration: `q = [q, v, out, t0 | u, lambda]`, the forces
+/// section split into the input-free part `f` and the input matrix `B^T`
+/// (`a` and `b` multiply `cos(v)`, `1/(2 + q^2)`, `sqrt(1 + out^2)`,
+/// `exp(-t0)`), and `M` the Hessian of the kinetic energy in the velocities.
+#[test]
+fn awkward_values_match_hand_written_formulas_at_random_points() {
+    use rand::rngs::SmallRng;
+    use rand::{Rng, SeedableRng};
+    let crane = Awkward::default();
+    let (m, c, k, w, t) = (2.0, 0.3, 2f64.sqrt() * (-1f64).exp(), 1f64.atan2(2.0).powi(2), 3f64.ln());
+    assert_eq!(crane.parameter_values(), vec![m, c, k, w, t]);
+    let mut rng = SmallRng::seed_from_u64(99);
+    for _ in 0..500 {
+        // inside the functions' domains: q + v > 0 ((q + v)^2.5), u > 0 (u^(1/3)), t0 != 0
+        let qq: f64 = rng.random_range(0.1..2.0);
+        let vv: f64 = rng.random_range(-0.05..2.0);
+        let [out, t0, u, lam] = [rng.random_range(-2.0..2.0), rng.random_range(0.3..2.0), rng.random_range(0.1..3.0), rng.random_range(-2.0..2.0)];
+        let z = SVector::from([qq, vv, out, t0, u, lam]);
+        let dz = SVector::from_fn(|_, _| rng.random_range(-2.0..2.0));
+        let (dq, dv, dlam) = (dz[0], dz[1], dz[5]);
+        let close = |a: f64, b: f64, what: &str| assert!((a - b).abs() <= 1e-13 * b.abs().max(1.0), "{what}: {a} vs {b} at {z}");
+        let g = crane.constraints(&z);
+        close(g[0], 0.5 * ((u - qq).powi(2) + (lam - vv).powi(2) - (out + 1.0).powi(2)), "c1");
+        close(g[1], (2.0 + qq * qq).ln() - vv * t0.sin() + out.atan2(2.0 + u * u), "c2");
+        close(g[2], (qq + vv).powf(2.5) - (out / 3.0).exp() * t0.powi(-2) + u.cbrt() * lam, "c3");
+        let f = crane.forces(&z, &dz);
+        let expected_f = [-c * dq * out.sin(), -k * dv.powi(3), 0.0, w * u.atan2(1.0 + vv * vv), 0.0, -m * 9.81 + c * (lam / 4.0).tan() * dlam];
+        for (i, e) in expected_f.iter().enumerate() {
+            close(f[i], *e, &format!("f[{i}]"));
+        }
+        let bt = crane.input_matrix(&z);
+        let mut expected_bt = [[0.0; 2]; 6];
+        expected_bt[0] = [vv.cos(), 1.0 / (2.0 + qq * qq)];
+        expected_bt[1] = [0.0, (1.0 + out * out).sqrt()];
+        expected_bt[3] = [(-t0).exp(), 0.0];
+        for i in 0..6 {
+            for j in 0..2 {
+                close(bt[(i, j)], expected_bt[i][j], &format!("B^T[{i}][{j}]"));
+            }
+        }
+        let mut lengths = [0.0];
+        crane.rope_lengths(&z, &mut lengths);
+        close(lengths[0], ((u - qq).powi(2) + (lam - vv).powi(2)).sqrt(), "rope S");
+    }
+    let mass: SMatrix<f64, 6, 6> = crane.mass_matrix();
+    let mut expected = SMatrix::<f64, 6, 6>::zeros();
+    expected[(0, 0)] = m;
+    expected[(0, 1)] = c;
+    expected[(1, 0)] = c;
+    expected[(1, 1)] = t;
+    expected[(1, 2)] = t;
+    expected[(2, 1)] = t;
+    expected[(2, 2)] = t;
+    expected[(3, 3)] = 0.5;
+    expected[(4, 4)] = m;
+    expected[(5, 5)] = m;
+    assert!((mass - expected).amax() < 1e-15, "{mass} vs {expected}");
+}
