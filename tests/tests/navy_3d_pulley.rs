@@ -374,3 +374,164 @@ fn u4_spikes_at_the_switches_only_on_the_paper_profile() {
         "{paper_peaks:?} vs {smooth_peaks:?}"
     );
 }
+
+/// The generated model against a transcription of the paper's eqs.
+/// (91)-(96) as corrected (docs/errata.md: `m_l` for the load in (92); (94)
+/// with 8 rows of `B1^T`, the slewing column `-y3/r^2, x3/r^2`, `f2 = [0, 0,
+/// -m_l g, -m0 g]`; `M = J_b/r^2`, `r = (k + l) sin(alpha)`, `z3 = (k + l)
+/// cos(alpha)`): the mass matrix exactly, `g`, `G` (from the printed
+/// transposes (95), (96)), `f` and `B^T` at 300 random points to 1e-12 of
+/// their largest entries (round-off of the same arithmetic in another order).
+#[test]
+fn generated_model_matches_the_transcribed_equations_91_to_96() {
+    use nalgebra::SVector;
+    use rand::rngs::SmallRng;
+    use rand::{Rng, SeedableRng};
+    let c = Navy3dPulley::default();
+    let r = (c.k + c.l) * c.alpha.sin();
+    let z3 = (c.k + c.l) * c.alpha.cos();
+    let big_m = c.J_b / (r * r);
+    assert!((big_m - 6.4).abs() < 1e-12, "M = J_b / r^2 = 6.4 kg (sect. 6.2.1)");
+    // (92): M1 = diag(J1/r1^2, J2/r2^2, J3/r3^2, 0, m0, m0, M, M), M2 = diag(m_l, m_l, m_l, m0)
+    let diagonal = [c.J1 / (c.r1 * c.r1), c.J2 / (c.r2 * c.r2), c.J3 / (c.r3 * c.r3), 0.0, c.m0, c.m0, big_m, big_m, c.m_l, c.m_l, c.m_l, c.m0];
+    let mass = c.mass_matrix::<f64>();
+    for i in 0..12 {
+        for j in 0..12 {
+            let expected = if i == j { diagonal[i] } else { 0.0 };
+            assert!((mass[(i, j)] - expected).abs() <= 1e-15 * expected.abs().max(1.0), "M[{i}][{j}] = {} vs {expected}", mass[(i, j)]);
+        }
+    }
+    let (b1, b2) = (c.beta1, c.beta2);
+    let mut rng = SmallRng::seed_from_u64(96);
+    for _ in 0..300 {
+        let q = SVector::<f64, 12>::from_fn(|_, _| rng.random_range(-10.0..10.0));
+        let v = SVector::<f64, 12>::from_fn(|_, _| rng.random_range(-2.0..2.0));
+        let [l1, l2, l3, l0, x0, y0, x3, y3, x, y, z, zz0] = std::array::from_fn(|i| q[i]);
+        // (93)
+        let g = [
+            0.5 * (x3 * x3 + y3 * y3 - r * r),
+            0.5 * ((x0 - b1 * x3).powi(2) + (y0 - b1 * y3).powi(2) + (zz0 - b1 * z3).powi(2) - l1 * l1),
+            0.5 * ((x0 - b2 * x3).powi(2) + (y0 - b2 * y3).powi(2) + (zz0 - b2 * z3).powi(2) - l2 * l2),
+            0.5 * ((x0 - x3).powi(2) + (y0 - y3).powi(2) + (zz0 - z3).powi(2) - l0 * l0),
+            0.5 * ((x - x0).powi(2) + (y - y0).powi(2) + (z - zz0).powi(2) - (l3 - l0).powi(2)),
+        ];
+        // (95), (96): rows of G^T, one per coordinate [p | x]
+        #[rustfmt::skip]
+        let gt: [[f64; 5]; 12] = [
+            [0.0, -l1, 0.0, 0.0, 0.0],
+            [0.0, 0.0, -l2, 0.0, 0.0],
+            [0.0, 0.0, 0.0, 0.0, l0 - l3],
+            [0.0, 0.0, 0.0, -l0, l3 - l0],
+            [0.0, x0 - b1 * x3, x0 - b2 * x3, x0 - x3, x0 - x],
+            [0.0, y0 - b1 * y3, y0 - b2 * y3, y0 - y3, y0 - y],
+            [x3, b1 * (b1 * x3 - x0), b2 * (b2 * x3 - x0), x3 - x0, 0.0],
+            [y3, b1 * (b1 * y3 - y0), b2 * (b2 * y3 - y0), y3 - y0, 0.0],
+            [0.0, 0.0, 0.0, 0.0, x - x0],
+            [0.0, 0.0, 0.0, 0.0, y - y0],
+            [0.0, 0.0, 0.0, 0.0, z - zz0],
+            [0.0, zz0 - b1 * z3, zz0 - b2 * z3, zz0 - z3, zz0 - z],
+        ];
+        // (94) as corrected
+        let mut bt = [[0.0; 4]; 12];
+        bt[0][0] = 1.0 / c.r1;
+        bt[1][1] = 1.0 / c.r2;
+        bt[2][2] = 1.0 / c.r3;
+        bt[6][3] = -y3 / (r * r);
+        bt[7][3] = x3 / (r * r);
+        let mut f = [0.0; 12];
+        f[10] = -c.m_l * c.g;
+        f[11] = -c.m0 * c.g;
+        let close = |a: &[f64], b: &[f64], what: &str| {
+            let scale = b.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            for (i, (x, y)) in a.iter().zip(b).enumerate() {
+                assert!((x - y).abs() <= 1e-12 * scale, "{what}[{i}]: {x} vs {y} at {q}");
+            }
+        };
+        close(c.constraints(&q).as_slice(), &g, "g (93)");
+        let jac = c.constraint_jacobian(&q);
+        for (i, row) in gt.iter().enumerate() {
+            close(&jac.column(i).iter().copied().collect::<Vec<_>>(), row, &format!("G^T row {i} (95, 96)"));
+        }
+        let input = c.input_matrix(&q);
+        for (i, row) in bt.iter().enumerate() {
+            close(&input.row(i).iter().copied().collect::<Vec<_>>(), row, &format!("B^T row {i} (94)"));
+        }
+        close(c.forces(&q, &v).as_slice(), &f, "f (94)");
+    }
+}
+
+/// An independent dynamic check: driven in the vertical plane y = 0 with the
+/// boom along X (phi = 0), the 3D crane with pulley mass is the planar crane
+/// with pulley mass of sect. 5.2 with matching geometry and masses, so its
+/// winch torques must converge to the Appendix B reference of that planar
+/// crane (and nothing leaves the plane: y, y0, y3 and the slewing torque u4
+/// stay at round-off).
+///
+/// Matching: the planar crane's boom tip S is the 3D point `S = beta2 P`,
+/// `P = (k + l)(sin alpha, 0, cos alpha)`; the planar `s = |SP| = (beta2 -
+/// 1)(k + l) = 5 m` and `l = |PA| = (1 - beta1)(k + l) = 5 m`; the same
+/// alpha, masses `m_l = 100`, `m0 = 20` kg, winch inertias and radii. The 3D
+/// path is the planar paper path (41, 44, 64, 65) shifted by S, the start
+/// the planar reference at t0 (all ropes taut: a regular equilibrium).
+/// Expected: e_u(1.5 s) of order 1 for backward Euler and 2 for BDF-2
+/// (planar crane, Appendix B: 7.1e-3 / 3.6e-3 and 1.9e-4 / 4.5e-5 at
+/// dt = 0.02 / 0.01 with its own geometry).
+#[test]
+fn in_the_vertical_plane_it_is_the_planar_pulley_crane_of_appendix_b() {
+    use crane_models::navy_planar_pulley::NavyPlanarPulley;
+    use crane_models::navy_planar_pulley::reference::reference_at;
+    use crane_models::{Path, PathSpec, Profile};
+    use crane_runtime::Scheme;
+    use nalgebra::{SVector, vector};
+    let crane = Navy3dPulley::default();
+    let (sin_a, cos_a) = crane.alpha.sin_cos();
+    let (r, reach) = ((crane.k + crane.l) * sin_a, crane.k + crane.l);
+    let tip = [crane.beta2 * reach * sin_a, crane.beta2 * reach * cos_a];
+    let mut planar = NavyPlanarPulley::default();
+    for (name, value) in [
+        ("m_l", crane.m_l),
+        ("m0", crane.m0),
+        ("J1", crane.J1),
+        ("J2", crane.J2),
+        ("J3", crane.J3),
+        ("r1", crane.r1),
+        ("r2", crane.r2),
+        ("r3", crane.r3),
+        ("alpha", crane.alpha),
+        ("s", (crane.beta2 - 1.0) * reach),
+        ("l", (1.0 - crane.beta1) * reach),
+        ("g", crane.g),
+    ] {
+        planar.set_parameter(name, value).unwrap();
+    }
+    assert_eq!((planar.s, planar.l), (5.0, 5.0));
+    let (start, end) = (vector![-2.5 * 3f64.sqrt(), -17.5, -12.5], vector![-2.0, -16.0, -15.0]);
+    let planar_path = Path::new(PathSpec { profile: Profile::Poly9, t0: 0.0, t1: 4.0, start, end }).unwrap();
+    let lift = |p: SVector<f64, 3>| vector![p[0] + tip[0], 0.0, p[1] + tip[1], p[2] + tip[1]];
+    let path = Path::new(PathSpec { profile: Profile::Poly9, t0: 0.0, t1: 4.0, start: lift(start), end: lift(end) }).unwrap();
+    let q = reference_at(&planar, &planar_path, 0.0).q; // [L1, L2, L3, L0, x0 | x, z, z0]
+    let p0 = vec![q[0], q[1], q[2], q[3], q[4] + tip[0], 0.0, r, 0.0];
+    let case = PaperCase::from_parts(crane.clone(), path, p0, 4.0);
+    for scheme in [Scheme::BackwardEuler, Scheme::Bdf2] {
+        let errors: Vec<f64> = [0.02, 0.01]
+            .iter()
+            .map(|&dt| {
+                let run = case.simulate(&case.start().unwrap(), &Options::new(dt, 1.5).with_scheme(scheme)).unwrap();
+                let off_plane = run
+                    .states
+                    .iter()
+                    .map(|s| s.q[5].abs().max(s.q[7].abs()).max(s.q[9].abs()).max(s.u[3].abs()))
+                    .fold(0.0, f64::max);
+                assert!(off_plane < 1e-9, "{scheme} dt = {dt}: leaves the plane by {off_plane}");
+                let state = run.states.last().unwrap();
+                let reference = reference_at(&planar, &planar_path, state.t).u;
+                (state.u.fixed_rows::<3>(0) - reference).norm() / reference.norm()
+            })
+            .collect();
+        let order = (errors[0] / errors[1]).log2();
+        let k = scheme.order() as f64;
+        println!("navy-3d-pulley in the plane, {scheme}: e_u(1.5 s) against Appendix B = {:.3e} / {:.3e}, order {order:.2}", errors[0], errors[1]);
+        assert!(errors[1] < errors[0] && errors[0] < 2e-2, "{errors:?}");
+        assert!((k - 0.3..=k + 0.7).contains(&order), "{scheme}: order {order}");
+    }
+}
