@@ -350,3 +350,15 @@ fn minimal_start_not_found_is_reported() {
     assert!(matches!(error, Error::MinimalStartNotFound { .. }), "{error:?}");
     assert!(error.to_string().starts_with("no minimal coordinates mu0 with phi(mu0) = q0 found"), "{error}");
 }
+
+/// A guess far from any equilibrium of the tower crane (the jib tip 48 m
+/// off its 30 m circle, the trolley behind the axis, found by a seeded
+/// random search): the static solve gives up with a typed error.
+#[test]
+fn equilibrium_not_found_is_reported() {
+    let case = crane_models::tower_crane::DefaultCase::maneuver().unwrap();
+    let guess = [47.19863718547629, -6.315327887620903, -48.806484527285164, -27.6042164463024, 45.54762570674258];
+    let error = init::static_equilibrium(case.model(), case.path(), 0.0, &guess).unwrap_err();
+    assert!(matches!(error, Error::EquilibriumNotFound { .. }), "{error:?}");
+    assert!(error.to_string().starts_with("no static equilibrium found from the guess: residual"), "{error}");
+}
