@@ -589,3 +589,11 @@ fn a_failure_in_mid_run_leaves_no_results() {
     let left: Vec<_> = std::fs::read_dir(&out).map(|d| d.map(|e| e.unwrap().file_name()).collect()).unwrap_or_default();
     assert!(left.is_empty(), "files left behind: {left:?}");
 }
+
+/// A negative mass in `[parameters]` is refused before the run, naming the
+/// key (the built-in models declare their masses `positive`).
+#[test]
+fn a_negative_mass_in_the_scenario_names_the_key() {
+    expect_error("navy-planar", "[parameters]\nm_l = -100.0\n", &["`parameters.m_l` = -100 must be positive"]);
+    expect_error("gantry-3d", "[parameters]\nm_t = 0.0\n", &["`parameters.m_t` = 0 must be positive"]);
+}

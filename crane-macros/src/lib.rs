@@ -61,11 +61,13 @@
 //! # The DSL
 //! - `params { name = default, ... }`: `f64` fields of the struct; defaults
 //!   are constant expressions (numbers, `PI`, functions of them). Doc
-//!   comments on a parameter become the field's docs.
+//!   comments on a parameter become the field's docs. `name: positive =
+//!   default` declares a parameter the runtime refuses at or below zero.
 //! - `robot [...]`, `load [...]`: the coordinates `p` and `x`; `q = [p; x]`.
 //! - `inputs [...]`: one per load coordinate.
 //! - `kinetic = expr;`: a quadratic form in the velocities `dot(q_i)` with
-//!   constant coefficients (so that `M` is constant).
+//!   constant coefficients (so that `M` is constant), positive
+//!   semi-definite (a negative constant diagonal entry is an error).
 //! - `forces { coord: expr, ... }`: generalized forces, linear in the inputs
 //!   (inputs on robot coordinates only); unlisted coordinates get 0.
 //! - `constraints { name: expr, ... }`: `g(q)`; `#[rope(N = length)]` marks a
@@ -124,6 +126,11 @@ fn expand(input: TokenStream) -> TokenStream {
     match (model, cx.check()) {
         (Some(mut model), Ok(())) => {
             let kernels = model::Kernels::derive(&mut model);
+            if let Some(error) = check::negative_inertia(&decl, &model, &kernels) {
+                let mut tokens = error.to_compile_error();
+                tokens.extend(codegen::stub(&decl));
+                return tokens;
+            }
             codegen::generate(&model, &kernels)
         }
         (_, Err(error)) => {

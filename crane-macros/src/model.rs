@@ -81,6 +81,8 @@ pub struct Param {
     pub name: Ident,
     /// The default as declared (a constant expression).
     pub default: Expr,
+    /// Declared `positive`: the runtime refuses a value <= 0.
+    pub positive: bool,
     /// Doc comments on the parameter.
     pub docs: Vec<Attribute>,
 }

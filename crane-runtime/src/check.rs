@@ -277,3 +277,34 @@ where
     }
     DerivativeReport { points, quantities: worst }
 }
+
+/// The check the generated self-test of a model with a `sample` section
+/// runs: [`check_derivatives`] at 100 seeded random points of the box `q`
+/// (velocities, multipliers, inputs in `[-1, 1]`), passed if every error is
+/// below 1e-6 (correct derivatives show ~1e-9, a wrong one O(1)).
+pub fn derivative_self_test<Mdl, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    q: &[(f64, f64); N],
+) -> Result<DerivativeReport, DerivativeReport>
+where
+    Mdl: CraneModel<N, M, A>,
+{
+    let report = check_derivatives(model, &SampleBox::new(*q), 100, 0x5eed);
+    if report.worst() < 1e-6 { Ok(report) } else { Err(report) }
+}
+
+/// The check the generated self-test of a minimal map runs:
+/// [`check_minimal_map`] at 100 seeded random points of the box `mu`,
+/// passed if `g(phi(mu)) = 0` holds to 1e-12 (relative to `|q|^2`) and every
+/// other error is below 1e-6.
+pub fn minimal_map_self_test<Mdl, const N: usize, const M: usize, const A: usize, const F: usize>(
+    model: &Mdl,
+    mu: &[(f64, f64); F],
+) -> Result<DerivativeReport, DerivativeReport>
+where
+    Mdl: MinimalMap<N, M, A, F>,
+{
+    let report = check_minimal_map(model, mu, 1.0, 100, 0x5eed);
+    let constraints = report.get("g(phi(mu)) = 0").map_or(f64::INFINITY, |e| e.worst_relative_error);
+    if constraints < 1e-12 && report.worst() < 1e-6 { Ok(report) } else { Err(report) }
+}

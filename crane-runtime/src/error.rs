@@ -119,6 +119,27 @@ pub enum Error {
         /// Infinity norm of the residual at the last iterate.
         residual: f64,
     },
+    /// The mass matrix is not positive semi-definite with these parameters.
+    #[error(
+        "the mass matrix is not positive semi-definite (smallest eigenvalue {smallest_eigenvalue:.4e}, along \
+         {coordinates}): a kinetic energy cannot be negative; negative parameters: {negative_parameters}"
+    )]
+    IndefiniteMassMatrix {
+        /// The smallest eigenvalue of `M`.
+        smallest_eigenvalue: f64,
+        /// The coordinates of its eigenvector (components above 10 % of the largest).
+        coordinates: String,
+        /// The parameters with negative values, comma separated, or `none`.
+        negative_parameters: String,
+    },
+    /// A parameter declared `positive` is zero or negative.
+    #[error("parameter `{name}` = {value} must be positive (it is declared `positive`)")]
+    NonPositiveParameter {
+        /// Parameter name.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+    },
     /// `step_to` was asked for a time that is not the next step's.
     #[error("a step must go to t_n + dt = {} s, not {} s", Seconds::of(.expected), Seconds::of(.t))]
     WrongStepTime {

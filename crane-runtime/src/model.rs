@@ -45,6 +45,10 @@ pub struct ModelInfo {
     pub ropes: &'static [Rope],
     /// Names of the parameters.
     pub parameters: &'static [&'static str],
+    /// Indices (into `parameters`) of the parameters declared `positive`
+    /// (masses, inertias, radii, lengths): the runtime refuses a run when
+    /// one of them is zero or negative.
+    pub positive: &'static [usize],
 }
 
 /// Error returned by [`CraneModel::set_parameter`] for a name the model does

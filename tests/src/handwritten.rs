@@ -78,6 +78,8 @@ impl CraneModel<7, 3, 2> for HandNavyPlanar {
             },
         ],
         parameters: &PARAMETERS,
+        // m_l, J1, J2, r1, r2 and l, as the built-in navy-planar declares them
+        positive: &[0, 1, 2, 3, 4, 6],
     };
 
     fn parameter_values(&self) -> Vec<f64> {

@@ -91,6 +91,8 @@ fn assert_descriptive(error: &Error) {
         Error::InvalidTimeStep { .. } | Error::StepsDoNotFit { .. } => message.contains("dt = "),
         Error::InvalidTimeSpan { .. } => message.contains("t0 = "),
         Error::WrongStepTime { .. } => message.contains("t_n + dt = "),
+        Error::IndefiniteMassMatrix { .. } => message.contains("smallest eigenvalue"),
+        Error::NonPositiveParameter { name, .. } => message.contains(&format!("`{name}`")),
         Error::TooManySteps { .. } => message.contains("steps cannot be held"),
         Error::MinimalStartNotFound { .. } | Error::EquilibriumNotFound { .. } => {
             message.contains("residual")

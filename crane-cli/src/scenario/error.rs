@@ -37,6 +37,10 @@ pub enum ScenarioError {
     Path(TrajectoryError),
     #[error("scenario: `parameters.{key}`: {source}")]
     Parameter { key: String, source: UnknownParameter },
+    #[error("scenario: `parameters.{key}` = {value} must be positive (the model declares it `positive`)")]
+    NotPositiveParameter { key: String, value: f64 },
+    #[error("scenario: `parameters`: {0}")]
+    Physical(crane_runtime::Error),
     #[error("scenario: `limits.{key}`: {model} has no input `{key}`; its inputs are {inputs}")]
     UnknownInput { key: String, model: String, inputs: String },
     #[error("scenario: `limits.{key}` must be a positive number, got {value}")]
@@ -61,7 +65,8 @@ impl ScenarioError {
             MotionEndsBeforeStart { .. } => Some("t1".into()),
             RampWithoutPhases | RampMissing => Some("tau0".into()),
             Path(_) => Some("trajectory".into()),
-            Parameter { key, .. } => Some(format!("parameters.{key}")),
+            Parameter { key, .. } | NotPositiveParameter { key, .. } => Some(format!("parameters.{key}")),
+            Physical(_) => Some("parameters".into()),
             UnknownInput { key, .. } | LimitNotPositive { key, .. } => Some(format!("limits.{key}")),
             Scheme(_) => Some("scheme".into()),
         }

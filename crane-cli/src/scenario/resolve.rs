@@ -112,6 +112,14 @@ pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         }
         model.set_parameter(key, *value).map_err(|source| ScenarioError::Parameter { key: key.clone(), source })?;
     }
+    // masses, inertias and lengths declared positive, and a positive
+    // semi-definite mass matrix, with the file's values
+    crane_runtime::driver::check_parameters(&model).map_err(|e| match e {
+        crane_runtime::Error::NonPositiveParameter { name, value } => {
+            ScenarioError::NotPositiveParameter { key: name.to_string(), value }
+        }
+        other => ScenarioError::Physical(other),
+    })?;
     let robot = &info.coordinates[..N - A];
     let p0 = match &file.p0 {
         Some(p0) if p0.len() != N - A => {

@@ -83,6 +83,7 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         .map(|p| Param {
             name: p.name.clone(),
             default: p.default.clone(),
+            positive: p.positive,
             docs: p.docs.clone(),
         })
         .collect();
@@ -103,4 +104,28 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         minimal,
         self_test: self_test.filter(|_| self_test_enabled),
     })
+}
+
+/// A kinetic energy must be positive semi-definite: a diagonal entry of the
+/// mass matrix `M_ii = d^2 T / dq_i'^2` that is a negative constant (a
+/// literal negative coefficient of `dot(q_i)^2`) is an error at the
+/// `kinetic` keyword. Entries that depend on parameters are checked by the
+/// runtime, with the parameters' values, before a run.
+pub fn negative_inertia(
+    decl: &crate::parse::Declaration,
+    model: &crate::model::Model,
+    kernels: &crate::model::Kernels,
+) -> Option<syn::Error> {
+    let kinetic = decl.sections.kinetic.as_ref()?;
+    let (i, value) = (0..model.coords.len())
+        .find_map(|i| model.arena.as_const(kernels.mass[i][i]).filter(|v| *v < 0.0).map(|v| (i, v)))?;
+    let coord = &model.coords[i];
+    Some(syn::Error::new(
+        kinetic.keyword.span(),
+        format!(
+            "the kinetic energy gives `{coord}` the negative inertia {value} (the coefficient of `dot({coord})^2` is \
+             {}): a kinetic energy must be positive semi-definite",
+            value / 2.0
+        ),
+    ))
 }

@@ -7,8 +7,11 @@ use super::resolve::{Lowerer, Place};
 use crate::model::SelfTest;
 use crate::parse::Expr;
 
-/// Check the `sample` section: a constant range for every coordinate and, if
-/// any minimal coordinate is named, for every minimal coordinate.
+/// Check the `sample` section: a constant range for every coordinate and,
+/// when the model has a minimal map, for every minimal coordinate too, so
+/// that the self-test always checks the map (a box for `mu` cannot be
+/// derived reliably from the box for `q`: `phi` has several inverse branches
+/// and its angles wrap).
 pub(super) fn check_sample(
     section: &crate::parse::Section<Vec<crate::parse::SampleDecl>>,
     coords: &[Ident],
@@ -57,21 +60,23 @@ pub(super) fn check_sample(
         return None;
     }
     let mu_ranges = match mu {
-        Some(mu) if mu_ranges.iter().any(Option::is_some) => {
+        Some(mu) => {
             let mu_missing = missing(&mu_ranges, mu);
             if !mu_missing.is_empty() {
                 lower.cx.error_at(
                     section.keyword.span(),
                     format!(
-                        "`sample` names minimal coordinates but not all of them; missing: {}",
-                        mu_missing.join(", ")
+                        "`sample` needs a range for every minimal coordinate too, so that the self-test checks \
+                         the minimal map; missing: {} (write e.g. `{} = 0.0 .. 1.0`)",
+                        mu_missing.join(", "),
+                        mu_missing[0]
                     ),
                 );
                 return None;
             }
             Some(mu_ranges.into_iter().flatten().collect())
         }
-        _ => None,
+        None => None,
     };
     Some(SelfTest { q: q_ranges.into_iter().flatten().collect(), mu: mu_ranges })
 }

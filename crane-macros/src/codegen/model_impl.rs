@@ -43,6 +43,7 @@ fn model_info(model: &Model) -> TokenStream {
     });
     let description = &model.description;
     let name_str = model.name.to_string();
+    let positive = model.params.iter().enumerate().filter(|(_, p)| p.positive).map(|(i, _)| index(i));
     quote! {
         const INFO: __crane_runtime::ModelInfo = __crane_runtime::ModelInfo {
             name: #name_str,
@@ -52,6 +53,7 @@ fn model_info(model: &Model) -> TokenStream {
             constraints: #info_constraints,
             ropes: &[#(#ropes),*],
             parameters: #info_params,
+            positive: &[#(#positive),*],
         };
     }
 }

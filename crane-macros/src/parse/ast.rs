@@ -73,6 +73,8 @@ pub struct ParamDecl {
     pub docs: Vec<Attribute>,
     /// Name of the parameter (a field of the struct).
     pub name: Ident,
+    /// Declared `name: positive = ...`: must be > 0 (masses, inertias, radii).
+    pub positive: bool,
     /// Default value, a constant expression.
     pub default: Expr,
 }

@@ -20,11 +20,26 @@ pub(super) fn parse_param(input: ParseStream) -> syn::Result<ParamDecl> {
         }
     }
     let name: Ident = input.parse()?;
+    // `name: positive = value` declares a parameter that must be > 0
+    let positive = if input.peek(Token![:]) {
+        input.parse::<Token![:]>()?;
+        let kind: Ident = input.parse()?;
+        if kind != "positive" {
+            return Err(syn::Error::new(
+                kind.span(),
+                format!("unknown parameter kind `{kind}`; the only one is `positive`, e.g. `{name}: positive = 1.0`"),
+            ));
+        }
+        true
+    } else {
+        false
+    };
     input.parse::<Token![=]>()?;
     let default = parse_expr(input)?;
     Ok(ParamDecl {
         docs: attrs,
         name,
+        positive,
         default,
     })
 }

@@ -717,7 +717,7 @@ fn sample_section_generates_a_self_test() {
     assert!(messages.is_empty(), "{messages:?}");
     let output = expand(super::tokens(&source)).to_string();
     assert!(output.contains("__crane_self_test_navyplanar"), "no self-test module");
-    assert!(output.contains("check_derivatives"));
+    assert!(output.contains("derivative_self_test"));
     // opting out removes it
     let quiet = source.replacen("pub struct", "#[crane(no_self_test)] pub struct", 1);
     let output = expand(super::tokens(&quiet)).to_string();

@@ -43,25 +43,25 @@ crane_model! {
     pub struct Navy3d {
         params {
             /// Load mass `m_l` in kg (sect. 6.1.1).
-            m_l = 100.0,
+            m_l: positive = 100.0,
             /// Moment of inertia `J_b` of the crane without pulley and load about
             /// the `Z`-axis, kg m^2. The paper gives `M = J_b / r^2 = 6.4 kg`
-            /// (sect. 6.1.1) with `r^2 = 75 m^2`, so `J_b = 480 kg m^2`.
+            /// (sect. 6.1.1) with `r^2 = 75 m^2`, so `J_b: positive = 480 kg m^2`.
             J_b = 480.0,
             /// Inertia of winch 1, kg m^2 (sect. 6.1.1).
-            J1 = 0.1,
+            J1: positive = 0.1,
             /// Inertia of winch 2, kg m^2 (sect. 6.1.1).
-            J2 = 0.1,
+            J2: positive = 0.1,
             /// Radius of winch 1, m (sect. 6.1.1).
-            r1 = 0.1,
+            r1: positive = 0.1,
             /// Radius of winch 2, m (sect. 6.1.1).
-            r2 = 0.1,
+            r2: positive = 0.1,
             /// Boom angle to the vertical (sect. 6.1.1).
             alpha = PI / 3.0,
             /// Boom part `k` (boom length `k + l`), m (sect. 6.1.1).
-            k = 5.0,
+            k: positive = 5.0,
             /// Boom part `l` (boom length `k + l`), m (sect. 6.1.1).
-            l = 5.0,
+            l: positive = 5.0,
             /// Position of winch 1 on the boom, `A = beta1 P` (sect. 6.1).
             beta1 = 0.5,
             /// Gravity, m/s^2 (docs/errata.md: implicit, 9.81 throughout).

@@ -42,31 +42,31 @@ crane_model! {
     pub struct Navy3dPulley {
         params {
             /// Load mass `m_l`, kg (sect. 6.2.1).
-            m_l = 100.0,
+            m_l: positive = 100.0,
             /// Mass `m0` of the main pulley, kg (sect. 6.2.1).
-            m0 = 20.0,
+            m0: positive = 20.0,
             /// Moment of inertia `J_b` of the crane about the `Z`-axis, kg m^2.
             /// The paper gives `M = J_b / r^2 = 6.4 kg` (sect. 6.2.1) with
-            /// `r^2 = 75 m^2`, so `J_b = 480 kg m^2`.
+            /// `r^2 = 75 m^2`, so `J_b: positive = 480 kg m^2`.
             J_b = 480.0,
             /// Inertia of winch 1 (rope `L1`, at `A`), kg m^2 (sect. 6.2.1).
-            J1 = 0.1,
+            J1: positive = 0.1,
             /// Inertia of winch 2 (rope `L2`, at `S`), kg m^2 (sect. 6.2.1).
-            J2 = 0.1,
+            J2: positive = 0.1,
             /// Inertia of winch 3 (rope `L3`, at `P`), kg m^2 (sect. 6.2.1).
-            J3 = 0.1,
+            J3: positive = 0.1,
             /// Radius of winch 1, m (sect. 6.2.1).
-            r1 = 0.1,
+            r1: positive = 0.1,
             /// Radius of winch 2, m (sect. 6.2.1).
-            r2 = 0.1,
+            r2: positive = 0.1,
             /// Radius of winch 3, m (sect. 6.2.1).
-            r3 = 0.1,
+            r3: positive = 0.1,
             /// Boom angle to the vertical (sect. 6.2.1).
             alpha = PI / 3.0,
             /// Boom part `k` (`|OP| = k + l`), m (sect. 6.2.1).
-            k = 5.0,
+            k: positive = 5.0,
             /// Boom part `l` (`|OP| = k + l`), m (sect. 6.2.1).
-            l = 5.0,
+            l: positive = 5.0,
             /// Position of winch 1 on the boom, `A = beta1 P` (sect. 6.2).
             beta1 = 0.5,
             /// Position of winch 2 on the boom, `S = beta2 P` (sect. 6.2,

@@ -53,26 +53,26 @@ crane_model! {
     pub struct NavyPlanarPulley {
         params {
             /// Load mass `m_l`, in kg (sect. 5.2.3).
-            m_l = 100.0,
+            m_l: positive = 100.0,
             /// Mass `m0` of the main pulley, in kg (sect. 5.2.3).
-            m0 = 150.0,
+            m0: positive = 150.0,
             /// Moment of inertia of winch 1 (rope `L1`, at `A`), in kg m^2.
-            J1 = 0.1,
+            J1: positive = 0.1,
             /// Moment of inertia of winch 2 (rope `L2`, at `S`), in kg m^2.
-            J2 = 0.1,
+            J2: positive = 0.1,
             /// Moment of inertia of winch 3 (rope `L3`, at `P`), in kg m^2.
-            J3 = 0.1,
+            J3: positive = 0.1,
             /// Radius of winch 1, in m.
-            r1 = 0.1,
+            r1: positive = 0.1,
             /// Radius of winch 2, in m.
-            r2 = 0.1,
+            r2: positive = 0.1,
             /// Radius of winch 3, in m.
-            r3 = 0.1,
+            r3: positive = 0.1,
             /// Angle of the boom with the vertical, in rad.
             alpha = PI / 3.0,
-            /// Distance `l = |PA|` between winches 3 and 1 on the boom, in m.
+            /// Distance `l: positive = |PA|` between winches 3 and 1 on the boom, in m.
             l = 10.0,
-            /// Distance `s = |SP|` between winches 2 and 3 on the boom, in m.
+            /// Distance `s: positive = |SP|` between winches 2 and 3 on the boom, in m.
             s = 5.0,
             /// Gravitational acceleration, in m/s^2.
             g = 9.81,

@@ -210,6 +210,7 @@ const _: () = {
                 },
             ],
             parameters: &["m_l", "J1", "J2", "r1", "r2", "alpha", "l", "g"],
+            positive: &[],
         };
         fn parameter_values(&self) -> ::std::vec::Vec<f64> {
             ::std::vec![
