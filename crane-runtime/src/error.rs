@@ -132,6 +132,15 @@ pub enum Error {
         /// The parameters with negative values, comma separated, or `none`.
         negative_parameters: String,
     },
+    /// A start has a rope of zero or negative length (a mirror solution of
+    /// the rope constraint).
+    #[error("the start gives rope `{rope}` the length {length}: rope lengths must be positive (try another guess)")]
+    NonPositiveRopeLength {
+        /// The rope's tension name.
+        rope: &'static str,
+        /// Its length at the start.
+        length: f64,
+    },
     /// A parameter declared `positive` is zero or negative.
     #[error("parameter `{name}` = {value} must be positive (it is declared `positive`)")]
     NonPositiveParameter {

@@ -134,13 +134,31 @@ where
             },
         )?;
     }
-    Ok(State {
+    let start = State {
         t: t0,
         q,
         v,
         u: SVector::from_fn(|k, _| solution[k]),
         lambda: SVector::from_fn(|i, _| solution[A + i]),
-    })
+    };
+    check_rope_lengths(model, &start)?;
+    Ok(start)
+}
+
+/// Refuse a start with a rope of zero or negative length (the constraint
+/// `1/2(d^2 - L^2)` holds for `-L` too: a mirror start).
+fn check_rope_lengths<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    start: &State<N, M, A>,
+) -> Result<(), Error> {
+    let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
+    model.rope_lengths(&start.q, &mut lengths);
+    for (rope, &length) in Mdl::INFO.ropes.iter().zip(&lengths) {
+        if !(length > 0.0) {
+            return Err(Error::NonPositiveRopeLength { rope: rope.tension, length });
+        }
+    }
+    Ok(())
 }
 
 /// Error naming the row with the largest residual if it exceeds `tolerance`.
@@ -304,13 +322,15 @@ where
                     free,
                 });
             }
-            return Ok(State {
+            let start = State {
                 t: t0,
                 q: SVector::from_fn(|i, _| if i < p { z[i] } else { gamma[0][i - p] }),
                 v: SVector::from_fn(|i, _| if i < p { 0.0 } else { gamma[1][i - p] }),
                 u: SVector::from_fn(|k, _| z[p + k]),
                 lambda: SVector::from_fn(|i, _| z[N + i]),
-            });
+            };
+            check_rope_lengths(model, &start)?;
+            return Ok(start);
         }
         iterations += 1;
         if iterations > STATIC_MAX_ITERATIONS {

@@ -117,3 +117,14 @@ fn case_start(crane: &crane_models::navy_planar::NavyPlanar) -> Result<(), Error
     let case = PaperCase::new(4.0).unwrap();
     init::check_start(crane, case.path(), 0.0, &case.p0, None).map(|_| ())
 }
+
+/// A static solve that lands on the mirror solution of a rope constraint
+/// (the gantry from the guess L = -5: the load "hangs" on a negative rope)
+/// is refused naming the rope, not returned as a start.
+#[test]
+fn a_start_with_a_negative_rope_length_is_refused() {
+    let case = crane_models::gantry_3d::DefaultCase::maneuver().unwrap();
+    let error = init::static_equilibrium(case.model(), case.path(), 0.0, &[3.0, 3.0, -5.0]).unwrap_err();
+    assert_eq!(error, Error::NonPositiveRopeLength { rope: "N", length: -5.0 });
+    assert!(init::static_equilibrium(case.model(), case.path(), 0.0, &[3.0, 3.0, 5.0]).is_ok());
+}

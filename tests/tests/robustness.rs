@@ -93,6 +93,7 @@ fn assert_descriptive(error: &Error) {
         Error::WrongStepTime { .. } => message.contains("t_n + dt = "),
         Error::IndefiniteMassMatrix { .. } => message.contains("smallest eigenvalue"),
         Error::NonPositiveParameter { name, .. } => message.contains(&format!("`{name}`")),
+        Error::NonPositiveRopeLength { rope, .. } => message.contains(&format!("`{rope}`")),
         Error::TooManySteps { .. } => message.contains("steps cannot be held"),
         Error::MinimalStartNotFound { .. } | Error::EquilibriumNotFound { .. } => {
             message.contains("residual")
