@@ -186,7 +186,18 @@ where
                 jac[(F + i, s_col)] = p[(off + i, split + k)];
             }
         }
-        normalised_residual(r, jac, z, |_| 0.0)
+        // the servo rows (24c-e) by their target terms too: where the load's
+        // minimal coordinates are the load coordinates themselves (x = mu2,
+        // natural for gantry and overhead cranes) and start at 0 with the
+        // crane at rest, no term J_ij z_j of those rows is nonzero, and the
+        // row would have no scale at all
+        let (dt, target) = (self.dt, &self.target);
+        normalised_residual(r, jac, z, |i| match i.checked_sub(F) {
+            Some(k) if k < A => dt * dt * target[2][k].abs(),
+            Some(k) if k < 2 * A => dt * target[1][k - A].abs(),
+            Some(k) if k < 3 * A => target[0][k - 2 * A].abs(),
+            _ => 0.0,
+        })
     }
 
     fn blocks(&self) -> &[Range<usize>] {

@@ -26,8 +26,9 @@ pub trait NonlinearSystem {
 /// |J_ij z_j|)`: `sum_j |J_ij z_j|` is the residual a relative perturbation of
 /// the unknowns causes, so round-off shows as ~1e-16 even in rows whose terms
 /// nearly vanish; `floor(i)` adds other sizes of row `i` (its largest term).
-/// A row with zero scale counts as converged only if its residual is exactly
-/// zero.
+/// A row with zero scale (every term vanishes at this iterate) is judged by
+/// its absolute residual: it is converged only at exactly zero, and Newton
+/// goes on (it used to report a non-finite iterate there).
 pub fn normalised_residual(
     r: &DVector<f64>,
     jac: &DMatrix<f64>,
@@ -42,8 +43,8 @@ pub fn normalised_residual(
             .max(floor(i));
         if scale > 0.0 {
             normalised = normalised.max(r[i].abs() / scale);
-        } else if r[i] != 0.0 {
-            normalised = f64::INFINITY;
+        } else {
+            normalised = normalised.max(r[i].abs());
         }
     }
     normalised
