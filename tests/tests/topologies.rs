@@ -410,3 +410,31 @@ mod tower {
         assert_first_order("tower_crane", run);
     }
 }
+
+/// Both topologies have minimal maps with the load as minimal coordinates
+/// (x = mu2): both formulations run, and their inputs approach each other at
+/// the scheme's order (Fig. 1's commutative diagram): max |u_red - u_min|
+/// falls by 2^k from dt = 0.04 to 0.02, within 25 %.
+fn assert_formulations_agree<C: crane_models::Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &crane_models::Case<C, N, M, A>,
+) {
+    for scheme in [Scheme::BackwardEuler, Scheme::Bdf2] {
+        let d: Vec<f64> = [0.04, 0.02]
+            .iter()
+            .map(|&dt| {
+                let redundant = kit::run(case, Formulation::Redundant, scheme, dt);
+                let minimal = kit::run(case, Formulation::Minimal, scheme, dt);
+                kit::redundant_minimal_difference(&redundant, &minimal).0
+            })
+            .collect();
+        let (ratio, expected) = (d[0] / d[1], 2f64.powi(scheme.order() as i32));
+        println!("{} {scheme}: max |u_red - u_min| = {:.3e} / {:.3e}, ratio {ratio:.2}", C::NAME, d[0], d[1]);
+        assert!((ratio / expected - 1.0).abs() <= 0.25, "{} {scheme}: {d:?}", C::NAME);
+    }
+}
+
+#[test]
+fn both_topologies_run_in_both_formulations() {
+    assert_formulations_agree(&gantry_3d::DefaultCase::maneuver().unwrap());
+    assert_formulations_agree(&tower_crane::DefaultCase::maneuver().unwrap());
+}

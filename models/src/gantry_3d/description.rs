@@ -2,7 +2,9 @@
 //! from `(0, 0, -5)` to `(6, 3, -3)` in 8 s from the load hanging at rest
 //! straight below the trolley, its flatness-based reference and the drawing.
 
-use crane_runtime::State;
+use crane_runtime::minimal::simulate_minimal_with_progress;
+use crane_runtime::{Error, Options, Solution, State};
+use nalgebra::SVector;
 use nalgebra::vector;
 
 use super::model::Gantry3d;
@@ -27,6 +29,7 @@ impl Crane<6, 1, 3> for Description {
     const NAME: &'static str = "gantry-3d";
     const DESCRIPTION: &'static str = "3D gantry crane: bridge, trolley, hoist winch, one rope";
     const HAS_REFERENCE: bool = true;
+    const HAS_MINIMAL_MAP: bool = true;
 
     /// Poly9 (eqs. 41-45) from `(0, 0, -5)` to `(6, 3, -3)` in [`TF`]; the
     /// start `p0 = [X, Y, L] = [0, 0, 5]`: at rest below the trolley.
@@ -43,6 +46,17 @@ impl Crane<6, 1, 3> for Description {
         finite_state(State { t, q: r.q, v: r.v, u: r.u, lambda: r.lambda })
     }
 
+    fn simulate_minimal(
+        model: &Gantry3d,
+        path: &Path<3>,
+        start: &State<6, 1, 3>,
+        options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Option<Result<Solution<6, 1, 3>, Error>> {
+        let guess = minimal_guess(start);
+        Some(simulate_minimal_with_progress(model, path, start, &guess, options, progress))
+    }
+
     /// `q = [X, Y, L | x, y, z]`: the bridge at `X` spanning `y` from -10 to
     /// 10 m at height 0, the trolley `(X, Y, 0)`, the rope to the load.
     fn drawing(_: &Gantry3d) -> Option<Drawing> {
@@ -57,4 +71,11 @@ impl Crane<6, 1, 3> for Description {
             ropes: "bridge at X, trolley B, rope B-C (L)",
         })
     }
+}
+
+/// The minimal coordinates `mu = [X, Y, x, y, z]` of a redundant state
+/// (exact: they are coordinates of `q`).
+pub fn minimal_guess(state: &State<6, 1, 3>) -> SVector<f64, 5> {
+    let q = &state.q;
+    SVector::from([q[0], q[1], q[3], q[4], q[5]])
 }

@@ -40,7 +40,16 @@ crane_model! {
             #[rope(N = L)]
             rope: 0.5*((x - X)^2 + (y - Y)^2 + z^2 - L^2),
         }
+        // minimal coordinates: the bridge and trolley positions and the load
+        // itself (x = mu2: D2 phi_x is the identity, eq. 12 holds everywhere)
+        minimal [bx, by | cx, cy, cz] {
+            X = bx;  Y = by;
+            L = sqrt((cx - bx)^2 + (cy - by)^2 + cz^2);
+            x = cx;  y = cy;  z = cz;
+        }
         sample { X = -10.0 .. 10.0, Y = -10.0 .. 10.0, L = 1.0 .. 10.0,
-                 x = -10.0 .. 10.0, y = -10.0 .. 10.0, z = -10.0 .. -1.0 }
+                 x = -10.0 .. 10.0, y = -10.0 .. 10.0, z = -10.0 .. -1.0,
+                 bx = -10.0 .. 10.0, by = -10.0 .. 10.0,
+                 cx = -10.0 .. 10.0, cy = -10.0 .. 10.0, cz = -10.0 .. -1.0 }
     }
 }

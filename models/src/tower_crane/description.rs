@@ -3,13 +3,15 @@
 //! 63 degrees) from the load hanging at rest below the trolley, and the
 //! drawing.
 
-use nalgebra::vector;
+use crane_runtime::minimal::simulate_minimal_with_progress;
+use crane_runtime::{Error, Options, Solution, State};
+use nalgebra::{SVector, vector};
 
 use super::model::TowerCrane;
 use crate::case::Case;
 use crate::crane::{Crane, Maneuver};
 use crate::drawing::{Drawing, Pose};
-use crate::path::{PathSpec, Profile};
+use crate::path::{Path, PathSpec, Profile};
 
 /// The rotary tower crane: slewing jib, trolley, hoist, load on one rope.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -22,7 +24,7 @@ pub type DefaultCase = Case<Description, 8, 3, 3>;
 pub const TF: f64 = 10.0;
 
 /// The slewing angle `phi = atan2(y1, x1)` of the jib in a state.
-pub fn slewing_angle(state: &crane_runtime::State<8, 3, 3>) -> f64 {
+pub fn slewing_angle(state: &State<8, 3, 3>) -> f64 {
     state.q[1].atan2(state.q[0])
 }
 
@@ -30,6 +32,7 @@ impl Crane<8, 3, 3> for Description {
     type Model = TowerCrane;
     const NAME: &'static str = "tower-crane";
     const DESCRIPTION: &'static str = "rotary tower crane: slewing jib, trolley, hoist winch, one rope";
+    const HAS_MINIMAL_MAP: bool = true;
 
     /// Poly9 (eqs. 41-45) from `(10, 0, 5)` to `(6, 12, 10)` in [`TF`]; the
     /// start `p0 = [x1, y1, xt, yt, L] = [30, 0, 10, 0, 15]`: the jib along
@@ -41,12 +44,23 @@ impl Crane<8, 3, 3> for Description {
         }
     }
 
+    fn simulate_minimal(
+        model: &TowerCrane,
+        path: &Path<3>,
+        start: &State<8, 3, 3>,
+        options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Option<Result<Solution<8, 3, 3>, Error>> {
+        let guess = minimal_guess(start);
+        Some(simulate_minimal_with_progress(model, path, start, &guess, options, progress))
+    }
+
     fn derived_outputs() -> &'static [&'static str] {
         &["phi"]
     }
 
     /// The slewing angle of the jib, in rad.
-    fn derived(_: &TowerCrane, state: &crane_runtime::State<8, 3, 3>) -> Vec<f64> {
+    fn derived(_: &TowerCrane, state: &State<8, 3, 3>) -> Vec<f64> {
         vec![slewing_angle(state)]
     }
 
@@ -71,4 +85,14 @@ impl Crane<8, 3, 3> for Description {
             ropes: "jib O-tip, trolley B, rope B-C (L)",
         })
     }
+}
+
+/// The minimal coordinates `mu = [phi, rho, x, y, z]` of a redundant state:
+/// the jib's angle, the trolley's signed distance from the axis along the
+/// jib, the load.
+pub fn minimal_guess(state: &State<8, 3, 3>) -> SVector<f64, 5> {
+    let q = &state.q;
+    let phi = q[1].atan2(q[0]);
+    let rho = q[2] * phi.cos() + q[3] * phi.sin();
+    SVector::from([phi, rho, q[5], q[6], q[7]])
 }

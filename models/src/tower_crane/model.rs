@@ -52,7 +52,16 @@ crane_model! {
             #[rope(N = L)]
             rope: 0.5*((x - xt)^2 + (y - yt)^2 + (z - H)^2 - L^2),
         }
+        // minimal coordinates: the slewing angle, the trolley's distance from
+        // the axis and the load itself (x = mu2: D2 phi_x is the identity)
+        minimal [phi, rho | cx, cy, cz] {
+            x1 = R*cos(phi);   y1 = R*sin(phi);
+            xt = rho*cos(phi); yt = rho*sin(phi);
+            L = sqrt((cx - xt)^2 + (cy - yt)^2 + (cz - H)^2);
+            x = cx;  y = cy;  z = cz;
+        }
         sample { x1 = -30.0 .. 30.0, y1 = -30.0 .. 30.0, xt = -20.0 .. 20.0, yt = -20.0 .. 20.0,
-                 L = 1.0 .. 20.0, x = -20.0 .. 20.0, y = -20.0 .. 20.0, z = 0.0 .. 15.0 }
+                 L = 1.0 .. 20.0, x = -20.0 .. 20.0, y = -20.0 .. 20.0, z = 0.0 .. 15.0,
+                 phi = -3.0 .. 3.0, rho = 1.0 .. 25.0, cx = -20.0 .. 20.0, cy = -20.0 .. 20.0, cz = 0.0 .. 15.0 }
     }
 }
