@@ -75,6 +75,21 @@ pub struct DerivativeReport {
     pub points: usize,
     /// One entry per checked quantity.
     pub quantities: Vec<QuantityError>,
+    /// For a minimal map: where in the box `D2 phi_x` (eq. 12) comes closest
+    /// to singular.
+    pub output_jacobian: Option<OutputJacobian>,
+}
+
+/// The conditioning of `D2 phi_x` over the sampled box of a minimal map:
+/// the split `mu = [mu1; mu2]` needs it regular along the motion (eq. 12).
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputJacobian {
+    /// The smallest singular value of `D2 phi_x` over the points.
+    pub smallest_singular_value: f64,
+    /// The largest condition number (largest over smallest singular value).
+    pub largest_condition: f64,
+    /// The minimal coordinates where the smallest singular value occurred.
+    pub at: Vec<f64>,
 }
 
 impl DerivativeReport {
@@ -94,6 +109,13 @@ impl fmt::Display for DerivativeReport {
         writeln!(f, "derivatives against central differences at {} points:", self.points)?;
         for q in &self.quantities {
             writeln!(f, "  {:<28} worst relative error {:.2e}", q.quantity, q.worst_relative_error)?;
+        }
+        if let Some(d2) = &self.output_jacobian {
+            writeln!(
+                f,
+                "  D2 phi_x (eq. 12)            smallest singular value {:.3e} (condition up to {:.2e}) at mu = {:?}",
+                d2.smallest_singular_value, d2.largest_condition, d2.at
+            )?;
         }
         Ok(())
     }
@@ -227,7 +249,7 @@ where
             }
         }
     }
-    DerivativeReport { points, quantities: worst }
+    DerivativeReport { points, quantities: worst, output_jacobian: None }
 }
 
 /// Check a minimal-coordinate map at `points` random `mu` from the box
@@ -248,6 +270,7 @@ where
 {
     let mut rng = SmallRng::seed_from_u64(seed);
     let names = ["g(phi(mu)) = 0", "G P = 0", "P = D phi", "P' = dP/dt"];
+    let mut output_jacobian: Option<OutputJacobian> = None;
     let mut worst: Vec<QuantityError> = names
         .iter()
         .map(|&quantity| QuantityError { quantity, worst_relative_error: 0.0, at: Vec::new() })
@@ -262,6 +285,18 @@ where
         // P' is the derivative of P along mu': central difference in that direction
         let h = 1e-6 * (1.0 + mu.amax()) / mu_rate.amax().max(1e-300);
         let p_rate_fd = (model.null_space(&(mu + mu_rate * h)) - model.null_space(&(mu - mu_rate * h))) / (2.0 * h);
+        let (off, split) = (N - A, F - A);
+        let d2 = nalgebra::DMatrix::from_fn(A, A, |i, k| p[(off + i, split + k)]);
+        let singular = d2.singular_values();
+        let (smallest, largest) = (singular.min(), singular.max());
+        let worse = output_jacobian.as_ref().is_none_or(|o: &OutputJacobian| smallest < o.smallest_singular_value);
+        let condition = if smallest > 0.0 { largest / smallest } else { f64::INFINITY };
+        let largest_condition = output_jacobian.as_ref().map_or(condition, |o| o.largest_condition.max(condition));
+        if worse {
+            output_jacobian = Some(OutputJacobian { smallest_singular_value: smallest, largest_condition, at: mu.iter().copied().collect() });
+        } else if let Some(o) = output_jacobian.as_mut() {
+            o.largest_condition = largest_condition;
+        }
         let errors = [
             model.constraints(&q).amax() / (scale * scale),
             (jac_g * p).amax() / (jac_g.amax() * p.amax()).max(1e-300),
@@ -275,7 +310,7 @@ where
             }
         }
     }
-    DerivativeReport { points, quantities: worst }
+    DerivativeReport { points, quantities: worst, output_jacobian }
 }
 
 /// The check the generated self-test of a model with a `sample` section

@@ -159,3 +159,23 @@ fn the_overhead_crane_runs_in_both_formulations() {
         assert!((ratio / expected - 1.0).abs() <= 0.25, "{scheme}: {differences:?}");
     }
 }
+
+/// `check_minimal_map` reports where in the box `D2 phi_x` comes closest to
+/// singular: the identity for a map with the load as minimal coordinates,
+/// and for navy-planar's angles `[beta, gamma | theta, L]` the block
+/// `d(x, z)/d(theta, L)`, a rotation scaled by `L` in its first column, so
+/// its smallest singular value is `min(L, 1)` over the box (L in [2, 10]: 1).
+#[test]
+fn the_minimal_map_check_reports_the_conditioning_of_d2_phi_x() {
+    use crane_runtime::check::check_minimal_map;
+    let report = check_minimal_map(&Overhead::default(), &[(-5.0, 5.0), (-5.0, 5.0), (1.0, 10.0)], 1.0, 50, 1);
+    let d2 = report.output_jacobian.clone().expect("a minimal map reports D2 phi_x");
+    assert_eq!((d2.smallest_singular_value, d2.largest_condition), (1.0, 1.0), "{report}");
+    assert_eq!(d2.at.len(), 3);
+    let navy = crane_models::navy_planar::NavyPlanar::default();
+    let report = check_minimal_map(&navy, &[(0.2, 0.9), (1.2, 2.2), (-0.5, 0.5), (2.0, 10.0)], 1.0, 200, 2);
+    println!("{report}");
+    let d2 = report.output_jacobian.expect("reported");
+    assert!((d2.smallest_singular_value - 1.0).abs() < 1e-12, "{d2:?}");
+    assert!(d2.largest_condition > 2.0 && d2.largest_condition <= 10.0 + 1e-9, "{d2:?}");
+}
