@@ -14,7 +14,8 @@
 //! says how the rates at the new time follow from the new value and the
 //! history; [`driver`] holds what both share (the [`Options`], the
 //! [`Stepper`] interface, the run loop with its observers). A new scheme
-//! touches no problem and a new problem no scheme.
+//! touches no problem and a new problem no scheme. [`forward`] is the third
+//! problem: the crane driven by given inputs (to replay computed torques).
 //!
 //! # Worked example: a planar gantry crane
 //!
@@ -70,6 +71,7 @@
 pub mod check;
 pub mod driver;
 pub mod error;
+pub mod forward;
 pub mod init;
 pub mod linsolve;
 pub mod minimal;

@@ -1,0 +1,49 @@
+//! The forward problem (`crane_runtime::forward`) on the scheme seam: the
+//! crane driven by given inputs. Replaying the analytical inputs of
+//! Appendix B on the planar crane with pulley mass keeps its flat outputs on
+//! the prescribed path, with a deviation that shrinks at the scheme's order
+//! (backward Euler 1.00, BDF-2 2.00; measured below).
+
+use crane_models::navy_planar_pulley::PaperCase;
+use crane_models::navy_planar_pulley::reference::reference_at;
+use crane_runtime::forward::simulate_forward;
+use crane_runtime::{Options, Scheme, Solution, Trajectory};
+
+/// The largest deviation of the flat outputs `[x, z, z0]` from the path over
+/// the run.
+fn largest_deviation(case: &PaperCase, run: &Solution<8, 4, 3>) -> f64 {
+    run.states
+        .iter()
+        .map(|s| (s.q.fixed_rows::<3>(5) - case.path().derivative(s.t, 0)).amax())
+        .fold(0.0, f64::max)
+}
+
+/// Appendix B's torques, evaluated at each forward step, drive the crane
+/// from the paper's start (a regular equilibrium, eq. 66 as corrected):
+/// the outputs follow gamma to O(dt^k). Measured for dt = 0.01, 0.005:
+/// the orders must lie in [k - 0.3, k + 0.7].
+#[test]
+fn replaying_the_analytical_inputs_keeps_the_load_on_the_path() {
+    let case = PaperCase::new(4.0).unwrap();
+    let start = case.start().unwrap();
+    let model = case.model().clone();
+    let path = case.path().clone();
+    // BDF-3..5 show order 2 here (and on the gantry: 1.96e-4 / 4.9e-5 /
+    // 1.2e-5 for dt = 0.02 / 0.01 / 0.005, the same for k = 3, 4, 5), an
+    // order-2 error source not understood yet: only k = 1, 2 are asserted
+    for scheme in [Scheme::BackwardEuler, Scheme::Bdf2] {
+        let deviations: Vec<f64> = [0.01, 0.005]
+            .iter()
+            .map(|&dt| {
+                let inputs = |t: f64| reference_at(&model, &path, t).u;
+                let run = simulate_forward(case.model(), inputs, &start, &Options::new(dt, 4.0).with_scheme(scheme))
+                    .unwrap_or_else(|e| panic!("{scheme} dt = {dt}: {e}"));
+                largest_deviation(&case, &run)
+            })
+            .collect();
+        let order = (deviations[0] / deviations[1]).log2();
+        let k = scheme.order() as f64;
+        println!("forward {scheme}: largest |x - gamma| = {:.3e} / {:.3e} m, order {order:.2}", deviations[0], deviations[1]);
+        assert!((k - 0.3..=k + 0.7).contains(&order), "{scheme}: {deviations:?}");
+    }
+}
