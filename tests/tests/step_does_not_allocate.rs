@@ -2,7 +2,8 @@
 //! allocator sees zero allocations across the steps of `navy-planar` (4 s),
 //! for every scheme, in redundant and in minimal coordinates, including the
 //! first steps from the degenerate start where Newton falls back to the
-//! minimum-norm solve (and the minimal stepper's retry from the last step).
+//! minimum-norm solve (and the minimal stepper's retry from the last step);
+//! and the forward problem's stepper.
 //! One test function, so that no other test allocates while one counts.
 
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -11,6 +12,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crane_models::navy_planar::{PaperCase, minimal_guess};
 use crane_runtime::newton::NewtonOptions;
+use crane_runtime::forward::ForwardStepper;
 use crane_runtime::{MinimalStepper, RedundantStepper, Scheme, Stepper};
 
 struct Counting;
@@ -91,6 +93,12 @@ fn stepping_does_not_allocate() {
             let (allocations, min_norm) = allocations_in(&mut minimal, steps);
             assert_eq!(allocations, 0, "minimal {scheme} dt = {dt}: {allocations} allocations in {steps} steps");
             println!("minimal {scheme} dt = {dt}: {steps} steps, {min_norm} minimum-norm Newton steps, 0 allocations");
+            // the forward problem, driven by the inputs of the inverse run's last state
+            let u = redundant.state().u;
+            let end = *redundant.state();
+            let mut forward = ForwardStepper::new(case.model(), move |_t: f64| u, &end, dt, scheme, newton).unwrap();
+            let (allocations, _) = allocations_in(&mut forward, steps.min(400));
+            assert_eq!(allocations, 0, "forward {scheme} dt = {dt}: {allocations} allocations");
         }
     }
 }
