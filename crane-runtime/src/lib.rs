@@ -15,7 +15,8 @@
 //! history; [`driver`] holds what both share (the [`Options`], the
 //! [`Stepper`] interface, the run loop with its observers). A new scheme
 //! touches no problem and a new problem no scheme. [`forward`] is the third
-//! problem: the crane driven by given inputs (to replay computed torques).
+//! problem: the crane driven by given inputs, and [`replay`] drives it with
+//! the torques an inverse run computed (on the planned or another plant).
 //!
 //! # Worked example: a planar gantry crane
 //!
@@ -78,6 +79,7 @@ pub mod minimal;
 pub mod model;
 pub mod newton;
 pub mod redundant;
+pub mod replay;
 pub mod scheme;
 pub mod solution;
 pub mod trajectory;

@@ -1,0 +1,183 @@
+//! Replay: drive a crane's forward dynamics ([`crate::forward`]) with the
+//! inputs an inverse run computed, from the same start, on a finer step and
+//! beyond the move's end with the inputs held, and measure how well the load
+//! follows its path and how much it sways afterwards. The plant may differ
+//! from the model the inputs were computed for (a heavier load, another
+//! geometry): that is the question "what if my load is heavier".
+
+use nalgebra::SVector;
+
+use crate::driver::Options;
+use crate::error::Error;
+use crate::forward::{Inputs, simulate_forward};
+use crate::model::CraneModel;
+use crate::newton::NewtonOptions;
+use crate::scheme::Scheme;
+use crate::solution::Solution;
+use crate::trajectory::Trajectory;
+
+/// Most points of the interpolating polynomial (degree 5).
+const MAX_POINTS: usize = 6;
+
+/// The inputs of an inverse run between its steps: the Lagrange polynomial
+/// through the `points` steps nearest to `t` (degree `points - 1`, error
+/// `O(dt^points)` for smooth inputs), the last value held after the run.
+#[derive(Debug, Clone, Copy)]
+pub struct InterpolatedInputs<'a, const N: usize, const M: usize, const A: usize> {
+    run: &'a Solution<N, M, A>,
+    points: usize,
+}
+
+impl<'a, const N: usize, const M: usize, const A: usize> InterpolatedInputs<'a, N, M, A> {
+    /// Interpolation of `run`'s inputs through `points` (2..=6, clamped) steps.
+    pub fn new(run: &'a Solution<N, M, A>, points: usize) -> Self {
+        Self { run, points: points.clamp(2, MAX_POINTS).min(run.states.len().max(1)) }
+    }
+}
+
+impl<const N: usize, const M: usize, const A: usize> Inputs<A> for InterpolatedInputs<'_, N, M, A> {
+    fn at(&self, t: f64) -> SVector<f64, A> {
+        let states = &self.run.states;
+        let (first, last) = (&states[0], &states[states.len() - 1]);
+        if t >= last.t {
+            return last.u;
+        }
+        if t <= first.t || self.points < 2 {
+            return first.u;
+        }
+        let dt = self.run.dt;
+        let position = (t - first.t) / dt;
+        // the window of `points` steps around t, inside the run
+        let lowest = (position - 0.5 * (self.points as f64 - 1.0)).round().max(0.0) as usize;
+        let start = lowest.min(states.len() - self.points);
+        let mut u = SVector::<f64, A>::zeros();
+        for j in 0..self.points {
+            let tj = states[start + j].t;
+            let mut weight = 1.0;
+            for m in 0..self.points {
+                if m != j {
+                    let tm = states[start + m].t;
+                    weight *= (t - tm) / (tj - tm);
+                }
+            }
+            u += states[start + j].u * weight;
+        }
+        u
+    }
+}
+
+/// How to replay.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReplayOptions {
+    /// Forward steps per inverse step (the forward step is `dt / refine`).
+    pub refine: usize,
+    /// Seconds beyond the move's end, with the inputs held at their last
+    /// value: the settling window in which the residual sway is measured.
+    pub settle: f64,
+    /// The forward scheme.
+    pub scheme: Scheme,
+    /// Newton tolerances of the forward steps.
+    pub newton: NewtonOptions,
+}
+
+impl ReplayOptions {
+    /// A replay on `dt / 4` with a settling window of `settle` seconds, with
+    /// `scheme` for the forward steps (BDF-2 is the robust choice: its
+    /// quadratic interpolation of the torques does not amplify the start-up
+    /// transient of a high-order inverse run, which a quartic does).
+    pub fn new(settle: f64, scheme: Scheme) -> Self {
+        Self { refine: 4, settle, scheme, newton: NewtonOptions::default() }
+    }
+}
+
+/// What a replay measured.
+#[derive(Debug, Clone)]
+pub struct Replay<const N: usize, const M: usize, const A: usize> {
+    /// The forward run: states, multipliers and rope tensions along the replay.
+    pub solution: Solution<N, M, A>,
+    /// The largest `|x(t) - gamma(t)|` (infinity norm over the load
+    /// coordinates) on `[t0, tf]`.
+    pub max_load_deviation: f64,
+    /// `|x(tf) - gamma(tf)|`.
+    pub deviation_at_tf: f64,
+    /// The largest `|x(t) - gamma(tf)|` over the settling window.
+    pub residual_sway: f64,
+}
+
+/// Replay `inverse` (a run of the inverse problem on `path`) on `plant`:
+/// from the inverse run's start, with its inputs interpolated to the
+/// forward scheme's order (`order + 1` points), on `inverse.dt /
+/// options.refine`, to the run's end plus `options.settle`.
+pub fn replay<Mdl, Tr, const N: usize, const M: usize, const A: usize>(
+    plant: &Mdl,
+    path: &Tr,
+    inverse: &Solution<N, M, A>,
+    options: &ReplayOptions,
+) -> Result<Replay<N, M, A>, Error>
+where
+    Mdl: CraneModel<N, M, A>,
+    Tr: Trajectory<A>,
+{
+    let (Some(start), Some(end)) = (inverse.states.first(), inverse.states.last()) else {
+        return Err(Error::InvalidTimeSpan { t0: f64::NAN, tf: f64::NAN });
+    };
+    let refine = options.refine.max(1);
+    let dt = inverse.dt / refine as f64;
+    let settle_steps = (options.settle.max(0.0) / dt).round();
+    let tf = end.t + settle_steps * dt;
+    let inputs = InterpolatedInputs::new(inverse, options.scheme.order() + 1);
+    let forward =
+        Options { dt, tf, scheme: options.scheme, newton: options.newton };
+    let solution = simulate_forward(plant, inputs, start, &forward)?;
+    let load = |q: &SVector<f64, N>| SVector::<f64, A>::from_fn(|k, _| q[N - A + k]);
+    let (mut max_load_deviation, mut deviation_at_tf, mut residual_sway) = (0.0f64, 0.0f64, 0.0f64);
+    let rest = path.derivative(end.t, 0);
+    for state in &solution.states {
+        if state.t <= end.t + 1e-9 * dt {
+            let deviation = (load(&state.q) - path.derivative(state.t, 0)).amax();
+            max_load_deviation = max_load_deviation.max(deviation);
+            if (state.t - end.t).abs() <= 0.5 * dt {
+                deviation_at_tf = deviation;
+            }
+        } else {
+            residual_sway = residual_sway.max((load(&state.q) - rest).amax());
+        }
+    }
+    Ok(Replay { solution, max_load_deviation, deviation_at_tf, residual_sway })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::ModelInfo;
+    use crate::solution::State;
+
+    /// The interpolation through `k + 1` points reproduces a polynomial of
+    /// degree `k` in the inputs exactly, between steps and at them.
+    #[test]
+    fn interpolation_is_exact_for_polynomials_of_its_degree() {
+        const INFO: ModelInfo = ModelInfo {
+            name: "T",
+            description: "",
+            coordinates: &["q"],
+            inputs: &["u"],
+            constraints: &[],
+            ropes: &[],
+            parameters: &[],
+            positive: &[],
+        };
+        let u = |t: f64| 1.0 + 2.0 * t - 0.5 * t * t + 0.25 * t.powi(3);
+        let states: Vec<State<1, 0, 1>> = (0..=20)
+            .map(|i| {
+                let t = 0.1 * i as f64;
+                State { t, q: SVector::zeros(), v: SVector::zeros(), u: SVector::from([u(t)]), lambda: SVector::zeros() }
+            })
+            .collect();
+        let run = Solution { info: INFO, dt: 0.1, scheme: Scheme::Bdf3, states, newton_iterations: vec![0; 21], tensions: vec![], min_norm_steps: 0 };
+        let inputs = InterpolatedInputs::new(&run, 4);
+        for t in [0.0, 0.03, 0.55, 1.234, 1.999, 2.0] {
+            assert!((inputs.at(t)[0] - u(t)).abs() < 1e-12, "t = {t}: {} vs {}", inputs.at(t)[0], u(t));
+        }
+        assert_eq!(inputs.at(5.0)[0], u(2.0), "held after the run");
+    }
+}
