@@ -11,6 +11,7 @@ mod convergence;
 mod output;
 mod plot;
 mod progress;
+mod replay;
 mod report;
 mod scenario;
 mod snapshots;
@@ -71,6 +72,19 @@ enum Command {
         /// No progress bar (it is shown only on a terminal, for runs over a second).
         #[arg(long)]
         quiet: bool,
+        /// Replay the computed torques on the crane's forward dynamics (dt/4,
+        /// BDF-2, then a settling window with the torques held): writes
+        /// replay.csv and replay.svg and adds "replay" to summary.json.
+        #[arg(long)]
+        replay: bool,
+        /// With --replay: a plant parameter that differs from the planner's,
+        /// NAME=VALUE (repeatable; adds to the scenario's [plant] table).
+        #[arg(long = "plant", value_name = "NAME=VALUE")]
+        plant: Vec<String>,
+        /// With --replay: the settling window in s (default: twice the longest
+        /// rope pendulum period 2 pi sqrt(L/g) at the end).
+        #[arg(long, value_name = "SECONDS")]
+        settle: Option<f64>,
     },
     /// Time repeated runs without writing files; print median wall time per run and per step.
     Bench {
@@ -173,6 +187,10 @@ enum CliError {
     NoMinimalMap(String),
     #[error("--repeat must be at least 1")]
     NoRepeats,
+    #[error("--plant `{0}`: expected NAME=VALUE, e.g. --plant m_l=110")]
+    Plant(String),
+    #[error("plant parameter `{name}`: {message}")]
+    PlantParameter { name: String, message: String },
     #[error(transparent)]
     Scenario(#[from] scenario::ScenarioError),
     #[error("infeasible (--strict): {problems}; the results were still written to {out}")]
@@ -259,6 +277,9 @@ fn execute(command: Command) -> Result<(), CliError> {
             scheme,
             strict,
             quiet,
+            replay,
+            plant,
+            settle,
         } => {
             let file = scenario.as_deref().map(ScenarioFile::load).transpose()?;
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&model));
@@ -268,10 +289,19 @@ fn execute(command: Command) -> Result<(), CliError> {
                 formulation,
                 scheme,
             };
+            let plant = plant
+                .iter()
+                .map(|item| {
+                    let (name, value) = item.split_once('=').ok_or_else(|| CliError::Plant(item.clone()))?;
+                    let value: f64 = value.trim().parse().map_err(|_| CliError::Plant(item.clone()))?;
+                    Ok((name.trim().to_string(), value))
+                })
+                .collect::<Result<Vec<_>, CliError>>()?;
             let settings = RunSettings {
                 name: &model,
                 out: &out,
                 quiet,
+                replay: replay.then_some(ReplayRequest { plant, settle }),
             };
             let summary = dispatch(&model, Job::Run { settings, file: file.as_ref(), overrides })?
                 .expect("a run returns its summary");
@@ -325,6 +355,16 @@ struct RunSettings<'a> {
     name: &'a str,
     out: &'a std::path::Path,
     quiet: bool,
+    /// `--replay` and its options.
+    replay: Option<ReplayRequest>,
+}
+
+/// What `--replay` asks for.
+struct ReplayRequest {
+    /// `--plant NAME=VALUE` overrides (after the scenario's `[plant]`).
+    plant: Vec<(String, f64)>,
+    /// `--settle`.
+    settle: Option<f64>,
 }
 
 /// Run one case and write its outputs.
@@ -333,7 +373,7 @@ fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     settings: &RunSettings,
     scenario: &scenario::Settings,
 ) -> Result<report::Summary, CliError> {
-    let RunSettings { name, out, quiet } = *settings;
+    let RunSettings { name, out, quiet, .. } = *settings;
     let (dt, formulation) = (scenario.dt, scenario.formulation);
     let start = case.start()?;
     let options = Options::new(dt, case.tf()).with_scheme(scenario.scheme);
@@ -365,7 +405,15 @@ fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let snapshots = snapshots::svg(C::drawing(case.model()), &solution)?
         .map(|svg| ("snapshots.svg".to_string(), svg));
     let derived = output::Derived { names: case.derived_outputs(), values: &|s| case.derived(s) };
-    output::write_all(out, &solution, fine.as_deref(), &summary, &derived, snapshots.as_slice())?;
+    let mut summary = summary;
+    let mut extra: Vec<(String, String)> = snapshots.into_iter().collect();
+    if let Some(request) = &settings.replay {
+        let plant_values = scenario.plant.iter().cloned().chain(request.plant.iter().cloned()).collect::<Vec<_>>();
+        let (replay_summary, files) = replay::run(case, &solution, &plant_values, request.settle)?;
+        extra.extend(files);
+        summary.replay = Some(replay_summary);
+    }
+    output::write_all(out, &solution, fine.as_deref(), &summary, &derived, &extra)?;
     println!(
         "{name} ({}, {}): {} steps of dt = {dt} s in {:.1} ms ({:.2} Newton iterations per step)",
         formulation.name(),

@@ -197,6 +197,17 @@ fn curves<const N: usize, const M: usize, const A: usize>(
     out
 }
 
+/// One curve over time (thinned to at most [`MAX_POINTS`] points).
+pub fn single(title: &str, y_label: &str, name: &str, points: &[(f64, f64)]) -> Result<String, CliError> {
+    let series = Series {
+        name: name.to_string(),
+        points: thinned(points.len(), |i| points[i]),
+        color: PALETTE[0],
+        dashed: false,
+    };
+    draw(title, y_label, &[series])
+}
+
 /// All plots of a run as `(file name, SVG text)`.
 pub fn all<const N: usize, const M: usize, const A: usize>(
     solution: &Solution<N, M, A>,

@@ -67,6 +67,32 @@ pub struct Summary {
     pub ropes: Vec<RopeSummary>,
     pub torque_limits: Vec<LimitSummary>,
     pub reference: Option<ReferenceErrors>,
+    /// `--replay`: the computed torques on the crane's forward dynamics.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub replay: Option<ReplaySummary>,
+}
+
+/// The replay's results in summary.json.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReplaySummary {
+    /// Largest |x(t) - gamma(t)| on [t0, tf], m.
+    pub max_load_deviation: f64,
+    /// |x(tf) - gamma(tf)|, m.
+    pub deviation_at_tf: f64,
+    /// Largest |x(t) - gamma(tf)| in the settling window, m.
+    pub residual_sway: f64,
+    /// Length of the settling window, s.
+    pub settle_time: f64,
+    /// Forward step, s, and scheme.
+    pub dt: f64,
+    pub scheme: String,
+    /// The plant parameters that differ from the planner's.
+    pub plant: std::collections::BTreeMap<String, f64>,
+    /// No feedback: the computed torques alone.
+    pub feedback: Option<String>,
+    /// Ropes that would have to push in the replay (tension below
+    /// `-SLACK_TOLERANCE` of the peak): the first time, per rope.
+    pub first_slack: std::collections::BTreeMap<String, f64>,
 }
 
 /// Tensions below `-SLACK_TOLERANCE * max |N|` count as slack; above it, a
@@ -209,6 +235,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         ropes,
         torque_limits,
         reference,
+        replay: None,
     }
 }
 

@@ -597,3 +597,40 @@ fn a_negative_mass_in_the_scenario_names_the_key() {
     expect_error("navy-planar", "[parameters]\nm_l = -100.0\n", &["`parameters.m_l` = -100 must be positive"]);
     expect_error("gantry-3d", "[parameters]\nm_t = 0.0\n", &["`parameters.m_t` = 0 must be positive"]);
 }
+
+/// `--replay` drives the forward dynamics with the computed torques: on the
+/// planned plant the load follows the path (BDF-4's torques at dt = 0.01:
+/// 2.8e-5 m), on a 10 % heavier load (`--plant m_l=110` or a `[plant]`
+/// table) it does not; replay.csv has a row per forward step (dt/4) and the
+/// deviation column, replay.svg is written.
+#[test]
+fn replay_reports_how_the_torques_do_on_the_plant() {
+    let dir = tempfile::tempdir().unwrap();
+    let summary = |out: &Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+    };
+    let exact = run_ok("navy-planar-pulley", &["--scheme", "bdf4", "--replay", "--settle", "9"], dir.path(), "exact");
+    let replay = &summary(&exact)["replay"];
+    assert!(replay["max_load_deviation"].as_f64().unwrap() < 1e-4, "{replay}");
+    assert_eq!(replay["settle_time"].as_f64(), Some(9.0));
+    assert_eq!(replay["scheme"], "bdf2");
+    assert!(replay["first_slack"].as_object().unwrap().is_empty());
+    let (header, rows) = results(&exact);
+    assert_eq!(header.len(), 19, "results.csv itself is unchanged: {header:?}");
+    let text = std::fs::read_to_string(exact.join("replay.csv")).unwrap();
+    assert!(text.lines().next().unwrap().ends_with(",load_deviation"));
+    assert_eq!(text.lines().count(), 1 + 4 * 400 + 4 * 900 + 1, "dt/4 over 4 + 9 s, and the header");
+    assert!(std::fs::metadata(exact.join("replay.svg")).unwrap().len() > 1024);
+    assert_eq!(rows.len(), 401, "one row per inverse step");
+    let heavy = run_ok("navy-planar-pulley", &["--scheme", "bdf4", "--replay", "--plant", "m_l=110"], dir.path(), "heavy");
+    let replay = &summary(&heavy)["replay"];
+    assert!(replay["max_load_deviation"].as_f64().unwrap() > 1.0, "{replay}");
+    assert_eq!(replay["plant"]["m_l"].as_f64(), Some(110.0));
+    let file = dir.path().join("plant.toml");
+    std::fs::write(&file, "scheme = \"bdf4\"\n[plant]\nm_l = 110.0\n").unwrap();
+    let from_file = run_ok("navy-planar-pulley", &["--scenario", file.to_str().unwrap(), "--replay"], dir.path(), "file");
+    assert_eq!(summary(&from_file)["replay"]["max_load_deviation"], replay["max_load_deviation"]);
+    let bad = crane(&["run", "navy-planar-pulley", "--replay", "--plant", "mass=3", "--quiet", "--out", dir.path().join("bad").to_str().unwrap()]);
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("plant parameter `mass`: unknown parameter"));
+}

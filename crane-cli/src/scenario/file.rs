@@ -53,6 +53,10 @@ pub struct ScenarioFile {
     pub parameters: BTreeMap<String, f64>,
     #[serde(default)]
     pub limits: BTreeMap<String, f64>,
+    /// Parameters of the plant a `--replay` drives, where it differs from
+    /// the model the torques are computed for.
+    #[serde(default)]
+    pub plant: BTreeMap<String, f64>,
 }
 
 impl ScenarioFile {

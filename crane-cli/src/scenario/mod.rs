@@ -54,6 +54,9 @@ pub struct Settings {
     pub scheme: Scheme,
     /// `(input index, limit)` pairs.
     pub limits: Vec<(usize, f64)>,
+    /// The `[plant]` table: parameters of the replay's plant that differ
+    /// from the planner's.
+    pub plant: Vec<(String, f64)>,
 }
 
 /// Default time step when neither the file nor the command line gives one.

@@ -146,5 +146,6 @@ pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         }
         limits.push((k, limit));
     }
-    Ok((Case::from_parts(model, path, p0, tf), Settings { dt, formulation, scheme, limits }))
+    let plant = file.plant.iter().map(|(k, v)| (k.clone(), *v)).collect();
+    Ok((Case::from_parts(model, path, p0, tf), Settings { dt, formulation, scheme, limits, plant }))
 }
