@@ -5,11 +5,13 @@
 //! from the model the inputs were computed for (a heavier load, another
 //! geometry): that is the question "what if my load is heavier".
 
+use std::cell::Cell;
+
 use nalgebra::SVector;
 
-use crate::driver::Options;
+use crate::driver::{Options, step_count};
 use crate::error::Error;
-use crate::forward::{Inputs, simulate_forward};
+use crate::forward::{ForwardStepper, Inputs};
 use crate::model::CraneModel;
 use crate::newton::NewtonOptions;
 use crate::scheme::Scheme;
@@ -35,22 +37,23 @@ impl<'a, const N: usize, const M: usize, const A: usize> InterpolatedInputs<'a, 
     }
 }
 
-impl<const N: usize, const M: usize, const A: usize> Inputs<A> for InterpolatedInputs<'_, N, M, A> {
-    fn at(&self, t: f64) -> SVector<f64, A> {
+impl<const N: usize, const M: usize, const A: usize> InterpolatedInputs<'_, N, M, A> {
+    /// `field` of the run's states interpolated at `t` (held outside the run).
+    fn interpolate<const K: usize>(&self, t: f64, field: impl Fn(&crate::solution::State<N, M, A>) -> SVector<f64, K>) -> SVector<f64, K> {
         let states = &self.run.states;
         let (first, last) = (&states[0], &states[states.len() - 1]);
         if t >= last.t {
-            return last.u;
+            return field(last);
         }
         if t <= first.t || self.points < 2 {
-            return first.u;
+            return field(first);
         }
         let dt = self.run.dt;
         let position = (t - first.t) / dt;
         // the window of `points` steps around t, inside the run
         let lowest = (position - 0.5 * (self.points as f64 - 1.0)).round().max(0.0) as usize;
         let start = lowest.min(states.len() - self.points);
-        let mut u = SVector::<f64, A>::zeros();
+        let mut value = SVector::<f64, K>::zeros();
         for j in 0..self.points {
             let tj = states[start + j].t;
             let mut weight = 1.0;
@@ -60,9 +63,105 @@ impl<const N: usize, const M: usize, const A: usize> Inputs<A> for InterpolatedI
                     weight *= (t - tm) / (tj - tm);
                 }
             }
-            u += states[start + j].u * weight;
+            value += field(&states[start + j]) * weight;
         }
-        u
+        value
+    }
+}
+
+impl<const N: usize, const M: usize, const A: usize> Inputs<A> for InterpolatedInputs<'_, N, M, A> {
+    fn at(&self, t: f64) -> SVector<f64, A> {
+        self.interpolate(t, |s| s.u)
+    }
+}
+
+/// A PD law on the robot coordinates about the inverse run's `p(t)`,
+/// `p'(t)`, added to the computed torques: the generalized force
+/// `F = Kp (p_ref - p) + Kd (p_ref' - p')` on the robot coordinates, turned
+/// into inputs by least squares through the input matrix,
+/// `u_fb = (B B^T)^-1 B F` with `B = (B^T)^T` at the current `q`. Sampled:
+/// the step to `t_{n+1}` uses the state and the reference at `t_n` (a digital
+/// controller at the forward rate, one step of delay).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Feedback<const N: usize> {
+    /// Stiffness per coordinate (0 on the load coordinates).
+    pub kp: SVector<f64, N>,
+    /// Damping per coordinate (0 on the load coordinates).
+    pub kd: SVector<f64, N>,
+}
+
+impl<const N: usize> Feedback<N> {
+    /// Default gains from the model: for each robot coordinate with inertia
+    /// `M_ii > 0`, a critically damped second-order loop (`Kp = M_ii w^2`,
+    /// `Kd = 2 M_ii w`) at `w = 4 sqrt(g / L)`, four times the frequency of
+    /// the longest rope pendulum at the start (`g` the model's parameter of
+    /// that name, else 9.81); massless coordinates get no feedback.
+    pub fn from_model<Mdl: CraneModel<N, M, A>, const M: usize, const A: usize>(
+        model: &Mdl,
+        start: &crate::solution::State<N, M, A>,
+    ) -> Self {
+        let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
+        model.rope_lengths(&start.q, &mut lengths);
+        let longest = lengths.iter().fold(1.0f64, |m, &l| m.max(l));
+        let g = Mdl::INFO.parameters.iter().zip(model.parameter_values()).find(|(n, _)| **n == "g").map_or(9.81, |(_, g)| g);
+        let w = 4.0 * (g / longest).sqrt();
+        let mass = model.mass_matrix::<f64>();
+        let kp = SVector::from_fn(|i, _| if i < N - A { mass[(i, i)].max(0.0) * w * w } else { 0.0 });
+        let kd = SVector::from_fn(|i, _| if i < N - A { 2.0 * mass[(i, i)].max(0.0) * w } else { 0.0 });
+        Self { kp, kd }
+    }
+}
+
+/// The computed torques plus the sampled [`Feedback`].
+struct ClosedLoop<'a, 'm, Mdl, const N: usize, const M: usize, const A: usize> {
+    plan: InterpolatedInputs<'a, N, M, A>,
+    plant: &'m Mdl,
+    feedback: Feedback<N>,
+    /// The last accepted state (updated by the replay loop).
+    last: &'a Cell<crate::solution::State<N, M, A>>,
+}
+
+impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> Inputs<A>
+    for ClosedLoop<'_, '_, Mdl, N, M, A>
+{
+    fn at(&self, t: f64) -> SVector<f64, A> {
+        let state = self.last.get();
+        let (q_ref, v_ref) = (self.plan.interpolate(state.t, |s| s.q), self.plan.interpolate(state.t, |s| s.v));
+        let force = self.feedback.kp.component_mul(&(q_ref - state.q)) + self.feedback.kd.component_mul(&(v_ref - state.v));
+        let bt = self.plant.input_matrix(&state.q);
+        // (B B^T) u = B F, an a x a system, by Gaussian elimination with
+        // partial pivoting on fixed-size arrays (no allocation)
+        let mut system = [[0.0; A]; A];
+        let mut rhs = [0.0; A];
+        for k in 0..A {
+            for l in 0..A {
+                system[k][l] = (0..N).map(|i| bt[(i, k)] * bt[(i, l)]).sum();
+            }
+            rhs[k] = (0..N).map(|i| bt[(i, k)] * force[i]).sum();
+        }
+        for col in 0..A {
+            let pivot = (col..A).max_by(|&a, &b| system[a][col].abs().total_cmp(&system[b][col].abs())).unwrap_or(col);
+            system.swap(col, pivot);
+            rhs.swap(col, pivot);
+            let d = system[col][col];
+            if d.abs() < 1e-300 {
+                continue;
+            }
+            for row in col + 1..A {
+                let f = system[row][col] / d;
+                for c in col..A {
+                    system[row][c] -= f * system[col][c];
+                }
+                rhs[row] -= f * rhs[col];
+            }
+        }
+        let mut u_fb = [0.0; A];
+        for row in (0..A).rev() {
+            let d = system[row][row];
+            let sum: f64 = (row + 1..A).map(|c| system[row][c] * u_fb[c]).sum();
+            u_fb[row] = if d.abs() < 1e-300 { 0.0 } else { (rhs[row] - sum) / d };
+        }
+        self.plan.at(t) + SVector::from(u_fb)
     }
 }
 
@@ -118,6 +217,21 @@ where
     Mdl: CraneModel<N, M, A>,
     Tr: Trajectory<A>,
 {
+    replay_with_feedback(plant, path, inverse, options, None)
+}
+
+/// [`replay`] with a [`Feedback`] law on top of the computed torques.
+pub fn replay_with_feedback<Mdl, Tr, const N: usize, const M: usize, const A: usize>(
+    plant: &Mdl,
+    path: &Tr,
+    inverse: &Solution<N, M, A>,
+    options: &ReplayOptions,
+    feedback: Option<&Feedback<N>>,
+) -> Result<Replay<N, M, A>, Error>
+where
+    Mdl: CraneModel<N, M, A>,
+    Tr: Trajectory<A>,
+{
     let (Some(start), Some(end)) = (inverse.states.first(), inverse.states.last()) else {
         return Err(Error::InvalidTimeSpan { t0: f64::NAN, tf: f64::NAN });
     };
@@ -125,10 +239,22 @@ where
     let dt = inverse.dt / refine as f64;
     let settle_steps = (options.settle.max(0.0) / dt).round();
     let tf = end.t + settle_steps * dt;
-    let inputs = InterpolatedInputs::new(inverse, options.scheme.order() + 1);
-    let forward =
-        Options { dt, tf, scheme: options.scheme, newton: options.newton };
-    let solution = simulate_forward(plant, inputs, start, &forward)?;
+    let plan = InterpolatedInputs::new(inverse, options.scheme.order() + 1);
+    let forward = Options { dt, tf, scheme: options.scheme, newton: options.newton };
+    let steps = step_count(start.t, tf, dt)?;
+    let last = Cell::new(*start);
+    let gains = feedback.copied().unwrap_or(Feedback { kp: SVector::zeros(), kd: SVector::zeros() });
+    let inputs = ClosedLoop { plan, plant, feedback: gains, last: &last };
+    let mut stepper = ForwardStepper::new(plant, inputs, start, dt, forward.scheme, forward.newton)?;
+    let mut solution = Solution::with_capacity(Mdl::INFO, dt, forward.scheme, steps + 1)?;
+    let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
+    solution.push(plant, start, 0, 0, &mut lengths);
+    for _ in 0..steps {
+        let report = stepper.step()?;
+        let state = *stepper.state();
+        last.set(state);
+        solution.push(plant, &state, report.iterations, report.min_norm_steps, &mut lengths);
+    }
     let load = |q: &SVector<f64, N>| SVector::<f64, A>::from_fn(|k, _| q[N - A + k]);
     let (mut max_load_deviation, mut deviation_at_tf, mut residual_sway) = (0.0f64, 0.0f64, 0.0f64);
     let rest = path.derivative(end.t, 0);
