@@ -85,6 +85,12 @@ enum Command {
         /// rope pendulum period 2 pi sqrt(L/g) at the end).
         #[arg(long, value_name = "SECONDS")]
         settle: Option<f64>,
+        /// With --replay: add a PD law on the robot coordinates about the
+        /// planned p(t): `default` (gains from the model) or `KP,KD` (the same
+        /// stiffness and damping on every robot coordinate); the replay runs
+        /// open loop too and replay.svg shows both.
+        #[arg(long, value_name = "default|KP,KD")]
+        feedback: Option<String>,
     },
     /// Time repeated runs without writing files; print median wall time per run and per step.
     Bench {
@@ -189,6 +195,8 @@ enum CliError {
     NoRepeats,
     #[error("--plant `{0}`: expected NAME=VALUE, e.g. --plant m_l=110")]
     Plant(String),
+    #[error("--feedback `{0}`: expected `default` or KP,KD (two numbers >= 0), e.g. --feedback 5000,2000")]
+    Feedback(String),
     #[error("plant parameter `{name}`: {message}")]
     PlantParameter { name: String, message: String },
     #[error(transparent)]
@@ -280,6 +288,7 @@ fn execute(command: Command) -> Result<(), CliError> {
             replay,
             plant,
             settle,
+            feedback,
         } => {
             let file = scenario.as_deref().map(ScenarioFile::load).transpose()?;
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(&model));
@@ -301,7 +310,7 @@ fn execute(command: Command) -> Result<(), CliError> {
                 name: &model,
                 out: &out,
                 quiet,
-                replay: replay.then_some(ReplayRequest { plant, settle }),
+                replay: replay.then_some(ReplayRequest { plant, settle, feedback: feedback.as_deref().map(replay::FeedbackSpec::parse).transpose()? }),
             };
             let summary = dispatch(&model, Job::Run { settings, file: file.as_ref(), overrides })?
                 .expect("a run returns its summary");
@@ -365,6 +374,8 @@ struct ReplayRequest {
     plant: Vec<(String, f64)>,
     /// `--settle`.
     settle: Option<f64>,
+    /// `--feedback`.
+    feedback: Option<replay::FeedbackSpec>,
 }
 
 /// Run one case and write its outputs.
@@ -409,7 +420,7 @@ fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let mut extra: Vec<(String, String)> = snapshots.into_iter().collect();
     if let Some(request) = &settings.replay {
         let plant_values = scenario.plant.iter().cloned().chain(request.plant.iter().cloned()).collect::<Vec<_>>();
-        let (replay_summary, files) = replay::run(case, &solution, &plant_values, request.settle)?;
+        let (replay_summary, files) = replay::run(case, &solution, &plant_values, request.settle, request.feedback)?;
         extra.extend(files);
         summary.replay = Some(replay_summary);
     }

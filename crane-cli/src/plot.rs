@@ -197,15 +197,19 @@ fn curves<const N: usize, const M: usize, const A: usize>(
     out
 }
 
-/// One curve over time (thinned to at most [`MAX_POINTS`] points).
-pub fn single(title: &str, y_label: &str, name: &str, points: &[(f64, f64)]) -> Result<String, CliError> {
-    let series = Series {
-        name: name.to_string(),
-        points: thinned(points.len(), |i| points[i]),
-        color: PALETTE[0],
-        dashed: false,
-    };
-    draw(title, y_label, &[series])
+/// Named curves over time (each thinned to at most [`MAX_POINTS`] points).
+pub fn curves_over_time(title: &str, y_label: &str, curves: &[(&str, Vec<(f64, f64)>)]) -> Result<String, CliError> {
+    let series: Vec<Series> = curves
+        .iter()
+        .enumerate()
+        .map(|(c, (name, points))| Series {
+            name: name.to_string(),
+            points: thinned(points.len(), |i| points[i]),
+            color: PALETTE[c % PALETTE.len()],
+            dashed: false,
+        })
+        .collect();
+    draw(title, y_label, &series)
 }
 
 /// All plots of a run as `(file name, SVG text)`.

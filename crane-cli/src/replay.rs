@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 
 use crane_models::{Case, Crane};
-use crane_runtime::replay::{ReplayOptions, replay};
+use crane_runtime::replay::{Feedback, ReplayOptions, replay, replay_with_feedback};
 use crane_runtime::{CraneModel, Scheme, Solution, Trajectory};
 
 use crate::report::ReplaySummary;
@@ -30,13 +30,51 @@ fn default_settle<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, cons
     2.0 * std::f64::consts::TAU * (longest / g).sqrt()
 }
 
-/// Replay `inverse` on the case's crane with the `plant` overrides; the
-/// summary and the files `replay.csv`, `replay.svg`.
+/// `--feedback default` or `--feedback KP,KD`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FeedbackSpec {
+    /// Gains from the model (`Feedback::from_model`).
+    Default,
+    /// The same stiffness and damping on every robot coordinate.
+    Gains(f64, f64),
+}
+
+impl FeedbackSpec {
+    /// Parse the flag's value.
+    pub fn parse(text: &str) -> Result<Self, CliError> {
+        if text == "default" {
+            return Ok(Self::Default);
+        }
+        let bad = || CliError::Feedback(text.to_string());
+        let (kp, kd) = text.split_once(',').ok_or_else(bad)?;
+        let (kp, kd): (f64, f64) = (kp.trim().parse().map_err(|_| bad())?, kd.trim().parse().map_err(|_| bad())?);
+        if kp.is_finite() && kd.is_finite() && kp >= 0.0 && kd >= 0.0 { Ok(Self::Gains(kp, kd)) } else { Err(bad()) }
+    }
+
+    fn gains<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+        self,
+        model: &Mdl,
+        start: &crane_runtime::State<N, M, A>,
+    ) -> (Feedback<N>, String) {
+        match self {
+            Self::Default => (Feedback::from_model(model, start), "default (critically damped at 4 sqrt(g/L))".into()),
+            Self::Gains(kp, kd) => {
+                let robot = |k: f64| nalgebra::SVector::<f64, N>::from_fn(|i, _| if i < N - A { k } else { 0.0 });
+                (Feedback { kp: robot(kp), kd: robot(kd) }, format!("kp = {kp}, kd = {kd}"))
+            }
+        }
+    }
+}
+
+/// Replay `inverse` on the case's crane with the `plant` overrides (and
+/// `feedback` on top, after an open-loop replay); the summary and the files
+/// `replay.csv`, `replay.svg`.
 pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
     inverse: &Solution<N, M, A>,
     plant: &[(String, f64)],
     settle: Option<f64>,
+    feedback: Option<FeedbackSpec>,
 ) -> Result<(ReplaySummary, Vec<(String, String)>), CliError> {
     let mut model = case.model().clone();
     let mut changed = BTreeMap::new();
@@ -52,7 +90,13 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let end = inverse.states.last().expect("a run has its start");
     let settle = settle.unwrap_or_else(|| default_settle(&model, end));
     let options = ReplayOptions::new(settle, Scheme::Bdf2);
-    let result = replay(&model, case.path(), inverse, &options)?;
+    let open = replay(&model, case.path(), inverse, &options)?;
+    let gains = feedback.map(|f| f.gains(&model, &inverse.states[0]));
+    let closed = match &gains {
+        Some((g, _)) => Some(replay_with_feedback(&model, case.path(), inverse, &options, Some(g))?),
+        None => None,
+    };
+    let result = closed.as_ref().unwrap_or(&open);
     let info = inverse.info;
     let tf = end.t;
     let rest = case.path().derivative(tf, 0);
@@ -78,14 +122,19 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         writer.write_record(&row).map_err(failed)?;
     }
     let csv = writer.into_inner().map_err(|e| CliError::Output { what: "replay.csv".into(), message: e.to_string() })?;
-    let points: Vec<(f64, f64)> = result.solution.states.iter().map(|s| (s.t, deviation(s))).collect();
+    let curve = |r: &crane_runtime::replay::Replay<N, M, A>| -> Vec<(f64, f64)> {
+        r.solution.states.iter().map(|s| (s.t, deviation(s))).collect()
+    };
     let plant_label = if changed.is_empty() {
         "the planned plant".to_string()
     } else {
         changed.iter().map(|(k, v)| format!("{k} = {v}")).collect::<Vec<_>>().join(", ")
     };
     let title = format!("{} - replay on {plant_label}: load deviation (torques held after {tf} s)", info.name);
-    let svg = plot::single(&title, "|x - gamma| [m]", "load deviation", &points)?;
+    let svg = match &closed {
+        None => plot::curves_over_time(&title, "|x - gamma| [m]", &[("open loop", curve(&open))])?,
+        Some(c) => plot::curves_over_time(&title, "|x - gamma| [m]", &[("open loop", curve(&open)), ("with feedback", curve(c))])?,
+    };
     let peak = result.solution.tensions.iter().fold(0.0f64, |m, n| m.max(n.abs()));
     let mut first_slack = BTreeMap::new();
     for (i, s) in result.solution.states.iter().enumerate() {
@@ -103,7 +152,8 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         dt: result.solution.dt,
         scheme: result.solution.scheme.name().to_string(),
         plant: changed,
-        feedback: None,
+        feedback: gains.map(|(_, label)| label),
+        open_loop_max_load_deviation: open.max_load_deviation,
         first_slack,
     };
     Ok((summary, vec![("replay.csv".into(), String::from_utf8_lossy(&csv).into_owned()), ("replay.svg".into(), svg)]))

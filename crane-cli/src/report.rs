@@ -88,8 +88,12 @@ pub struct ReplaySummary {
     pub scheme: String,
     /// The plant parameters that differ from the planner's.
     pub plant: std::collections::BTreeMap<String, f64>,
-    /// No feedback: the computed torques alone.
+    /// The feedback law, if any (`null`: the computed torques alone); the
+    /// numbers above are then those with feedback.
     pub feedback: Option<String>,
+    /// The largest deviation of the open-loop replay (the same as
+    /// `max_load_deviation` without feedback), m.
+    pub open_loop_max_load_deviation: f64,
     /// Ropes that would have to push in the replay (tension below
     /// `-SLACK_TOLERANCE` of the peak): the first time, per rope.
     pub first_slack: std::collections::BTreeMap<String, f64>,

@@ -630,6 +630,12 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
     std::fs::write(&file, "scheme = \"bdf4\"\n[plant]\nm_l = 110.0\n").unwrap();
     let from_file = run_ok("navy-planar-pulley", &["--scenario", file.to_str().unwrap(), "--replay"], dir.path(), "file");
     assert_eq!(summary(&from_file)["replay"]["max_load_deviation"], replay["max_load_deviation"]);
+    // --feedback default at least halves the heavier load's deviation
+    let fed = run_ok("navy-planar-pulley", &["--scheme", "bdf4", "--replay", "--plant", "m_l=110", "--feedback", "default"], dir.path(), "fed");
+    let with = &summary(&fed)["replay"];
+    assert!(with["feedback"].as_str().unwrap().starts_with("default"));
+    assert_eq!(with["open_loop_max_load_deviation"], replay["max_load_deviation"]);
+    assert!(with["max_load_deviation"].as_f64().unwrap() <= 0.5 * replay["max_load_deviation"].as_f64().unwrap(), "{with}");
     let bad = crane(&["run", "navy-planar-pulley", "--replay", "--plant", "mass=3", "--quiet", "--out", dir.path().join("bad").to_str().unwrap()]);
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("plant parameter `mass`: unknown parameter"));
