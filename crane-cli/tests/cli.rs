@@ -630,6 +630,11 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
     std::fs::write(&file, "scheme = \"bdf4\"\n[plant]\nm_l = 110.0\n").unwrap();
     let from_file = run_ok("navy-planar-pulley", &["--scenario", file.to_str().unwrap(), "--replay"], dir.path(), "file");
     assert_eq!(summary(&from_file)["replay"]["max_load_deviation"], replay["max_load_deviation"]);
+    // a lighter load that the planned torques over-lift: rope N1 would have
+    // to push during the settling window, and the replay says so
+    let light = run_ok("navy-planar-pulley", &["--scheme", "bdf4", "--replay", "--plant", "m_l=90", "--settle", "9"], dir.path(), "light");
+    let slack = summary(&light)["replay"]["first_slack"]["N1"].as_f64().expect("N1 pushes");
+    assert!((9.0..10.5).contains(&slack), "{slack}");
     // --feedback default at least halves the heavier load's deviation
     let fed = run_ok("navy-planar-pulley", &["--scheme", "bdf4", "--replay", "--plant", "m_l=110", "--feedback", "default"], dir.path(), "fed");
     let with = &summary(&fed)["replay"];

@@ -64,3 +64,9 @@ pick 3dp-smooth inputs.svg fig25-3d-pulley-inputs-smooth.svg
 pick 3dp snapshots.svg fig26-3d-pulley-snapshots.svg
 
 du -ch "$dest"/*.svg | tail -1
+
+# Beyond the paper: the BDF-4 torques of the pulley crane replayed on a
+# 10 % heavier load, open loop and with the default feedback ("Does the
+# computed input work?")
+crane run navy-planar-pulley --scheme bdf4 --replay --settle 9 --plant m_l=110 --feedback default --out "$work/replay" --quiet >/dev/null
+pick replay replay.svg replay-pulley-heavier-load.svg

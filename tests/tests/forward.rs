@@ -152,3 +152,65 @@ fn feedback_takes_away_the_mismatch() {
         }
     }
 }
+
+/// With the inputs off the free crane keeps its energy `T + V`, `T = 1/2
+/// q'^T M q'`, `V = m_l g z` (the gantry: the load falls, unwinding the
+/// rope, from rest below the trolley) to the scheme's order: the largest
+/// drift over 2 s falls with order 1 for backward Euler, which dissipates,
+/// and 2 for BDF-2 (relative to the energy the load gains falling,
+/// m_l g |z(2 s) - z(0)|).
+#[test]
+fn the_free_crane_keeps_its_energy_to_the_scheme_s_order() {
+    use crane_models::gantry_3d::DefaultCase;
+    use crane_runtime::CraneModel;
+    let case = DefaultCase::maneuver().unwrap();
+    let mut start = case.start().unwrap();
+    start.u = nalgebra::SVector::zeros();
+    let model = case.model();
+    let mass = model.mass_matrix::<f64>();
+    let energy = |s: &crane_runtime::State<6, 1, 3>| 0.5 * s.v.dot(&(mass * s.v)) + model.m_l * model.g * s.q[5];
+    for scheme in [Scheme::BackwardEuler, Scheme::Bdf2] {
+        let drifts: Vec<f64> = [0.01, 0.005]
+            .iter()
+            .map(|&dt| {
+                let run = simulate_forward(model, |_t: f64| nalgebra::SVector::zeros(), &start, &Options::new(dt, 2.0).with_scheme(scheme)).unwrap();
+                let e0 = energy(&run.states[0]);
+                let fall = model.m_l * model.g * (run.states.last().unwrap().q[5] - start.q[5]).abs();
+                run.states.iter().map(|s| (energy(s) - e0).abs()).fold(0.0, f64::max) / fall
+            })
+            .collect();
+        let order = (drifts[0] / drifts[1]).log2();
+        println!("free gantry, {scheme}: relative energy drift over 2 s = {:.3e} / {:.3e} (dt = 0.01 / 0.005), order {order:.2}", drifts[0], drifts[1]);
+        let k = scheme.order() as f64;
+        assert!((k - 0.3..=k + 0.7).contains(&order), "{scheme}: {drifts:?}");
+    }
+}
+
+/// Replaying an inverse run's torques: the deviation falls with the inverse
+/// scheme's order as its step halves, as long as the inverse error dominates
+/// the forward one (BDF-2 on dt/4): backward Euler and BDF-2, on the pulley
+/// crane, navy-planar (its degenerate start: rope N1 exactly slack) and
+/// navy-3d, between dt = 0.02 and 0.01.
+#[test]
+fn replay_deviation_falls_with_the_inverse_scheme_s_order() {
+    use crane_models::{Case, Crane};
+    use crane_runtime::replay::{ReplayOptions, replay};
+    fn orders<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(case: &Case<C, N, M, A>) {
+        let start = case.start().unwrap();
+        for scheme in [Scheme::BackwardEuler, Scheme::Bdf2] {
+            let d: Vec<f64> = [0.02, 0.01]
+                .iter()
+                .map(|&dt| {
+                    let inverse = case.simulate(&start, &Options::new(dt, case.tf()).with_scheme(scheme)).unwrap();
+                    replay(case.model(), case.path(), &inverse, &ReplayOptions::new(0.0, Scheme::Bdf2)).unwrap().max_load_deviation
+                })
+                .collect();
+            let (order, k) = ((d[0] / d[1]).log2(), scheme.order() as f64);
+            println!("{} replay of {scheme} torques: max |x - gamma| = {:.3e} / {:.3e} m, order {order:.2}", C::NAME, d[0], d[1]);
+            assert!((k - 0.3..=k + 0.7).contains(&order), "{} {scheme}: {d:?}", C::NAME);
+        }
+    }
+    orders(&PaperCase::new(4.0).unwrap());
+    orders(&crane_models::navy_planar::PaperCase::new(4.0).unwrap());
+    orders(&crane_models::navy_3d::PaperCase::new(crane_models::navy_3d::TF).unwrap());
+}
