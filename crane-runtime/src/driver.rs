@@ -157,13 +157,17 @@ pub fn check_parameters<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize
     Ok(())
 }
 
+/// Refuse a time step that is not a finite positive number (every stepper
+/// and [`step_count`] starts with this).
+pub(crate) fn check_step_size(dt: f64) -> Result<(), Error> {
+    if dt.is_finite() && dt > 0.0 { Ok(()) } else { Err(Error::InvalidTimeStep { dt }) }
+}
+
 /// Number of steps of size `dt` from `t0` to `tf`, refusing spans that are
 /// not a whole number of steps (to 1e-9 relative) and step counts that
 /// cannot be indexed.
 pub fn step_count(t0: f64, tf: f64, dt: f64) -> Result<usize, Error> {
-    if !(dt.is_finite() && dt > 0.0) {
-        return Err(Error::InvalidTimeStep { dt });
-    }
+    check_step_size(dt)?;
     if !(tf.is_finite() && t0.is_finite() && tf > t0) {
         return Err(Error::InvalidTimeSpan { t0, tf });
     }

@@ -20,7 +20,7 @@ use std::ops::Range;
 
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-use crate::driver::{Options, StepReport, Stepper, check_parameters, record, step_count, step_error};
+use crate::driver::{Options, StepReport, Stepper, check_parameters, check_step_size, record, step_count, step_error};
 use crate::error::Error;
 use crate::model::CraneModel;
 use crate::newton::{Newton, NewtonOptions, NonlinearSystem, normalised_residual};
@@ -144,9 +144,7 @@ where
         scheme: Scheme,
         newton: NewtonOptions,
     ) -> Result<Self, Error> {
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(Error::InvalidTimeStep { dt });
-        }
+        check_step_size(dt)?;
         check_parameters(model)?;
         let history = if start.v.amax() == 0.0 { History::at_rest(start.q) } else { History::start(start.q, start.v) };
         let mut z = DVector::zeros(N + M);

@@ -35,7 +35,7 @@ use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use num_dual::Dual64;
 
 use crate::driver::{
-    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_time, check_target,
+    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_time, check_target, check_step_size,
     record, servo_target, step_count, step_error,
 };
 use crate::error::Error;
@@ -331,9 +331,7 @@ where
         scheme: Scheme,
         newton: NewtonOptions,
     ) -> Result<Self, Error> {
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(Error::InvalidTimeStep { dt });
-        }
+        check_step_size(dt)?;
         check_parameters(model)?;
         let (mu, mu_dot) = minimal_start(model, start, mu_guess)?;
         let split = F - A;

@@ -26,7 +26,7 @@ use std::ops::Range;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 use crate::driver::{
-    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_time, check_target,
+    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_time, check_target, check_step_size,
     record, servo_target, step_count, step_error,
 };
 use crate::error::Error;
@@ -197,9 +197,7 @@ where
         scheme: Scheme,
         newton: NewtonOptions,
     ) -> Result<Self, Error> {
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(Error::InvalidTimeStep { dt });
-        }
+        check_step_size(dt)?;
         check_parameters(model)?;
         let history = init::history(&trajectory, start, start.q, start.v);
         let p = N - A;
