@@ -8,6 +8,7 @@
 //!   two smallest steps lies in a band;
 //! - [`input_differences`], [`largest`]: self-convergence `D(dt) = max |u(dt)
 //!   - u(dt/2)|` where there is no reference;
+//! - [`assert_ratio_of_order`]: a ratio `D(dt)/D(dt/2)` near `2^k`;
 //! - [`redundant_minimal_difference`]: the commutative diagram of Fig. 1;
 //! - [`stand_in_path`]: one rest-to-rest path for cranes or tests that need
 //!   some path.
@@ -121,6 +122,14 @@ pub fn largest_input_difference<const N: usize, const M: usize, const A: usize>(
 ) -> (f64, f64) {
     let per_input = coarse.input_difference(fine, include).expect("the fine run has half the step");
     per_input.into_iter().fold((0.0, 0.0), |w, d| if d.0 > w.0 { d } else { w })
+}
+
+/// Asserts that a ratio `D(dt)/D(dt/2)` of errors or differences that
+/// shrink like `C dt^k` lies within 25 % of `2^k`, `k` the order of
+/// `scheme` (the band leaves room for the next term at the coarser step).
+pub fn assert_ratio_of_order(what: &str, scheme: Scheme, ratio: f64) {
+    let expected = 2f64.powi(scheme.order() as i32);
+    assert!((ratio / expected - 1.0).abs() <= 0.25, "{what} {scheme}: ratio {ratio}, expected 2^k = {expected} within 25 %");
 }
 
 /// The largest entry.

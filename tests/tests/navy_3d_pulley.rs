@@ -11,6 +11,7 @@ use std::time::Instant;
 use crane_models::navy_3d_pulley::{Navy3dPulley, PaperCase, TF, paper_p0, slewing_angle};
 use crane_runtime::check::{SampleBox, check_derivatives};
 use crane_runtime::{CraneModel, Error, Options, Solution, init, simulate};
+use crane_tests::kit;
 
 type Run = Solution<12, 5, 4>;
 
@@ -348,7 +349,7 @@ fn u4_spikes_at_the_switches_only_on_the_paper_profile() {
         paper_peaks.push(p);
         smooth_peaks.push(s);
     }
-    let peak = |p: &[f64; 4]| p.iter().fold(0.0f64, |m, x| m.max(*x));
+    let peak = kit::largest::<4>;
     for (w, dt) in paper_peaks.windows(2).zip(dts) {
         let ratio = peak(&w[1]) / peak(&w[0]);
         println!(
