@@ -6,29 +6,11 @@
 use std::collections::BTreeMap;
 
 use crane_models::{Case, Crane};
-use crane_runtime::replay::{Feedback, ReplayOptions, replay, replay_with_feedback};
-use crane_runtime::{CraneModel, Scheme, Solution, Trajectory};
+use crane_runtime::replay::{Feedback, Pendulum, ReplayOptions, load_deviation, replay, replay_with_feedback};
+use crane_runtime::{CraneModel, Scheme, Solution};
 
 use crate::report::ReplaySummary;
 use crate::{CliError, plot};
-
-/// Twice the longest rope pendulum period `2 pi sqrt(L / g)` at the end of
-/// the inverse run (`g` the model's parameter of that name, else 9.81).
-fn default_settle<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    model: &Mdl,
-    end: &crane_runtime::State<N, M, A>,
-) -> f64 {
-    let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
-    model.rope_lengths(&end.q, &mut lengths);
-    let longest = lengths.iter().fold(1.0f64, |m, &l| m.max(l));
-    let g = Mdl::INFO
-        .parameters
-        .iter()
-        .zip(model.parameter_values())
-        .find(|(name, _)| **name == "g")
-        .map_or(9.81, |(_, g)| g);
-    2.0 * std::f64::consts::TAU * (longest / g).sqrt()
-}
 
 /// `--feedback default` or `--feedback KP,KD`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -88,7 +70,8 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         changed.insert(name.clone(), *value);
     }
     let end = inverse.states.last().expect("a run has its start");
-    let settle = settle.unwrap_or_else(|| default_settle(&model, end));
+    // default: twice the longest rope pendulum's period at the end
+    let settle = settle.unwrap_or_else(|| 2.0 * Pendulum::longest(&model, end).period());
     let options = ReplayOptions::new(settle, Scheme::Bdf2);
     let open = replay(&model, case.path(), inverse, &options)?;
     let gains = feedback.map(|f| f.gains(&model, &inverse.states[0]));
@@ -99,11 +82,7 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let result = closed.as_ref().unwrap_or(&open);
     let info = inverse.info;
     let tf = end.t;
-    let rest = case.path().derivative(tf, 0);
-    let deviation = |s: &crane_runtime::State<N, M, A>| {
-        let target = if s.t <= tf { case.path().derivative(s.t, 0) } else { rest };
-        (0..A).map(|k| (s.q[N - A + k] - target[k]).abs()).fold(0.0, f64::max)
-    };
+    let deviation = |s: &crane_runtime::State<N, M, A>| load_deviation(case.path(), tf, s);
     let mut writer = csv::Writer::from_writer(Vec::new());
     let mut header = vec!["t".to_string()];
     header.extend(info.coordinates.iter().map(|s| s.to_string()));

@@ -75,6 +75,52 @@ impl<const N: usize, const M: usize, const A: usize> Inputs<A> for InterpolatedI
     }
 }
 
+/// The longest rope of a crane at one state as a pendulum: its length and
+/// the model's parameter `g` (9.81 if it has none; at least 1 m, so that a
+/// crane without ropes still gets finite gains and windows).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pendulum {
+    /// The longest rope length, m (1 if shorter or if there is no rope).
+    pub length: f64,
+    /// Gravity, m/s^2.
+    pub g: f64,
+}
+
+impl Pendulum {
+    /// The longest rope of `model` at `state`.
+    pub fn longest<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+        model: &Mdl,
+        state: &crate::solution::State<N, M, A>,
+    ) -> Self {
+        let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
+        model.rope_lengths(&state.q, &mut lengths);
+        let length = lengths.iter().fold(1.0f64, |m, &l| m.max(l));
+        let g = Mdl::INFO.parameters.iter().zip(model.parameter_values()).find(|(n, _)| **n == "g").map_or(9.81, |(_, g)| g);
+        Self { length, g }
+    }
+
+    /// Angular frequency `sqrt(g / L)`, rad/s.
+    pub fn frequency(&self) -> f64 {
+        (self.g / self.length).sqrt()
+    }
+
+    /// Period `2 pi sqrt(L / g)`, s.
+    pub fn period(&self) -> f64 {
+        std::f64::consts::TAU * (self.length / self.g).sqrt()
+    }
+}
+
+/// `|x - gamma(t)|` (infinity norm over the load coordinates) at `state`,
+/// with the path `gamma` held at its end value after `tf`.
+pub fn load_deviation<Tr: Trajectory<A>, const N: usize, const M: usize, const A: usize>(
+    path: &Tr,
+    tf: f64,
+    state: &crate::solution::State<N, M, A>,
+) -> f64 {
+    let target = path.derivative(state.t.min(tf), 0);
+    (0..A).map(|k| (state.q[N - A + k] - target[k]).abs()).fold(0.0, f64::max)
+}
+
 /// A PD law on the robot coordinates about the inverse run's `p(t)`,
 /// `p'(t)`, added to the computed torques: the generalized force
 /// `F = Kp (p_ref - p) + Kd (p_ref' - p')` on the robot coordinates, turned
@@ -100,11 +146,7 @@ impl<const N: usize> Feedback<N> {
         model: &Mdl,
         start: &crate::solution::State<N, M, A>,
     ) -> Self {
-        let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
-        model.rope_lengths(&start.q, &mut lengths);
-        let longest = lengths.iter().fold(1.0f64, |m, &l| m.max(l));
-        let g = Mdl::INFO.parameters.iter().zip(model.parameter_values()).find(|(n, _)| **n == "g").map_or(9.81, |(_, g)| g);
-        let w = 4.0 * (g / longest).sqrt();
+        let w = 4.0 * Pendulum::longest(model, start).frequency();
         let mass = model.mass_matrix::<f64>();
         let kp = SVector::from_fn(|i, _| if i < N - A { mass[(i, i)].max(0.0) * w * w } else { 0.0 });
         let kd = SVector::from_fn(|i, _| if i < N - A { 2.0 * mass[(i, i)].max(0.0) * w } else { 0.0 });
@@ -255,18 +297,16 @@ where
         last.set(state);
         solution.push(plant, &state, report.iterations, report.min_norm_steps, &mut lengths);
     }
-    let load = |q: &SVector<f64, N>| SVector::<f64, A>::from_fn(|k, _| q[N - A + k]);
     let (mut max_load_deviation, mut deviation_at_tf, mut residual_sway) = (0.0f64, 0.0f64, 0.0f64);
-    let rest = path.derivative(end.t, 0);
     for state in &solution.states {
+        let deviation = load_deviation(path, end.t, state);
         if state.t <= end.t + 1e-9 * dt {
-            let deviation = (load(&state.q) - path.derivative(state.t, 0)).amax();
             max_load_deviation = max_load_deviation.max(deviation);
             if (state.t - end.t).abs() <= 0.5 * dt {
                 deviation_at_tf = deviation;
             }
         } else {
-            residual_sway = residual_sway.max((load(&state.q) - rest).amax());
+            residual_sway = residual_sway.max(deviation);
         }
     }
     Ok(Replay { solution, max_load_deviation, deviation_at_tf, residual_sway })
