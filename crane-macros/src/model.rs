@@ -171,6 +171,12 @@ pub struct MinimalKernels {
     /// `w = [P' mu']_x`, the second directional derivative of `phi_x` along
     /// `mu'` (eq. 17), `a` entries.
     pub w: Vec<Id>,
+    /// `dP/dmu_k` for `k = 0 .. f`, each `n x f`: the second derivatives
+    /// `d^2 phi_i / dmu_k dmu_l` (symmetric in `k`, `l`).
+    pub second: Vec<Matrix>,
+    /// `d(P' mu')/dmu`, `n x f`: the derivative of the curvature term of
+    /// `q'' = P mu'' + P' mu'` (eq. 9) at fixed `mu'`.
+    pub curvature_jacobian: Matrix,
 }
 
 impl Kernels {
@@ -332,7 +338,29 @@ impl MinimalKernels {
             })
             .collect();
 
-        MinimalKernels { phi, p, p_rate, w }
+        // dP_il/dmu_k (already in the graph: P' is built from them)
+        let second: Vec<Matrix> = (0..f)
+            .map(|k| p.iter().map(|row| row.iter().map(|&e| d.diff(e, mu(k))).collect()).collect())
+            .collect();
+
+        // d(P' mu')/dmu_j, with P' mu' = sum_l P'_il mu_l'
+        let curvature_jacobian: Matrix = p_rate
+            .iter()
+            .map(|row| {
+                let terms: Vec<Id> = row
+                    .iter()
+                    .enumerate()
+                    .map(|(l, &e)| {
+                        let mu_dot = d.arena().sym(Sym::MuDot(l as u16));
+                        d.arena().mul2(e, mu_dot)
+                    })
+                    .collect();
+                let curvature = d.arena().add(terms);
+                (0..f).map(|j| d.diff(curvature, mu(j))).collect()
+            })
+            .collect();
+
+        MinimalKernels { phi, p, p_rate, w, second, curvature_jacobian }
     }
 }
 

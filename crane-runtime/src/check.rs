@@ -257,7 +257,11 @@ where
 /// the constraints, `g(phi(mu)) = 0` (eq. 7, relative to `|q|^2` since `g`
 /// carries 1/2 of squared lengths), that `P` is the null space of `G`
 /// (`|G P| / (|G| |P|)`, eq. 11), and `P = D phi` (eq. 8) and `P'` (eq. 9)
-/// against central differences (errors as in [`check_derivatives`]).
+/// against central differences, and the derivatives of the minimal Newton
+/// matrix from [`MinimalMap::map_derivatives`]: its `phi`, `P`, `P'` against
+/// the single functions, and the second derivatives `dP/dmu_k` and
+/// `d(P' mu')/dmu` against central differences and dual numbers (errors as
+/// in [`check_derivatives`]).
 pub fn check_minimal_map<Mdl, const N: usize, const M: usize, const A: usize, const F: usize>(
     model: &Mdl,
     mu_box: &[(f64, f64); F],
@@ -269,7 +273,15 @@ where
     Mdl: MinimalMap<N, M, A, F>,
 {
     let mut rng = SmallRng::seed_from_u64(seed);
-    let names = ["g(phi(mu)) = 0", "G P = 0", "P = D phi", "P' = dP/dt"];
+    let names = [
+        "g(phi(mu)) = 0",
+        "G P = 0",
+        "P = D phi",
+        "P' = dP/dt",
+        "map_derivatives: phi, P, P'",
+        "dP/dmu_k",
+        "d(P' mu')/dmu",
+    ];
     let mut output_jacobian: Option<OutputJacobian> = None;
     let mut worst: Vec<QuantityError> = names
         .iter()
@@ -278,8 +290,10 @@ where
     for _ in 0..points {
         let mu = SVector::<f64, F>::from_fn(|i, _| rng.random_range(mu_box[i].0..=mu_box[i].1));
         let mu_rate = SVector::<f64, F>::from_fn(|_, _| rng.random_range(-1.0..=1.0) * mu_dot);
+        let mu_rate_d = mu_rate.map(Dual64::from);
         let q = model.phi(&mu);
         let p = model.null_space(&mu);
+        let derivatives = model.map_derivatives(&mu, &mu_rate);
         let jac_g = model.constraint_jacobian(&q);
         let scale = q.amax().max(1.0);
         // P' is the derivative of P along mu': central difference in that direction
@@ -302,6 +316,27 @@ where
             (jac_g * p).amax() / (jac_g.amax() * p.amax()).max(1e-300),
             relative_error(&p, &central_jacobian(&mu, |mu| model.phi(mu))),
             relative_error(&model.null_space_rate(&mu, &mu_rate), &p_rate_fd),
+            // the fused map_derivatives against phi, P and P' (same
+            // expressions, other common subexpressions: round-off apart)
+            relative_error(&derivatives.phi, &q)
+                .max(relative_error(&derivatives.null_space, &p))
+                .max(relative_error(&derivatives.null_space_rate(&mu_rate), &model.null_space_rate(&mu, &mu_rate))),
+            // the second derivatives dP/dmu_k, each against P along e_k
+            (0..F)
+                .map(|k| {
+                    let unit = SVector::<f64, F>::from_fn(|i, _| if i == k { 1.0 } else { 0.0 });
+                    let h = 1e-6 * (1.0 + mu[k].abs());
+                    let central = (model.null_space(&(mu + unit * h)) - model.null_space(&(mu - unit * h))) / (2.0 * h);
+                    let seeded = SVector::<Dual64, F>::from_fn(|i, _| Dual64::new(mu[i], unit[i]));
+                    let dual = model.null_space(&seeded).map(|d| d.eps);
+                    both_errors(&derivatives.null_space_derivatives[k], &central, &dual)
+                })
+                .fold(0.0, f64::max),
+            both_errors(
+                &derivatives.curvature_jacobian,
+                &central_jacobian(&mu, |mu| model.null_space_rate(mu, &mu_rate) * mu_rate),
+                &dual_jacobian(&mu, |mu| model.null_space_rate(mu, &mu_rate_d) * mu_rate_d),
+            ),
         ];
         for (entry, error) in worst.iter_mut().zip(errors) {
             if error > entry.worst_relative_error || error.is_nan() {

@@ -135,4 +135,48 @@ pub trait MinimalMap<const N: usize, const M: usize, const A: usize, const F: us
 
     /// Its time derivative `P' = sum_k (dP/dmu_k) mu'_k` (eq. 9).
     fn null_space_rate<T: Scalar>(&self, mu: &SVector<T, F>, mu_dot: &SVector<T, F>) -> SMatrix<T, N, F>;
+
+    /// `phi`, `P`, the second derivatives `dP/dmu_k` and `d(P' mu')/dmu` at
+    /// `(mu, mu')`, from one function body: what the minimal Newton matrix
+    /// needs at each iterate.
+    fn map_derivatives<T: Scalar>(&self, mu: &SVector<T, F>, mu_dot: &SVector<T, F>) -> MapDerivatives<T, N, F>;
+}
+
+/// The map `q = phi(mu)` and its derivatives at one point `(mu, mu')`, as
+/// [`MinimalMap::map_derivatives`] returns them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapDerivatives<T: Scalar, const N: usize, const F: usize> {
+    /// `q = phi(mu)` (eq. 6).
+    pub phi: SVector<T, N>,
+    /// `P = D phi(mu)` (eq. 8).
+    pub null_space: SMatrix<T, N, F>,
+    /// `dP/dmu_k`, `k = 0 .. F`: entry `(i, l)` of matrix `k` is
+    /// `d^2 phi_i / dmu_k dmu_l`.
+    pub null_space_derivatives: [SMatrix<T, N, F>; F],
+    /// `d(P'(mu, mu') mu')/dmu` at the given `mu'` (eq. 9): the derivative of
+    /// the curvature term of `q'' = P mu'' + P' mu'`.
+    pub curvature_jacobian: SMatrix<T, N, F>,
+}
+
+impl<T: Scalar, const N: usize, const F: usize> MapDerivatives<T, N, F> {
+    /// `P'` along `x`, `sum_k (dP/dmu_k) x_k` (eq. 9 with `mu' = x`); also
+    /// `d(P x)/dmu`, since second derivatives commute.
+    pub fn null_space_rate(&self, x: &SVector<T, F>) -> SMatrix<T, N, F> {
+        let mut rate = SMatrix::<T, N, F>::zeros();
+        for (d_p, &x_k) in self.null_space_derivatives.iter().zip(x.iter()) {
+            rate += d_p * x_k;
+        }
+        rate
+    }
+
+    /// `H(y) = sum_i y_i d^2 phi_i / dmu^2` (`F x F`, symmetric): the
+    /// derivative of `P^T y` with respect to `mu` at fixed `y`; its column `k`
+    /// is `(dP/dmu_k)^T y`.
+    pub fn phi_hessian(&self, y: &SVector<T, N>) -> SMatrix<T, F, F> {
+        let mut hessian = SMatrix::<T, F, F>::zeros();
+        for (k, d_p) in self.null_space_derivatives.iter().enumerate() {
+            hessian.set_column(k, &d_p.tr_mul(y));
+        }
+        hessian
+    }
 }

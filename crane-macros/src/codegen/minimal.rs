@@ -4,7 +4,8 @@
 use proc_macro2::TokenStream;
 use quote::quote;
 
-use super::body::{matrix_output, single, vector_output};
+use super::body::{body, matrix_output, single, vector_output};
+use super::printer::Mode;
 use super::{doc, index, internal, names_list, str_list};
 use crate::model::{Minimal, MinimalKernels, Model};
 
@@ -141,6 +142,7 @@ fn minimal_map_impl(
     let phi_body = single(model, vector_output("out", n, &k.phi));
     let p_body = single(model, matrix_output("out", &k.p, 0..n, 0..f));
     let p_rate_body = single(model, matrix_output("out", &k.p_rate, 0..n, 0..f));
+    let derivatives_body = map_derivatives_body(model, k);
     let mu_names = str_list(minimal.mu.iter().map(ToString::to_string));
 
     quote! {
@@ -170,6 +172,43 @@ fn minimal_map_impl(
             ) -> #sm<T, #n_lit, #f_lit> {
                 #p_rate_body
             }
+
+            /// `phi`, `P`, `dP/dmu_k` and `d(P' mu')/dmu` in one pass, sharing
+            /// their subexpressions: what the minimal Newton matrix needs.
+            fn map_derivatives<T: #scalar>(
+                &self,
+                #mu: &#sv<T, #f_lit>,
+                #mu_dot: &#sv<T, #f_lit>,
+            ) -> __crane_runtime::MapDerivatives<T, #n_lit, #f_lit> {
+                #derivatives_body
+            }
+        }
+    }
+}
+
+/// The body of `map_derivatives`: one function body (one set of common
+/// subexpressions) for `phi`, `P`, the `f` matrices `dP/dmu_k` and
+/// `d(P' mu')/dmu`.
+fn map_derivatives_body(model: &Model, k: &MinimalKernels) -> TokenStream {
+    let (n, f) = (model.n(), k.second.len());
+    let mut outputs = vec![
+        vector_output("phi", n, &k.phi),
+        matrix_output("null_space", &k.p, 0..n, 0..f),
+        matrix_output("curvature_jacobian", &k.curvature_jacobian, 0..n, 0..f),
+    ];
+    for (i, second) in k.second.iter().enumerate() {
+        outputs.push(matrix_output(&format!("d_null_space_{i}"), second, 0..n, 0..f));
+    }
+    let statements = body(model, Mode::Generic, &outputs);
+    let [phi, p, curvature] = [&outputs[0].var, &outputs[1].var, &outputs[2].var];
+    let second = outputs[3..].iter().map(|o| &o.var);
+    quote! {
+        #statements
+        __crane_runtime::MapDerivatives {
+            phi: #phi,
+            null_space: #p,
+            null_space_derivatives: [#(#second),*],
+            curvature_jacobian: #curvature,
         }
     }
 }

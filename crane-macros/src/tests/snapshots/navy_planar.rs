@@ -684,5 +684,242 @@ const _: () = {
             out[(6, 3)] = t7 * dot_theta;
             out
         }
+        /// `phi`, `P`, `dP/dmu_k` and `d(P' mu')/dmu` in one pass, sharing
+        /// their subexpressions: what the minimal Newton matrix needs.
+        fn map_derivatives<T: __crane_runtime::Scalar>(
+            &self,
+            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            mu_dot: &__crane_runtime::nalgebra::SVector<T, 4>,
+        ) -> __crane_runtime::MapDerivatives<T, 7, 4> {
+            let alpha = T::from(self.alpha);
+            let l = T::from(self.l);
+            let beta = mu[0];
+            let gamma = mu[1];
+            let theta = mu[2];
+            let L = mu[3];
+            let dot_beta = mu_dot[0];
+            let dot_gamma = mu_dot[1];
+            let dot_theta = mu_dot[2];
+            let dot_L = mu_dot[3];
+            let t0 = gamma - beta;
+            let t1 = t0.sin();
+            let t2 = gamma.sin();
+            let d = l * t1 / t2;
+            let t3 = beta.sin();
+            let t4 = l * t3 / t2;
+            let t5 = -l * t1 / t2;
+            let t6 = alpha - beta;
+            let t7 = t6.sin();
+            let t8 = -l * t1 * t7 / t2;
+            let t9 = t6.cos();
+            let t10 = -l * t1 * t9 / t2;
+            let t11 = theta.sin();
+            let t12 = L * t11;
+            let t13 = theta.cos();
+            let t14 = L * t13;
+            let t15 = gamma.cos();
+            let t16 = beta.cos();
+            let t17 = l * t16 / t2;
+            let t18 = t2.powi(-2);
+            let t19 = t0.cos();
+            let t20 = -l * t19 / t2;
+            let t21 = l * t19 / t2 - l * t1 * t15 * t18;
+            let t22 = l * t1 * t9 / t2 + l * t7 * t19 / t2;
+            let t23 = -l * t7 * t19 / t2;
+            let t24 = l * t1 * t7 * t15 * t18;
+            let t25 = t23 + t24;
+            let t26 = l * t9 * t19 / t2;
+            let t27 = t8 + t26;
+            let t28 = l * t1 * t9 * t15 * t18 - l * t9 * t19 / t2;
+            let t29 = -l * t15 * t16 * t18;
+            let t30 = t2.powi(-3);
+            let t31 = t15.powi(2);
+            let t32 = d + l * t15 * t18 * t19;
+            let t33 = l * t1 * t30 * t31 * 2.0 - l * t15 * t18 * t19 * 2.0;
+            let t34 = -l * t9 * t19 * 2.0 / t2;
+            let t35 = l * t1 * t7 * 2.0 / t2 + t34;
+            let t36 = t8 + t26 - l * t1 * t9 * t15 * t18 - l * t7 * t15 * t18 * t19;
+            let t37 = -l * t1 * t7 * t30 * t31 * 2.0;
+            let t38 = l * t7 * t15 * t18 * t19 * 2.0;
+            let t39 = t37 + t38;
+            let t40 = l * t1 * t9 * 2.0 / t2;
+            let t41 = l * t7 * t19 * 2.0 / t2;
+            let t42 = t40 + t41;
+            let t43 = t10 + t23 + t24 - l * t9 * t15 * t18 * t19;
+            let t44 = l * t9 * t15 * t18 * t19 * 2.0;
+            let t45 = t44 - l * t1 * t9 * t30 * t31 * 2.0;
+            let t46 = dot_theta.powi(2);
+            let t47 = l * t3 * t15 * t18 * dot_beta;
+            let t48 = t2.powi(-4);
+            let t49 = t15.powi(3);
+            let t50 = t20 + l * t1 * t15 * t18;
+            let t51 = -l * t1 * t15 * t18 * 2.0;
+            let t52 = t51 - l * t19 * t30 * t31 * 2.0;
+            let t53 = dot_gamma * t52;
+            let t54 = dot_beta * (l * t19 * dot_beta / t2 + dot_gamma * t50)
+                + dot_gamma * (dot_beta * t50 + t53);
+            let t55 = dot_beta
+                * (t53 - l * t19 * dot_beta / t2 + l * t1 * t15 * t18 * dot_beta)
+                + dot_gamma
+                    * (dot_beta * t52
+                        + dot_gamma
+                            * (t51 - l * t1 * t48 * t49 * 6.0 + l * t19 * 2.0 / t2
+                                + l * t19 * t30 * t31 * 6.0));
+            let t56 = t40 + t41 + t44 - l * t1 * t7 * t15 * t18 * 2.0;
+            let t57 = l * t1 * t7 * t15 * t18 * 2.0;
+            let t58 = l * t7 * t19 * t30 * t31 * 2.0 + l * t1 * t9 * t30 * t31 * 2.0
+                - l * t9 * t15 * t18 * t19 * 2.0 + t57;
+            let t59 = dot_beta * t56 + dot_gamma * t58;
+            let t60 = dot_beta
+                * (dot_beta * (-l * t7 * t19 * 4.0 / t2 - l * t1 * t9 * 4.0 / t2)
+                    + dot_gamma * t56) + dot_gamma * t59;
+            let t61 = dot_beta * t59
+                + dot_gamma
+                    * (dot_beta * t58
+                        + dot_gamma
+                            * (t57 - l * t7 * t19 * 2.0 / t2
+                                + l * t1 * t7 * t48 * t49 * 6.0
+                                - l * t7 * t19 * t30 * t31 * 6.0));
+            let t62 = l * t9 * t19 * 2.0 / t2 - l * t1 * t7 * 2.0 / t2
+                - l * t1 * t9 * t15 * t18 * 2.0 - l * t7 * t15 * t18 * t19 * 2.0;
+            let t63 = l * t1 * t9 * t15 * t18 * 2.0;
+            let t64 = t37 + t38 + l * t9 * t19 * t30 * t31 * 2.0 + t63;
+            let t65 = dot_beta * t62 + dot_gamma * t64;
+            let t66 = dot_beta
+                * (dot_beta * (l * t1 * t7 * 4.0 / t2 - l * t9 * t19 * 4.0 / t2)
+                    + dot_gamma * t62) + dot_gamma * t65;
+            let t67 = dot_beta * t65
+                + dot_gamma
+                    * (dot_beta * t64
+                        + dot_gamma
+                            * (t34 + t63 + l * t1 * t9 * t48 * t49 * 6.0
+                                - l * t9 * t19 * t30 * t31 * 6.0));
+            let mut phi = __crane_runtime::nalgebra::SVector::<T, 7>::zeros();
+            phi[0] = t4;
+            phi[1] = d + L;
+            phi[2] = d;
+            phi[3] = t8;
+            phi[4] = t10;
+            phi[5] = t8 + t12;
+            phi[6] = t10 - L * t13;
+            let mut null_space = __crane_runtime::nalgebra::SMatrix::<T, 7, 4>::zeros();
+            null_space[(0, 0)] = t17;
+            null_space[(0, 1)] = -l * t3 * t15 * t18;
+            null_space[(1, 0)] = t20;
+            null_space[(1, 1)] = t21;
+            null_space[(1, 3)] = T::from(1.0);
+            null_space[(2, 0)] = t20;
+            null_space[(2, 1)] = t21;
+            null_space[(3, 0)] = t22;
+            null_space[(3, 1)] = t25;
+            null_space[(4, 0)] = t27;
+            null_space[(4, 1)] = t28;
+            null_space[(5, 0)] = t22;
+            null_space[(5, 1)] = t25;
+            null_space[(5, 2)] = t14;
+            null_space[(5, 3)] = t11;
+            null_space[(6, 0)] = t27;
+            null_space[(6, 1)] = t28;
+            null_space[(6, 2)] = t12;
+            null_space[(6, 3)] = -t13;
+            let mut curvature_jacobian = __crane_runtime::nalgebra::SMatrix::<
+                T,
+                7,
+                4,
+            >::zeros();
+            curvature_jacobian[(0, 0)] = dot_beta
+                * (l * t3 * t15 * t18 * dot_gamma - l * t16 * dot_beta / t2)
+                + dot_gamma * (t47 + dot_gamma * (t17 + l * t16 * t30 * t31 * 2.0));
+            curvature_jacobian[(0, 1)] = dot_beta
+                * (t47 + l * t16 * dot_gamma / t2
+                    + l * t16 * dot_gamma * t30 * t31 * 2.0)
+                + dot_gamma
+                    * (l * t16 * dot_beta / t2 + l * t16 * dot_beta * t30 * t31 * 2.0
+                        + dot_gamma
+                            * (-l * t3 * t48 * t49 * 6.0 - l * t3 * t15 * t18 * 5.0));
+            curvature_jacobian[(1, 0)] = t54;
+            curvature_jacobian[(1, 1)] = t55;
+            curvature_jacobian[(2, 0)] = t54;
+            curvature_jacobian[(2, 1)] = t55;
+            curvature_jacobian[(3, 0)] = t60;
+            curvature_jacobian[(3, 1)] = t61;
+            curvature_jacobian[(4, 0)] = t66;
+            curvature_jacobian[(4, 1)] = t67;
+            curvature_jacobian[(5, 0)] = t60;
+            curvature_jacobian[(5, 1)] = t61;
+            curvature_jacobian[(5, 2)] = dot_theta * (-L * t13 * dot_theta - t11 * dot_L)
+                - t11 * dot_theta * dot_L;
+            curvature_jacobian[(5, 3)] = -t11 * t46;
+            curvature_jacobian[(6, 0)] = t66;
+            curvature_jacobian[(6, 1)] = t67;
+            curvature_jacobian[(6, 2)] = t13 * dot_theta * dot_L
+                + dot_theta * (t13 * dot_L - L * t11 * dot_theta);
+            curvature_jacobian[(6, 3)] = t13 * t46;
+            let mut d_null_space_0 = __crane_runtime::nalgebra::SMatrix::<
+                T,
+                7,
+                4,
+            >::zeros();
+            d_null_space_0[(0, 0)] = -l * t3 / t2;
+            d_null_space_0[(0, 1)] = t29;
+            d_null_space_0[(1, 0)] = t5;
+            d_null_space_0[(1, 1)] = t32;
+            d_null_space_0[(2, 0)] = t5;
+            d_null_space_0[(2, 1)] = t32;
+            d_null_space_0[(3, 0)] = t35;
+            d_null_space_0[(3, 1)] = t36;
+            d_null_space_0[(4, 0)] = t42;
+            d_null_space_0[(4, 1)] = t43;
+            d_null_space_0[(5, 0)] = t35;
+            d_null_space_0[(5, 1)] = t36;
+            d_null_space_0[(6, 0)] = t42;
+            d_null_space_0[(6, 1)] = t43;
+            let mut d_null_space_1 = __crane_runtime::nalgebra::SMatrix::<
+                T,
+                7,
+                4,
+            >::zeros();
+            d_null_space_1[(0, 0)] = t29;
+            d_null_space_1[(0, 1)] = t4 + l * t3 * t30 * t31 * 2.0;
+            d_null_space_1[(1, 0)] = t32;
+            d_null_space_1[(1, 1)] = t33;
+            d_null_space_1[(2, 0)] = t32;
+            d_null_space_1[(2, 1)] = t33;
+            d_null_space_1[(3, 0)] = t36;
+            d_null_space_1[(3, 1)] = t39;
+            d_null_space_1[(4, 0)] = t43;
+            d_null_space_1[(4, 1)] = t45;
+            d_null_space_1[(5, 0)] = t36;
+            d_null_space_1[(5, 1)] = t39;
+            d_null_space_1[(6, 0)] = t43;
+            d_null_space_1[(6, 1)] = t45;
+            let mut d_null_space_2 = __crane_runtime::nalgebra::SMatrix::<
+                T,
+                7,
+                4,
+            >::zeros();
+            d_null_space_2[(5, 2)] = -L * t11;
+            d_null_space_2[(5, 3)] = t13;
+            d_null_space_2[(6, 2)] = t14;
+            d_null_space_2[(6, 3)] = t11;
+            let mut d_null_space_3 = __crane_runtime::nalgebra::SMatrix::<
+                T,
+                7,
+                4,
+            >::zeros();
+            d_null_space_3[(5, 2)] = t13;
+            d_null_space_3[(6, 2)] = t11;
+            __crane_runtime::MapDerivatives {
+                phi: phi,
+                null_space: null_space,
+                null_space_derivatives: [
+                    d_null_space_0,
+                    d_null_space_1,
+                    d_null_space_2,
+                    d_null_space_3,
+                ],
+                curvature_jacobian: curvature_jacobian,
+            }
+        }
     }
 };
