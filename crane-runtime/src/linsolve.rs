@@ -47,6 +47,8 @@ pub struct DenseSolver {
     col_scale: Vec<f64>,
     equilibrate: bool,
     scaled: DMatrix<f64>,
+    /// Smallest-to-largest pivot ratio of the last LU attempt.
+    pivot_ratio: f64,
 }
 
 impl DenseSolver {
@@ -61,6 +63,7 @@ impl DenseSolver {
             col_scale: vec![1.0; n],
             equilibrate: false,
             scaled: DMatrix::zeros(0, 0),
+            pivot_ratio: f64::NAN,
         }
     }
 
@@ -75,43 +78,122 @@ impl DenseSolver {
 
     /// Solve `jac x = b` in place (`b` becomes `x`). `jac` is left unchanged.
     pub fn solve(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
-        if !self.equilibrate {
-            return self.solve_plain(jac, b);
+        if self.equilibrate {
+            self.find_scales(jac);
         }
+        self.solve_scaled(jac, b)
+    }
+
+    /// [`solve`](Self::solve) with the scale factors of the last `solve`
+    /// (any powers of two are exact; Newton's later iterations in one step
+    /// have matrices of the same sizes as its first, and finding the factors
+    /// costs a tenth of a minimal step).
+    pub fn solve_with_last_scales(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
+        self.solve_scaled(jac, b)
+    }
+
+    /// `|jac^-1|_1`, the largest column sum of the inverse, from one LU of
+    /// `jac` (not equilibrated); infinite when `jac` is singular to working
+    /// precision.
+    pub fn inverse_norm1(&mut self, jac: &DMatrix<f64>) -> f64 {
+        self.lu.copy_from(jac);
+        let ratio = lu_in_place(&mut self.lu, &mut self.pivots);
+        if !(ratio.is_finite() && ratio >= SINGULAR_PIVOT_RATIO) {
+            return f64::INFINITY;
+        }
+        let mut largest = 0.0f64;
+        for k in 0..jac.nrows() {
+            self.rhs.fill(0.0);
+            self.rhs[k] = 1.0;
+            lu_solve(&self.lu, &self.pivots, &mut self.rhs);
+            largest = largest.max(self.rhs.iter().map(|x| x.abs()).sum::<f64>());
+        }
+        largest
+    }
+
+    /// Column scales, then row scales of the column-scaled matrix: powers of
+    /// two that bring the largest entry of each near 1.
+    fn find_scales(&mut self, jac: &DMatrix<f64>) {
         let n = jac.nrows();
-        let power_of_two = |m: f64| if m > 0.0 && m.is_finite() { 2f64.powi(-(m.log2().round() as i32)) } else { 1.0 };
-        for j in 0..n {
-            self.col_scale[j] = power_of_two(jac.column(j).amax());
+        let entries = jac.as_slice(); // column-major
+        for (scale, column) in self.col_scale.iter_mut().zip(entries.chunks_exact(n)) {
+            *scale = power_of_two(column.iter().fold(0.0, |m, x| m.max(x.abs())));
         }
-        for i in 0..n {
-            let largest = (0..n).map(|j| (jac[(i, j)] * self.col_scale[j]).abs()).fold(0.0, f64::max);
-            self.row_scale[i] = power_of_two(largest);
-        }
-        let mut scaled = std::mem::take(&mut self.scaled);
-        for j in 0..n {
-            for i in 0..n {
-                scaled[(i, j)] = jac[(i, j)] * self.row_scale[i] * self.col_scale[j];
+        self.row_scale.fill(0.0);
+        for (column, scale) in entries.chunks_exact(n).zip(&self.col_scale) {
+            for (largest, x) in self.row_scale.iter_mut().zip(column) {
+                *largest = largest.max((x * scale).abs());
             }
         }
-        for i in 0..n {
-            b[i] *= self.row_scale[i];
+        for largest in &mut self.row_scale {
+            *largest = power_of_two(*largest);
         }
-        let outcome = self.solve_plain(&scaled, b);
-        self.scaled = scaled;
-        for j in 0..n {
-            b[j] *= self.col_scale[j];
+    }
+
+    /// `diag(row) jac diag(col)` into `target`.
+    fn write_scaled(&self, jac: &DMatrix<f64>, target: &mut DMatrix<f64>) {
+        let n = jac.nrows();
+        for ((target, column), &scale) in
+            target.as_mut_slice().chunks_exact_mut(n).zip(jac.as_slice().chunks_exact(n)).zip(&self.col_scale)
+        {
+            for ((t, x), row) in target.iter_mut().zip(column).zip(&self.row_scale) {
+                *t = x * row * scale;
+            }
+        }
+    }
+
+    fn solve_scaled(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
+        if !self.equilibrate {
+            self.lu.copy_from(jac);
+            return self.factor_and_solve(jac, b);
+        }
+        let mut lu = std::mem::take(&mut self.lu);
+        self.write_scaled(jac, &mut lu);
+        self.lu = lu;
+        for (x, row) in b.iter_mut().zip(&self.row_scale) {
+            *x *= row;
+        }
+        let outcome = match self.factor_and_solve_in_lu(b) {
+            Some(kind) => Ok(kind),
+            None => {
+                // singular to working precision: the minimum-norm step of the
+                // scaled system
+                let mut scaled = std::mem::take(&mut self.scaled);
+                self.write_scaled(jac, &mut scaled);
+                let outcome = self.min_norm(&scaled, b);
+                self.scaled = scaled;
+                outcome
+            }
+        };
+        for (x, col) in b.iter_mut().zip(&self.col_scale) {
+            *x *= col;
         }
         outcome
     }
 
-    fn solve_plain(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
-        self.lu.copy_from(jac);
-        let pivot_ratio = lu_in_place(&mut self.lu, &mut self.pivots);
-        if pivot_ratio.is_finite() && pivot_ratio >= SINGULAR_PIVOT_RATIO {
-            lu_solve(&self.lu, &self.pivots, b);
-            return Ok(SolveKind::Lu);
+    /// Factor `self.lu` (a copy of `jac`) and solve; the minimum-norm step
+    /// of `jac` when it is singular to working precision.
+    fn factor_and_solve(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
+        match self.factor_and_solve_in_lu(b) {
+            Some(kind) => Ok(kind),
+            None => self.min_norm(jac, b),
         }
-        // Minimum-norm least squares via (J^T J + eps^2 I) x = J^T b.
+    }
+
+    /// LU of `self.lu` in place and the solve, or `None` (with the pivot
+    /// ratio kept) when the pivots say singular.
+    fn factor_and_solve_in_lu(&mut self, b: &mut DVector<f64>) -> Option<SolveKind> {
+        self.pivot_ratio = lu_in_place(&mut self.lu, &mut self.pivots);
+        if self.pivot_ratio.is_finite() && self.pivot_ratio >= SINGULAR_PIVOT_RATIO {
+            lu_solve(&self.lu, &self.pivots, b);
+            return Some(SolveKind::Lu);
+        }
+        None
+    }
+
+    /// Minimum-norm least squares via `(J^T J + eps^2 I) x = J^T b`.
+    fn min_norm(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
+        let pivot_ratio = self.pivot_ratio;
         self.normal.gemm_tr(1.0, jac, jac, 0.0);
         let largest = (0..self.normal.nrows()).map(|i| self.normal[(i, i)]).fold(0.0, f64::max);
         if !(largest.is_finite() && largest > 0.0) {
@@ -135,6 +217,23 @@ impl DenseSolver {
             Err(Singular { pivot_ratio })
         }
     }
+}
+
+/// `2^-k` with `2^k` the power of two nearest to `m` (`log2 m` rounded), or
+/// 1 for zero, subnormal and non-finite `m`; from the bits of `m` (a
+/// `log2`, `round` and `powi` per entry cost a fifth of a minimal step).
+fn power_of_two(m: f64) -> f64 {
+    const MANTISSA: u64 = (1 << 52) - 1;
+    // mantissa bits of sqrt(2): at or above them, log2 m rounds up
+    const SQRT_2_MANTISSA: u64 = 0x6A09E667F3BCD;
+    if !(m.is_finite() && m >= f64::MIN_POSITIVE) {
+        return 1.0;
+    }
+    let bits = m.to_bits();
+    let exponent = ((bits >> 52) & 0x7ff) as i32 - 1023 + i32::from(bits & MANTISSA >= SQRT_2_MANTISSA);
+    // 2^-exponent, with -exponent in -1022 ..= 1023 here (m normal); for
+    // m near f64::MAX, 2^-1024 is subnormal: fall back
+    if -exponent < -1022 { 2f64.powi(-exponent) } else { f64::from_bits(((1023 - exponent) as u64) << 52) }
 }
 
 /// LU factorisation with partial pivoting, in place (Doolittle, unit lower
@@ -233,6 +332,43 @@ mod tests {
         // x = (1/3, 1/3, 2/3); regularisation error ~ (1e-7)^2 relative
         let expected = DVector::from_row_slice(&[1.0 / 3.0, 1.0 / 3.0, 2.0 / 3.0]);
         assert!((b - expected).amax() < 1e-10);
+    }
+
+    /// The scale factors from the bits are `2^-round(log2 m)` over the whole
+    /// normal range (away from the rounding boundary `m = 2^k sqrt(2)`, where
+    /// `log2` itself may round either way).
+    #[test]
+    fn power_of_two_is_the_nearest_power() {
+        let mut seed = 3u64;
+        for _ in 0..100_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let m = f64::from_bits((seed >> 2) % f64::MAX.to_bits()).max(f64::MIN_POSITIVE);
+            let exact = -m.log2().round() as i32;
+            if (m.log2().fract().abs() - 0.5).abs() < 1e-9 {
+                continue;
+            }
+            let expected = if exact < -1022 { 2f64.powi(exact) } else { f64::from_bits(((1023 + exact) as u64) << 52) };
+            assert_eq!(power_of_two(m), expected, "m = {m:e}");
+        }
+        assert_eq!(power_of_two(1.0), 1.0);
+        assert_eq!(power_of_two(1.5), 0.5);
+        assert_eq!(power_of_two(1.4), 1.0);
+        assert_eq!(power_of_two(1e-3), 1024.0);
+        assert_eq!(power_of_two(0.0), 1.0);
+        assert_eq!(power_of_two(f64::NAN), 1.0);
+        assert_eq!(power_of_two(f64::INFINITY), 1.0);
+        assert_eq!(power_of_two(1e-310), 1.0);
+    }
+
+    #[test]
+    fn inverse_norm_is_the_largest_column_sum_of_the_inverse() {
+        // inverse of [[2, 1], [1, 1]] is [[1, -1], [-1, 2]]: column sums 2 and 3
+        let a = DMatrix::from_row_slice(2, 2, &[2.0, 1.0, 1.0, 1.0]);
+        assert!((DenseSolver::new(2).inverse_norm1(&a) - 3.0).abs() < 1e-15);
+        let singular = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 4.0]);
+        assert_eq!(DenseSolver::new(2).inverse_norm1(&singular), f64::INFINITY);
     }
 
     #[test]

@@ -162,9 +162,14 @@ impl Newton {
             // (measured: 5e-8 m in q on navy-planar-pulley, BDF-5 at dt = 0.005)
             let residual_converged = normalised <= self.options.residual_tol;
             // dz = J^{-1} r, computed in place in the residual buffer; z -= dz
-            let kind = self
-                .solver
-                .solve(&self.jac, &mut self.residual)
+            // an equilibrated solver finds its scale factors on the first
+            // iteration and keeps them for the later ones of this solve
+            let solved = if iteration == 1 {
+                self.solver.solve(&self.jac, &mut self.residual)
+            } else {
+                self.solver.solve_with_last_scales(&self.jac, &mut self.residual)
+            };
+            let kind = solved
                 .map_err(|singular| NewtonFailure::Singular {
                     pivot_ratio: singular.pivot_ratio,
                 })?;
