@@ -433,6 +433,14 @@ fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         wall * 1e3,
         solution.mean_newton_iterations()
     );
+    if solution.redundant_start_steps > 0 {
+        let k = solution.redundant_start_steps;
+        println!(
+            "  first {k} steps (to t = {} s) in redundant coordinates: a rope carries under {:e} of the largest tension (degenerate start)",
+            crane_runtime::error::Seconds(solution.states[k].t),
+            crane_runtime::minimal::DEGENERATE_TENSION_RATIO
+        );
+    }
     for line in report::highlights(&summary) {
         println!("  {line}");
     }

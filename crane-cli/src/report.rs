@@ -38,6 +38,9 @@ pub struct NewtonSummary {
     pub mean_per_step: f64,
     pub max_per_step: usize,
     pub min_norm_steps: usize,
+    /// Of a minimal run: the first steps taken in redundant coordinates at a
+    /// degenerate start (a rope nearly slack).
+    pub redundant_start_steps: usize,
 }
 
 /// A torque limit from the scenario's `[limits]` and when it is first exceeded.
@@ -223,6 +226,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
             .max()
             .unwrap_or(0),
         min_norm_steps: solution.min_norm_steps,
+        redundant_start_steps: solution.redundant_start_steps,
     };
     Summary {
         model: model.to_string(),

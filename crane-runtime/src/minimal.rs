@@ -40,7 +40,8 @@ use crate::driver::{
 use crate::error::Error;
 use crate::init;
 use crate::linsolve::DenseSolver;
-use crate::model::{MapDerivatives, MinimalMap, Scalar};
+use crate::model::{CraneModel, MapDerivatives, MinimalMap, Scalar};
+use crate::redundant::RedundantStepper;
 use crate::newton::{Newton, NewtonFailure, NewtonOptions, NonlinearSystem, normalised_residual};
 use crate::scheme::{History, Scheme, StepFormula};
 use crate::solution::{Solution, State};
@@ -284,50 +285,73 @@ pub fn minimal_start<Mdl, const N: usize, const M: usize, const A: usize, const 
 where
     Mdl: MinimalMap<N, M, A, F>,
 {
+    let (mu, mu_dot, p) = minimal_coordinates(model, start, mu_guess)?;
+    let tolerance = 1e-9 * start.v.amax().max(1.0);
+    let residual = (p * mu_dot - start.v).amax();
+    if residual > tolerance {
+        return Err(Error::InconsistentStart { equation: "q0' = P mu0' (eq. 8)".into(), residual, tolerance });
+    }
+    Ok((mu, mu_dot))
+}
+
+/// `mu` with `phi(mu) = q` by Gauss-Newton from `mu_guess`, the least-squares
+/// `mu'` of `P mu' = q'` (the projection of `q'` onto the motions the map
+/// allows) and `P`; allocation-free.
+fn minimal_coordinates<Mdl, const N: usize, const M: usize, const A: usize, const F: usize>(
+    model: &Mdl,
+    state: &State<N, M, A>,
+    mu_guess: &SVector<f64, F>,
+) -> Result<(SVector<f64, F>, SVector<f64, F>, SMatrix<f64, N, F>), Error>
+where
+    Mdl: MinimalMap<N, M, A, F>,
+{
     const MAX_ITERATIONS: usize = 50;
     let mut mu = *mu_guess;
-    let scale = start.q.amax().max(1.0);
-    let least_squares =
-        |p: &SMatrix<f64, N, F>, rhs: &SVector<f64, N>| -> Option<SVector<f64, F>> {
-            let a = DMatrix::from_column_slice(N, F, p.as_slice());
-            let b = DVector::from_column_slice(rhs.as_slice());
-            let x = a.svd(true, true).solve(&b, 1e-14).ok()?;
-            Some(SVector::from_column_slice(x.as_slice()))
-        };
+    let scale = state.q.amax().max(1.0);
+    // normal equations P^T P x = P^T rhs (P has full column rank for a
+    // map that satisfies eq. 12; its condition is ~10 on the built-in maps)
+    let least_squares = |p: &SMatrix<f64, N, F>, rhs: &SVector<f64, N>| {
+        nalgebra::linalg::Cholesky::new(p.tr_mul(p)).map(|c| c.solve(&p.tr_mul(rhs)))
+    };
     for iteration in 0..=MAX_ITERATIONS {
-        let residual = start.q - model.phi(&mu);
+        let residual = state.q - model.phi(&mu);
         let p = model.null_space(&mu);
-        let converged = residual.amax() <= 1e-12 * scale;
-        if converged {
-            let mu_dot = least_squares(&p, &start.v).ok_or(Error::NonFinite {
-                quantity: "minimal start velocity",
-                t: start.t,
-            })?;
-            if (p * mu_dot - start.v).amax() > 1e-9 * start.v.amax().max(1.0) {
-                return Err(Error::InconsistentStart {
-                    equation: "q0' = P mu0' (eq. 8)".into(),
-                    residual: (p * mu_dot - start.v).amax(),
-                    tolerance: 1e-9 * start.v.amax().max(1.0),
-                });
-            }
-            return Ok((mu, mu_dot));
+        if residual.amax() <= 1e-12 * scale {
+            let mu_dot = least_squares(&p, &state.v).ok_or(Error::NonFinite { quantity: "minimal start velocity", t: state.t })?;
+            return Ok((mu, mu_dot, p));
         }
         if iteration == MAX_ITERATIONS || !residual.amax().is_finite() {
-            return Err(Error::MinimalStartNotFound {
-                iterations: iteration,
-                residual: residual.amax(),
-            });
+            return Err(Error::MinimalStartNotFound { iterations: iteration, residual: residual.amax() });
         }
-        let step = least_squares(&p, &residual).ok_or(Error::MinimalStartNotFound {
-            iterations: iteration,
-            residual: residual.amax(),
-        })?;
+        let step = least_squares(&p, &residual)
+            .ok_or(Error::MinimalStartNotFound { iterations: iteration, residual: residual.amax() })?;
         mu += step;
     }
-    Err(Error::MinimalStartNotFound {
-        iterations: MAX_ITERATIONS,
-        residual: f64::NAN,
-    })
+    Err(Error::MinimalStartNotFound { iterations: MAX_ITERATIONS, residual: f64::NAN })
+}
+
+/// A rope whose tension is below this fraction of the largest tension marks
+/// a degenerate start (docs/numerics.md): the minimal stepper takes its first
+/// steps in redundant coordinates until every rope carries at least this
+/// much. Measured on navy-planar at dt = 0.001 (L1 slack at t0): the minimal
+/// formulation started at rest has `q` 8.8e-5 m (tf = 4 s) and 4.2e-4 m
+/// (Fig. 9) off Appendix A near the start; started from the redundant state
+/// once `N1/N2` reaches 1e-5 (t = 0.02 s and 0.2 s), 4.0e-10 and below 1.2e-9.
+pub const DEGENERATE_TENSION_RATIO: f64 = 1e-5;
+
+/// Whether some rope of `state` carries less than [`DEGENERATE_TENSION_RATIO`]
+/// of the largest rope tension (no rope: never).
+fn degenerate<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    state: &State<N, M, A>,
+) -> bool {
+    let ropes = Mdl::INFO.ropes;
+    let mut lengths = [0.0; M];
+    let lengths = &mut lengths[..ropes.len().min(M)];
+    model.rope_lengths(&state.q, lengths);
+    let tension = |i: usize| state.lambda[ropes[i].constraint] * lengths[i];
+    let largest = (0..lengths.len()).map(|i| tension(i).abs()).fold(0.0, f64::max);
+    (0..lengths.len()).any(|i| !(tension(i) >= DEGENERATE_TENSION_RATIO * largest))
 }
 
 /// Eqs. (24a-e) on a [`Scheme`], one step at a time; [`step`](Self::step)
@@ -359,6 +383,11 @@ pub struct MinimalStepper<
     normal_rhs: DVector<f64>,
     output_solver: DenseSolver,
     output_jacobian: DMatrix<f64>,
+    output_rhs: DVector<f64>,
+    /// While a rope is (nearly) slack at a degenerate start: the redundant
+    /// stepper that takes those first steps (see [`DEGENERATE_TENSION_RATIO`]).
+    redundant_start: Option<RedundantStepper<'m, Mdl, Tr, N, M, A>>,
+    redundant_steps: usize,
 }
 
 impl<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize>
@@ -376,7 +405,10 @@ where
         mu_guess: &SVector<f64, F>,
         dt: f64,
         newton: NewtonOptions,
-    ) -> Result<Self, Error> {
+    ) -> Result<Self, Error>
+    where
+        Tr: Clone,
+    {
         Self::with_scheme(
             model,
             trajectory,
@@ -398,7 +430,10 @@ where
         dt: f64,
         scheme: Scheme,
         newton: NewtonOptions,
-    ) -> Result<Self, Error> {
+    ) -> Result<Self, Error>
+    where
+        Tr: Clone,
+    {
         check_step_size(dt)?;
         check_parameters(model)?;
         let (mu, mu_dot) = minimal_start(model, start, mu_guess)?;
@@ -439,7 +474,14 @@ where
             normal_rhs: DVector::zeros(M),
             output_solver: DenseSolver::new(A),
             output_jacobian: DMatrix::zeros(A, A),
+            output_rhs: DVector::zeros(A),
+            redundant_start: None,
+            redundant_steps: 0,
         };
+        if degenerate(model, start) {
+            let redundant = RedundantStepper::with_scheme(model, stepper.trajectory.clone(), start, dt, scheme, newton)?;
+            stepper.redundant_start = Some(redundant);
+        }
         let p = model.null_space(&mu);
         stepper.check_output_jacobian(&p, start.t)?;
         Ok(stepper)
@@ -472,6 +514,12 @@ where
     pub fn step_to(&mut self, t: f64, target: &ServoTarget<A>) -> Result<StepReport, Error> {
         check_step_time(t, self.state.t, self.equations.dt)?;
         check_target(target, t)?;
+        if let Some(redundant) = self.redundant_start.as_mut() {
+            let report = redundant.step_to(t, target)?;
+            let state = *redundant.state();
+            self.follow_redundant(state)?;
+            return Ok(report);
+        }
         self.equations.target = *target;
         self.equations.formula = self.past.formula(self.scheme, self.equations.dt);
         // predictor: quadratic extrapolation of the last three steps; before
@@ -539,7 +587,14 @@ where
             })?;
         let lambda = SVector::<f64, M>::from_fn(|i, _| self.normal_rhs[i]);
         self.check_output_jacobian(&p, t)?;
-        self.state = State { t, q, v, u, lambda };
+        self.record_step(State { t, q, v, u, lambda }, mu, mu_dot);
+        Ok(())
+    }
+
+    /// Keep an accepted step: the state, `mu` and `mu'` for the scheme, the
+    /// unknowns `self.z` for the predictor.
+    fn record_step(&mut self, state: State<N, M, A>, mu: SVector<f64, F>, mu_dot: SVector<f64, F>) {
+        self.state = state;
         self.past.push(mu, mu_dot);
         let [h0, h1, h2] = &mut self.history;
         std::mem::swap(h1, h2);
@@ -547,7 +602,70 @@ where
         h0.copy_from(&self.z);
         self.known = (self.known + 1).min(3);
         self.steps += 1;
+    }
+
+    /// After a step of the degenerate start in redundant coordinates (eqs.
+    /// 22): follow it in minimal coordinates (`mu` by Gauss-Newton from the last
+    /// step, `mu'` the projection of `q'`) so that the scheme's history and
+    /// the predictor are those of the minimal formulation when it takes over,
+    /// after the first step at which every rope carries at least
+    /// [`DEGENERATE_TENSION_RATIO`] of the largest tension.
+    fn follow_redundant(&mut self, state: State<N, M, A>) -> Result<(), Error> {
+        let (model, dt, split) = (self.equations.model, self.equations.dt, F - A);
+        let (mu, mut mu_dot, p) = minimal_coordinates(model, &state, self.past.value())?;
+        // mu' as the minimal formulation has it (taking over the projection
+        // of the redundant q' made the next minimal step fail at dt = 0.05):
+        // nu1 from the scheme's formula on the mu1 history (eq. 24a), mu2^
+        // from the servo constraint on velocity level (24d),
+        // D1 phi_x nu1 + D2 phi_x mu2^ = gamma'(t)
+        let formula = self.past.formula(self.scheme, dt);
+        for i in 0..split {
+            mu_dot[i] = formula.kinematics(i, mu[i], dt).0;
+        }
+        let off = N - A;
+        let mut solve_servo = |rhs: &dyn Fn(usize) -> f64| -> Result<SVector<f64, A>, Error> {
+            for i in 0..A {
+                self.output_rhs[i] = rhs(i);
+                for k in 0..A {
+                    self.output_jacobian[(i, k)] = p[(off + i, split + k)];
+                }
+            }
+            self.output_solver
+                .solve(&self.output_jacobian, &mut self.output_rhs)
+                .map_err(|_| Error::SingularOutputJacobian { t: state.t, condition: f64::INFINITY })?;
+            Ok(SVector::from_fn(|k, _| self.output_rhs[k]))
+        };
+        let [gamma_rate, gamma_accel] = [1, 2].map(|k| self.trajectory.derivative(state.t, k));
+        let mu2_hat = solve_servo(&|i| gamma_rate[i] - (0..split).map(|j| p[(off + i, j)] * mu_dot[j]).sum::<f64>())?;
+        for k in 0..A {
+            mu_dot[split + k] = mu2_hat[k];
+        }
+        // and s = dt^2 mu2'' from the servo constraint on acceleration level (24c)
+        let accel_dt2 = SVector::<f64, F>::from_fn(|i, _| if i < split { formula.kinematics(i, mu[i], dt).1 } else { 0.0 });
+        let curvature = model.null_space_rate(&mu, &mu_dot) * mu_dot; // its load rows are w (eq. 17)
+        let s = solve_servo(&|i| {
+            dt * dt * (gamma_accel[i] - curvature[off + i]) - (0..split).map(|j| p[(off + i, j)] * accel_dt2[j]).sum::<f64>()
+        })?;
+        for i in 0..F {
+            self.z[i] = mu[i];
+        }
+        for k in 0..A {
+            self.z[F + k] = dt * mu_dot[split + k];
+            self.z[F + A + k] = s[k];
+            self.z[F + 2 * A + k] = dt * dt * state.u[k];
+        }
+        self.record_step(state, mu, mu_dot);
+        self.redundant_steps += 1;
+        if !degenerate(model, &state) {
+            self.redundant_start = None;
+        }
         Ok(())
+    }
+
+    /// How many of the first steps were taken in redundant coordinates
+    /// because a rope was (nearly) slack (see [`DEGENERATE_TENSION_RATIO`]).
+    pub fn redundant_start_steps(&self) -> usize {
+        self.redundant_steps
     }
 
     /// Refuse an ill-conditioned `D2 phi_x` (eq. 12): 1-norm condition
@@ -585,7 +703,7 @@ pub fn simulate_minimal<Mdl, Tr, const N: usize, const M: usize, const A: usize,
 ) -> Result<Solution<N, M, A>, Error>
 where
     Mdl: MinimalMap<N, M, A, F>,
-    Tr: Trajectory<A>,
+    Tr: Trajectory<A> + Clone,
 {
     simulate_minimal_with_progress(model, trajectory, start, mu_guess, options, |_, _| {})
 }
@@ -608,7 +726,7 @@ pub fn simulate_minimal_with_progress<
 ) -> Result<Solution<N, M, A>, Error>
 where
     Mdl: MinimalMap<N, M, A, F>,
-    Tr: Trajectory<A>,
+    Tr: Trajectory<A> + Clone,
 {
     let steps = step_count(start.t, options.tf, options.dt)?;
     let mut stepper = MinimalStepper::with_scheme(
@@ -620,7 +738,9 @@ where
         options.scheme,
         options.newton,
     )?;
-    record(model, start, &mut stepper, steps, options, &mut progress)
+    let mut solution = record(model, start, &mut stepper, steps, options, &mut progress)?;
+    solution.redundant_start_steps = stepper.redundant_start_steps();
+    Ok(solution)
 }
 
 impl<Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize> Stepper<N, M, A>

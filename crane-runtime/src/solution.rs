@@ -40,6 +40,10 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     /// Newton steps that fell back to the minimum-norm solve (singular
     /// iteration matrix, as at the paper's degenerate starts).
     pub min_norm_steps: usize,
+    /// Of a minimal-coordinate run: how many of the first steps were taken
+    /// in redundant coordinates because a rope was (nearly) slack at the
+    /// start ([`crate::minimal::DEGENERATE_TENSION_RATIO`]); 0 otherwise.
+    pub redundant_start_steps: usize,
 }
 
 impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
@@ -61,6 +65,7 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
             newton_iterations: Vec::new(),
             tensions: Vec::new(),
             min_norm_steps: 0,
+            redundant_start_steps: 0,
         };
         solution
             .states
