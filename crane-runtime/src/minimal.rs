@@ -260,11 +260,19 @@ where
         // minimal coordinates are the load coordinates themselves (x = mu2,
         // natural for gantry and overhead cranes) and start at 0 with the
         // crane at rest, no term J_ij z_j of those rows is nonzero, and the
-        // row would have no scale at all
+        // row would have no scale at all; and the rows on acceleration and
+        // velocity level are in length units (dt^2 a, dt v): what is below
+        // eps |gamma| there is below the resolution of the positions they
+        // add up to (x_n+1 = x_n + dt v + ...), so |gamma| is their floor
+        // too. Without it a crane at rest at the end of a move with x = mu2
+        // (D1 phi_x = 0) has acceleration rows whose only term is the 1e-43
+        // left in s, judged 100 % off (tower-crane, dt = 0.001: no
+        // convergence in 30 iterations at t = 10 s)
         let (dt, target) = (self.dt, &self.target);
+        let position = target[0].amax();
         normalised_residual(r, jac, z, |i| match i.checked_sub(F) {
-            Some(k) if k < A => dt * dt * target[2][k].abs(),
-            Some(k) if k < 2 * A => dt * target[1][k - A].abs(),
+            Some(k) if k < A => (dt * dt * target[2][k].abs()).max(position),
+            Some(k) if k < 2 * A => (dt * target[1][k - A].abs()).max(position),
             Some(k) if k < 3 * A => target[0][k - 2 * A].abs(),
             _ => 0.0,
         })
