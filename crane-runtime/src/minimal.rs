@@ -53,6 +53,7 @@ pub const OUTPUT_JACOBIAN_CONDITION_LIMIT: f64 = 1e12;
 
 /// The residual of eqs. (24b-e) at one step, in the unknowns
 /// `z = [mu; dt mu2_hat; dt^2 mu2_tilde; dt^2 u]`.
+#[derive(Clone)]
 struct MinimalEquations<'m, Mdl, const N: usize, const M: usize, const A: usize, const F: usize> {
     model: &'m Mdl,
     dt: f64,
@@ -183,10 +184,11 @@ where
         let (split, off, rate) = (F - A, N - A, self.formula.rate);
         // P^T M, P^T f_v and P^T (dt^2 f_q + d(B^T ut)/dq) once, so that each
         // column costs F x N products; the paper's cranes have forces free
-        // of q' and constant in q: those terms are skipped
+        // of q' and constant in q (known from the declaration): those terms
+        // are skipped
         let pt_mass = p.tr_mul(&mass);
-        let velocity_term = df_dv.iter().any(|&x| x != 0.0).then(|| p.tr_mul(&df_dv) * dt2);
-        let position_term = position_term.iter().any(|&x| x != 0.0).then(|| p.tr_mul(&position_term));
+        let velocity_term = Mdl::FORCES_DEPEND_ON_VELOCITY.then(|| p.tr_mul(&df_dv) * dt2);
+        let position_term = Mdl::FORCES_DEPEND_ON_POSITION.then(|| p.tr_mul(&position_term));
         let mut column = |j: usize, dq: SVector<f64, N>, dqdd_dt2: SVector<f64, N>, dv: SVector<f64, N>| {
             let mut dynamics = pt_mass * dqdd_dt2;
             if let Some(term) = &velocity_term {
@@ -364,6 +366,7 @@ fn degenerate<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A:
 
 /// Eqs. (24a-e) on a [`Scheme`], one step at a time; [`step`](Self::step)
 /// does not allocate.
+#[derive(Clone)]
 pub struct MinimalStepper<
     'm,
     Mdl,
@@ -577,10 +580,12 @@ where
         let z = &self.z;
         let [mu, mu_dot, accel_dt2] = eq.kinematics(&|i| z[i]);
         let u = SVector::<f64, A>::from_fn(|k, _| z[F + 2 * A + k] / dt2);
-        let q = model.phi(&mu);
-        let p = model.null_space(&mu);
+        // phi, P and P' from one generated body (a third of the sines and
+        // cosines of three separate calls)
+        let map = model.map_derivatives(&mu, &mu_dot);
+        let (q, p) = (map.phi, map.null_space);
         let v = p * mu_dot;
-        let qdd = (p * accel_dt2) / dt2 + model.null_space_rate(&mu, &mu_dot) * mu_dot;
+        let qdd = (p * accel_dt2) / dt2 + map.null_space_rate(&mu_dot) * mu_dot;
         // G G^T lambda = G (f + B^T u - M q'')
         let jac_g = model.constraint_jacobian(&q);
         let rhs =
@@ -810,6 +815,9 @@ mod tests {
             (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         };
         let model = Overhead::default();
+        // read off the declaration: friction on dot(s), beta in the winch's force
+        assert!(<Overhead as CraneModel<4, 1, 2>>::FORCES_DEPEND_ON_VELOCITY);
+        assert!(<Overhead as CraneModel<4, 1, 2>>::FORCES_DEPEND_ON_POSITION);
         const DIM: usize = 3 + 3 * 2;
         for scheme in Scheme::ALL {
             for dt in [0.1, 0.01, 0.001] {

@@ -70,6 +70,15 @@ pub trait CraneModel<const N: usize, const M: usize, const A: usize> {
     /// Names of everything the declaration names.
     const INFO: ModelInfo;
 
+    /// Whether `df/dq'` can be nonzero (`false`: the forces do not depend on
+    /// the velocities, as for the paper's cranes). `crane_model!` reads it off
+    /// the declaration; a hand-written model may keep the default `true`.
+    const FORCES_DEPEND_ON_VELOCITY: bool = true;
+
+    /// Whether `df/dq` or `d(B^T u)/dq` can be nonzero (`false`: constant
+    /// applied forces and input matrix, as for the paper's cranes).
+    const FORCES_DEPEND_ON_POSITION: bool = true;
+
     /// Current parameter values, in the order of [`ModelInfo::parameters`].
     fn parameter_values(&self) -> Vec<f64>;
 

@@ -1,6 +1,7 @@
 //! Criterion benchmarks of the inverse dynamics of the paper's planar cranes:
 //! full runs at dt = 0.01 (400 steps) and dt = 0.001 (4000 steps) and single
-//! steps, in redundant (eqs. 22a-d) and minimal (eqs. 24a-e) coordinates, and
+//! steps, in redundant (eqs. 22a-d) and minimal (eqs. 24a-e) coordinates (one
+//! step at t = 1.5 s side by side for both planar cranes), and
 //! for `navy-planar` the generated model against a hand-written one (the
 //! target: generated code costs no more than hand-written code); per scheme
 //! (backward Euler, BDF-2..5) a full run and one step (`schemes/...`).
@@ -12,7 +13,8 @@ use std::hint::black_box;
 
 use crane_models::{Case, Crane, navy_planar, navy_planar_pulley};
 use crane_runtime::newton::NewtonOptions;
-use crane_runtime::{CraneModel, Options, RedundantStepper, Scheme, State, simulate};
+use crane_runtime::nalgebra::SVector;
+use crane_runtime::{CraneModel, MinimalMap, MinimalStepper, Options, RedundantStepper, Scheme, State, simulate};
 use crane_tests::handwritten::HandNavyPlanar;
 
 /// Redundant runs and one step with `model` on the navy-planar maneuver.
@@ -51,6 +53,34 @@ fn formulations<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
     }
 }
 
+/// One step at t = 1.5 s, dt = 0.01, in both formulations, from steppers
+/// that got there themselves (the measure: a minimal step costs at
+/// most 2x a redundant one).
+fn one_step_each<const N: usize, const M: usize, const A: usize, const F: usize, Mdl>(
+    c: &mut Criterion,
+    name: &str,
+    model: &Mdl,
+    path: &crane_models::Path<A>,
+    start: &State<N, M, A>,
+    mu_guess: &SVector<f64, F>,
+) where
+    Mdl: MinimalMap<N, M, A, F> + Clone,
+{
+    let newton = NewtonOptions::default();
+    let mut redundant = RedundantStepper::new(model, path, start, 0.01, newton).unwrap();
+    let mut minimal = MinimalStepper::new(model, path, start, mu_guess, 0.01, newton).unwrap();
+    for _ in 0..150 {
+        redundant.step().unwrap();
+        minimal.step().unwrap();
+    }
+    c.bench_function(&format!("{name}/redundant/one step dt=0.01"), |b| {
+        b.iter_batched_ref(|| redundant.clone(), |stepper| stepper.step().unwrap(), BatchSize::SmallInput)
+    });
+    c.bench_function(&format!("{name}/minimal/one step dt=0.01"), |b| {
+        b.iter_batched_ref(|| minimal.clone(), |stepper| stepper.step().unwrap(), BatchSize::SmallInput)
+    });
+}
+
 /// Per scheme on navy-planar: the full run at dt = 0.01 and one step at
 /// t = 1.5 s from a stepper that got there itself (so its history is full);
 /// and the runs of the work-precision table: per scheme the largest dt
@@ -85,6 +115,14 @@ fn benches(c: &mut Criterion) {
     redundant_runs(c, "hand-written", &HandNavyPlanar::default());
     formulations(c, "navy-planar", &navy_planar::PaperCase::new(4.0).unwrap());
     formulations(c, "navy-planar-pulley", &navy_planar_pulley::PaperCase::new(4.0).unwrap());
+    let planar = navy_planar::PaperCase::new(4.0).unwrap();
+    let start = planar.start().unwrap();
+    let guess = navy_planar::minimal_guess(planar.model(), &start);
+    one_step_each(c, "navy-planar", planar.model(), planar.path(), &start, &guess);
+    let pulley = navy_planar_pulley::PaperCase::new(4.0).unwrap();
+    let start = pulley.start().unwrap();
+    let guess = navy_planar_pulley::minimal_guess(pulley.model(), &start);
+    one_step_each(c, "navy-planar-pulley", pulley.model(), pulley.path(), &start, &guess);
 }
 
 criterion_group!(navy_planar, benches, schemes);

@@ -101,3 +101,14 @@ fn constraint_jacobian_at_the_paper_start() {
         }
     }
 }
+
+/// The macro reads the force structure off the declaration: the paper's
+/// crane has gravity and winch torques only (eq. 34), constant in q and free
+/// of q', so the minimal Newton matrix may skip those products.
+#[test]
+fn force_structure_is_read_off_the_declaration() {
+    assert!(!<NavyPlanar as CraneModel<7, 3, 2>>::FORCES_DEPEND_ON_VELOCITY);
+    assert!(!<NavyPlanar as CraneModel<7, 3, 2>>::FORCES_DEPEND_ON_POSITION);
+    // a hand-written model keeps the conservative defaults
+    assert!(<HandNavyPlanar as CraneModel<7, 3, 2>>::FORCES_DEPEND_ON_VELOCITY);
+}

@@ -17,10 +17,17 @@ pub(super) fn crane_model_impl(model: &Model, k: &Kernels, lints: &TokenStream) 
     let info = model_info(model);
     let parameters = parameter_methods(model);
     let kernels = kernel_methods(model, k);
+    // read off the derivatives: a matrix of zero nodes is structurally zero
+    let zero = |m: &[Vec<crate::expr::Id>]| m.iter().flatten().all(|&e| model.arena.is_zero(e));
+    let on_velocity = !zero(&k.df_dv);
+    let on_position = !(zero(&k.df_dq) && zero(&k.dbtu_dq));
     quote! {
         #lints
         impl __crane_runtime::CraneModel<#n_lit, #m_lit, #a_lit> for #name {
             #info
+
+            const FORCES_DEPEND_ON_VELOCITY: bool = #on_velocity;
+            const FORCES_DEPEND_ON_POSITION: bool = #on_position;
 
             #parameters
 

@@ -212,6 +212,8 @@ const _: () = {
             parameters: &["m_l", "J1", "J2", "r1", "r2", "alpha", "l", "g"],
             positive: &[],
         };
+        const FORCES_DEPEND_ON_VELOCITY: bool = false;
+        const FORCES_DEPEND_ON_POSITION: bool = false;
         fn parameter_values(&self) -> ::std::vec::Vec<f64> {
             ::std::vec![
                 self.m_l, self.J1, self.J2, self.r1, self.r2, self.alpha, self.l, self.g
