@@ -16,13 +16,23 @@
 //! (24e)        phi_x(mu) - gamma                                           = 0   (a rows)
 //! unknowns z = [mu (f); h = dt mu2_hat (a); s = dt^2 mu2_tilde (a); ut = dt^2 u (a)]
 //! ```
-//! The iteration matrix is the exact Jacobian, by forward-mode dual numbers
-//! pushed through the generated `phi`, `P`, `P'` and the model functions;
-//! it is equilibrated before each solve (docs/numerics.md: `M~` is singular along
+//! The iteration matrix is the exact Jacobian, built column by column from
+//! derivatives the macro generates ([`MinimalMap::map_derivatives`]: `phi`,
+//! `P`, `dP/dmu_k`, `d(P' mu')/dmu` from one function body) and the model's
+//! Jacobians, by the chain rule through the scheme's affine maps (no dual
+//! numbers in the step; a unit test checks it against them). It is
+//! equilibrated before each solve (docs/numerics.md: `M~` is singular along
 //! the whole motion for a massless pulley, the full system is regular but
 //! badly scaled). Newton starts from a quadratic extrapolation of the last
 //! three steps (docs/numerics.md: from the previous step alone it fails near the
 //! degenerate start).
+//!
+//! At a degenerate start, where a rope carries (almost) no tension and so
+//! leaves the pulley weakly fixed (the paper's sect. 5.1 start, rope L1),
+//! the first steps are taken by the redundant stepper and followed in
+//! minimal coordinates until every rope carries
+//! [`DEGENERATE_TENSION_RATIO`] of the largest tension
+//! ([`Solution::redundant_start_steps`] counts them).
 //!
 //! Results are reported in redundant terms, `q = phi(mu)`, `q' = P mu'`, with
 //! the multipliers recovered from the redundant equations of motion by least
