@@ -339,7 +339,7 @@ mod tests {
                 State { t, q: SVector::zeros(), v: SVector::zeros(), u: SVector::from([u(t)]), lambda: SVector::zeros() }
             })
             .collect();
-        let run = Solution { info: INFO, dt: 0.1, scheme: Scheme::Bdf3, states, newton_iterations: vec![0; 21], tensions: vec![], min_norm_steps: 0 };
+        let run = Solution { info: INFO, dt: 0.1, scheme: Scheme::Bdf3, states, newton_iterations: vec![0; 21], tensions: vec![], min_norm_steps: 0, redundant_start_steps: 0 };
         let inputs = InterpolatedInputs::new(&run, 4);
         for t in [0.0, 0.03, 0.55, 1.234, 1.999, 2.0] {
             assert!((inputs.at(t)[0] - u(t)).abs() < 1e-12, "t = {t}: {} vs {}", inputs.at(t)[0], u(t));
