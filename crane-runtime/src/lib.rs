@@ -74,6 +74,7 @@ pub mod driver;
 pub mod error;
 pub mod forward;
 pub mod init;
+pub mod internal;
 pub mod linsolve;
 pub mod minimal;
 pub mod model;

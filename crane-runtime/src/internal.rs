@@ -1,0 +1,223 @@
+//! Internal (zero) dynamics of the servo-constrained system: the motions
+//! the prescribed load path leaves free, and whether they grow.
+//!
+//! Linearise `M q'' = f(q, q') + B^T(q) u - G^T(q) lambda`, `g(q) = 0`,
+//! `x = gamma(t)` about a state of the solution, with the coefficients
+//! frozen at that instant:
+//! ```text
+//! M dq'' = K dq + D dq' + B^T du - G^T dlambda,   G dq = 0,   dx = 0
+//! K = df/dq + d(B^T u)/dq - d(G^T lambda)/dq,      D = df/dq'
+//! ```
+//! The inputs and multipliers drop out on the left null space of
+//! `[B^T G^T]` (columns `Q`), and `dq = Z eta` with `Z` a basis of the null
+//! space of `[G; S_x]` (the motions that keep the constraints and the load
+//! on its path). What remains is
+//! ```text
+//! A2 eta'' + A1 eta' + A0 eta = 0,   A2 = Q^T M Z,  A1 = -Q^T D Z,  A0 = -Q^T K Z
+//! ```
+//! If `A2 = 0` the free coordinates are fixed algebraically by the path: the
+//! crane is flat, no internal dynamics (the paper's planar cranes: the only
+//! inertia in those directions is the load's, and `Z` does not move the
+//! load). Otherwise, with `A2 = U S V^T` of rank `r`, the rows of `U^T` past
+//! `r` hold no second derivatives; when they hold no first ones either they
+//! fix the remaining coordinates algebraically, and the first `r` follow a
+//! second-order ODE: internal dynamics of dimension `2r`, whose eigenvalues
+//! are those of its companion matrix: the invariant zeros of the linearised
+//! crane. A positive real part means the causal inverse
+//! explodes along the path.
+//!
+//! The eigenvalues are frozen-time ones (the change of `Q`, `Z` along the
+//! motion is left out): exact at rest, an indicator along a move.
+//!
+//! ```
+//! # use crane_runtime::{CraneModel, State};
+//! # fn demo<Mdl: CraneModel<4, 1, 2>>(model: &Mdl, start: &State<4, 1, 2>) {
+//! let diagnosis = crane_runtime::internal::internal_dynamics(model, start).unwrap();
+//! if diagnosis.dimension > 0 && !diagnosis.is_stable() {
+//!     eprintln!("unstable internal dynamics: largest real part {:.3} 1/s", diagnosis.max_real_part);
+//! }
+//! # }
+//! ```
+
+use nalgebra::DMatrix;
+
+use crate::model::CraneModel;
+use crate::solution::State;
+
+/// Relative size below which a singular value counts as zero (the inputs of
+/// the decompositions are exact to round-off, ~1e-16 of their largest entry).
+const RANK_TOLERANCE: f64 = 1e-9;
+
+/// Smallest-to-largest singular value of the block that fixes the
+/// coordinates without inertia, below which the reduction is refused.
+const REDUCTION_TOLERANCE: f64 = 1e-6;
+
+/// Largest real part counted as zero: round-off of an eigenvalue of a
+/// companion matrix whose entries are `O(|A2^-1| |A0|)`.
+const STABILITY_TOLERANCE: f64 = 1e-8;
+
+/// The internal dynamics at one state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InternalDynamics {
+    /// The time of the state.
+    pub t: f64,
+    /// Dimension of the internal dynamics, `2 rank(Q^T M Z)`; 0 for a flat
+    /// crane.
+    pub dimension: usize,
+    /// Their eigenvalues `(re, im)` (frozen time); empty when `dimension` is 0.
+    pub eigenvalues: Vec<(f64, f64)>,
+    /// The largest real part (`-inf` when there are none), in 1/s.
+    pub max_real_part: f64,
+}
+
+impl InternalDynamics {
+    /// Whether no eigenvalue has a real part above round-off.
+    pub fn is_stable(&self) -> bool {
+        self.max_real_part <= STABILITY_TOLERANCE * self.eigenvalues.iter().map(|e| e.0.hypot(e.1)).fold(1.0, f64::max)
+    }
+}
+
+/// Why the internal dynamics could not be computed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum InternalDynamicsError {
+    /// `[B^T G^T]` or `[G; S_x]` does not have full rank (dependent inputs
+    /// and constraints, or constraints that fix the load): the projection is
+    /// not square.
+    #[error("the servo problem is not square at t = {t}: {left} free equations for {right} free coordinates")]
+    NotSquare {
+        /// Time of the state.
+        t: f64,
+        /// Dimension of the left null space of `[B^T G^T]`.
+        left: usize,
+        /// Dimension of the null space of `[G; S_x]`.
+        right: usize,
+    },
+    /// `Q^T M Z` is neither zero nor regular and the rows without second
+    /// derivatives hold first derivatives too (damping there), or do not fix
+    /// the remaining coordinates: this diagnosis does not split that case.
+    #[error("mixed structure at t = {t}: Q^T M Z has rank {rank} of {size}")]
+    MixedRank {
+        /// Time of the state.
+        t: f64,
+        /// Rank of `Q^T M Z`.
+        rank: usize,
+        /// Its size.
+        size: usize,
+    },
+}
+
+/// The columns of an orthonormal basis of the left null space of the
+/// `n x k` matrix `w` (`k <= n`): the left singular vectors of `[w 0]`
+/// (padded to square, so that the SVD returns all `n` of them) whose
+/// singular values are below [`RANK_TOLERANCE`] of the largest. Accurate to
+/// round-off (a Gram matrix `w w^T` would resolve only `sqrt(eps)`, and its
+/// error, ~1e-8 of `|M|` in `Q^T M Z`, showed as a spurious eigenvalue of
+/// 7e7 1/s on navy-3d-pulley).
+fn left_null_basis(w: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = w.nrows();
+    let mut padded = DMatrix::zeros(n, n);
+    padded.columns_mut(0, w.ncols()).copy_from(w);
+    let svd = padded.svd(true, false);
+    let largest = svd.singular_values.amax();
+    let columns: Vec<usize> =
+        (0..n).filter(|&i| svd.singular_values[i] <= RANK_TOLERANCE * largest.max(f64::MIN_POSITIVE)).collect();
+    match svd.u {
+        Some(u) => DMatrix::from_fn(n, columns.len(), |i, j| u[(i, columns[j])]),
+        None => DMatrix::zeros(n, 0),
+    }
+}
+
+/// The frozen-time internal dynamics of `model` at `state` (see the module
+/// docs).
+pub fn internal_dynamics<Mdl, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    state: &State<N, M, A>,
+) -> Result<InternalDynamics, InternalDynamicsError>
+where
+    Mdl: CraneModel<N, M, A>,
+{
+    let (q, v, u, lambda) = (&state.q, &state.v, &state.u, &state.lambda);
+    let (df_dq, df_dv) = model.force_jacobians(q, v);
+    let stiffness = df_dq + model.input_jacobian(q, u) - model.constraint_hessian(q, lambda);
+    let dense = |m: &[f64], rows: usize, cols: usize| DMatrix::from_column_slice(rows, cols, m);
+    let (mass, damping, stiffness) = (
+        dense(model.mass_matrix::<f64>().as_slice(), N, N),
+        dense(df_dv.as_slice(), N, N),
+        dense(stiffness.as_slice(), N, N),
+    );
+    let jac_g = dense(model.constraint_jacobian(q).as_slice(), M, N);
+    let inputs = dense(model.input_matrix(q).as_slice(), N, A);
+    // Q: left null space of W = [B^T G^T]; Z: null space of C = [G; S_x]
+    let mut w = DMatrix::zeros(N, A + M);
+    w.columns_mut(0, A).copy_from(&inputs);
+    w.columns_mut(A, M).copy_from(&jac_g.transpose());
+    let mut c = DMatrix::zeros(M + A, N);
+    c.rows_mut(0, M).copy_from(&jac_g);
+    for k in 0..A {
+        c[(M + k, N - A + k)] = 1.0;
+    }
+    let left = left_null_basis(&w);
+    let right = left_null_basis(&c.transpose());
+    let t = state.t;
+    if left.ncols() != right.ncols() {
+        return Err(InternalDynamicsError::NotSquare { t, left: left.ncols(), right: right.ncols() });
+    }
+    let size = left.ncols();
+    let a2 = left.transpose() * &mass * &right;
+    let a1 = -(left.transpose() * &damping * &right);
+    let a0 = -(left.transpose() * &stiffness * &right);
+    let scale = mass.amax().max(f64::MIN_POSITIVE);
+    let svd = a2.svd(true, true);
+    let (Some(u_a2), Some(v_t)) = (svd.u, svd.v_t) else {
+        return Err(InternalDynamicsError::MixedRank { t, rank: 0, size });
+    };
+    // nalgebra sorts singular values in decreasing order
+    let rank = svd.singular_values.iter().filter(|&&s| s > RANK_TOLERANCE * scale).count();
+    if rank == 0 {
+        return Ok(InternalDynamics { t, dimension: 0, eigenvalues: Vec::new(), max_real_part: f64::NEG_INFINITY });
+    }
+    // rows U^T, coordinates eta = V xi: the first `rank` rows read
+    // S xi1'' + A1~ xi' + A0~ xi = 0, the others hold no second derivative;
+    // without first derivatives there (no damping in those rows) they fix
+    // xi2 = -A0~22^-1 A0~21 xi1 algebraically, and xi1 follows a
+    // second-order system of size `rank`
+    let v = v_t.transpose();
+    let (a1t, a0t) = (u_a2.transpose() * &a1 * &v, u_a2.transpose() * &a0 * &v);
+    let (r, rest) = (rank, size - rank);
+    let coupling = if rest == 0 {
+        DMatrix::zeros(0, r)
+    } else {
+        let first_order = a1t.rows(r, rest).amax();
+        let a0_22 = a0t.view((r, r), (rest, rest)).into_owned();
+        // those rows must fix the remaining coordinates well (a nearly
+        // singular block leaves a direction free at first order, and the
+        // reduction then returns round-off: navy-3d-pulley, singular values
+        // 50 and 1e-10 along its move)
+        let singular = a0_22.clone().svd(false, false).singular_values;
+        let inverse = (singular.min() > REDUCTION_TOLERANCE * singular.max()).then(|| a0_22.try_inverse()).flatten();
+        match inverse {
+            Some(inverse) if first_order <= RANK_TOLERANCE * (a1t.amax() + a0t.amax()).max(f64::MIN_POSITIVE) => {
+                inverse * a0t.view((r, 0), (rest, r))
+            }
+            _ => return Err(InternalDynamicsError::MixedRank { t, rank, size }),
+        }
+    };
+    let reduce = |m: &DMatrix<f64>| {
+        let mut reduced = m.view((0, 0), (r, r)).into_owned();
+        if rest > 0 {
+            reduced -= m.view((0, r), (r, rest)) * &coupling;
+        }
+        reduced
+    };
+    let (b1, b0) = (reduce(&a1t), reduce(&a0t));
+    let inverse = DMatrix::from_diagonal(&svd.singular_values.rows(0, r).map(|s| 1.0 / s));
+    // xi1'' = -S^-1 (B1 xi1' + B0 xi1), as a first-order system
+    let mut companion = DMatrix::zeros(2 * r, 2 * r);
+    companion.view_mut((0, r), (r, r)).fill_with_identity();
+    companion.view_mut((r, 0), (r, r)).copy_from(&(-(&inverse * &b0)));
+    companion.view_mut((r, r), (r, r)).copy_from(&(-(&inverse * &b1)));
+    let eigenvalues: Vec<(f64, f64)> = companion.complex_eigenvalues().iter().map(|e| (e.re, e.im)).collect();
+    let size = r;
+    let max_real_part = eigenvalues.iter().map(|e| e.0).fold(f64::NEG_INFINITY, f64::max);
+    Ok(InternalDynamics { t, dimension: 2 * size, eigenvalues, max_real_part })
+}

@@ -1,0 +1,128 @@
+//! Internal dynamics: which cranes are flat, and the coupled crane
+//! whose causal inverse explodes (`crane_runtime::internal`).
+
+use crane_macros::crane_model;
+use crane_runtime::internal::internal_dynamics;
+use crane_runtime::nalgebra::vector;
+use crane_runtime::trajectory::Poly9;
+use crane_runtime::{Trajectory, init};
+
+crane_model! {
+    /// A planar crane with a constant coupling c between trolley and load in
+    /// the kinetic energy (the example): not flat.
+    #[crane(no_self_test)]
+    pub struct Coupled {
+        params { mt = 10.0, m = 100.0, c = 2.0, g = 9.81 }
+        robot  [s, L]
+        load   [x, z]
+        inputs [u1, u2]
+        kinetic = 0.5*mt*dot(s)^2 + c*dot(s)*dot(x) + 0.5*dot(L)^2 + 0.5*m*(dot(x)^2 + dot(z)^2);
+        forces { s: u1, L: u2, z: -m*g }
+        constraints {
+            #[rope(N = L)]
+            rope: 0.5*((x - s)^2 + z^2 - L^2),
+        }
+    }
+}
+
+/// The coupled crane at rest, load straight below the trolley at depth |z|:
+/// the load's row reads c s'' - lambda s = -lambda x - m x'' with
+/// lambda = -m (g + z'')/z (the derivation), so the trolley follows
+/// s'' = (lambda/c) s: eigenvalues +-sqrt(lambda/c), real for a hanging load
+/// (unstable), imaginary for a load held above the trolley (z > 0, lambda < 0:
+/// a strut instead of a rope; stable, oscillating). Both to 1 %, dimension 2.
+#[test]
+fn the_coupled_crane_has_the_internal_dynamics_of_its_derivation() {
+    let crane = Coupled::default();
+    for (z0, unstable) in [(-5.0, true), (5.0, false)] {
+        let path = Poly9::new(0.0, 5.0, vector![0.0, z0], vector![4.0, z0 + 2.0]).unwrap();
+        let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, z0.abs()]).unwrap();
+        let diagnosis = internal_dynamics(&crane, &start).unwrap();
+        let z_dd = path.derivative(0.0, 2)[1];
+        let lambda = -crane.m * (crane.g + z_dd) / z0;
+        let rate = (lambda.abs() / crane.c).sqrt();
+        println!("z0 = {z0}: {diagnosis:?}, expected rate {rate:.4} 1/s ({})", if unstable { "real" } else { "imaginary" });
+        assert_eq!(diagnosis.dimension, 2);
+        for &(re, im) in &diagnosis.eigenvalues {
+            let (along, across) = if unstable { (re.abs(), im.abs()) } else { (im.abs(), re.abs()) };
+            assert!((along - rate).abs() <= 0.01 * rate, "z0 = {z0}: eigenvalue ({re}, {im}) against {rate}");
+            assert!(across <= 1e-6 * rate, "z0 = {z0}: eigenvalue ({re}, {im})");
+        }
+        assert_eq!(diagnosis.is_stable(), !unstable, "{diagnosis:?}");
+    }
+}
+
+/// Without the coupling (c = 0) the same crane is flat: no inertia left in
+/// the directions the load path leaves free.
+#[test]
+fn without_the_coupling_the_crane_is_flat() {
+    let crane = Coupled { c: 0.0, ..Coupled::default() };
+    let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
+    let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0]).unwrap();
+    let diagnosis = internal_dynamics(&crane, &start).unwrap();
+    assert_eq!(diagnosis.dimension, 0, "{diagnosis:?}");
+    assert!(diagnosis.is_stable());
+}
+
+/// Five built-in cranes are flat (dimension 0) along their manoeuvres: in
+/// the directions the load path leaves free their only inertia is the
+/// load's (winch and trolley inertias sit on actuated coordinates, the
+/// pulley of `navy-planar-pulley` moves with the actuated rope L1), so
+/// `Q^T M Z = 0`. Checked at the start and at every 0.5 s of a
+/// backward-Euler run at dt = 0.01. `navy-3d-pulley` is not among them: its
+/// `Q^T M Z` has rank 1 (the pulley mass m0 = 20 kg in a free direction), and
+/// the remaining rows leave a direction free at first order (their
+/// stiffness block has singular values 50 and 1e-10 ... 3e-2 along the
+/// move), so this diagnosis cannot tell its internal dynamics yet (printed
+/// by `navy_3d_pulley_is_not_resolved_by_the_diagnosis`).
+#[test]
+fn the_built_in_cranes_are_flat_along_their_manoeuvres() {
+    fn check<C: crane_models::Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(case: &crane_models::Case<C, N, M, A>) {
+        let start = case.start().unwrap();
+        let run = case.simulate(&start, &crane_runtime::Options::new(0.01, case.tf())).unwrap();
+        let mut checked = 0;
+        for state in run.states.iter().step_by(50) {
+            match internal_dynamics(case.model(), state) {
+                Ok(d) => assert_eq!(d.dimension, 0, "{} at t = {}: {d:?}", C::NAME, state.t),
+                Err(e) => panic!("{} at t = {}: {e}", C::NAME, state.t),
+            }
+            checked += 1;
+        }
+        println!("{}: dimension 0 at {checked} states", C::NAME);
+    }
+    check(&crane_models::navy_planar::PaperCase::new(4.0).unwrap());
+    check(&crane_models::navy_planar_pulley::PaperCase::new(4.0).unwrap());
+    check(&crane_models::navy_3d::PaperCase::maneuver().unwrap());
+    check(&crane_models::gantry_3d::DefaultCase::maneuver().unwrap());
+    check(&crane_models::tower_crane::DefaultCase::maneuver().unwrap());
+}
+
+/// What the diagnosis says of `navy-3d-pulley` (see above): printed, and
+/// the one structural fact asserted, that `Q^T M Z` is not zero there (the
+/// pulley's mass in a free direction), so the crane is not shown flat.
+#[test]
+fn navy_3d_pulley_is_not_resolved_by_the_diagnosis() {
+    let case = crane_models::navy_3d_pulley::PaperCase::maneuver().unwrap();
+    let start = case.start().unwrap();
+    let run = case.simulate(&start, &crane_runtime::Options::new(0.01, case.tf())).unwrap();
+    for state in run.states.iter().step_by(100) {
+        let diagnosis = internal_dynamics(case.model(), state);
+        println!("navy-3d-pulley at t = {:.1}: {diagnosis:?}", state.t);
+        assert!(!matches!(diagnosis, Ok(ref d) if d.dimension == 0), "t = {}: {diagnosis:?}", state.t);
+    }
+}
+
+/// What the causal inverse does with the unstable coupled crane: the run
+/// "succeeds" with torques that grow like exp(9.9 t) (printed for the README;
+/// asserted only to be beyond any physical scale, 1e6 x the static torque).
+#[test]
+fn the_unstable_inverse_explodes() {
+    let crane = Coupled::default();
+    let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
+    let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0]).unwrap();
+    let run = crane_runtime::simulate(&crane, &path, &start, &crane_runtime::Options::new(0.01, 5.0)).unwrap();
+    let mid = run.state_near(2.5).unwrap();
+    let scale = start.u.amax();
+    println!("coupled crane, dt = 0.01: u(2.5 s) = {:?} (static |u| = {scale:.1})", mid.u.as_slice());
+    assert!(mid.u.amax() > 1e6 * scale);
+}
