@@ -65,8 +65,8 @@ enum Command {
         /// also bdf1), bdf2, bdf3, bdf4 or bdf5 (order k).
         #[arg(long, value_name = "SCHEME")]
         scheme: Option<Scheme>,
-        /// Exit non-zero if a rope goes slack or an input exceeds its limit
-        /// (the results are still written).
+        /// Exit non-zero if a rope goes slack, an input exceeds its limit or
+        /// the internal dynamics are unstable (the results are still written).
         #[arg(long)]
         strict: bool,
         /// No progress bar (it is shown only on a terminal, for runs over a second).
@@ -235,6 +235,26 @@ impl Visit for Job<'_> {
     }
 }
 
+/// The internal dynamics at the start of a crane's default manoeuvre, for
+/// `crane list`: `0 (flat)`, `2 stable`, `2 unstable`, or `?` where the
+/// diagnosis cannot tell.
+struct InternalAtStart;
+
+impl Visit for InternalAtStart {
+    type Output = String;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> String {
+        let diagnosis = Case::<C, N, M, A>::maneuver().ok().and_then(|case| {
+            let start = case.start().ok()?;
+            crane_runtime::internal::internal_dynamics(case.model(), &start).ok()
+        });
+        match diagnosis {
+            Some(d) if d.dimension == 0 => "0 (flat)".into(),
+            Some(d) => format!("{} {}", d.dimension, if d.is_stable() { "stable" } else { "unstable" }),
+            None => "?".into(),
+        }
+    }
+}
+
 /// Run `job` on the built-in crane `name`.
 fn dispatch(name: &str, job: Job) -> Result<Option<report::Summary>, CliError> {
     registry::visit(name, job).unwrap_or_else(|| Err(CliError::UnknownModel(name.to_string())))
@@ -256,13 +276,14 @@ fn execute(command: Command) -> Result<(), CliError> {
         Command::List => {
             let width = CATALOG.iter().map(|e| e.name.len()).max().unwrap_or(5);
             println!(
-                "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} description",
-                "model", "n", "m", "a", "f", "reference", "minimal"
+                "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} {:<10} description",
+                "model", "n", "m", "a", "f", "reference", "minimal", "internal"
             );
             let yes = |b: bool| if b { "yes" } else { "no" };
             for e in CATALOG {
+                let internal = registry::visit(e.name, InternalAtStart).unwrap_or_else(|| "?".into());
                 println!(
-                    "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} {}",
+                    "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} {:<10} {}",
                     e.name,
                     e.n,
                     e.m,
@@ -270,6 +291,7 @@ fn execute(command: Command) -> Result<(), CliError> {
                     e.dof(),
                     yes(e.reference),
                     yes(e.minimal),
+                    internal,
                     e.description
                 );
             }
@@ -417,6 +439,22 @@ fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         .map(|svg| ("snapshots.svg".to_string(), svg));
     let derived = output::Derived { names: case.derived_outputs(), values: &|s| case.derived(s) };
     let mut summary = summary;
+    summary.internal_dynamics = report::internal_summary(case.model(), &solution);
+    let internal = &summary.internal_dynamics;
+    if !internal.stable {
+        eprintln!(
+            "warning: {name} has unstable internal dynamics along this path (dimension {}, largest real part {:.4} 1/s at t = {} s): the computed inputs grow without bound; see the README, \"Flat and non-flat cranes\"",
+            internal.dimension,
+            internal.max_real_part.unwrap_or(f64::NAN),
+            crane_runtime::error::Seconds(internal.at.unwrap_or(f64::NAN)),
+        );
+    }
+    if let Some(t) = internal.runaway_at {
+        eprintln!(
+            "warning: an input of {name} exceeds 1e6 times its size at the start from t = {} s: not a physical result",
+            crane_runtime::error::Seconds(t)
+        );
+    }
     let mut extra: Vec<(String, String)> = snapshots.into_iter().collect();
     if let Some(request) = &settings.replay {
         let plant_values = scenario.plant.iter().cloned().chain(request.plant.iter().cloned()).collect::<Vec<_>>();

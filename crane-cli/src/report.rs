@@ -73,6 +73,86 @@ pub struct Summary {
     /// `--replay`: the computed torques on the crane's forward dynamics.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub replay: Option<ReplaySummary>,
+    /// The internal dynamics along the run (`crane_runtime::internal`).
+    pub internal_dynamics: InternalSummary,
+}
+
+/// The internal dynamics at sampled states of a run.
+#[derive(Debug, Clone, Serialize)]
+pub struct InternalSummary {
+    /// Largest dimension found (0: flat at every sampled state).
+    pub dimension: usize,
+    /// Largest real part of an eigenvalue, 1/s, and where (none when flat).
+    pub max_real_part: Option<f64>,
+    pub at: Option<f64>,
+    /// No eigenvalue with a real part above round-off.
+    pub stable: bool,
+    /// States where the diagnosis could not tell (the first reason).
+    pub unresolved: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unresolved_reason: Option<String>,
+    /// Sampled states (up to `runaway_at`, past which states are not physical).
+    pub samples: usize,
+    /// First time an input exceeds 1e6 times the largest input at the start
+    /// (at least 1): beyond any physical scale, the mark of unstable internal
+    /// dynamics in the computed torques.
+    pub runaway_at: Option<f64>,
+}
+
+impl InternalSummary {
+    /// Nothing sampled yet.
+    pub fn none() -> Self {
+        Self {
+            dimension: 0,
+            max_real_part: None,
+            at: None,
+            stable: true,
+            unresolved: 0,
+            unresolved_reason: None,
+            samples: 0,
+            runaway_at: None,
+        }
+    }
+}
+
+/// An input this many times the largest at the start is beyond any
+/// physical scale of the crane (the coupled crane: 3.4e9 times at
+/// 2.5 s).
+const RUNAWAY_FACTOR: f64 = 1e6;
+
+/// The internal dynamics at up to 101 evenly spaced states of `solution`.
+pub fn internal_summary<Mdl, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    solution: &Solution<N, M, A>,
+) -> InternalSummary
+where
+    Mdl: crane_runtime::CraneModel<N, M, A>,
+{
+    let states = &solution.states;
+    let stride = (states.len() / 100).max(1);
+    let mut summary = InternalSummary::none();
+    let scale = states.first().map_or(1.0, |s| s.u.amax().max(1.0));
+    summary.runaway_at = states.iter().find(|s| !(s.u.amax() <= RUNAWAY_FACTOR * scale)).map(|s| s.t);
+    // states past a runaway input are no longer physical: not diagnosed
+    let physical = |t: f64| summary.runaway_at.is_none_or(|runaway| t < runaway);
+    for state in states.iter().step_by(stride).take_while(|s| physical(s.t)) {
+        summary.samples += 1;
+        match crane_runtime::internal::internal_dynamics(model, state) {
+            Ok(d) => {
+                summary.dimension = summary.dimension.max(d.dimension);
+                if d.dimension > 0 && summary.max_real_part.is_none_or(|r| d.max_real_part > r) {
+                    summary.max_real_part = Some(d.max_real_part);
+                    summary.at = Some(state.t);
+                }
+                summary.stable &= d.is_stable();
+            }
+            Err(e) => {
+                summary.unresolved += 1;
+                summary.unresolved_reason.get_or_insert_with(|| e.to_string());
+            }
+        }
+    }
+    summary
 }
 
 /// The replay's results in summary.json.
@@ -244,6 +324,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         torque_limits,
         reference,
         replay: None,
+        internal_dynamics: InternalSummary::none(),
     }
 }
 
@@ -290,7 +371,8 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
     lines
 }
 
-/// What makes a run infeasible: slack ropes and violated torque limits (for `--strict`).
+/// What makes a run infeasible: slack ropes, violated torque limits and
+/// unstable internal dynamics (for `--strict`).
 pub fn infeasibilities(summary: &Summary) -> Vec<String> {
     let mut out: Vec<String> = summary
         .ropes
@@ -308,5 +390,61 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
             )
         })
     }));
+    let internal = &summary.internal_dynamics;
+    if !internal.stable {
+        out.push(format!(
+            "unstable internal dynamics (largest real part {:.4} 1/s at t = {} s)",
+            internal.max_real_part.unwrap_or(f64::NAN),
+            crane_runtime::error::Seconds(internal.at.unwrap_or(f64::NAN))
+        ));
+    }
+    if let Some(t) = internal.runaway_at {
+        out.push(format!(
+            "an input exceeds {RUNAWAY_FACTOR:e} times its size at the start from t = {} s",
+            crane_runtime::error::Seconds(t)
+        ));
+    }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crane_runtime::nalgebra::vector;
+    use crane_runtime::trajectory::Poly9;
+    use crane_runtime::{Options, init, simulate};
+    use crane_tests::coupled::Coupled;
+
+    fn run(c: f64) -> Solution<4, 1, 2> {
+        let crane = Coupled { c, ..Coupled::default() };
+        let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
+        let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0]).unwrap();
+        simulate(&crane, &path, &start, &Options::new(0.01, 5.0)).unwrap()
+    }
+
+    /// The coupled crane: the run "succeeds", the summary says
+    /// why its torques are not a result: unstable internal dynamics of
+    /// dimension 2 from the start (sqrt(lambda/c) = 9.9045 1/s there, larger
+    /// where the load rises and accelerates), and an input beyond 1e6 times
+    /// its size at the start before t = 2.5 s (3.4e12 N there).
+    #[test]
+    fn an_unstable_crane_is_reported_as_such() {
+        let crane = Coupled::default();
+        let summary = internal_summary(&crane, &run(2.0));
+        assert_eq!(summary.dimension, 2, "{summary:?}");
+        assert!(!summary.stable, "{summary:?}");
+        assert!(summary.max_real_part.unwrap() >= 9.9, "{summary:?}");
+        assert!(summary.runaway_at.is_some_and(|t| t < 2.5), "{summary:?}");
+        // diagnosed up to the runaway (1.8 s of 5 s: 37 of the 101 samples)
+        assert!(summary.samples >= 30 && summary.unresolved == 0, "{summary:?}");
+    }
+
+    /// Without the coupling: flat, nothing to report.
+    #[test]
+    fn a_flat_crane_is_reported_flat() {
+        let crane = Coupled { c: 0.0, ..Coupled::default() };
+        let summary = internal_summary(&crane, &run(0.0));
+        assert_eq!(summary.dimension, 0, "{summary:?}");
+        assert!(summary.stable && summary.runaway_at.is_none(), "{summary:?}");
+    }
 }

@@ -200,6 +200,12 @@ fn example_scenario_end_to_end() {
     // same as the paper case without a scenario (eq. 48 at dt = 0.01)
     let e_u = summary["reference"]["e_u_at_1_5s"].as_f64().unwrap();
     assert!((e_u - 1.471e-3).abs() < 1e-5, "e_u = {e_u}");
+    // the paper's crane is flat: no internal dynamics at any sampled state
+    let internal = &summary["internal_dynamics"];
+    assert_eq!(internal["dimension"], 0, "{internal}");
+    assert_eq!(internal["stable"], true, "{internal}");
+    assert_eq!(internal["unresolved"], 0, "{internal}");
+    assert!(internal["samples"].as_u64().unwrap() >= 100, "{internal}");
 }
 
 #[test]

@@ -1,29 +1,11 @@
 //! Internal dynamics: which cranes are flat, and the coupled crane
 //! whose causal inverse explodes (`crane_runtime::internal`).
 
-use crane_macros::crane_model;
 use crane_runtime::internal::internal_dynamics;
 use crane_runtime::nalgebra::vector;
 use crane_runtime::trajectory::Poly9;
 use crane_runtime::{Trajectory, init};
-
-crane_model! {
-    /// A planar crane with a constant coupling c between trolley and load in
-    /// the kinetic energy (the example): not flat.
-    #[crane(no_self_test)]
-    pub struct Coupled {
-        params { mt = 10.0, m = 100.0, c = 2.0, g = 9.81 }
-        robot  [s, L]
-        load   [x, z]
-        inputs [u1, u2]
-        kinetic = 0.5*mt*dot(s)^2 + c*dot(s)*dot(x) + 0.5*dot(L)^2 + 0.5*m*(dot(x)^2 + dot(z)^2);
-        forces { s: u1, L: u2, z: -m*g }
-        constraints {
-            #[rope(N = L)]
-            rope: 0.5*((x - s)^2 + z^2 - L^2),
-        }
-    }
-}
+use crane_tests::coupled::Coupled;
 
 /// The coupled crane at rest, load straight below the trolley at depth |z|:
 /// the load's row reads c s'' - lambda s = -lambda x - m x'' with
