@@ -189,16 +189,20 @@ where
         let p_accel = map.null_space_rate(accel_dt2); // d(P a)/dmu
         let hessian = map.phi_hessian(r);
         let mass = model.mass_matrix::<f64>();
-        let (df_dq, df_dv) = model.force_jacobians(q, v);
-        let position_term = df_dq * dt2 + model.input_jacobian(q, u_scaled);
         let (split, off, rate) = (F - A, N - A, self.formula.rate);
         // P^T M, P^T f_v and P^T (dt^2 f_q + d(B^T ut)/dq) once, so that each
         // column costs F x N products; the paper's cranes have forces free
-        // of q' and constant in q (known from the declaration): those terms
-        // are skipped
+        // of q' and constant in q (known from the declaration): those
+        // Jacobians are neither evaluated nor multiplied
         let pt_mass = p.tr_mul(&mass);
-        let velocity_term = Mdl::FORCES_DEPEND_ON_VELOCITY.then(|| p.tr_mul(&df_dv) * dt2);
-        let position_term = Mdl::FORCES_DEPEND_ON_POSITION.then(|| p.tr_mul(&position_term));
+        let force_jacobians = (Mdl::FORCES_DEPEND_ON_VELOCITY || Mdl::FORCES_DEPEND_ON_POSITION)
+            .then(|| model.force_jacobians(q, v));
+        let velocity_term = force_jacobians
+            .filter(|_| Mdl::FORCES_DEPEND_ON_VELOCITY)
+            .map(|(_, df_dv)| p.tr_mul(&df_dv) * dt2);
+        let position_term = force_jacobians
+            .filter(|_| Mdl::FORCES_DEPEND_ON_POSITION)
+            .map(|(df_dq, _)| p.tr_mul(&(df_dq * dt2 + model.input_jacobian(q, u_scaled))));
         let mut column = |j: usize, dq: SVector<f64, N>, dqdd_dt2: SVector<f64, N>, dv: SVector<f64, N>| {
             let mut dynamics = pt_mass * dqdd_dt2;
             if let Some(term) = &velocity_term {
@@ -646,12 +650,10 @@ where
             mu_dot[i] = formula.kinematics(i, mu[i], dt).0;
         }
         let off = N - A;
+        self.set_output_jacobian(&p);
         let mut solve_servo = |rhs: &dyn Fn(usize) -> f64| -> Result<SVector<f64, A>, Error> {
             for i in 0..A {
                 self.output_rhs[i] = rhs(i);
-                for k in 0..A {
-                    self.output_jacobian[(i, k)] = p[(off + i, split + k)];
-                }
             }
             self.output_solver
                 .solve(&self.output_jacobian, &mut self.output_rhs)
@@ -691,15 +693,21 @@ where
         self.redundant_steps
     }
 
-    /// Refuse an ill-conditioned `D2 phi_x` (eq. 12): 1-norm condition
-    /// estimate `|D| |D^-1|` with the inverse from one LU.
-    fn check_output_jacobian(&mut self, p: &SMatrix<f64, N, F>, t: f64) -> Result<(), Error> {
+    /// `D2 phi_x`, the load rows of `P` in the columns of `mu2` (eq. 12),
+    /// into the workspace `self.output_jacobian`.
+    fn set_output_jacobian(&mut self, p: &SMatrix<f64, N, F>) {
         let (off, split) = (N - A, F - A);
         for i in 0..A {
             for k in 0..A {
                 self.output_jacobian[(i, k)] = p[(off + i, split + k)];
             }
         }
+    }
+
+    /// Refuse an ill-conditioned `D2 phi_x` (eq. 12): 1-norm condition
+    /// estimate `|D| |D^-1|` with the inverse from one LU.
+    fn check_output_jacobian(&mut self, p: &SMatrix<f64, N, F>, t: f64) -> Result<(), Error> {
+        self.set_output_jacobian(p);
         let norm1 = |m: &DMatrix<f64>| {
             m.column_iter()
                 .map(|c| c.iter().map(|x| x.abs()).sum::<f64>())
