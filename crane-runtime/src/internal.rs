@@ -217,7 +217,6 @@ where
     companion.view_mut((r, 0), (r, r)).copy_from(&(-(&inverse * &b0)));
     companion.view_mut((r, r), (r, r)).copy_from(&(-(&inverse * &b1)));
     let eigenvalues: Vec<(f64, f64)> = companion.complex_eigenvalues().iter().map(|e| (e.re, e.im)).collect();
-    let size = r;
     let max_real_part = eigenvalues.iter().map(|e| e.0).fold(f64::NEG_INFINITY, f64::max);
-    Ok(InternalDynamics { t, dimension: 2 * size, eigenvalues, max_real_part })
+    Ok(InternalDynamics { t, dimension: 2 * r, eigenvalues, max_real_part })
 }
