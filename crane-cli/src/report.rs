@@ -80,6 +80,9 @@ pub struct Summary {
 /// The internal dynamics at sampled states of a run.
 #[derive(Debug, Clone, Serialize)]
 pub struct InternalSummary {
+    /// The count from the declaration's structure
+    /// (`CraneModel::STRUCTURE`; none for a hand-written model).
+    pub structural_dimension: Option<usize>,
     /// Largest dimension found (0: flat at every sampled state).
     pub dimension: usize,
     /// Largest real part of an eigenvalue, 1/s, and where (none when flat).
@@ -103,6 +106,7 @@ impl InternalSummary {
     /// Nothing sampled yet.
     pub fn none() -> Self {
         Self {
+            structural_dimension: None,
             dimension: 0,
             max_real_part: None,
             at: None,
@@ -130,7 +134,7 @@ where
 {
     let states = &solution.states;
     let stride = (states.len() / 100).max(1);
-    let mut summary = InternalSummary::none();
+    let mut summary = InternalSummary { structural_dimension: Mdl::STRUCTURE.map(|s| s.dimension), ..InternalSummary::none() };
     let scale = states.first().map_or(1.0, |s| s.u.amax().max(1.0));
     summary.runaway_at = states.iter().find(|s| !(s.u.amax() <= RUNAWAY_FACTOR * scale)).map(|s| s.t);
     // states past a runaway input are no longer physical: not diagnosed
@@ -413,7 +417,7 @@ mod tests {
     use crane_runtime::nalgebra::vector;
     use crane_runtime::trajectory::Poly9;
     use crane_runtime::{Options, init, simulate};
-    use crane_tests::coupled::Coupled;
+    use crane_models::coupled_trolley::CoupledTrolley as Coupled;
 
     fn run(c: f64) -> Solution<4, 1, 2> {
         let crane = Coupled { c, ..Coupled::default() };
@@ -431,6 +435,7 @@ mod tests {
     fn an_unstable_crane_is_reported_as_such() {
         let crane = Coupled::default();
         let summary = internal_summary(&crane, &run(2.0));
+        assert_eq!(summary.structural_dimension, Some(2), "{summary:?}");
         assert_eq!(summary.dimension, 2, "{summary:?}");
         assert!(!summary.stable, "{summary:?}");
         assert!(summary.max_real_part.unwrap() >= 9.9, "{summary:?}");
@@ -444,6 +449,8 @@ mod tests {
     fn a_flat_crane_is_reported_flat() {
         let crane = Coupled { c: 0.0, ..Coupled::default() };
         let summary = internal_summary(&crane, &run(0.0));
+        // structurally 2 (c is a parameter), numerically 0 at c = 0
+        assert_eq!(summary.structural_dimension, Some(2), "{summary:?}");
         assert_eq!(summary.dimension, 0, "{summary:?}");
         assert!(summary.stable && summary.runaway_at.is_none(), "{summary:?}");
     }

@@ -539,7 +539,7 @@ fn list_shows_the_registry() {
     let result = crane(&["list"]);
     assert!(result.status.success());
     let text = String::from_utf8_lossy(&result.stdout);
-    assert_eq!(crane_models::CATALOG.len(), 6);
+    assert_eq!(crane_models::CATALOG.len(), 7);
     for e in crane_models::CATALOG {
         let line = text.lines().find(|l| l.split_whitespace().next() == Some(e.name)).unwrap_or_else(|| panic!("{}: {text}", e.name));
         let fields: Vec<&str> = line.split_whitespace().collect();
@@ -650,4 +650,32 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
     let bad = crane(&["run", "navy-planar-pulley", "--replay", "--plant", "mass=3", "--quiet", "--out", dir.path().join("bad").to_str().unwrap()]);
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("plant parameter `mass`: unknown parameter"));
+}
+
+/// The built-in crane that is not flat (`coupled-trolley`, unstable
+/// internal dynamics with growth rate sqrt(lambda/c) = 9.9045 1/s at its
+/// start): `crane run` writes the results but warns on stderr and in
+/// summary.json, and `--strict` fails on it.
+#[test]
+fn unstable_internal_dynamics_are_reported_and_strict_fails_on_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("coupled");
+    let result = crane(&["run", "coupled-trolley", "--quiet", "--out", out.to_str().unwrap()]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(stderr.contains("unstable internal dynamics"), "{stderr}");
+    assert!(stderr.contains("exceeds 1e6 times its size at the start"), "{stderr}");
+    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let internal = &summary["internal_dynamics"];
+    assert_eq!(internal["structural_dimension"], 2, "{internal}");
+    assert_eq!(internal["dimension"], 2, "{internal}");
+    assert_eq!(internal["stable"], false, "{internal}");
+    assert!(internal["max_real_part"].as_f64().unwrap() >= 9.9045, "{internal}");
+    assert!(internal["runaway_at"].as_f64().is_some_and(|t| t < 2.5), "{internal}");
+    let strict_out = dir.path().join("strict");
+    let result = crane(&["run", "coupled-trolley", "--strict", "--quiet", "--out", strict_out.to_str().unwrap()]);
+    assert!(!result.status.success());
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(stderr.contains("infeasible (--strict): unstable internal dynamics"), "{stderr}");
+    assert!(strict_out.join("results.csv").exists(), "--strict still writes the results");
 }

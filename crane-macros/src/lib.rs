@@ -99,6 +99,7 @@ mod expr;
 mod model;
 mod parse;
 mod simplify;
+mod structure;
 
 #[cfg(test)]
 mod tests;

@@ -26,6 +26,18 @@
 //! crane. A positive real part means the causal inverse
 //! explodes along the path.
 //!
+//! The structure comes first where the model declares it
+//! ([`CraneModel::STRUCTURE`], from `crane_model!`): Pryce's signature
+//! method counts the states eqs. (22a-d) leave free, and where its system
+//! Jacobian is regular at the state (reciprocal condition above 1e-8 after
+//! scaling rows and columns) that count is the dimension. A flat crane is
+//! then answered without the reduction above, which misses constraints
+//! that act only through higher derivatives: `navy-3d-pulley`, whose pulley
+//! mass sits in a free direction (`A2` of rank 1) yet which is flat, and
+//! for which the reduction alone gave spurious pairs such as +-64.6 1/s.
+//! Where the count is positive the reduction must find the same dimension,
+//! or the state is reported as not resolved.
+//!
 //! The eigenvalues are frozen-time ones (the change of `Q`, `Z` along the
 //! motion is left out): exact at rest, an indicator along a move.
 //!
@@ -41,7 +53,7 @@
 
 use nalgebra::DMatrix;
 
-use crate::model::CraneModel;
+use crate::model::{CraneModel, Structure};
 use crate::solution::State;
 
 /// Relative size below which a singular value counts as zero (the inputs of
@@ -51,6 +63,12 @@ const RANK_TOLERANCE: f64 = 1e-9;
 /// Smallest-to-largest singular value of the block that fixes the
 /// coordinates without inertia, below which the reduction is refused.
 const REDUCTION_TOLERANCE: f64 = 1e-6;
+
+/// Reciprocal condition of Pryce's system Jacobian (rows and columns scaled
+/// to largest entry 1) above which it counts as regular: the built-ins
+/// measure 4e-3 to 4e-2 along their moves and exactly 0 where a rope
+/// carries nothing (navy-planar at rest at its start) or a coupling is 0.
+const REGULAR_TOLERANCE: f64 = 1e-8;
 
 /// Largest real part counted as zero: round-off of an eigenvalue of a
 /// companion matrix whose entries are `O(|A2^-1| |A0|)`.
@@ -127,6 +145,76 @@ fn left_null_basis(w: &DMatrix<f64>) -> DMatrix<f64> {
     }
 }
 
+/// Pryce's system Jacobian of eqs. (22a-d) at a state (see [`Structure`]):
+/// row `i`, column `j` is the derivative of equation `i` with respect to the
+/// `(c_j - d_i)`-th derivative of unknown `j`, and its reciprocal condition
+/// number after scaling every row and column to largest entry 1 (`0` if
+/// the offsets do not fit the sizes).
+fn system_jacobian_condition(
+    structure: &Structure,
+    mass: &DMatrix<f64>,
+    damping: &DMatrix<f64>,
+    stiffness: &DMatrix<f64>,
+    jac_g: &DMatrix<f64>,
+    inputs: &DMatrix<f64>,
+) -> f64 {
+    let (n, m, a) = (mass.nrows(), jac_g.nrows(), inputs.ncols());
+    let size = n + m + a;
+    let (c, d) = (structure.unknowns, structure.equations);
+    if c.len() != size || d.len() != size {
+        return 0.0;
+    }
+    let order = |i: usize, j: usize| i64::from(c[j]) - i64::from(d[i]);
+    let mut jac = DMatrix::zeros(size, size);
+    for i in 0..n {
+        for j in 0..n {
+            // M q'' - f - B^T u + G^T lambda = 0
+            jac[(i, j)] = match order(i, j) {
+                2 => mass[(i, j)],
+                1 => -damping[(i, j)],
+                0 => -stiffness[(i, j)],
+                _ => 0.0,
+            };
+        }
+        for k in 0..m {
+            if order(i, n + k) == 0 {
+                jac[(i, n + k)] = jac_g[(k, i)];
+            }
+        }
+        for r in 0..a {
+            if order(i, n + m + r) == 0 {
+                jac[(i, n + m + r)] = -inputs[(i, r)];
+            }
+        }
+    }
+    for k in 0..m {
+        for j in 0..n {
+            if order(n + k, j) == 0 {
+                jac[(n + k, j)] = jac_g[(k, j)];
+            }
+        }
+    }
+    for r in 0..a {
+        if order(n + m + r, n - a + r) == 0 {
+            jac[(n + m + r, n - a + r)] = 1.0;
+        }
+    }
+    for mut row in jac.row_iter_mut() {
+        let largest = row.amax();
+        if largest > 0.0 {
+            row /= largest;
+        }
+    }
+    for mut column in jac.column_iter_mut() {
+        let largest = column.amax();
+        if largest > 0.0 {
+            column /= largest;
+        }
+    }
+    let singular = jac.svd(false, false).singular_values;
+    singular.min() / singular.max().max(f64::MIN_POSITIVE)
+}
+
 /// The frozen-time internal dynamics of `model` at `state` (see the module
 /// docs).
 pub fn internal_dynamics<Mdl, const N: usize, const M: usize, const A: usize>(
@@ -159,6 +247,14 @@ where
     let left = left_null_basis(&w);
     let right = left_null_basis(&c.transpose());
     let t = state.t;
+    // where Pryce's system Jacobian is regular the structural count is the
+    // dimension (a flat crane needs no further work)
+    let structural = Mdl::STRUCTURE
+        .filter(|s| system_jacobian_condition(s, &mass, &damping, &stiffness, &jac_g, &inputs) > REGULAR_TOLERANCE)
+        .map(|s| s.dimension);
+    if structural == Some(0) {
+        return Ok(InternalDynamics { t, dimension: 0, eigenvalues: Vec::new(), max_real_part: f64::NEG_INFINITY });
+    }
     if left.ncols() != right.ncols() {
         return Err(InternalDynamicsError::NotSquare { t, left: left.ncols(), right: right.ncols() });
     }
@@ -173,7 +269,7 @@ where
     };
     // nalgebra sorts singular values in decreasing order
     let rank = svd.singular_values.iter().filter(|&&s| s > RANK_TOLERANCE * scale).count();
-    if rank == 0 {
+    if rank == 0 && structural.is_none() {
         return Ok(InternalDynamics { t, dimension: 0, eigenvalues: Vec::new(), max_real_part: f64::NEG_INFINITY });
     }
     // rows U^T, coordinates eta = V xi: the first `rank` rows read
@@ -218,5 +314,9 @@ where
     companion.view_mut((r, r), (r, r)).copy_from(&(-(&inverse * &b1)));
     let eigenvalues: Vec<(f64, f64)> = companion.complex_eigenvalues().iter().map(|e| (e.re, e.im)).collect();
     let max_real_part = eigenvalues.iter().map(|e| e.0).fold(f64::NEG_INFINITY, f64::max);
+    if structural.is_some_and(|d| d != 2 * r) {
+        // the reduction above missed constraints hidden at higher derivatives
+        return Err(InternalDynamicsError::MixedRank { t, rank, size });
+    }
     Ok(InternalDynamics { t, dimension: 2 * r, eigenvalues, max_real_part })
 }

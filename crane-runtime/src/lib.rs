@@ -88,7 +88,7 @@ pub mod trajectory;
 pub use driver::{Options, StepReport, Stepper};
 pub use error::Error;
 pub use minimal::{MinimalStepper, simulate_minimal};
-pub use model::{CraneModel, MapDerivatives, MinimalMap, ModelInfo, Rope, Scalar, UnknownParameter};
+pub use model::{CraneModel, MapDerivatives, MinimalMap, ModelInfo, Rope, Scalar, Structure, UnknownParameter};
 pub use redundant::{RedundantStepper, simulate};
 pub use scheme::Scheme;
 pub use solution::{Solution, State};

@@ -29,6 +29,7 @@ pub mod drawing;
 pub mod path;
 pub mod registry;
 
+pub mod coupled_trolley;
 pub mod gantry_3d;
 pub mod navy_3d;
 pub mod navy_3d_pulley;

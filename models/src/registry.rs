@@ -93,6 +93,7 @@ registry! {
     navy_3d_pulley::Navy3dPulley,
     gantry_3d::Gantry3d,
     tower_crane::TowerCrane,
+    coupled_trolley::CoupledTrolley,
 }
 
 #[cfg(test)]
@@ -113,6 +114,6 @@ mod tests {
             assert!(CATALOG[..i].iter().all(|o| o.name != e.name), "duplicate {}", e.name);
             assert_eq!(visit(e.name, Sizes), Some((e.n, e.m, e.a, e.name)));
         }
-        assert_eq!(CATALOG.len(), 6);
+        assert_eq!(CATALOG.len(), 7);
     }
 }

@@ -1,7 +1,6 @@
 //! Cross-crate checks of the crane models: generated code against the
 //! hand-written model, numerical solutions against the analytical references.
 
-pub mod coupled;
 pub mod handwritten;
 pub mod kit;
 

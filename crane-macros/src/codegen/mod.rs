@@ -74,9 +74,10 @@ fn str_list(idents: impl IntoIterator<Item = String>) -> TokenStream {
 pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
     let runtime = &model.runtime;
     let lints = quote!(#[allow(non_snake_case, unused_variables, clippy::too_many_lines, clippy::unreadable_literal)]);
-    let model_struct = model_struct(model);
+    let structure = crate::structure::structure(model, k);
+    let model_struct = model_struct(model, &structure);
     let inherent = inherent_impl(model, k, &lints);
-    let crane_model = crane_model_impl(model, k, &lints);
+    let crane_model = crane_model_impl(model, k, &structure, &lints);
     let minimal_items = match (&model.minimal, &k.minimal) {
         (Some(minimal), Some(kernels)) => generate_minimal(model, minimal, kernels, &lints),
         _ => TokenStream::new(),

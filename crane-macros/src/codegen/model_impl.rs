@@ -9,9 +9,10 @@ use super::body::{Output, body, matrix_output, single, vector_output};
 use super::printer::Mode;
 use super::{index, internal, str_list};
 use crate::model::{Kernels, Model};
+use crate::structure::Structure;
 
 /// `impl CraneModel<N, M, A> for Name { ... }`.
-pub(super) fn crane_model_impl(model: &Model, k: &Kernels, lints: &TokenStream) -> TokenStream {
+pub(super) fn crane_model_impl(model: &Model, k: &Kernels, structure: &Structure, lints: &TokenStream) -> TokenStream {
     let name = &model.name;
     let (n_lit, m_lit, a_lit) = (index(model.n()), index(model.m()), index(model.a()));
     let info = model_info(model);
@@ -21,6 +22,19 @@ pub(super) fn crane_model_impl(model: &Model, k: &Kernels, lints: &TokenStream) 
     let zero = |m: &[Vec<crate::expr::Id>]| m.iter().flatten().all(|&e| model.arena.is_zero(e));
     let on_velocity = !zero(&k.df_dv);
     let on_position = !(zero(&k.df_dq) && zero(&k.dbtu_dq));
+    let structure = match structure {
+        Structure::Internal { dimension, unknowns, equations } => {
+            let dimension = index(*dimension);
+            let unknowns = unknowns.iter().map(|&c| index(c.into()));
+            let equations = equations.iter().map(|&d| index(d.into()));
+            quote!(::core::option::Option::Some(__crane_runtime::Structure {
+                dimension: #dimension,
+                unknowns: &[#(#unknowns),*],
+                equations: &[#(#equations),*],
+            }))
+        }
+        Structure::Singular => quote!(::core::option::Option::None),
+    };
     quote! {
         #lints
         impl __crane_runtime::CraneModel<#n_lit, #m_lit, #a_lit> for #name {
@@ -28,6 +42,7 @@ pub(super) fn crane_model_impl(model: &Model, k: &Kernels, lints: &TokenStream) 
 
             const FORCES_DEPEND_ON_VELOCITY: bool = #on_velocity;
             const FORCES_DEPEND_ON_POSITION: bool = #on_position;
+            const STRUCTURE: ::core::option::Option<__crane_runtime::Structure> = #structure;
 
             #parameters
 

@@ -7,10 +7,11 @@ use quote::quote;
 use super::constants::default_value;
 use super::doc;
 use crate::model::Model;
+use crate::structure::Structure;
 
 /// The struct, under the user's attributes and a summary of its sizes, and
 /// its `Default` impl.
-pub(super) fn model_struct(model: &Model) -> TokenStream {
+pub(super) fn model_struct(model: &Model, structure: &Structure) -> TokenStream {
     let name = &model.name;
     let vis = &model.vis;
     let attrs = &model.attrs;
@@ -31,6 +32,7 @@ pub(super) fn model_struct(model: &Model) -> TokenStream {
         "Declared with `crane_model!`: n = {n} coordinates, m = {m} constraints, a = {a} inputs, f = n - m = {} degrees of freedom.",
         n - m
     ));
+    let structure_doc = doc(structure.describe());
     let summary_separator = if attrs.iter().any(|a| a.path().is_ident("doc")) {
         doc("")
     } else {
@@ -40,6 +42,8 @@ pub(super) fn model_struct(model: &Model) -> TokenStream {
         #(#attrs)*
         #summary_separator
         #summary
+        #[doc = ""]
+        #structure_doc
         #[derive(::core::fmt::Debug, ::core::clone::Clone, ::core::marker::Copy, ::core::cmp::PartialEq)]
         #[allow(non_snake_case)]
         #vis struct #name {

@@ -1,6 +1,8 @@
 /// Planar US Navy crane with massless main pulley (paper, sect. 5.1).
 ///
 /// Declared with `crane_model!`: n = 7 coordinates, m = 3 constraints, a = 2 inputs, f = n - m = 4 degrees of freedom.
+///
+/// Internal dynamics (structural, eqs. 22a-d): none, the load path fixes every state (flat).
 #[derive(
     ::core::fmt::Debug,
     ::core::clone::Clone,
@@ -214,6 +216,11 @@ const _: () = {
         };
         const FORCES_DEPEND_ON_VELOCITY: bool = false;
         const FORCES_DEPEND_ON_POSITION: bool = false;
+        const STRUCTURE: ::core::option::Option<__crane_runtime::Structure> = ::core::option::Option::Some(__crane_runtime::Structure {
+            dimension: 0,
+            unknowns: &[2, 2, 2, 2, 2, 4, 4, 2, 2, 2, 0, 0],
+            equations: &[0, 0, 2, 2, 2, 2, 2, 2, 2, 2, 4, 4],
+        });
         fn parameter_values(&self) -> ::std::vec::Vec<f64> {
             ::std::vec![
                 self.m_l, self.J1, self.J2, self.r1, self.r2, self.alpha, self.l, self.g
