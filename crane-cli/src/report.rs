@@ -105,24 +105,25 @@ pub struct InternalSummary {
 impl InternalSummary {
     /// Nothing sampled yet.
     pub fn none() -> Self {
-        Self {
-            structural_dimension: None,
-            dimension: 0,
-            max_real_part: None,
-            at: None,
-            stable: true,
-            unresolved: 0,
-            unresolved_reason: None,
-            samples: 0,
-            runaway_at: None,
-        }
+        Self::from(crane_runtime::internal::RunDiagnosis::none())
     }
 }
 
-/// An input this many times the largest at the start is beyond any
-/// physical scale of the crane (the coupled crane: 3.4e9 times at
-/// 2.5 s).
-const RUNAWAY_FACTOR: f64 = 1e6;
+impl From<crane_runtime::internal::RunDiagnosis> for InternalSummary {
+    fn from(d: crane_runtime::internal::RunDiagnosis) -> Self {
+        Self {
+            structural_dimension: d.structural_dimension,
+            dimension: d.dimension,
+            max_real_part: d.max_real_part,
+            at: d.at,
+            stable: d.stable,
+            unresolved: d.unresolved,
+            unresolved_reason: d.unresolved_reason.map(|e| e.to_string()),
+            samples: d.samples,
+            runaway_at: d.runaway_at,
+        }
+    }
+}
 
 /// The internal dynamics at up to 101 evenly spaced states of `solution`.
 pub fn internal_summary<Mdl, const N: usize, const M: usize, const A: usize>(
@@ -132,31 +133,7 @@ pub fn internal_summary<Mdl, const N: usize, const M: usize, const A: usize>(
 where
     Mdl: crane_runtime::CraneModel<N, M, A>,
 {
-    let states = &solution.states;
-    let stride = (states.len() / 100).max(1);
-    let mut summary = InternalSummary { structural_dimension: Mdl::STRUCTURE.map(|s| s.dimension), ..InternalSummary::none() };
-    let scale = states.first().map_or(1.0, |s| s.u.amax().max(1.0));
-    summary.runaway_at = states.iter().find(|s| !(s.u.amax() <= RUNAWAY_FACTOR * scale)).map(|s| s.t);
-    // states past a runaway input are no longer physical: not diagnosed
-    let physical = |t: f64| summary.runaway_at.is_none_or(|runaway| t < runaway);
-    for state in states.iter().step_by(stride).take_while(|s| physical(s.t)) {
-        summary.samples += 1;
-        match crane_runtime::internal::internal_dynamics(model, state) {
-            Ok(d) => {
-                summary.dimension = summary.dimension.max(d.dimension);
-                if d.dimension > 0 && summary.max_real_part.is_none_or(|r| d.max_real_part > r) {
-                    summary.max_real_part = Some(d.max_real_part);
-                    summary.at = Some(state.t);
-                }
-                summary.stable &= d.is_stable();
-            }
-            Err(e) => {
-                summary.unresolved += 1;
-                summary.unresolved_reason.get_or_insert_with(|| e.to_string());
-            }
-        }
-    }
-    summary
+    crane_runtime::internal::diagnose(model, solution, 100).into()
 }
 
 /// The replay's results in summary.json.
@@ -404,7 +381,8 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
     }
     if let Some(t) = internal.runaway_at {
         out.push(format!(
-            "an input exceeds {RUNAWAY_FACTOR:e} times its size at the start from t = {} s",
+            "an input exceeds {:e} times its size at the start from t = {} s",
+            crane_runtime::internal::RUNAWAY_FACTOR,
             crane_runtime::error::Seconds(t)
         ));
     }

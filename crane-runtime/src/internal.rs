@@ -54,7 +54,7 @@
 use nalgebra::DMatrix;
 
 use crate::model::{CraneModel, Structure};
-use crate::solution::State;
+use crate::solution::{Solution, State};
 
 /// Relative size below which a singular value counts as zero (the inputs of
 /// the decompositions are exact to round-off, ~1e-16 of their largest entry).
@@ -319,4 +319,111 @@ where
         return Err(InternalDynamicsError::MixedRank { t, rank, size });
     }
     Ok(InternalDynamics { t, dimension: 2 * r, eigenvalues, max_real_part })
+}
+
+/// An input this many times the largest input at the start (at least 1) is
+/// beyond any physical scale of the crane: the mark of unstable internal
+/// dynamics in computed torques (the coupled crane: 3.4e9 times at 2.5 s).
+pub const RUNAWAY_FACTOR: f64 = 1e6;
+
+/// The internal dynamics along a computed run ([`diagnose`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunDiagnosis {
+    /// The count from the declaration ([`CraneModel::STRUCTURE`]).
+    pub structural_dimension: Option<usize>,
+    /// Largest dimension found at the sampled states (0: flat at all).
+    pub dimension: usize,
+    /// Largest real part of an eigenvalue, 1/s, and the time of its state
+    /// (`None` when flat).
+    pub max_real_part: Option<f64>,
+    /// The time of `max_real_part`.
+    pub at: Option<f64>,
+    /// No eigenvalue at any sampled state with a real part above round-off.
+    pub stable: bool,
+    /// Sampled states where the diagnosis could not tell, and the first
+    /// reason.
+    pub unresolved: usize,
+    /// Why the first unresolved state was not resolved.
+    pub unresolved_reason: Option<InternalDynamicsError>,
+    /// States sampled (evenly spaced, up to `runaway_at`: past a runaway
+    /// input the states are not physical and not diagnosed).
+    pub samples: usize,
+    /// First time an input exceeds [`RUNAWAY_FACTOR`] times its size at the
+    /// start.
+    pub runaway_at: Option<f64>,
+}
+
+impl RunDiagnosis {
+    /// Nothing diagnosed: flat, stable, no samples.
+    pub fn none() -> Self {
+        Self {
+            structural_dimension: None,
+            dimension: 0,
+            max_real_part: None,
+            at: None,
+            stable: true,
+            unresolved: 0,
+            unresolved_reason: None,
+            samples: 0,
+            runaway_at: None,
+        }
+    }
+
+    /// Whether the run's torques can be used as a feedforward: stable
+    /// internal dynamics and no runaway input.
+    pub fn is_usable(&self) -> bool {
+        self.stable && self.runaway_at.is_none()
+    }
+}
+
+/// The internal dynamics of a run of `model`: [`internal_dynamics`] at up
+/// to `samples + 1` evenly spaced states of `solution` (before its first
+/// runaway input), with the largest real part and where it occurs.
+///
+/// `simulate` returns whatever the causal inverse computes; this is the
+/// check that tells a usable result from an exploding one.
+///
+/// ```
+/// # use crane_runtime::{CraneModel, Solution};
+/// # fn demo<Mdl: CraneModel<4, 1, 2>>(model: &Mdl, run: &Solution<4, 1, 2>) {
+/// let diagnosis = crane_runtime::internal::diagnose(model, run, 100);
+/// if !diagnosis.is_usable() {
+///     eprintln!("not a feedforward: unstable internal dynamics ({:?} 1/s at t = {:?} s), runaway from {:?} s",
+///         diagnosis.max_real_part, diagnosis.at, diagnosis.runaway_at);
+/// }
+/// # }
+/// ```
+pub fn diagnose<Mdl, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    solution: &Solution<N, M, A>,
+    samples: usize,
+) -> RunDiagnosis
+where
+    Mdl: CraneModel<N, M, A>,
+{
+    let states = &solution.states;
+    let stride = (states.len() / samples.max(1)).max(1);
+    let mut diagnosis = RunDiagnosis { structural_dimension: Mdl::STRUCTURE.map(|s| s.dimension), ..RunDiagnosis::none() };
+    let scale = states.first().map_or(1.0, |s| s.u.amax().max(1.0));
+    diagnosis.runaway_at = states.iter().find(|s| !(s.u.amax() <= RUNAWAY_FACTOR * scale)).map(|s| s.t);
+    let runaway_at = diagnosis.runaway_at;
+    let physical = |t: f64| runaway_at.is_none_or(|runaway| t < runaway);
+    for state in states.iter().step_by(stride).take_while(|s| physical(s.t)) {
+        diagnosis.samples += 1;
+        match internal_dynamics(model, state) {
+            Ok(d) => {
+                diagnosis.dimension = diagnosis.dimension.max(d.dimension);
+                if d.dimension > 0 && diagnosis.max_real_part.is_none_or(|r| d.max_real_part > r) {
+                    diagnosis.max_real_part = Some(d.max_real_part);
+                    diagnosis.at = Some(state.t);
+                }
+                diagnosis.stable &= d.is_stable();
+            }
+            Err(e) => {
+                diagnosis.unresolved += 1;
+                diagnosis.unresolved_reason.get_or_insert(e);
+            }
+        }
+    }
+    diagnosis
 }

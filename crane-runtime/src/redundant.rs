@@ -286,6 +286,9 @@ where
 /// Integrate eqs. (22a-d) from `start` to `options.tf` with `options.scheme`.
 ///
 /// Storage for all steps is reserved up front; the step loop does not allocate.
+/// The result is what the causal inverse computes: for a crane that is not
+/// flat it can grow without bound, which
+/// [`internal::diagnose`](crate::internal::diagnose) tells.
 pub fn simulate<Mdl, Tr, const N: usize, const M: usize, const A: usize>(
     model: &Mdl,
     trajectory: Tr,

@@ -54,6 +54,12 @@
 //! let bdf4 = simulate(&crane, &path, &start, &Options::new(0.01, 5.0).with_scheme(Scheme::Bdf4))?;
 //! let (a, b) = (run.state_near(2.5).unwrap(), bdf4.state_near(2.5).unwrap());
 //! assert!((a.u - b.u).norm() < 0.05 * b.u.norm());
+//!
+//! // flat (the path fixes every state: the declaration says so), so the
+//! // torques are the unique ones; a crane with internal dynamics would be
+//! // told here (`crane_runtime::internal`)
+//! assert_eq!(<Gantry as CraneModel<4, 1, 2>>::STRUCTURE.map(|s| s.dimension), Some(0));
+//! assert!(internal::diagnose(&crane, &run, 100).is_usable());
 //! # Ok(())
 //! # }
 //! ```
@@ -90,6 +96,6 @@ pub mod prelude {
     pub use crane_runtime::trajectory::{FromFn, Poly9, ThreePhase, Trajectory};
     pub use crane_runtime::{
         CraneModel, Error, MinimalMap, MinimalStepper, Options, RedundantStepper, Scheme, Solution, State, Stepper,
-        init, simulate, simulate_minimal,
+        init, internal, simulate, simulate_minimal,
     };
 }
