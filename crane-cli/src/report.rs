@@ -349,6 +349,13 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
             lines.push(format!("relative error of u at t = 1.5 s against the analytical reference (eq. 48): {e:.3e}"));
         }
     }
+    let internal = &summary.internal_dynamics;
+    lines.push(match (internal.dimension, internal.stable) {
+        (0, _) if internal.unresolved == 0 => "internal dynamics: none (flat), the torques are the unique ones".to_string(),
+        (0, _) => format!("internal dynamics: not resolved at {} of {} sampled states", internal.unresolved, internal.samples),
+        (k, true) => format!("internal dynamics: dimension {k}, stable"),
+        (k, false) => format!("WARNING: internal dynamics: dimension {k}, UNSTABLE: the torques are not a usable feedforward"),
+    });
     lines
 }
 
