@@ -5,6 +5,7 @@
 //! crane run navy-planar [--scenario FILE.toml] [--dt 0.01] [--tf 4] [--scheme bdf4] [--out out/navy-planar] [--strict]
 //! crane convergence navy-planar [--formulation minimal] [--scheme bdf4]
 //! crane bench navy-planar [--dt 0.01] [--scheme bdf4] [--repeat 20] [--json]
+//! crane fmu navy-planar [--out out/navy-planar.fmu] [--library target/release/libcrane_fmu.so]
 //! ```
 
 mod convergence;
@@ -134,6 +135,21 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Write an FMI 2.0 co-simulation FMU of a built-in model (the inverse
+    /// model: load target in, inputs, coordinates, multipliers and tensions
+    /// out); see the README, "Using a crane in Simulink, Modelica or Python".
+    Fmu {
+        /// Model name (see `crane list`).
+        model: String,
+        /// The FMU to write (default out/MODEL.fmu).
+        #[arg(long, value_name = "FILE.fmu")]
+        out: Option<PathBuf>,
+        /// The shared library of the built-in FMUs (default: libcrane_fmu.so
+        /// next to this executable, as `cargo build --release --workspace`
+        /// leaves it).
+        #[arg(long, value_name = "FILE.so")]
+        library: Option<PathBuf>,
+    },
 }
 
 /// Which index-3 formulation to integrate.
@@ -205,6 +221,10 @@ enum CliError {
     Infeasible { problems: String, out: String },
     #[error("{0}")]
     Convergence(String),
+    #[error("no FMU library at {0}: build it with `cargo build --release -p crane-fmu` or give --library")]
+    NoFmuLibrary(String),
+    #[error(transparent)]
+    Package(#[from] crane_fmi::package::PackageError),
 }
 
 /// A command on one crane, run by [`registry::visit`] with the crane's
@@ -252,6 +272,19 @@ impl Visit for InternalAtStart {
             Some(d) => format!("{} {}", d.dimension, if d.is_stable() { "stable" } else { "unstable" }),
             None => "?".into(),
         }
+    }
+}
+
+/// Package the FMU of a crane.
+struct Package<'a> {
+    library: &'a std::path::Path,
+    out: &'a std::path::Path,
+}
+
+impl Visit for Package<'_> {
+    type Output = Result<(), CliError>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        Ok(crane_fmi::package::package::<C, N, M, A>(self.library, self.out)?)
     }
 }
 
@@ -360,6 +393,22 @@ fn execute(command: Command) -> Result<(), CliError> {
                 scheme,
             };
             dispatch(&model, Job::Bench { overrides, repeat, json }).map(|_| ())
+        }
+        Command::Fmu { model, out, library } => {
+            let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("{model}.fmu")));
+            let library = match library {
+                Some(path) => path,
+                None => std::env::current_exe()
+                    .map_err(|source| CliError::Io { context: "locating the crane executable".into(), source })?
+                    .with_file_name("libcrane_fmu.so"),
+            };
+            if !library.is_file() {
+                return Err(CliError::NoFmuLibrary(library.display().to_string()));
+            }
+            registry::visit(&model, Package { library: &library, out: &out })
+                .unwrap_or_else(|| Err(CliError::UnknownModel(model.clone())))?;
+            println!("wrote {} (FMI 2.0 co-simulation, binaries/linux64/{}.so)", out.display(), crane_fmi::description::model_identifier(&model));
+            Ok(())
         }
         Command::Convergence {
             model,

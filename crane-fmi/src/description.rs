@@ -1,0 +1,95 @@
+//! `modelDescription.xml` (FMI 2.0, co-simulation) from the variable table,
+//! and the GUID that ties a description to its binary.
+
+use std::fmt::Write;
+
+use crane_models::Crane;
+
+use crate::variables::{Causality, NameClash, variables};
+
+/// The `modelIdentifier` of a crane: its name with every character that is
+/// not ASCII alphanumeric replaced by `_` (`navy-planar` → `navy_planar`);
+/// the binary in the FMU is `binaries/linux64/<identifier>.so`.
+pub fn model_identifier(name: &str) -> String {
+    name.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect()
+}
+
+/// `text` with the five XML special characters escaped.
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;").replace('\'', "&apos;")
+}
+
+/// A start value as XML reads it back exactly (shortest round trip).
+fn number(value: f64) -> String {
+    format!("{value:?}")
+}
+
+/// 64-bit FNV-1a of `bytes` from `seed`.
+fn fnv1a(bytes: &[u8], seed: u64) -> u64 {
+    bytes.iter().fold(seed, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
+}
+
+/// The GUID of a description body: two FNV-1a hashes of it, printed as a
+/// UUID. It changes with any variable, start value or version of this
+/// crate, so a binary refuses a description it was not built with.
+fn guid(body: &str) -> String {
+    let a = fnv1a(body.as_bytes(), 0xcbf2_9ce4_8422_2325);
+    let b = fnv1a(body.as_bytes(), a ^ 0x9e37_79b9_7f4a_7c15);
+    format!(
+        "{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}",
+        a >> 32,
+        (a >> 16) & 0xffff,
+        a & 0xffff,
+        b >> 48,
+        b & 0xffff_ffff_ffff
+    )
+}
+
+/// `modelDescription.xml` of crane `C` and its GUID.
+pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Result<(String, String), NameClash> {
+    let table = variables::<C, N, M, A>()?;
+    let maneuver = C::maneuver();
+    let mut vars = String::new();
+    for v in &table {
+        let (causality, variability, initial) = match v.causality {
+            Causality::Parameter => ("parameter", "fixed", Some("exact")),
+            Causality::Input => ("input", "continuous", None),
+            Causality::Output => ("output", "continuous", Some("calculated")),
+        };
+        let initial = initial.map(|i| format!(" initial=\"{i}\"")).unwrap_or_default();
+        let kind = if v.integer { "Integer" } else { "Real" };
+        let start = match (v.causality, v.integer) {
+            (Causality::Output, _) => String::new(),
+            (_, true) => format!(" start=\"{}\"", v.start as i64),
+            (_, false) => format!(" start=\"{}\"", number(v.start)),
+        };
+        let _ = write!(
+            vars,
+            "    <ScalarVariable name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{causality}\" variability=\"{variability}\"{initial}>\n      <{kind}{start}/>\n    </ScalarVariable>\n",
+            escape(&v.name),
+            v.value_reference,
+            escape(&v.description),
+        );
+    }
+    let outputs: String = table
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| v.causality == Causality::Output)
+        .map(|(i, _)| format!("      <Unknown index=\"{}\"/>\n", i + 1))
+        .collect();
+    let identifier = model_identifier(C::NAME);
+    let body = format!(
+        "  <CoSimulation modelIdentifier=\"{identifier}\" canHandleVariableCommunicationStepSize=\"true\" canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"false\" canSerializeFMUstate=\"false\" providesDirectionalDerivative=\"false\"/>\n  <DefaultExperiment startTime=\"{}\" stopTime=\"{}\" stepSize=\"{}\"/>\n  <ModelVariables>\n{vars}  </ModelVariables>\n  <ModelStructure>\n    <Outputs>\n{outputs}    </Outputs>\n    <InitialUnknowns>\n{outputs}    </InitialUnknowns>\n  </ModelStructure>\n",
+        number(maneuver.path.t0),
+        number(maneuver.path.t1),
+        number(crate::variables::DEFAULT_DT),
+    );
+    let version = env!("CARGO_PKG_VERSION");
+    let guid = guid(&format!("{version}\n{}\n{body}", C::NAME));
+    let xml = format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{}\" guid=\"{guid}\" description=\"{}\" generationTool=\"crane-fmi {version}\" variableNamingConvention=\"flat\" numberOfEventIndicators=\"0\">\n{body}</fmiModelDescription>\n",
+        escape(C::NAME),
+        escape(C::DESCRIPTION),
+    );
+    Ok((xml, guid))
+}

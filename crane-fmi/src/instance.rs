@@ -1,0 +1,438 @@
+//! One FMU instance: the FMI 2.0 co-simulation state machine around a
+//! redundant-coordinate stepper, in safe Rust (the C entry points in
+//! `ffi` only translate pointers and statuses).
+//!
+//! `exit_initialization_mode` builds the crane from the parameters, the
+//! path, the consistent start and the stepper (all allocation happens
+//! here); `do_step(t, h)` advances `h / dt` internal steps and writes the
+//! outputs, without allocating.
+
+use std::mem::ManuallyDrop;
+
+use crane_models::{Crane, Path, PathSpec, Profile};
+use crane_runtime::driver::ServoTarget;
+use crane_runtime::newton::NewtonOptions;
+use crane_runtime::{CraneModel, RedundantStepper, Scheme, State, Trajectory, init};
+use nalgebra::SVector;
+
+use crate::variables::{Causality, NameClash, PathKind, Role, Variable, variables};
+
+/// What an instance can be asked to do, whatever its crane: the object the
+/// C entry points hold.
+pub trait Component {
+    /// Set Real variables.
+    fn set_real(&mut self, vr: &[u32], values: &[f64]) -> Result<(), String>;
+    /// Get Real variables.
+    fn get_real(&self, vr: &[u32], values: &mut [f64]) -> Result<(), String>;
+    /// Set Integer variables.
+    fn set_integer(&mut self, vr: &[u32], values: &[i32]) -> Result<(), String>;
+    /// Get Integer variables.
+    fn get_integer(&self, vr: &[u32], values: &mut [i32]) -> Result<(), String>;
+    /// `fmi2SetupExperiment`: the start time.
+    fn setup_experiment(&mut self, start_time: f64) -> Result<(), String>;
+    /// `fmi2EnterInitializationMode`.
+    fn enter_initialization_mode(&mut self) -> Result<(), String>;
+    /// `fmi2ExitInitializationMode`: build the crane, its start and stepper.
+    fn exit_initialization_mode(&mut self) -> Result<(), String>;
+    /// `fmi2DoStep`: advance from `t` by `h`, a whole multiple of `dt`.
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), String>;
+    /// `fmi2Terminate`.
+    fn terminate(&mut self) -> Result<(), String>;
+    /// `fmi2Reset`: back to the state after instantiation.
+    fn reset(&mut self);
+    /// Time of the last state.
+    fn time(&self) -> f64;
+    /// Whether the instance was terminated.
+    fn terminated(&self) -> bool;
+}
+
+/// Where an instance is in the FMI 2.0 co-simulation state machine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    Instantiated,
+    Initialization,
+    Stepping,
+    Terminated,
+    /// After an error: only reset, get and free.
+    Failed,
+}
+
+/// The load path of an instance.
+#[derive(Debug, Clone)]
+enum FmuPath<const A: usize> {
+    /// The built-in move.
+    BuiltIn(Path<A>),
+    /// The external target, at rest at the start (the steps take their
+    /// targets from the inputs).
+    Rest(SVector<f64, A>),
+}
+
+impl<const A: usize> Trajectory<A> for FmuPath<A> {
+    fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
+        match self {
+            FmuPath::BuiltIn(path) => path.derivative(t, k),
+            FmuPath::Rest(x) if k == 0 => *x,
+            FmuPath::Rest(_) => SVector::zeros(),
+        }
+    }
+}
+
+/// The quintic through `(gamma, gamma', gamma'')` at `ta` and at `tb`,
+/// evaluated at `t`: the targets of the internal steps of an external step.
+fn hermite<const A: usize>(ta: f64, a: &ServoTarget<A>, tb: f64, b: &ServoTarget<A>, t: f64) -> ServoTarget<A> {
+    let h = tb - ta;
+    let s = (t - ta) / h;
+    let mut out = [SVector::zeros(); 3];
+    for k in 0..A {
+        let (c0, c1, c2) = (a[0][k], a[1][k] * h, 0.5 * a[2][k] * h * h);
+        let p = b[0][k] - (c0 + c1 + c2);
+        let v = b[1][k] * h - (c1 + 2.0 * c2);
+        let acc = b[2][k] * h * h - 2.0 * c2;
+        let c = [c0, c1, c2, 10.0 * p - 4.0 * v + 0.5 * acc, -15.0 * p + 7.0 * v - acc, 6.0 * p - 3.0 * v + 0.5 * acc];
+        out[0][k] = c.iter().rev().fold(0.0, |acc, &ci| acc * s + ci);
+        out[1][k] = (1..6).rev().fold(0.0, |acc, i| acc * s + i as f64 * c[i]) / h;
+        out[2][k] = (2..6).rev().fold(0.0, |acc, i| acc * s + (i * (i - 1)) as f64 * c[i]) / (h * h);
+    }
+    out
+}
+
+/// A running crane: the stepper on a model it borrows from this struct.
+struct Run<Mdl: CraneModel<N, M, A> + 'static, const N: usize, const M: usize, const A: usize> {
+    /// Owned by this struct (from `Box::into_raw`), freed after the stepper.
+    model: *mut Mdl,
+    stepper: ManuallyDrop<RedundantStepper<'static, Mdl, FmuPath<A>, N, M, A>>,
+    /// The external target at the last state, if the path is external.
+    external: Option<ServoTarget<A>>,
+    /// Rope lengths (one per rope).
+    lengths: Vec<f64>,
+    t0: f64,
+    dt: f64,
+    steps: usize,
+}
+
+impl<Mdl: CraneModel<N, M, A> + 'static, const N: usize, const M: usize, const A: usize> Drop for Run<Mdl, N, M, A> {
+    fn drop(&mut self) {
+        // SAFETY: the stepper borrows `*self.model`; it is dropped first and
+        // never used again, then the box made in `Run::new` is freed once.
+        unsafe {
+            ManuallyDrop::drop(&mut self.stepper);
+            drop(Box::from_raw(self.model));
+        }
+    }
+}
+
+impl<Mdl: CraneModel<N, M, A> + 'static, const N: usize, const M: usize, const A: usize> Run<Mdl, N, M, A> {
+    fn new(
+        model: Mdl,
+        path: FmuPath<A>,
+        start: &State<N, M, A>,
+        dt: f64,
+        scheme: Scheme,
+        external: Option<ServoTarget<A>>,
+    ) -> Result<Self, String> {
+        let model = Box::into_raw(Box::new(model));
+        // SAFETY: `model` stays valid until `drop`, which frees it after the
+        // stepper; on error it is freed here.
+        let borrowed: &'static Mdl = unsafe { &*model };
+        match RedundantStepper::with_scheme(borrowed, path, start, dt, scheme, NewtonOptions::default()) {
+            Ok(stepper) => Ok(Self {
+                model,
+                stepper: ManuallyDrop::new(stepper),
+                external,
+                lengths: vec![0.0; Mdl::INFO.ropes.len()],
+                t0: start.t,
+                dt,
+                steps: 0,
+            }),
+            Err(e) => {
+                // SAFETY: nothing borrows the model any more
+                unsafe { drop(Box::from_raw(model)) };
+                Err(e.to_string())
+            }
+        }
+    }
+}
+
+/// An FMU instance of crane `C`.
+pub struct Instance<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> {
+    table: Vec<Variable>,
+    defaults: (Vec<f64>, [i32; 2]),
+    reals: Vec<f64>,
+    integers: [i32; 2],
+    mode: Mode,
+    start_time: f64,
+    run: Option<Run<C::Model, N, M, A>>,
+}
+
+impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance<C, N, M, A> {
+    /// A new instance with every variable at its start value.
+    pub fn new() -> Result<Self, NameClash> {
+        let table = variables::<C, N, M, A>()?;
+        let reals: Vec<f64> = table.iter().filter(|v| !v.integer).map(|v| v.start).collect();
+        let mut integers = [0; 2];
+        for v in table.iter().filter(|v| v.integer) {
+            integers[v.value_reference as usize] = v.start as i32;
+        }
+        Ok(Self {
+            defaults: (reals.clone(), integers),
+            table,
+            reals,
+            integers,
+            mode: Mode::Instantiated,
+            start_time: C::maneuver().path.t0,
+            run: None,
+        })
+    }
+
+    /// The Real variable with value reference `vr`.
+    fn real_variable(&self, vr: u32) -> Result<&Variable, String> {
+        self.table
+            .iter()
+            .find(|v| !v.integer && v.value_reference == vr)
+            .ok_or_else(|| format!("no Real variable has value reference {vr}"))
+    }
+
+    /// The Real variable playing `role`, its value.
+    fn value(&self, role: Role) -> f64 {
+        self.table.iter().find(|v| v.role == role).map_or(f64::NAN, |v| self.reals[v.value_reference as usize])
+    }
+
+    /// The external target in the inputs.
+    fn target(&self) -> ServoTarget<A> {
+        let mut target = [SVector::zeros(); 3];
+        for (order, t) in target.iter_mut().enumerate() {
+            for k in 0..A {
+                t[k] = self.value(Role::Target(k, order));
+            }
+        }
+        target
+    }
+
+    /// Whether a variable of `causality` may be set now.
+    fn settable(&self, causality: Causality, name: &str) -> Result<(), String> {
+        match (causality, self.mode) {
+            (_, Mode::Failed | Mode::Terminated) => Err(format!("`{name}` cannot be set after an error or fmi2Terminate (fmi2Reset first)")),
+            (Causality::Output, _) => Err(format!("`{name}` is an output and cannot be set")),
+            (Causality::Parameter, Mode::Stepping) => {
+                Err(format!("parameter `{name}` can only be set before fmi2ExitInitializationMode"))
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// The crane, path, start and stepper from the variables.
+    fn build(&self) -> Result<Run<C::Model, N, M, A>, String> {
+        let info = <C::Model as CraneModel<N, M, A>>::INFO;
+        let mut model = C::Model::default();
+        for (k, name) in info.parameters.iter().enumerate() {
+            model.set_parameter(name, self.value(Role::Parameter(k))).map_err(|e| e.to_string())?;
+        }
+        crane_runtime::driver::check_parameters(&model).map_err(|e| e.to_string())?;
+        let dt = self.value(Role::Dt);
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(format!("dt = {dt}: the internal step must be positive"));
+        }
+        let scheme = match self.integers[0] {
+            1 => Scheme::BackwardEuler,
+            2 => Scheme::Bdf2,
+            3 => Scheme::Bdf3,
+            4 => Scheme::Bdf4,
+            5 => Scheme::Bdf5,
+            other => return Err(format!("scheme = {other}: expected 1 (backward Euler) or 2..5 (BDF-k)")),
+        };
+        let kind = PathKind::from_value(self.integers[1])
+            .ok_or_else(|| format!("path = {}: expected 0 (poly9), 1 (three-phase), 2 (smooth three-phase) or 3 (external)", self.integers[1]))?;
+        let position = |role: fn(usize) -> Role| SVector::<f64, A>::from_fn(|k, _| self.value(role(k)));
+        let (path, external) = match kind {
+            PathKind::External => {
+                let target = self.target();
+                if target[1].amax() != 0.0 || target[2].amax() != 0.0 {
+                    return Err("path = 3 (external): the run starts at rest; set gamma_<x>_d and gamma_<x>_dd to 0 before fmi2ExitInitializationMode".into());
+                }
+                (FmuPath::Rest(target[0]), Some(target))
+            }
+            _ => {
+                let tau0 = self.value(Role::Tau0);
+                let profile = match kind {
+                    PathKind::ThreePhase => Profile::ThreePhase { tau0 },
+                    PathKind::SmoothThreePhase => Profile::SmoothThreePhase { tau0 },
+                    _ => Profile::Poly9,
+                };
+                let t0 = self.value(Role::T0);
+                let spec = PathSpec { profile, t0, t1: t0 + self.value(Role::Duration), start: position(Role::Start), end: position(Role::End) };
+                (FmuPath::BuiltIn(Path::new(spec).map_err(|e| format!("the built-in move: {e}"))?), None)
+            }
+        };
+        // the start of `crane run` where it holds (the default move), else
+        // the static equilibrium from the same guess
+        let p0 = C::maneuver().p0;
+        let start = init::check_start(&model, &path, self.start_time, &p0, None)
+            .or_else(|_| init::static_equilibrium(&model, &path, self.start_time, &p0))
+            .map_err(|e| format!("no consistent start at t = {}: {e}", self.start_time))?;
+        Run::new(model, path, &start, dt, scheme, external)
+    }
+
+    /// Copy the last state into the outputs.
+    fn write_outputs(&mut self) {
+        let Some(run) = self.run.as_mut() else { return };
+        let state = *run.stepper.state();
+        // SAFETY: see `Run::drop`
+        let model = unsafe { &*run.model };
+        model.rope_lengths(&state.q, &mut run.lengths);
+        let ropes = <C::Model as CraneModel<N, M, A>>::INFO.ropes;
+        for v in &self.table {
+            let value = match v.role {
+                Role::Input(k) => state.u[k],
+                Role::Coordinate(k) => state.q[k],
+                Role::Multiplier(k) => state.lambda[k],
+                Role::Tension(k) => state.lambda[ropes[k].constraint] * run.lengths[k],
+                _ => continue,
+            };
+            self.reals[v.value_reference as usize] = value;
+        }
+    }
+
+    /// `do_step` once the checks passed.
+    fn advance(&mut self, t: f64, h: f64) -> Result<(), String> {
+        let target_b = self.target();
+        let run = self.run.as_mut().ok_or("fmi2DoStep before fmi2ExitInitializationMode")?;
+        let now = run.stepper.state().t;
+        let scale = 1.0f64.max(now.abs()).max(h.abs());
+        if (t - now).abs() > 1e-9 * scale {
+            return Err(format!("fmi2DoStep at t = {t}, but the instance is at t = {now}"));
+        }
+        let k = (h / run.dt).round();
+        if !(k >= 1.0 && (k * run.dt - h).abs() <= 1e-9 * h) {
+            return Err(format!("communication step h = {h} s is not a whole multiple of dt = {} s", run.dt));
+        }
+        let k = k as usize;
+        let tb = t + h;
+        for i in 1..=k {
+            let ti = run.t0 + (run.steps + 1) as f64 * run.dt;
+            let result = match run.external {
+                None => run.stepper.step(),
+                Some(ref target_a) => {
+                    let target = if i == k { target_b } else { hermite(t, target_a, tb, &target_b, ti) };
+                    run.stepper.step_to(ti, &target)
+                }
+            };
+            result.map_err(|e| e.to_string())?;
+            run.steps += 1;
+        }
+        if run.external.is_some() {
+            run.external = Some(target_b);
+        }
+        self.write_outputs();
+        Ok(())
+    }
+}
+
+impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Component for Instance<C, N, M, A> {
+    fn set_real(&mut self, vr: &[u32], values: &[f64]) -> Result<(), String> {
+        for (&r, &value) in vr.iter().zip(values) {
+            let v = self.real_variable(r)?;
+            self.settable(v.causality, &v.name)?;
+            if !value.is_finite() {
+                return Err(format!("`{}` = {value}: not a finite number", v.name));
+            }
+            self.reals[r as usize] = value;
+        }
+        Ok(())
+    }
+
+    fn get_real(&self, vr: &[u32], values: &mut [f64]) -> Result<(), String> {
+        for (&r, value) in vr.iter().zip(values.iter_mut()) {
+            *value = *self.reals.get(r as usize).ok_or_else(|| format!("no Real variable has value reference {r}"))?;
+        }
+        Ok(())
+    }
+
+    fn set_integer(&mut self, vr: &[u32], values: &[i32]) -> Result<(), String> {
+        for (&r, &value) in vr.iter().zip(values) {
+            let v = self
+                .table
+                .iter()
+                .find(|v| v.integer && v.value_reference == r)
+                .ok_or_else(|| format!("no Integer variable has value reference {r}"))?;
+            self.settable(v.causality, &v.name)?;
+            self.integers[r as usize] = value;
+        }
+        Ok(())
+    }
+
+    fn get_integer(&self, vr: &[u32], values: &mut [i32]) -> Result<(), String> {
+        for (&r, value) in vr.iter().zip(values.iter_mut()) {
+            *value = *self.integers.get(r as usize).ok_or_else(|| format!("no Integer variable has value reference {r}"))?;
+        }
+        Ok(())
+    }
+
+    fn setup_experiment(&mut self, start_time: f64) -> Result<(), String> {
+        if self.mode != Mode::Instantiated {
+            return Err("fmi2SetupExperiment must come right after fmi2Instantiate (or fmi2Reset)".into());
+        }
+        if !start_time.is_finite() {
+            return Err(format!("start time {start_time} is not finite"));
+        }
+        self.start_time = start_time;
+        Ok(())
+    }
+
+    fn enter_initialization_mode(&mut self) -> Result<(), String> {
+        if self.mode != Mode::Instantiated {
+            return Err("fmi2EnterInitializationMode twice, or after initialisation".into());
+        }
+        self.mode = Mode::Initialization;
+        Ok(())
+    }
+
+    fn exit_initialization_mode(&mut self) -> Result<(), String> {
+        if self.mode != Mode::Initialization {
+            return Err("fmi2ExitInitializationMode without fmi2EnterInitializationMode".into());
+        }
+        match self.build() {
+            Ok(run) => {
+                self.run = Some(run);
+                self.mode = Mode::Stepping;
+                self.write_outputs();
+                Ok(())
+            }
+            Err(e) => {
+                self.mode = Mode::Failed;
+                Err(e)
+            }
+        }
+    }
+
+    fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
+        if self.mode != Mode::Stepping {
+            return Err("fmi2DoStep is only possible after fmi2ExitInitializationMode and before an error or fmi2Terminate".into());
+        }
+        let result = self.advance(t, h);
+        if result.is_err() {
+            self.mode = Mode::Failed;
+        }
+        result
+    }
+
+    fn terminate(&mut self) -> Result<(), String> {
+        self.mode = Mode::Terminated;
+        Ok(())
+    }
+
+    fn reset(&mut self) {
+        self.run = None;
+        self.reals.copy_from_slice(&self.defaults.0);
+        self.integers = self.defaults.1;
+        self.mode = Mode::Instantiated;
+        self.start_time = C::maneuver().path.t0;
+    }
+
+    fn time(&self) -> f64 {
+        self.run.as_ref().map_or(self.start_time, |r| r.stepper.state().t)
+    }
+
+    fn terminated(&self) -> bool {
+        self.mode == Mode::Terminated
+    }
+}

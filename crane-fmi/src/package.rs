@@ -1,0 +1,74 @@
+//! The FMU archive: `modelDescription.xml` and the shared library as
+//! `binaries/linux64/<modelIdentifier>.so`, zipped (the `zip` crate).
+//! Written to a temporary file next to the target and renamed, so a failed
+//! packaging leaves no partial FMU.
+
+use std::fs::File;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use crane_models::Crane;
+
+use crate::description::{model_description, model_identifier};
+
+/// Why an FMU could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum PackageError {
+    /// The crane's variables clash.
+    #[error(transparent)]
+    Variables(#[from] crate::variables::NameClash),
+    /// Reading the library or writing the archive.
+    #[error("{context}: {source}")]
+    Io {
+        /// What was being done.
+        context: String,
+        /// The error.
+        source: std::io::Error,
+    },
+    /// The zip writer.
+    #[error("writing {path}: {source}")]
+    Zip {
+        /// The archive.
+        path: PathBuf,
+        /// The error.
+        source: zip::result::ZipError,
+    },
+}
+
+fn io(context: impl Into<String>) -> impl FnOnce(std::io::Error) -> PackageError {
+    let context = context.into();
+    move |source| PackageError::Io { context, source }
+}
+
+/// Write the FMU of crane `C` to `out`, with the shared library `library`
+/// (a `cdylib` that calls [`export_fmu!`](crate::export_fmu) on `C`).
+pub fn package<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(library: &Path, out: &Path) -> Result<(), PackageError> {
+    let (xml, _) = model_description::<C, N, M, A>()?;
+    let binary = std::fs::read(library).map_err(io(format!("reading the FMU library {}", library.display())))?;
+    write_archive(&xml, &model_identifier(C::NAME), &binary, out)
+}
+
+/// Zip `xml` and `binary` into `out` (through a temporary file).
+pub fn write_archive(xml: &str, identifier: &str, binary: &[u8], out: &Path) -> Result<(), PackageError> {
+    if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent).map_err(io(format!("creating {}", parent.display())))?;
+    }
+    let partial = out.with_extension("fmu.partial");
+    let zip_error = |source| PackageError::Zip { path: out.to_path_buf(), source };
+    let result = (|| {
+        let file = File::create(&partial).map_err(io(format!("creating {}", partial.display())))?;
+        let mut zip = zip::ZipWriter::new(file);
+        let options = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+        zip.start_file("modelDescription.xml", options).map_err(zip_error)?;
+        zip.write_all(xml.as_bytes()).map_err(io("writing modelDescription.xml"))?;
+        let so = options.unix_permissions(0o755);
+        zip.start_file(format!("binaries/linux64/{identifier}.so"), so).map_err(zip_error)?;
+        zip.write_all(binary).map_err(io("writing the library"))?;
+        zip.finish().map_err(zip_error)?;
+        std::fs::rename(&partial, out).map_err(io(format!("renaming to {}", out.display())))
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&partial);
+    }
+    result
+}
