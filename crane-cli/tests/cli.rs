@@ -679,3 +679,28 @@ fn unstable_internal_dynamics_are_reported_and_strict_fails_on_them() {
     assert!(stderr.contains("infeasible (--strict): unstable internal dynamics"), "{stderr}");
     assert!(strict_out.join("results.csv").exists(), "--strict still writes the results");
 }
+
+/// `crane fmu MODEL` zips the model description with the given library as
+/// `binaries/linux64/<identifier>.so`; without a library it says how to
+/// build one, and writes nothing.
+#[test]
+fn fmu_packages_the_description_and_the_library() {
+    let dir = tempfile::tempdir().unwrap();
+    let library = dir.path().join("libfake.so");
+    std::fs::write(&library, b"not really a library").unwrap();
+    let out = dir.path().join("fmus").join("gantry-3d.fmu");
+    let result = crane(&["fmu", "gantry-3d", "--library", library.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let bytes = std::fs::read(&out).unwrap();
+    // a zip archive holding both entries (names are stored uncompressed)
+    assert_eq!(&bytes[..4], b"PK\x03\x04");
+    let text = String::from_utf8_lossy(&bytes);
+    assert!(text.contains("modelDescription.xml") && text.contains("binaries/linux64/gantry_3d.so"), "{text}");
+    let missing = dir.path().join("none.fmu");
+    let result = crane(&["fmu", "gantry-3d", "--library", dir.path().join("absent.so").to_str().unwrap(), "--out", missing.to_str().unwrap()]);
+    assert!(!result.status.success());
+    assert!(String::from_utf8_lossy(&result.stderr).contains("cargo build --release -p crane-fmu"));
+    assert!(!missing.exists());
+    let result = crane(&["fmu", "no-such-crane", "--library", library.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&result.stderr).contains("unknown model"));
+}

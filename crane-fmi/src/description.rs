@@ -93,3 +93,45 @@ pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, cons
     );
     Ok((xml, guid))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crane_models::navy_planar;
+
+    /// The description of navy-planar: every variable once, value
+    /// references dense per type, the outputs listed by their 1-based
+    /// index, start values that read back exactly, and a GUID that changes
+    /// with the content.
+    #[test]
+    fn the_description_lists_every_variable_once() {
+        type D = navy_planar::Description;
+        let (xml, guid) = model_description::<D, 7, 3, 2>().unwrap();
+        let table = crate::variables::variables::<D, 7, 3, 2>().unwrap();
+        assert_eq!(xml.matches("<ScalarVariable ").count(), table.len());
+        for (i, v) in table.iter().enumerate() {
+            assert_eq!(xml.matches(&format!("name=\"{}\"", v.name)).count(), 1, "{}", v.name);
+            let same_type = table.iter().filter(|w| w.integer == v.integer).position(|w| w.name == v.name).unwrap();
+            assert_eq!(v.value_reference as usize, same_type, "{}", v.name);
+            if v.causality == crate::variables::Causality::Output {
+                assert!(xml.contains(&format!("<Unknown index=\"{}\"/>", i + 1)), "{}", v.name);
+            }
+        }
+        // every start value reads back to the model's default exactly
+        // (alpha, the boom angle, is not a short decimal)
+        let values = crane_runtime::CraneModel::<7, 3, 2>::parameter_values(&navy_planar::NavyPlanar::default());
+        for (k, v) in table.iter().filter(|v| matches!(v.role, crate::variables::Role::Parameter(_))).enumerate() {
+            let tag = format!("name=\"{}\"", v.name);
+            let after = &xml[xml.find(&tag).unwrap()..];
+            let start: f64 = after.split("start=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+            assert_eq!(start.to_bits(), values[k].to_bits(), "{}", v.name);
+        }
+        assert!(xml.contains(&format!("guid=\"{guid}\"")));
+        let (_, other) = model_description::<navy_planar_pulley::Description, 8, 4, 3>().unwrap();
+        assert_ne!(guid, other);
+        assert_eq!(model_identifier("navy-planar"), "navy_planar");
+        assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
+    }
+
+    use crane_models::navy_planar_pulley;
+}

@@ -294,7 +294,8 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
 
     /// `do_step` once the checks passed.
     fn advance(&mut self, t: f64, h: f64) -> Result<(), String> {
-        let target_b = self.target();
+        let external = self.run.as_ref().is_some_and(|r| r.external.is_some());
+        let target_b = if external { self.target() } else { [SVector::zeros(); 3] };
         let run = self.run.as_mut().ok_or("fmi2DoStep before fmi2ExitInitializationMode")?;
         let now = run.stepper.state().t;
         let scale = 1.0f64.max(now.abs()).max(h.abs());

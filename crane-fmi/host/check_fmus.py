@@ -1,0 +1,156 @@
+"""The FMUs of every built-in crane through real clients (run by .ci/run).
+
+For each model of `crane list`: `crane fmu MODEL`, FMPy's validate_fmu
+(no problem allowed), FMPy's simulate_fmu over the default move at
+output interval = dt = 0.01 s against `crane run MODEL --dt 0.01`
+(inputs and coordinates, 1e-9 relative to each column's largest value),
+a negative mass (must be an FMI error, the process must live on), a
+communication step that is not a multiple of dt (an FMI error), and the
+C host (host.c) loading the FMU's shared library directly, against the same
+run. Prints the time per doStep of the C host and of FMPy next to the
+native stepper's (`crane bench`).
+
+With USER_FMU and USER_CSV: also a user's crane exported out of tree
+(examples/fmu-crane), validated and simulated against the API's run of the
+same move.
+
+usage: python check_fmus.py CRANE_EXECUTABLE HOST_EXECUTABLE OUT_DIR [USER_FMU USER_CSV]
+"""
+
+import csv
+import json
+import subprocess
+import sys
+import time
+import zipfile
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import fmpy
+from fmpy.validation import validate_fmu
+
+RELATIVE = 1e-9
+DT = 0.01
+
+
+def run(*args):
+    return subprocess.run(args, check=True, capture_output=True, text=True).stdout
+
+
+def models(crane):
+    lines = run(crane, "list").splitlines()[1:]
+    return [line.split()[0] for line in lines if line.strip()]
+
+
+def columns(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {name: [float(r[name]) for r in rows] for name in rows[0]}
+
+
+def agree(name, expected, found):
+    """Largest difference relative to the column's largest value."""
+    if len(expected) != len(found):
+        raise SystemExit(f"{name}: {len(found)} values against {len(expected)}")
+    scale = max(max(abs(v) for v in expected), 1e-300)
+    worst = max(abs(a - b) for a, b in zip(expected, found)) / scale
+    if not worst <= RELATIVE:
+        raise SystemExit(f"{name}: relative difference {worst:.3e} > {RELATIVE:g}")
+    return worst
+
+
+def fmpy_do_step(fmu, md, stop):
+    """Median time of FMPy's doStep on the default move (FMU2Slave)."""
+    unzipped = fmpy.extract(str(fmu))
+    slave = fmpy.fmi2.FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier, instanceName="timing")
+    slave.instantiate()
+    slave.setupExperiment(startTime=0.0)
+    slave.enterInitializationMode()
+    slave.exitInitializationMode()
+    times = []
+    steps = round(stop / DT)
+    for k in range(steps):
+        clock = time.perf_counter()
+        slave.doStep(currentCommunicationPoint=k * DT, communicationStepSize=DT)
+        times.append(time.perf_counter() - clock)
+    slave.terminate()
+    slave.freeInstance()
+    return sorted(times)[len(times) // 2]
+
+
+def check_user(fmu, reference_csv):
+    """A user's FMU against the API's run of its default move."""
+    problems = validate_fmu(fmu)
+    if problems:
+        raise SystemExit(f"{fmu}: validate_fmu: {problems}")
+    md = fmpy.read_model_description(fmu)
+    reference = columns(reference_csv)
+    names = [n for n in reference if n != "t"]
+    result = fmpy.simulate_fmu(fmu, stop_time=float(md.defaultExperiment.stopTime), output_interval=DT, step_size=DT, output=names)
+    worst = max(agree(f"{md.modelName} {name}", reference[name], list(result[name])) for name in names)
+    print(f"{md.modelName} (a user's crane, exported out of tree): validated; FMPy agrees with the API to {worst:.1e} (relative)")
+
+
+def main():
+    crane, host, out = sys.argv[1], sys.argv[2], Path(sys.argv[3])
+    out.mkdir(parents=True, exist_ok=True)
+    if len(sys.argv) == 6:
+        check_user(sys.argv[4], sys.argv[5])
+    report = []
+    for model in models(crane):
+        fmu = out / f"{model}.fmu"
+        run(crane, "fmu", model, "--out", str(fmu))
+        problems = validate_fmu(str(fmu))
+        if problems:
+            raise SystemExit(f"{model}: validate_fmu: {problems}")
+        md = fmpy.read_model_description(str(fmu))
+        stop = float(md.defaultExperiment.stopTime)
+        outputs = [v for v in md.modelVariables if v.causality == "output"]
+        compared = [v.name for v in outputs if not v.name.startswith("lambda")]
+
+        reference = columns(Path(run(crane, "run", model, "--dt", str(DT), "--quiet", "--out", str(out / model)).split("wrote ")[-1].strip()) / "results.csv")
+
+        result = fmpy.simulate_fmu(str(fmu), stop_time=stop, output_interval=DT, step_size=DT, output=compared)
+        fmpy_step = fmpy_do_step(fmu, md, stop)
+        worst_fmpy = max(agree(f"{model} FMPy {name}", reference[name], list(result[name])) for name in compared if name in reference)
+
+        # a negative mass: an FMI error, reported, and the process lives on
+        mass = next(v.name for v in md.modelVariables if v.causality == "parameter" and v.name.startswith("m"))
+        try:
+            fmpy.simulate_fmu(str(fmu), stop_time=stop, output_interval=DT, start_values={mass: -1.0})
+            raise SystemExit(f"{model}: {mass} = -1 was accepted")
+        except fmpy.fmi1.FMICallException as e:
+            bad_mass = str(e)
+        # a communication step that is not a multiple of dt
+        try:
+            fmpy.simulate_fmu(str(fmu), stop_time=stop, output_interval=0.015, step_size=0.015)
+            raise SystemExit(f"{model}: a step of 0.015 s with dt = 0.01 s was accepted")
+        except fmpy.fmi1.FMICallException:
+            pass
+
+        # the C host on the FMU's own binary
+        binary = out / f"{model}-binary"
+        with zipfile.ZipFile(fmu) as z:
+            z.extractall(binary)
+        library = binary / "binaries" / "linux64" / f"{md.coSimulation.modelIdentifier}.so"
+        refs = [str(v.valueReference) for v in outputs if v.name in compared]
+        names = [v.name for v in outputs if v.name in compared]
+        hosted = subprocess.run([host, str(library), md.guid, str(stop), str(DT), *refs], check=True, capture_output=True, text=True)
+        rows = [list(map(float, line.split(","))) for line in hosted.stdout.splitlines()]
+        worst_host = max(agree(f"{model} C host {name}", reference[name], [r[i + 1] for r in rows]) for i, name in enumerate(names) if name in reference)
+        host_step = float(hosted.stderr.split("median fmi2DoStep ")[1].split()[0]) * 1e-6
+        mass_vr = next(str(v.valueReference) for v in md.modelVariables if v.name == mass)
+        subprocess.run([host, str(library), md.guid, "--bad", mass_vr, "-1"], check=True, capture_output=True, text=True)
+
+        native = json.loads(run(crane, "bench", model, "--dt", str(DT), "--repeat", "5", "--json"))["median_step_s"]
+        report.append((model, len(result) - 1, worst_fmpy, worst_host, native, host_step, fmpy_step))
+        print(f"{model}: validated; FMPy and C host agree with crane run to {worst_fmpy:.1e} and {worst_host:.1e} (relative); "
+              f"{mass} = -1: {bad_mass.strip()}", flush=True)
+
+    print("\nper step (dt = 0.01 s): native stepper (crane bench, median) | C host fmi2DoStep (median) | FMPy doStep (median, through ctypes)")
+    for model, steps, _, _, native, host_step, fmpy_step in report:
+        print(f"  {model:<20} {steps:>5} steps  {native * 1e6:8.2f} us | {host_step * 1e6:8.2f} us | {fmpy_step * 1e6:8.2f} us")
+
+
+if __name__ == "__main__":
+    main()
