@@ -192,3 +192,29 @@ fn instances_are_independent() {
     assert_eq!(outputs(&b), outputs(&b_alone));
     assert_ne!(outputs(&a), outputs(&b));
 }
+
+/// A Newton failure in mid-run (an unreachable end point, the one that
+/// stops `crane run` at t = 0.23 s) is an error of that step with the
+/// runtime's message; the instance then refuses to step until reset.
+#[test]
+fn a_newton_failure_is_an_error_of_its_step() {
+    type D = navy_planar::Description;
+    let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
+    fmu.setup_experiment(0.0).unwrap();
+    fmu.enter_initialization_mode().unwrap();
+    fmu.set_real(&[vr::<D, 7, 3, 2>(Role::End(0)), vr::<D, 7, 3, 2>(Role::Duration)], &[8.0, 2.0]).unwrap();
+    fmu.exit_initialization_mode().unwrap();
+    let mut failed = None;
+    for k in 0..200 {
+        if let Err(e) = fmu.do_step(k as f64 * 0.01, 0.01) {
+            failed = Some((k, e));
+            break;
+        }
+    }
+    let (k, message) = failed.expect("the unreachable move fails");
+    assert_eq!(k, 22, "{message}");
+    assert!(message.contains("did not converge at t = 0.23 s"), "{message}");
+    assert!(fmu.do_step(0.23, 0.01).is_err());
+    fmu.reset();
+    assert!(fmu.setup_experiment(0.0).is_ok());
+}
