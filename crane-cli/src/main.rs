@@ -6,10 +6,13 @@
 //! crane convergence navy-planar [--formulation minimal] [--scheme bdf4]
 //! crane bench navy-planar [--dt 0.01] [--scheme bdf4] [--repeat 20] [--json]
 //! crane fmu navy-planar [--out out/navy-planar.fmu] [--library target/release/libcrane_fmu.so]
+//! crane fastest navy-planar --limit u2=150 [--min-tension N1=0] [--scenario FILE] [--json]
+//! crane sweep navy-planar --param m_l=80:120:5 [--duration 3:5:5] [--limit u2=150]
 //! ```
 
 mod convergence;
 mod output;
+mod planning;
 mod plot;
 mod progress;
 mod replay;
@@ -135,6 +138,74 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// The shortest duration of the move's shape (start, end and profile of
+    /// the scenario or the default manoeuvre, time scaled) for which every
+    /// torque limit and tension floor holds; writes fastest.json and plots
+    /// of u and the tensions with the limits.
+    Fastest {
+        /// Model name (see `crane list`).
+        model: String,
+        /// Scenario file: the path shape, parameters and [limits].
+        #[arg(long, value_name = "FILE.toml")]
+        scenario: Option<PathBuf>,
+        /// A limit |u| <= VALUE on an input, NAME=VALUE (repeatable).
+        #[arg(long = "limit", value_name = "NAME=VALUE")]
+        limit: Vec<String>,
+        /// A floor N >= VALUE on a rope tension, NAME=VALUE (repeatable).
+        #[arg(long = "min-tension", value_name = "NAME=VALUE")]
+        min_tension: Vec<String>,
+        /// Scheme of the evaluations (default bdf4).
+        #[arg(long, value_name = "SCHEME")]
+        scheme: Option<Scheme>,
+        /// Largest time step of the evaluations, s (default 0.05).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Bisection tolerance on the duration, s.
+        #[arg(long, default_value_t = 1e-3)]
+        tolerance: f64,
+        /// Print fastest.json on stdout instead of the summary.
+        #[arg(long)]
+        json: bool,
+        /// Output directory (default out/MODEL).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Peaks and feasibility over a grid of parameters (and durations), in
+    /// parallel: sweep.csv, and for two swept quantities a heat map sweep.svg.
+    Sweep {
+        /// Model name (see `crane list`).
+        model: String,
+        /// A swept parameter, NAME=LOW:HIGH:COUNT (repeatable).
+        #[arg(long = "param", value_name = "NAME=LOW:HIGH:COUNT")]
+        param: Vec<String>,
+        /// Swept durations of the move, LOW:HIGH:COUNT (default: its own).
+        #[arg(long, value_name = "LOW:HIGH:COUNT")]
+        duration: Option<String>,
+        /// Scenario file: the path shape, parameters and [limits].
+        #[arg(long, value_name = "FILE.toml")]
+        scenario: Option<PathBuf>,
+        /// A limit |u| <= VALUE for the `feasible` column, NAME=VALUE (repeatable).
+        #[arg(long = "limit", value_name = "NAME=VALUE")]
+        limit: Vec<String>,
+        /// A floor N >= VALUE for the `feasible` column, NAME=VALUE (repeatable).
+        #[arg(long = "min-tension", value_name = "NAME=VALUE")]
+        min_tension: Vec<String>,
+        /// Scheme of the runs (default bdf4).
+        #[arg(long, value_name = "SCHEME")]
+        scheme: Option<Scheme>,
+        /// Largest time step of the runs, s (default 0.05).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Worker threads (default: one per core).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+        /// Output directory (default out/MODEL).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Write an FMI 2.0 co-simulation FMU of a built-in model (the inverse
     /// model: load target in, inputs, coordinates, multipliers and tensions
     /// out); see the README, "Using a crane in Simulink, Modelica or Python".
@@ -221,6 +292,8 @@ enum CliError {
     Infeasible { problems: String, out: String },
     #[error("{0}")]
     Convergence(String),
+    #[error("{0}")]
+    Planning(String),
     #[error("no FMU library at {0}: build it with `cargo build --release -p crane-fmu` or give --library")]
     NoFmuLibrary(String),
     #[error(transparent)]
@@ -233,6 +306,16 @@ enum Job<'a> {
     Run { settings: RunSettings<'a>, file: Option<&'a ScenarioFile>, overrides: Overrides },
     Bench { overrides: Overrides, repeat: usize, json: bool },
     Convergence { file: Option<&'a ScenarioFile>, overrides: Overrides, out: &'a std::path::Path },
+    Fastest { file: Option<&'a ScenarioFile>, plan: PlanArgs<'a>, json: bool },
+    Sweep { file: Option<&'a ScenarioFile>, plan: PlanArgs<'a>, params: &'a [String], durations: Vec<f64>, quiet: bool },
+}
+
+/// What `crane fastest` and `crane sweep` share.
+struct PlanArgs<'a> {
+    limit: &'a [String],
+    min_tension: &'a [String],
+    settings: crane_models::plan::Settings,
+    out: &'a std::path::Path,
 }
 
 impl Visit for Job<'_> {
@@ -250,6 +333,17 @@ impl Visit for Job<'_> {
             Job::Convergence { file, overrides, out } => {
                 let (case, settings) = scenario::build::<C, N, M, A>(file, &overrides)?;
                 convergence::run(&case, settings.formulation, settings.scheme, out).map(|()| None)
+            }
+            Job::Fastest { file, plan, json } => {
+                let (case, settings) = scenario::build::<C, N, M, A>(file, &Overrides::default())?;
+                let limits = planning::limits::<C::Model, N, M, A>(&settings.limits, plan.limit, plan.min_tension)?;
+                planning::fastest(&case, &limits, &plan.settings, plan.out, json).map(|()| None)
+            }
+            Job::Sweep { file, plan, params, durations, quiet } => {
+                let (case, settings) = scenario::build::<C, N, M, A>(file, &Overrides::default())?;
+                let limits = planning::limits::<C::Model, N, M, A>(&settings.limits, plan.limit, plan.min_tension)?;
+                let params = params.iter().map(|p| planning::range("--param", p)).collect::<Result<Vec<_>, _>>()?;
+                planning::sweep(&case, &params, &durations, &limits, &plan.settings, plan.out, quiet).map(|()| None)
             }
         }
     }
@@ -394,6 +488,38 @@ fn execute(command: Command) -> Result<(), CliError> {
             };
             dispatch(&model, Job::Bench { overrides, repeat, json }).map(|_| ())
         }
+        Command::Fastest { model, scenario, limit, min_tension, scheme, dt, tolerance, json, out } => {
+            let file = scenario.as_deref().map(ScenarioFile::load).transpose()?;
+            let out = out.unwrap_or_else(|| PathBuf::from("out").join(&model));
+            let settings = plan_settings(scheme, dt, Some(tolerance))?;
+            let plan = PlanArgs { limit: &limit, min_tension: &min_tension, settings, out: &out };
+            dispatch(&model, Job::Fastest { file: file.as_ref(), plan, json }).map(|_| ())
+        }
+        Command::Sweep { model, param, duration, scenario, limit, min_tension, scheme, dt, threads, quiet, out } => {
+            let file = scenario.as_deref().map(ScenarioFile::load).transpose()?;
+            let out = out.unwrap_or_else(|| PathBuf::from("out").join(&model));
+            let settings = plan_settings(scheme, dt, None)?;
+            let durations = match duration.as_deref() {
+                Some(spec) => planning::values(spec)
+                    .filter(|d| d.iter().all(|&x| x > 0.0))
+                    .ok_or_else(|| CliError::Planning(format!("--duration `{spec}`: expected LOW:HIGH:COUNT of positive durations, e.g. 3:5:5")))?,
+                None => Vec::new(),
+            };
+            if param.is_empty() && durations.len() < 2 {
+                return Err(CliError::Planning("nothing to sweep: give --param NAME=LOW:HIGH:COUNT or --duration LOW:HIGH:COUNT".into()));
+            }
+            let plan = PlanArgs { limit: &limit, min_tension: &min_tension, settings, out: &out };
+            let job = || dispatch(&model, Job::Sweep { file: file.as_ref(), plan, params: &param, durations, quiet }).map(|_| ());
+            match threads {
+                Some(0) => Err(CliError::Planning("--threads must be at least 1".into())),
+                Some(n) => rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build()
+                    .map_err(|e| CliError::Planning(format!("--threads {n}: {e}")))?
+                    .install(job),
+                None => job(),
+            }
+        }
         Command::Fmu { model, out, library } => {
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("{model}.fmu")));
             let library = match library {
@@ -428,6 +554,17 @@ fn execute(command: Command) -> Result<(), CliError> {
             dispatch(&model, Job::Convergence { file: file.as_ref(), overrides, out: &out }).map(|_| ())
         }
     }
+}
+
+/// The planner's settings from the flags (BDF-4, dt 0.05 s, 1 ms by default).
+fn plan_settings(scheme: Option<Scheme>, dt: Option<f64>, tolerance: Option<f64>) -> Result<crane_models::plan::Settings, CliError> {
+    let defaults = crane_models::plan::Settings::default();
+    let dt = dt.unwrap_or(defaults.dt);
+    let tolerance = tolerance.unwrap_or(defaults.tolerance);
+    if !(dt > 0.0 && dt.is_finite() && tolerance > 0.0 && tolerance.is_finite()) {
+        return Err(CliError::Planning(format!("--dt {dt} and --tolerance {tolerance} must be positive")));
+    }
+    Ok(crane_models::plan::Settings { dt, scheme: scheme.unwrap_or(defaults.scheme), tolerance, ..defaults })
 }
 
 /// What `crane run` was asked to do.

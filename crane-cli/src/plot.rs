@@ -212,6 +212,115 @@ pub fn curves_over_time(title: &str, y_label: &str, curves: &[(&str, Vec<(f64, f
     draw(title, y_label, &series)
 }
 
+/// Named curves over time with horizontal dashed lines at the `levels`
+/// (e.g. `+-150` for a torque limit), in the colour of their curve.
+pub fn curves_with_levels(
+    title: &str,
+    y_label: &str,
+    curves: &[(&str, Vec<(f64, f64)>)],
+    levels: &[(usize, f64)],
+) -> Result<String, CliError> {
+    let mut series: Vec<Series> = curves
+        .iter()
+        .enumerate()
+        .map(|(c, (name, points))| Series {
+            name: name.to_string(),
+            points: thinned(points.len(), |i| points[i]),
+            color: PALETTE[c % PALETTE.len()],
+            dashed: false,
+        })
+        .collect();
+    let span = curves.iter().flat_map(|(_, p)| p.first().zip(p.last())).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (f, l)| (a.min(f.0), b.max(l.0)));
+    for &(c, level) in levels {
+        series.push(Series {
+            name: format!("{} {level}", curves.get(c).map_or("limit", |c| c.0)),
+            points: vec![(span.0, level), (span.1, level)],
+            color: PALETTE[c % PALETTE.len()],
+            dashed: true,
+        });
+    }
+    draw(title, y_label, &series)
+}
+
+/// A heat map of `values[iy][ix]` over the grid `xs` x `ys` (cells without a
+/// value, failed points, in grey; cells `marked` with a cross: infeasible),
+/// with a colour bar.
+#[allow(clippy::too_many_arguments)]
+pub fn heat_map(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    xs: &[f64],
+    ys: &[f64],
+    values: &[Vec<Option<f64>>],
+    marked: &[Vec<bool>],
+    value_label: &str,
+) -> Result<String, CliError> {
+    register_font();
+    let failed = |e: String| CliError::Output { what: format!("plot '{title}'"), message: e };
+    let finite: Vec<f64> = values.iter().flatten().flatten().copied().filter(|v| v.is_finite()).collect();
+    let (lo, hi) = finite.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    if xs.len() < 2 || ys.len() < 2 || finite.is_empty() {
+        return Err(failed("a heat map needs at least 2 x 2 points with values".into()));
+    }
+    let (lo, hi) = if hi > lo { (lo, hi) } else { (lo - 0.5, hi + 0.5) };
+    let half = |v: &[f64], i: usize| if i + 1 < v.len() { 0.5 * (v[i + 1] - v[i]) } else { 0.5 * (v[i] - v[i - 1]) };
+    let colour = |v: f64| {
+        // blue (low) .. yellow .. red (high)
+        let t = ((v - lo) / (hi - lo)).clamp(0.0, 1.0);
+        let (r, g, b) = if t < 0.5 { (2.0 * t, 2.0 * t, 1.0 - 2.0 * t) } else { (1.0, 2.0 - 2.0 * t, 0.0) };
+        RGBColor((255.0 * r) as u8, (200.0 * g) as u8, (255.0 * b) as u8)
+    };
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (1000, 640)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| failed(e.to_string()))?;
+        let (plot_area, bar_area) = root.split_horizontally(860);
+        let x_range = (xs[0] - half(xs, 0))..(xs[xs.len() - 1] + half(xs, xs.len() - 1));
+        let y_range = (ys[0] - half(ys, 0))..(ys[ys.len() - 1] + half(ys, ys.len() - 1));
+        let mut chart = ChartBuilder::on(&plot_area)
+            .caption(title, ("sans-serif", 22))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(80)
+            .build_cartesian_2d(x_range, y_range)
+            .map_err(|e| failed(e.to_string()))?;
+        chart.configure_mesh().disable_mesh().x_desc(x_label).y_desc(y_label).label_style(("sans-serif", 15)).draw().map_err(|e| failed(e.to_string()))?;
+        for (iy, row) in values.iter().enumerate() {
+            for (ix, value) in row.iter().enumerate() {
+                let (x, y) = (xs[ix], ys[iy]);
+                let (hx, hy) = (half(xs, ix), half(ys, iy));
+                let fill = value.filter(|v| v.is_finite()).map_or(RGBColor(190, 190, 190), colour);
+                chart
+                    .draw_series(std::iter::once(Rectangle::new([(x - hx, y - hy), (x + hx, y + hy)], fill.filled())))
+                    .map_err(|e| failed(e.to_string()))?;
+                if marked.get(iy).and_then(|row| row.get(ix)).copied().unwrap_or(false) {
+                    let cross = ShapeStyle::from(&BLACK).stroke_width(1);
+                    let (dx, dy) = (0.35 * hx, 0.35 * hy);
+                    for (a, b) in [((x - dx, y - dy), (x + dx, y + dy)), ((x - dx, y + dy), (x + dx, y - dy))] {
+                        chart.draw_series(std::iter::once(PathElement::new(vec![a, b], cross))).map_err(|e| failed(e.to_string()))?;
+                    }
+                }
+            }
+        }
+        let steps = 50;
+        for k in 0..steps {
+            let v = lo + (hi - lo) * k as f64 / (steps - 1) as f64;
+            let y0 = 560 - (k * 480 / steps) as i32;
+            bar_area
+                .draw(&Rectangle::new([(20, y0 - 480 / steps as i32 - 1), (50, y0)], colour(v).filled()))
+                .map_err(|e| failed(e.to_string()))?;
+        }
+        for (text, y) in [(format!("{hi:.4}"), 70), (format!("{lo:.4}"), 572), (value_label.to_string(), 30)] {
+            bar_area.draw(&Text::new(text, (8, y), ("sans-serif", 14))).map_err(|e| failed(e.to_string()))?;
+        }
+        bar_area.draw(&Text::new("grey: failed".to_string(), (8, 596), ("sans-serif", 14))).map_err(|e| failed(e.to_string()))?;
+        bar_area.draw(&Text::new("x: infeasible".to_string(), (8, 614), ("sans-serif", 14))).map_err(|e| failed(e.to_string()))?;
+        root.present().map_err(|e| failed(e.to_string()))?;
+    }
+    Ok(svg)
+}
+
 /// All plots of a run as `(file name, SVG text)`.
 pub fn all<const N: usize, const M: usize, const A: usize>(
     solution: &Solution<N, M, A>,

@@ -704,3 +704,57 @@ fn fmu_packages_the_description_and_the_library() {
     let result = crane(&["fmu", "no-such-crane", "--library", library.to_str().unwrap()]);
     assert!(String::from_utf8_lossy(&result.stderr).contains("unknown model"));
 }
+
+/// `crane fastest`: the shortest duration under |u2| <= 150 N m (rope 1
+/// allowed to push, so that the torque binds): 2.95 s, bound by u2; the
+/// JSON has `duration` and `binding`, and the files are written. With the
+/// default floor (every rope taut) rope N1 binds instead, later.
+#[test]
+fn fastest_finds_the_binding_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fast");
+    let result = crane(&["fastest", "navy-planar", "--limit", "u2=150", "--min-tension", "N1=-1e9", "--json", "--out", out.to_str().unwrap()]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
+    let duration = json["duration"].as_f64().unwrap();
+    assert!((duration - 2.951).abs() < 0.002, "{json}");
+    assert_eq!(json["binding"]["name"], "u2", "{json}");
+    assert_eq!(json["interval"]["holds"], true, "{json}");
+    for file in ["fastest.json", "fastest-inputs.svg", "fastest-tensions.svg"] {
+        assert!(out.join(file).exists(), "{file}");
+    }
+    let taut = dir.path().join("taut");
+    let result = crane(&["fastest", "navy-planar", "--limit", "u2=150", "--json", "--out", taut.to_str().unwrap()]);
+    let json: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
+    assert_eq!(json["binding"]["name"], "N1", "{json}");
+    assert!(json["duration"].as_f64().unwrap() > duration + 0.1, "{json}");
+    let result = crane(&["fastest", "navy-planar", "--limit", "u9=150"]);
+    assert!(!result.status.success());
+    assert!(String::from_utf8_lossy(&result.stderr).contains("no such input; the inputs are u1, u2"));
+}
+
+/// `crane sweep`: one row per grid point with the swept values, peaks,
+/// minimum tensions and feasibility, a heat map for two swept quantities,
+/// and a point that cannot run (a negative mass) recorded, not fatal.
+#[test]
+fn sweep_writes_a_row_per_point_and_survives_a_failure() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sweep");
+    let result = crane(&["sweep", "navy-planar", "--param", "m_l=-10:110:3", "--duration", "3:5:3", "--limit", "u2=150", "--quiet", "--out", out.to_str().unwrap()]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next().unwrap(), "m_l,duration,peak_u1,peak_u2,min_N1,min_N2,feasible,error");
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 9);
+    for row in &rows {
+        if row[0] == "-10.0" {
+            assert!(row[7].contains("m_l") && row[6] == "false", "{row:?}");
+        } else {
+            assert!(row[3].parse::<f64>().unwrap() > 0.0 && row[7].is_empty(), "{row:?}");
+        }
+    }
+    assert!(out.join("sweep.svg").exists());
+    let result = crane(&["sweep", "navy-planar", "--param", "mass=1:2:2"]);
+    assert!(String::from_utf8_lossy(&result.stderr).contains("no such parameter"));
+}

@@ -32,7 +32,7 @@ pub struct Case<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
     pub p0: Vec<f64>,
     /// End of the run, s.
     pub tf: f64,
-    crane: PhantomData<C>,
+    crane: PhantomData<fn() -> C>,
 }
 
 impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Clone for Case<C, N, M, A> {

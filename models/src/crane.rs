@@ -25,7 +25,7 @@ pub struct Maneuver<const A: usize> {
 pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
     /// The crane declared with `crane_model!`; its `Default` has the paper's
     /// (or the example's) parameters.
-    type Model: CraneModel<N, M, A> + Clone + Default;
+    type Model: CraneModel<N, M, A> + Clone + Default + Send + Sync;
 
     /// The name on the command line, e.g. `navy-planar`.
     const NAME: &'static str;

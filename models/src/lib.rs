@@ -27,6 +27,7 @@ pub mod case;
 pub mod crane;
 pub mod drawing;
 pub mod path;
+pub mod plan;
 pub mod registry;
 
 pub mod coupled_trolley;

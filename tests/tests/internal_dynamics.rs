@@ -103,7 +103,10 @@ fn the_unstable_inverse_explodes() {
 fn the_declarations_state_their_structure() {
     use crane_runtime::CraneModel;
     fn dimension<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(_: &Mdl) -> Option<usize> {
-        Mdl::STRUCTURE.map(|s| s.dimension)
+        // the servo constraints are differentiated d times: the inputs need gamma^(d)
+        let s = Mdl::STRUCTURE?;
+        println!("{}: servo constraints differentiated {:?} times", Mdl::INFO.name, &s.equations[N + M..]);
+        Some(s.dimension)
     }
     assert_eq!(dimension(&Coupled::default()), Some(2));
     let built_in = [

@@ -1,0 +1,278 @@
+//! `crane fastest` and `crane sweep`: the planning functions of
+//! `crane_models::plan` on the command line, with their files.
+
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+use crane_models::plan::{self, Limits, Settings};
+use crane_models::{Case, Crane};
+use crane_runtime::CraneModel;
+use serde_json::json;
+
+use crate::CliError;
+use crate::output::Staged;
+use crate::plot;
+
+/// `NAME=VALUE` of a `--limit` or `--min-tension`.
+fn name_value(flag: &str, item: &str) -> Result<(String, f64), CliError> {
+    let bad = || CliError::Planning(format!("{flag} `{item}`: expected NAME=VALUE, e.g. {flag} u2=150"));
+    let (name, value) = item.split_once('=').ok_or_else(bad)?;
+    let value: f64 = value.trim().parse().map_err(|_| bad())?;
+    if !value.is_finite() {
+        return Err(bad());
+    }
+    Ok((name.trim().to_string(), value))
+}
+
+/// The limits of the scenario (`[limits]`, by input index) and the flags,
+/// with names checked against the model; a rope without `--min-tension`
+/// must stay taut (floor 0).
+pub fn limits<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    scenario: &[(usize, f64)],
+    torque: &[String],
+    tension: &[String],
+) -> Result<Limits, CliError> {
+    let info = Mdl::INFO;
+    let mut out = Limits { torque: scenario.to_vec(), tension: Vec::new() };
+    for item in torque {
+        let (name, value) = name_value("--limit", item)?;
+        let k = info.inputs.iter().position(|u| *u == name).ok_or_else(|| {
+            CliError::Planning(format!("--limit {name}: no such input; the inputs are {}", info.inputs.join(", ")))
+        })?;
+        if !(value > 0.0) {
+            return Err(CliError::Planning(format!("--limit {name}={value}: a limit on |{name}| must be positive")));
+        }
+        out.torque.retain(|&(j, _)| j != k);
+        out.torque.push((k, value));
+    }
+    for item in tension {
+        let (name, value) = name_value("--min-tension", item)?;
+        let r = info.ropes.iter().position(|r| r.tension == name).ok_or_else(|| {
+            let ropes: Vec<&str> = info.ropes.iter().map(|r| r.tension).collect();
+            CliError::Planning(format!("--min-tension {name}: no such rope tension; the ropes are {}", ropes.join(", ")))
+        })?;
+        out.tension.push((r, value));
+    }
+    // every other rope taut (floor 0)
+    Ok(out.with_taut_ropes::<Mdl, N, M, A>())
+}
+
+/// `NAME=LOW:HIGH:COUNT` as the name and `COUNT` evenly spaced values.
+pub fn range(flag: &str, item: &str) -> Result<(String, Vec<f64>), CliError> {
+    let bad = || CliError::Planning(format!("{flag} `{item}`: expected NAME=LOW:HIGH:COUNT with COUNT >= 1, e.g. {flag} m_l=80:120:5"));
+    let (name, spec) = item.split_once('=').ok_or_else(bad)?;
+    Ok((name.trim().to_string(), values(spec).ok_or_else(bad)?))
+}
+
+/// `LOW:HIGH:COUNT` as values (`COUNT = 1`: `LOW`).
+pub fn values(spec: &str) -> Option<Vec<f64>> {
+    let parts: Vec<&str> = spec.split(':').collect();
+    let [low, high, count] = parts[..] else { return None };
+    let (low, high): (f64, f64) = (low.trim().parse().ok()?, high.trim().parse().ok()?);
+    let count: usize = count.trim().parse().ok()?;
+    if count == 0 || !low.is_finite() || !high.is_finite() {
+        return None;
+    }
+    Some((0..count).map(|i| if count == 1 { low } else { low + (high - low) * i as f64 / (count - 1) as f64 }).collect())
+}
+
+/// A binding as JSON.
+fn binding_json(b: &plan::Binding) -> serde_json::Value {
+    json!({ "name": b.name, "kind": if b.tension { "min-tension" } else { "limit" }, "limit": b.limit, "value": b.value, "at": b.at })
+}
+
+/// `crane fastest`: search, write fastest.json and the plots, print.
+pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    limits: &Limits,
+    settings: &Settings,
+    out: &Path,
+    print_json: bool,
+) -> Result<(), CliError> {
+    let clock = Instant::now();
+    let best = plan::fastest(case, limits, settings).map_err(|e| CliError::Planning(e.to_string()))?;
+    let wall = clock.elapsed().as_secs_f64();
+    let info = <C::Model as CraneModel<N, M, A>>::INFO;
+    let report = json!({
+        "model": C::NAME,
+        "duration": best.duration,
+        "binding": binding_json(&best.binding),
+        "limits": best.at_answer.iter().map(binding_json).collect::<Vec<_>>(),
+        "bracket": [best.bracket.0, best.bracket.1],
+        "evaluations": best.evaluations,
+        "interval": { "points": best.interval.points, "holds": best.interval.holds, "counterexample": best.interval.counterexample },
+        "scheme": settings.scheme.name(),
+        "dt": settings.dt,
+        "tolerance": settings.tolerance,
+        "wall_s": wall,
+    });
+    let text = serde_json::to_string_pretty(&report).map_err(|e| CliError::Output { what: "fastest.json".into(), message: e.to_string() })?;
+    let solution = &best.solution;
+    let mut staged = Staged::new(out)?;
+    staged.text("fastest.json", text.clone() + "\n")?;
+    let inputs: Vec<(&str, Vec<(f64, f64)>)> =
+        info.inputs.iter().enumerate().map(|(k, name)| (*name, solution.states.iter().map(|s| (s.t, s.u[k])).collect())).collect();
+    let levels: Vec<(usize, f64)> = limits.torque.iter().flat_map(|&(k, l)| [(k, l), (k, -l)]).collect();
+    let title = format!("{}: inputs of the fastest move, T* = {:.3} s", C::NAME, best.duration);
+    staged.text("fastest-inputs.svg", plot::curves_with_levels(&title, "u [N m]", &inputs, &levels)?)?;
+    if !info.ropes.is_empty() {
+        let tensions: Vec<(&str, Vec<(f64, f64)>)> = info
+            .ropes
+            .iter()
+            .enumerate()
+            .map(|(r, rope)| (rope.tension, (0..solution.states.len()).map(|i| (solution.states[i].t, solution.tensions_at(i)[r])).collect()))
+            .collect();
+        let floors: Vec<(usize, f64)> = limits.tension.clone();
+        let title = format!("{}: rope tensions of the fastest move", C::NAME);
+        staged.text("fastest-tensions.svg", plot::curves_with_levels(&title, "N [N]", &tensions, &floors)?)?;
+    }
+    staged.commit()?;
+    if print_json {
+        println!("{text}");
+    } else {
+        let b = &best.binding;
+        let bound = if b.tension {
+            format!("rope tension {} >= {} N (a faster move takes it below at t = {:.3} s)", b.name, b.limit, b.at)
+        } else if b.limit.is_nan() {
+            b.name.clone()
+        } else {
+            format!("|{}| <= {} (peak {:.3} at the answer; a faster move exceeds it at t = {:.3} s)", b.name, b.limit, b.value, b.at)
+        };
+        println!(
+            "{}: fastest feasible duration T* = {:.4} s (bracket {:.4} .. {:.4} s), bound by {bound}",
+            C::NAME, best.duration, best.bracket.0, best.bracket.1
+        );
+        println!(
+            "  {} evaluations ({}, dt <= {} s) and {} for the interval check in {:.1} ms; {}",
+            best.evaluations,
+            settings.scheme,
+            settings.dt,
+            best.interval.points,
+            wall * 1e3,
+            if best.interval.holds {
+                "feasible durations form an interval on the bracket".to_string()
+            } else {
+                format!("WARNING: feasible durations are not an interval on the bracket (at {:.4} s): the answer may not be the shortest", best.interval.counterexample.unwrap_or(f64::NAN))
+            }
+        );
+        println!("wrote {}", out.display());
+    }
+    Ok(())
+}
+
+/// `crane sweep`: the grid in parallel, sweep.csv and (two swept
+/// quantities) a heat map.
+pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    params: &[(String, Vec<f64>)],
+    durations: &[f64],
+    limits: &Limits,
+    settings: &Settings,
+    out: &Path,
+    quiet: bool,
+) -> Result<(), CliError> {
+    let info = <C::Model as CraneModel<N, M, A>>::INFO;
+    for (name, _) in params {
+        if !info.parameters.contains(&name.as_str()) {
+            return Err(CliError::Planning(format!("--param {name}: no such parameter; the parameters are {}", info.parameters.join(", "))));
+        }
+    }
+    let spec = case.path().spec();
+    let count = params.iter().map(|(_, v)| v.len()).product::<usize>() * durations.len().max(1);
+    let bar = (!quiet && std::io::IsTerminal::is_terminal(&std::io::stdout())).then(|| {
+        let bar = indicatif::ProgressBar::new(count as u64);
+        if let Ok(style) = indicatif::ProgressStyle::with_template("sweep [{bar:40}] {pos}/{len} points, {eta} left") {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar
+    });
+    let done = AtomicUsize::new(0);
+    let clock = Instant::now();
+    let points = plan::sweep(case, params, durations, limits, settings, &|| {
+        let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+        if let Some(bar) = &bar {
+            bar.set_position(n as u64);
+        }
+    });
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    let wall = clock.elapsed().as_secs_f64();
+    let mut header: Vec<String> = params.iter().map(|(n, _)| n.clone()).collect();
+    header.push("duration".into());
+    header.extend(info.inputs.iter().map(|u| format!("peak_{u}")));
+    header.extend(info.ropes.iter().map(|r| format!("min_{}", r.tension)));
+    header.extend(["feasible".into(), "error".into()]);
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    let failed_csv = |e: csv::Error| CliError::Output { what: "sweep.csv".into(), message: e.to_string() };
+    writer.write_record(&header).map_err(failed_csv)?;
+    for p in &points {
+        let mut row: Vec<String> = p.values.iter().map(|v| format!("{v:?}")).collect();
+        row.push(format!("{:?}", p.duration));
+        let e = &p.evaluation;
+        for k in 0..A {
+            row.push(e.peak_u.get(k).map(|x| format!("{:?}", x.0)).unwrap_or_default());
+        }
+        for r in 0..info.ropes.len() {
+            row.push(e.min_tension.get(r).map(|x| format!("{:?}", x.0)).unwrap_or_default());
+        }
+        row.push(p.feasible.to_string());
+        row.push(e.error.clone().unwrap_or_default());
+        writer.write_record(&row).map_err(failed_csv)?;
+    }
+    let bytes = writer.into_inner().map_err(|e| CliError::Output { what: "sweep.csv".into(), message: e.to_string() })?;
+    let mut staged = Staged::new(out)?;
+    staged.text("sweep.csv", bytes)?;
+    // two swept quantities: a heat map of the largest |u| relative to its
+    // limit (or of the first input's peak without limits)
+    let mut axes: Vec<(String, Vec<f64>)> = params.iter().filter(|(_, v)| v.len() > 1).cloned().collect();
+    if durations.len() > 1 {
+        axes.push(("duration".into(), durations.to_vec()));
+    }
+    let measure = |e: &plan::Evaluation| -> Option<f64> {
+        if e.error.is_some() {
+            return None;
+        }
+        if limits.torque.is_empty() {
+            e.peak_u.first().map(|p| p.0)
+        } else {
+            limits.torque.iter().map(|&(k, l)| e.peak_u[k].0 / l).reduce(f64::max)
+        }
+    };
+    if axes.len() == 2 {
+        let (ax, ay) = (&axes[0], &axes[1]);
+        let index = |name: &str, p: &plan::SweepPoint| -> f64 {
+            if name == "duration" { p.duration } else { p.values[params.iter().position(|(n, _)| n == name).unwrap_or(0)] }
+        };
+        let grid: Vec<Vec<Option<f64>>> = ay
+            .1
+            .iter()
+            .map(|&y| {
+                ax.1.iter().map(|&x| points.iter().find(|p| index(&ax.0, p) == x && index(&ay.0, p) == y).and_then(|p| measure(&p.evaluation))).collect()
+            })
+            .collect();
+        let marked: Vec<Vec<bool>> = ay
+            .1
+            .iter()
+            .map(|&y| ax.1.iter().map(|&x| points.iter().any(|p| index(&ax.0, p) == x && index(&ay.0, p) == y && !p.feasible)).collect())
+            .collect();
+        let label = if limits.torque.is_empty() { format!("peak |{}|", info.inputs[0]) } else { "max |u|/limit".to_string() };
+        let title = format!("{}: {label} over {} and {}", C::NAME, ax.0, ay.0);
+        staged.text("sweep.svg", plot::heat_map(&title, &ax.0, &ay.0, &ax.1, &ay.1, &grid, &marked, &label)?)?;
+    }
+    staged.commit()?;
+    let failed = points.iter().filter(|p| p.evaluation.error.is_some()).count();
+    let feasible = points.iter().filter(|p| p.feasible).count();
+    println!(
+        "{}: {} points in {:.2} s ({:.0} points/s on {} threads): {feasible} feasible, {failed} failed; the move's own duration is {:.3} s",
+        C::NAME,
+        points.len(),
+        wall,
+        points.len() as f64 / wall,
+        rayon::current_num_threads(),
+        spec.t1 - spec.t0
+    );
+    println!("wrote {}", out.display());
+    Ok(())
+}

@@ -1,0 +1,532 @@
+//! Inverse dynamics as a design tool: the shortest duration of a move
+//! under torque limits and rope-tension floors ([`fastest`]), and grids
+//! over parameters and durations ([`sweep`]).
+//!
+//! A duration `T` is *feasible* when the inverse dynamics of the case's
+//! path shape, scaled to last `T` (start, end and profile fixed), keep every
+//! limited `|u_k|` at or below its limit and every floored rope tension at
+//! or above its floor over the whole run ([`evaluate`]). [`fastest`]
+//! brackets the shortest feasible duration by halving or doubling the
+//! case's own duration, bisects to a tolerance, and checks on the bracket
+//! that feasible durations form an interval there (the assumption that
+//! makes bisection correct), saying so when they do not.
+//!
+//! ```
+//! use crane_models::navy_planar;
+//! use crane_models::plan::{Limits, Settings, fastest};
+//!
+//! let case = navy_planar::PaperCase::maneuver().unwrap();
+//! // |u2| <= 150 N m, BDF-4 at dt <= 0.05 s
+//! let limits = Limits { torque: vec![(1, 150.0)], tension: vec![] };
+//! let best = fastest(&case, &limits, &Settings::default()).unwrap();
+//! assert!(best.duration < 4.0 && best.interval.holds);
+//! println!("{:.3} s in {} evaluations, bound by {}", best.duration, best.evaluations, best.binding.name);
+//! ```
+
+use rayon::prelude::*;
+
+use crane_runtime::{CraneModel, Options, Scheme, Solution, init};
+
+use crate::case::Case;
+use crate::crane::Crane;
+use crate::path::{Path, PathSpec, Profile};
+
+/// Torque limits `|u_k| <= limit` and tension floors `N_r >= floor`, by
+/// input and rope index.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Limits {
+    /// `(input index, limit)`, N m (or N).
+    pub torque: Vec<(usize, f64)>,
+    /// `(rope index, floor)`, N.
+    pub tension: Vec<(usize, f64)>,
+}
+
+/// How a duration is evaluated and how close the search goes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// Largest time step; each run takes the largest step at most this
+    /// that divides its length.
+    pub dt: f64,
+    /// The scheme.
+    pub scheme: Scheme,
+    /// Width of the final bracket, s.
+    pub tolerance: f64,
+    /// Durations evaluated evenly across the bracket to check that the
+    /// feasible ones form an interval.
+    pub interval_points: usize,
+}
+
+impl Default for Settings {
+    /// BDF-4 at dt = 0.05 s (an evaluation of navy-planar's move is 80
+    /// steps), 1 ms tolerance, 8 check points.
+    fn default() -> Self {
+        Self { dt: 0.05, scheme: Scheme::Bdf4, tolerance: 1e-3, interval_points: 8 }
+    }
+}
+
+/// The peaks of one run, or why it failed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Evaluation {
+    /// Duration of the move, s.
+    pub duration: f64,
+    /// `(max |u_k|, time)` per input.
+    pub peak_u: Vec<(f64, f64)>,
+    /// `(min N_r, time)` per rope.
+    pub min_tension: Vec<(f64, f64)>,
+    /// The run's error, if it failed (then infeasible).
+    pub error: Option<String>,
+}
+
+/// A limit and how a run meets it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Binding {
+    /// `u2`, `N1`, ... as the model declares it.
+    pub name: String,
+    /// The limit (torque) or the floor (tension).
+    pub limit: f64,
+    /// The run's peak `|u|` or minimum tension.
+    pub value: f64,
+    /// When it occurs, s.
+    pub at: f64,
+    /// How far past the limit, relative (`> 0`: past it).
+    pub excess: f64,
+    /// The excess still counted as within the limit: 0 for torques,
+    /// [`TENSION_ROUNDOFF`] for tensions.
+    pub allowance: f64,
+    /// A tension floor (`value` is then a minimum), not a torque limit.
+    pub tension: bool,
+}
+
+/// A tension this far below its floor, relative to `max(|floor|, 1 N)`,
+/// is round-off, not a violation: the paper's rope 1 carries -2.6e-13 N at
+/// its start, where it is slack by construction.
+pub const TENSION_ROUNDOFF: f64 = 1e-6;
+
+impl Limits {
+    /// The same limits with a floor of 0 (taut) on every rope of `Mdl`
+    /// that has no floor yet.
+    pub fn with_taut_ropes<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(mut self) -> Self {
+        for r in 0..Mdl::INFO.ropes.len() {
+            if !self.tension.iter().any(|&(j, _)| j == r) {
+                self.tension.push((r, 0.0));
+            }
+        }
+        self
+    }
+}
+
+impl Evaluation {
+    /// Each limited quantity's margin, largest relative excess first.
+    pub fn bindings<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(&self, limits: &Limits) -> Vec<Binding> {
+        let info = Mdl::INFO;
+        let mut out: Vec<Binding> = Vec::new();
+        if self.error.is_some() {
+            return out;
+        }
+        for &(k, limit) in &limits.torque {
+            if let Some(&(value, at)) = self.peak_u.get(k) {
+                out.push(Binding {
+                    name: info.inputs[k].to_string(),
+                    limit,
+                    value,
+                    at,
+                    excess: (value - limit) / limit.abs().max(f64::MIN_POSITIVE),
+                    allowance: 0.0,
+                    tension: false,
+                });
+            }
+        }
+        for &(r, floor) in &limits.tension {
+            if let Some(&(value, at)) = self.min_tension.get(r) {
+                let scale = floor.abs().max(1.0);
+                out.push(Binding {
+                    name: info.ropes[r].tension.to_string(),
+                    limit: floor,
+                    value,
+                    at,
+                    excess: (floor - value) / scale,
+                    allowance: TENSION_ROUNDOFF,
+                    tension: true,
+                });
+            }
+        }
+        out.sort_by(|a, b| (b.excess - b.allowance).total_cmp(&(a.excess - a.allowance)));
+        out
+    }
+
+    /// Whether the run succeeded within every limit (a tension at its
+    /// floor to within [`TENSION_ROUNDOFF`] counts as at it).
+    pub fn feasible<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(&self, limits: &Limits) -> bool {
+        self.error.is_none() && self.bindings::<Mdl, N, M, A>(limits).iter().all(|b| b.excess <= b.allowance)
+    }
+}
+
+/// The case with its motion scaled in time to last `duration`: start, end
+/// and shape kept (the ramps of a three-phase profile scale with it), a
+/// settling time after the motion kept too.
+pub fn with_duration<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    model: C::Model,
+    duration: f64,
+) -> Result<Case<C, N, M, A>, String> {
+    let spec = *case.path().spec();
+    let settle = (case.tf() - spec.t1).max(0.0);
+    let scale = duration / (spec.t1 - spec.t0);
+    let profile = match spec.profile {
+        Profile::Poly9 => Profile::Poly9,
+        Profile::ThreePhase { tau0 } => Profile::ThreePhase { tau0: tau0 * scale },
+        Profile::SmoothThreePhase { tau0 } => Profile::SmoothThreePhase { tau0: tau0 * scale },
+    };
+    let path = Path::new(PathSpec { profile, t1: spec.t0 + duration, ..spec }).map_err(|e| e.to_string())?;
+    Ok(Case::from_parts(model, path, case.p0.clone(), spec.t0 + duration + settle))
+}
+
+/// The run of `case` (its own duration and model) under `settings`: the
+/// largest step at most `settings.dt` that divides the run, the start
+/// from `p0` (or, where the parameters moved it, the static equilibrium
+/// from it).
+pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    settings: &Settings,
+) -> Result<Solution<N, M, A>, String> {
+    let (t0, tf) = (case.t0(), case.tf());
+    let span = tf - t0;
+    if !(span > 0.0 && span.is_finite()) {
+        return Err(format!("the run from t = {t0} s to {tf} s is empty"));
+    }
+    let steps = (span / settings.dt - 1e-9).ceil().max(1.0);
+    let dt = span / steps;
+    let start = case
+        .start()
+        .or_else(|_| init::static_equilibrium(case.model(), case.path(), t0, &case.p0))
+        .map_err(|e| e.to_string())?;
+    case.simulate(&start, &Options::new(dt, tf).with_scheme(settings.scheme)).map_err(|e| e.to_string())
+}
+
+/// The extremum of the parabola through three equally spaced samples
+/// `(t - h, a), (t, b), (t + h, c)` with `b` the sampled extremum: the
+/// peak between the steps, `(value, time)`.
+fn vertex(t: f64, h: f64, a: f64, b: f64, c: f64) -> (f64, f64) {
+    let curvature = a - 2.0 * b + c;
+    if curvature == 0.0 || !curvature.is_finite() {
+        return (b, t);
+    }
+    let offset = (0.5 * (a - c) / curvature).clamp(-1.0, 1.0);
+    (b - 0.25 * (a - c) * offset, t + offset * h)
+}
+
+/// The peaks of a run: the largest `|u_k|` and the smallest tension of
+/// each rope, between the steps where the extreme sample is interior (the
+/// parabola through it and its neighbours: on a coarse step the samples
+/// miss a smooth peak by O(dt^2), 1e-3 relative at dt = 0.05 s on the
+/// paper's move; the vertex by O(dt^3)).
+pub fn peaks<const N: usize, const M: usize, const A: usize>(duration: f64, run: &Solution<N, M, A>) -> Evaluation {
+    let states = &run.states;
+    let ropes = run.info.ropes.len();
+    let extreme = |value: &dyn Fn(usize) -> f64| -> (f64, f64) {
+        // the sample with the largest value (NaN counts as +inf)
+        let v = |i: usize| {
+            let x = value(i);
+            if x.is_nan() { f64::INFINITY } else { x }
+        };
+        let best = (0..states.len()).fold(0, |b, i| if v(i) > v(b) { i } else { b });
+        if best > 0 && best + 1 < states.len() && v(best).is_finite() {
+            let h = states[best + 1].t - states[best].t;
+            vertex(states[best].t, h, v(best - 1), v(best), v(best + 1))
+        } else {
+            (v(best), states[best].t)
+        }
+    };
+    let peak_u = (0..A).map(|k| extreme(&|i| states[i].u[k].abs())).collect();
+    let min_tension = (0..ropes)
+        .map(|r| {
+            let (value, at) = extreme(&|i| -run.tensions_at(i)[r]);
+            (-value, at)
+        })
+        .collect();
+    Evaluation { duration, peak_u, min_tension, error: None }
+}
+
+/// Evaluate `case` scaled to `duration`.
+pub fn evaluate<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    duration: f64,
+    settings: &Settings,
+) -> (Evaluation, Option<Solution<N, M, A>>) {
+    evaluate_model(case, case.model().clone(), duration, settings)
+}
+
+/// Evaluate `case` with `model` instead of its own, scaled to `duration`.
+fn evaluate_model<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    model: C::Model,
+    duration: f64,
+    settings: &Settings,
+) -> (Evaluation, Option<Solution<N, M, A>>) {
+    let failed = |error: String| (Evaluation { duration, peak_u: Vec::new(), min_tension: Vec::new(), error: Some(error) }, None);
+    let scaled = match with_duration(case, model, duration) {
+        Ok(c) => c,
+        Err(e) => return failed(e),
+    };
+    match run(&scaled, settings) {
+        Ok(solution) => (peaks(duration, &solution), Some(solution)),
+        Err(e) => failed(e),
+    }
+}
+
+/// What the interval check found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IntervalCheck {
+    /// Durations checked across the bracket.
+    pub points: usize,
+    /// Every checked duration below the answer infeasible and every one
+    /// above feasible.
+    pub holds: bool,
+    /// A checked duration that breaks it, if any.
+    pub counterexample: Option<f64>,
+}
+
+/// The shortest feasible duration.
+#[derive(Debug, Clone)]
+pub struct Fastest<const N: usize, const M: usize, const A: usize> {
+    /// The duration, s (feasible; the bracket's lower end is not).
+    pub duration: f64,
+    /// The final bracket `(infeasible, feasible)`.
+    pub bracket: (f64, f64),
+    /// The limit that binds: the one most violated just below the answer
+    /// (`at`: when, there; `excess`: by how much), with its value at the
+    /// answer (`value`).
+    pub binding: Binding,
+    /// Every limit at the answer.
+    pub at_answer: Vec<Binding>,
+    /// Evaluations of the search (bracketing and bisection).
+    pub evaluations: usize,
+    /// The check that feasible durations form an interval on the first
+    /// bracket (`interval_points` more evaluations).
+    pub interval: IntervalCheck,
+    /// The run at the answer.
+    pub solution: Solution<N, M, A>,
+}
+
+/// Why there is no answer.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlanError {
+    /// Nothing to search for.
+    #[error("no limits given: every duration is feasible")]
+    NoLimits,
+    /// Settings out of range.
+    #[error("{0}")]
+    Settings(String),
+    /// Even `duration` (the longest tried) violates a limit.
+    #[error("no feasible duration up to {duration:.3} s: {reason}")]
+    NoFeasibleDuration {
+        /// The longest duration tried, s.
+        duration: f64,
+        /// Why it is infeasible.
+        reason: String,
+    },
+    /// Even `duration` (the shortest tried) meets every limit.
+    #[error("every duration down to {duration:.3e} s is feasible; the limits do not bind")]
+    Unbounded {
+        /// The shortest duration tried, s.
+        duration: f64,
+    },
+}
+
+/// Why an evaluation is infeasible, in words.
+fn reason<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(e: &Evaluation, limits: &Limits) -> String {
+    if let Some(error) = &e.error {
+        return format!("the inverse dynamics failed: {error}");
+    }
+    match e.bindings::<Mdl, N, M, A>(limits).first() {
+        Some(b) if b.excess > b.allowance => format!("{} = {:.3} against {} at t = {:.3} s", b.name, b.value, b.limit, b.at),
+        _ => "feasible".into(),
+    }
+}
+
+/// The shortest duration of `case`'s path shape for which every limit
+/// holds (see the module docs).
+pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    limits: &Limits,
+    settings: &Settings,
+) -> Result<Fastest<N, M, A>, PlanError> {
+    if limits.torque.is_empty() && limits.tension.is_empty() {
+        return Err(PlanError::NoLimits);
+    }
+    if !(settings.tolerance > 0.0 && settings.dt > 0.0) {
+        return Err(PlanError::Settings(format!("tolerance {} and dt {} must be positive", settings.tolerance, settings.dt)));
+    }
+    let mut evaluations = 0;
+    let mut feasible = |duration: f64| {
+        evaluations += 1;
+        let (e, _) = evaluate(case, duration, settings);
+        let ok = e.feasible::<C::Model, N, M, A>(limits);
+        (ok, e)
+    };
+    let spec = case.path().spec();
+    let own = spec.t1 - spec.t0;
+    // bracket: (infeasible lo, feasible hi)
+    let (mut lo, mut hi) = match feasible(own) {
+        (true, _) => {
+            let mut hi = own;
+            let mut lo = own / 2.0;
+            loop {
+                if !feasible(lo).0 {
+                    break (lo, hi);
+                }
+                hi = lo;
+                lo /= 2.0;
+                if lo < settings.tolerance {
+                    return Err(PlanError::Unbounded { duration: hi });
+                }
+            }
+        }
+        (false, _) => {
+            let mut lo = own;
+            let mut hi = 2.0 * own;
+            loop {
+                let (ok, e) = feasible(hi);
+                if ok {
+                    break (lo, hi);
+                }
+                if hi > 64.0 * own {
+                    return Err(PlanError::NoFeasibleDuration { duration: hi, reason: reason::<C::Model, N, M, A>(&e, limits) });
+                }
+                lo = hi;
+                hi *= 2.0;
+            }
+        }
+    };
+    let first_bracket = (lo, hi);
+    while hi - lo > settings.tolerance {
+        let mid = 0.5 * (lo + hi);
+        if feasible(mid).0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let (_, below) = feasible(lo);
+    let (answer, solution) = evaluate(case, hi, settings);
+    evaluations += 1;
+    let at_answer = answer.bindings::<C::Model, N, M, A>(limits);
+    // the limit most violated just below the answer, with its value at the
+    // answer and the time it is violated just below it
+    let violated = match &below.error {
+        Some(error) => Some(Binding {
+            name: format!("the run itself ({error})"),
+            limit: f64::NAN,
+            value: f64::NAN,
+            at: f64::NAN,
+            excess: f64::INFINITY,
+            allowance: 0.0,
+            tension: false,
+        }),
+        None => below.bindings::<C::Model, N, M, A>(limits).into_iter().next(),
+    };
+    let binding = match violated {
+        Some(b) => {
+            let value = at_answer.iter().find(|a| a.name == b.name).map_or(f64::NAN, |a| a.value);
+            Binding { value, ..b }
+        }
+        None => at_answer.first().cloned().unwrap_or(Binding {
+            name: String::new(),
+            limit: f64::NAN,
+            value: f64::NAN,
+            at: f64::NAN,
+            excess: f64::NAN,
+            allowance: 0.0,
+            tension: false,
+        }),
+    };
+    // feasible durations an interval on the first bracket?
+    let points = settings.interval_points;
+    let mut counterexample = None;
+    for i in 1..=points {
+        let d = first_bracket.0 + (first_bracket.1 - first_bracket.0) * i as f64 / (points + 1) as f64;
+        let ok = evaluate(case, d, settings).0.feasible::<C::Model, N, M, A>(limits);
+        if ok != (d >= hi) && (d - hi).abs() > settings.tolerance {
+            counterexample.get_or_insert(d);
+        }
+    }
+    let solution = solution.ok_or_else(|| PlanError::NoFeasibleDuration { duration: hi, reason: reason::<C::Model, N, M, A>(&answer, limits) })?;
+    Ok(Fastest {
+        duration: hi,
+        bracket: (lo, hi),
+        binding,
+        at_answer,
+        evaluations,
+        interval: IntervalCheck { points, holds: counterexample.is_none(), counterexample },
+        solution,
+    })
+}
+
+/// One point of a sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepPoint {
+    /// The swept parameter values, in the order of the sweep's parameters.
+    pub values: Vec<f64>,
+    /// The duration (the case's own if durations are not swept).
+    pub duration: f64,
+    /// The run's peaks (or its error).
+    pub evaluation: Evaluation,
+    /// Within every limit.
+    pub feasible: bool,
+}
+
+/// The grid of `params` (each `(name, values)`) and `durations` (the
+/// case's own if empty), row-major with the last parameter fastest and the
+/// duration fastest of all; each point evaluated as [`evaluate`] does with
+/// the parameters set by name, in parallel (rayon) and returned in grid
+/// order, so the result does not depend on the number of threads.
+/// `progress` is called once per finished point. A point that fails
+/// records its error; the sweep goes on.
+pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    params: &[(String, Vec<f64>)],
+    durations: &[f64],
+    limits: &Limits,
+    settings: &Settings,
+    progress: &(dyn Fn() + Sync),
+) -> Vec<SweepPoint> {
+    let spec = case.path().spec();
+    let own = [spec.t1 - spec.t0];
+    let durations: &[f64] = if durations.is_empty() { &own } else { durations };
+    let mut grid: Vec<(Vec<f64>, f64)> = vec![(Vec::new(), 0.0)];
+    for (_, values) in params {
+        grid = grid.into_iter().flat_map(|(prefix, _)| values.iter().map(move |&v| ([prefix.clone(), vec![v]].concat(), 0.0))).collect();
+    }
+    let grid: Vec<(Vec<f64>, f64)> = grid.into_iter().flat_map(|(values, _)| durations.iter().map(move |&d| (values.clone(), d))).collect();
+    grid.into_par_iter()
+        .map(|(values, duration)| {
+            let point = sweep_point(case, params, &values, duration, limits, settings);
+            progress();
+            point
+        })
+        .collect()
+}
+
+/// One sweep point: the model with `values` set, scaled to `duration`.
+pub fn sweep_point<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    params: &[(String, Vec<f64>)],
+    values: &[f64],
+    duration: f64,
+    limits: &Limits,
+    settings: &Settings,
+) -> SweepPoint {
+    let mut model = case.model().clone();
+    let mut error = None;
+    for ((name, _), &value) in params.iter().zip(values) {
+        if let Err(e) = model.set_parameter(name, value) {
+            error.get_or_insert(e.to_string());
+        }
+    }
+    let evaluation = match error {
+        Some(e) => Evaluation { duration, peak_u: Vec::new(), min_tension: Vec::new(), error: Some(e) },
+        None => evaluate_model(case, model, duration, settings).0,
+    };
+    let feasible = evaluation.feasible::<C::Model, N, M, A>(limits);
+    SweepPoint { values: values.to_vec(), duration, evaluation, feasible }
+}
