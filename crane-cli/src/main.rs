@@ -635,6 +635,22 @@ fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             crane_runtime::error::Seconds(internal.at.unwrap_or(f64::NAN)),
         );
     }
+    if let Some(smooth) = crane_runtime::internal::path_smoothness::<C::Model, _, N, M, A>(case.path()) {
+        summary.path_smoothness = Some(report::PathSmoothnessSummary {
+            needed: smooth.needed,
+            continuous: smooth.continuous,
+            sufficient: smooth.is_sufficient(),
+        });
+        if !smooth.is_sufficient() {
+            eprintln!(
+                "warning: the inputs of {name} depend on the load path's derivatives up to order {}, but this path is continuous only up to order {}: the exact inputs jump or carry impulses where its derivative {} jumps, and the computed ones grow there as dt shrinks (use a smoother path, e.g. trajectory = \"smooth-three-phase\")",
+                smooth.needed,
+                smooth.continuous,
+                smooth.continuous + 1
+            );
+        }
+    }
+    let internal = &summary.internal_dynamics;
     if let Some(t) = internal.runaway_at {
         eprintln!(
             "warning: an input of {name} exceeds 1e6 times its size at the start from t = {} s: not a physical result",

@@ -75,6 +75,17 @@ pub struct Summary {
     pub replay: Option<ReplaySummary>,
     /// The internal dynamics along the run (`crane_runtime::internal`).
     pub internal_dynamics: InternalSummary,
+    /// How smooth the path must be (the inputs depend on its derivatives
+    /// up to `needed`) and is (`continuous`), where both are known.
+    pub path_smoothness: Option<PathSmoothnessSummary>,
+}
+
+/// `path_smoothness` in summary.json.
+#[derive(Debug, Clone, Serialize)]
+pub struct PathSmoothnessSummary {
+    pub needed: usize,
+    pub continuous: usize,
+    pub sufficient: bool,
 }
 
 /// The internal dynamics at sampled states of a run.
@@ -306,6 +317,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         reference,
         replay: None,
         internal_dynamics: InternalSummary::none(),
+        path_smoothness: None,
     }
 }
 

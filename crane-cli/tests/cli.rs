@@ -758,3 +758,25 @@ fn sweep_writes_a_row_per_point_and_survives_a_failure() {
     let result = crane(&["sweep", "navy-planar", "--param", "mass=1:2:2"]);
     assert!(String::from_utf8_lossy(&result.stderr).contains("no such parameter"));
 }
+
+/// A path too rough for the crane is reported: navy-3d-pulley's inputs
+/// need the path's 6th derivative, the paper's three-phase profile is
+/// continuous only to the 4th (a warning and `path_smoothness` in
+/// summary.json); the smooth profile is enough.
+#[test]
+fn a_path_too_rough_for_the_crane_is_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rough");
+    let result = crane(&["run", "navy-3d-pulley", "--dt", "0.1", "--quiet", "--out", out.to_str().unwrap()]);
+    assert!(result.status.success());
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(stderr.contains("derivatives up to order 6, but this path is continuous only up to order 4"), "{stderr}");
+    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["path_smoothness"]["sufficient"], false, "{}", summary["path_smoothness"]);
+    let file = dir.path().join("smooth.toml");
+    std::fs::write(&file, "dt = 0.1\ntrajectory = \"smooth-three-phase\"\n").unwrap();
+    let smooth = run_ok("navy-3d-pulley", &["--scenario", file.to_str().unwrap()], dir.path(), "smooth");
+    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(smooth.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["path_smoothness"]["needed"], 6);
+    assert_eq!(summary["path_smoothness"]["sufficient"], true);
+}

@@ -180,9 +180,17 @@ pub fn structure(model: &Model, k: &Kernels) -> Structure {
 }
 
 impl Structure {
-    /// One sentence for the generated docs.
-    pub fn describe(&self) -> String {
-        match *self {
+    /// The sentences for the generated docs (`a` servo constraints, the
+    /// last equations).
+    pub fn describe(&self, a: usize) -> String {
+        let order = match self {
+            Structure::Internal { equations, .. } => equations[equations.len().saturating_sub(a)..].iter().copied().max(),
+            Structure::Singular => None,
+        };
+        let smoothness = order
+            .map(|d| format!(" The inputs depend on the load path's derivatives up to order {d}: a path continuous only to a lower order gives them jumps or impulses."))
+            .unwrap_or_default();
+        let count = match *self {
             Structure::Internal { dimension: 0, .. } => {
                 "Internal dynamics (structural, eqs. 22a-d): none, the load path fixes every state (flat).".to_string()
             }
@@ -194,7 +202,8 @@ impl Structure {
             Structure::Singular => {
                 "Internal dynamics (structural, eqs. 22a-d): the equations cannot fix coordinates, multipliers and inputs from a load path (structurally singular).".to_string()
             }
-        }
+        };
+        count + &smoothness
     }
 
 }

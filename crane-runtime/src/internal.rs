@@ -427,3 +427,38 @@ where
     }
     diagnosis
 }
+
+/// How smooth a load path must be for a crane, and how smooth it is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PathSmoothness {
+    /// The highest derivative of the path the inputs depend on
+    /// ([`Structure::path_order`]).
+    pub needed: usize,
+    /// The highest derivative of the path that is continuous
+    /// ([`Trajectory::continuity`](crate::trajectory::Trajectory::continuity)).
+    pub continuous: usize,
+}
+
+impl PathSmoothness {
+    /// Whether the path is smooth enough: otherwise the exact inputs jump
+    /// (or carry impulses) where the path's derivative `continuous + 1`
+    /// jumps, and the computed ones grow there as the step shrinks.
+    pub fn is_sufficient(&self) -> bool {
+        self.continuous >= self.needed
+    }
+}
+
+/// The smoothness `trajectory` has and `model` needs, where both are known
+/// (the model's [`CraneModel::STRUCTURE`], the path's
+/// [`Trajectory::continuity`](crate::trajectory::Trajectory::continuity)).
+///
+/// `navy-3d-pulley` on the paper's three-phase profile: needed 6,
+/// continuous 4, so its slewing torque has impulses at the ramp corners
+/// (1790 N m at dt = 0.0005 s, 446 N m at 0.002 s).
+pub fn path_smoothness<Mdl, Tr, const N: usize, const M: usize, const A: usize>(trajectory: &Tr) -> Option<PathSmoothness>
+where
+    Mdl: CraneModel<N, M, A>,
+    Tr: crate::trajectory::Trajectory<A>,
+{
+    Some(PathSmoothness { needed: Mdl::STRUCTURE?.path_order(A), continuous: trajectory.continuity()? })
+}

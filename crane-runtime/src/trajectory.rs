@@ -20,11 +20,24 @@ pub trait Trajectory<const A: usize> {
     {
         std::array::from_fn(|k| self.derivative(t, k))
     }
+
+    /// The highest derivative of `gamma` that is continuous for all `t`
+    /// (the rest before and after the motion included), if known. The
+    /// inputs of a crane depend on the path's derivatives up to
+    /// [`Structure::path_order`](crate::Structure::path_order); a path
+    /// continuous only to a lower order gives inputs with jumps or impulses.
+    fn continuity(&self) -> Option<usize> {
+        None
+    }
 }
 
 impl<const A: usize, T: Trajectory<A> + ?Sized> Trajectory<A> for &T {
     fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
         (**self).derivative(t, k)
+    }
+
+    fn continuity(&self) -> Option<usize> {
+        (**self).continuity()
     }
 }
 
@@ -131,6 +144,11 @@ impl<const A: usize> Poly9<A> {
 }
 
 impl<const A: usize> Trajectory<A> for Poly9<A> {
+    /// 4: derivatives 1 to 4 vanish at both ends, the 5th jumps there.
+    fn continuity(&self) -> Option<usize> {
+        Some(4)
+    }
+
     fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
         let duration = self.tf - self.t0;
         let tau = ((t - self.t0) / duration).clamp(0.0, 1.0);
@@ -264,6 +282,11 @@ impl<const A: usize> Trajectory<A> for ThreePhase<A> {
     fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
         self.0.derivative(t, k)
     }
+
+    /// 4: the ramps are four times continuously differentiable.
+    fn continuity(&self) -> Option<usize> {
+        Some(4)
+    }
 }
 
 /// Coefficients of the smooth ramp `h(s)/tau0 = 66 s^7 - 495/2 s^8 + 385 s^9
@@ -329,6 +352,11 @@ impl<const A: usize> SmoothThreePhase<A> {
 impl<const A: usize> Trajectory<A> for SmoothThreePhase<A> {
     fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
         self.0.derivative(t, k)
+    }
+
+    /// 6: the ramps are continuous up to the 6th derivative.
+    fn continuity(&self) -> Option<usize> {
+        Some(6)
     }
 }
 

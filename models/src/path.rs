@@ -95,4 +95,12 @@ impl<const A: usize> Trajectory<A> for Path<A> {
             Built::SmoothThreePhase(p) => p.derivative(t, k),
         }
     }
+
+    fn continuity(&self) -> Option<usize> {
+        match &self.built {
+            Built::Poly9(p) => p.continuity(),
+            Built::ThreePhase(p) => p.continuity(),
+            Built::SmoothThreePhase(p) => p.continuity(),
+        }
+    }
 }

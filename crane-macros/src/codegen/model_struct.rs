@@ -32,7 +32,7 @@ pub(super) fn model_struct(model: &Model, structure: &Structure) -> TokenStream 
         "Declared with `crane_model!`: n = {n} coordinates, m = {m} constraints, a = {a} inputs, f = n - m = {} degrees of freedom.",
         n - m
     ));
-    let structure_doc = doc(structure.describe());
+    let structure_doc = doc(structure.describe(model.a()));
     let summary_separator = if attrs.iter().any(|a| a.path().is_ident("doc")) {
         doc("")
     } else {

@@ -2,7 +2,7 @@
 ///
 /// Declared with `crane_model!`: n = 7 coordinates, m = 3 constraints, a = 2 inputs, f = n - m = 4 degrees of freedom.
 ///
-/// Internal dynamics (structural, eqs. 22a-d): none, the load path fixes every state (flat).
+/// Internal dynamics (structural, eqs. 22a-d): none, the load path fixes every state (flat). The inputs depend on the load path's derivatives up to order 4: a path continuous only to a lower order gives them jumps or impulses.
 #[derive(
     ::core::fmt::Debug,
     ::core::clone::Clone,
