@@ -4,42 +4,11 @@
 //! internal steps per communication step. One test function, so that no
 //! other test allocates while one counts.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
-
 use crane_fmi::instance::{Component, Instance};
 use crane_fmi::variables::{Role, variables};
 use crane_models::navy_planar;
 use crane_runtime::Trajectory;
-
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    static COUNTED: Cell<bool> = const { Cell::new(false) };
-}
-
-fn count() {
-    if COUNTED.with(Cell::get) {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-    }
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count();
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count();
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
+use crane_tests::counting::{Counting, allocations_during, assert_counter_works};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -61,31 +30,24 @@ fn do_step_does_not_allocate() {
         let steps = (4.0 / h as f64).round() as usize;
         let mut out = [0.0; 4];
         let mut values = [0.0; 6];
-        let before = ALLOCATIONS.load(Ordering::SeqCst);
-        COUNTED.with(|c| c.set(true));
-        for i in 0..steps {
-            let t = i as f64 * h;
-            if path_kind == 3 {
-                // the built-in move, handed over as the external target
-                for k in 0..2 {
-                    for o in 0..3 {
-                        values[3 * k + o] = path.derivative(t + h, o)[k];
+        let (allocations, ()) = allocations_during(|| {
+            for i in 0..steps {
+                let t = i as f64 * h;
+                if path_kind == 3 {
+                    // the built-in move, handed over as the external target
+                    for k in 0..2 {
+                        for o in 0..3 {
+                            values[3 * k + o] = path.derivative(t + h, o)[k];
+                        }
                     }
+                    fmu.set_real(&targets, &values).ok();
                 }
-                fmu.set_real(&targets, &values).ok();
+                let status = fmu.do_step(t, h);
+                let read = fmu.get_real(&refs, &mut out);
+                assert!(status.is_ok() && read.is_ok());
             }
-            let status = fmu.do_step(t, h);
-            let read = fmu.get_real(&refs, &mut out);
-            assert!(status.is_ok() && read.is_ok());
-        }
-        COUNTED.with(|c| c.set(false));
-        let allocations = ALLOCATIONS.load(Ordering::SeqCst) - before;
+        });
         assert_eq!(allocations, 0, "path {path_kind}, h = {h}: {allocations} allocations in {steps} steps");
     }
-    // the counter sees an allocation where there is one
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
-    COUNTED.with(|c| c.set(true));
-    let boxed = std::hint::black_box(Box::new(1.0f64));
-    COUNTED.with(|c| c.set(false));
-    assert_eq!(ALLOCATIONS.load(Ordering::SeqCst) - before, 1, "{boxed}");
+    assert_counter_works();
 }

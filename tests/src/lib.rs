@@ -1,6 +1,7 @@
 //! Cross-crate checks of the crane models: generated code against the
 //! hand-written model, numerical solutions against the analytical references.
 
+pub mod counting;
 pub mod handwritten;
 pub mod kit;
 

@@ -6,71 +6,26 @@
 //! and the forward problem's stepper.
 //! One test function, so that no other test allocates while one counts.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
-
 use crane_models::navy_planar::{PaperCase, minimal_guess};
 use crane_runtime::newton::NewtonOptions;
 use crane_runtime::forward::ForwardStepper;
 use crane_runtime::{MinimalStepper, RedundantStepper, Scheme, Stepper};
-
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    /// Count only the allocations of the thread that steps: the test
-    /// harness's own thread allocates now and then while a test runs
-    /// (seen: 4 allocations in one of three runs).
-    static COUNTED: Cell<bool> = const { Cell::new(false) };
-}
-
-fn count() {
-    if COUNTED.with(Cell::get) {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-    }
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count();
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count();
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
+use crane_tests::counting::{Counting, allocations_during, assert_counter_works};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
 /// Allocations during `steps` steps of `stepper`.
 fn allocations_in(stepper: &mut impl Stepper<7, 3, 2>, steps: usize) -> (usize, usize) {
-    let mut min_norm = 0;
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
-    COUNTED.with(|c| c.set(true));
-    for _ in 0..steps {
-        min_norm += stepper.step().map(|r| r.min_norm_steps).unwrap_or(usize::MAX);
-    }
-    COUNTED.with(|c| c.set(false));
+    let (allocations, min_norm) = allocations_during(|| {
+        let mut min_norm = 0;
+        for _ in 0..steps {
+            min_norm += stepper.step().map(|r| r.min_norm_steps).unwrap_or(usize::MAX);
+        }
+        min_norm
+    });
     assert!(min_norm < usize::MAX, "a step failed");
-    (ALLOCATIONS.load(Ordering::SeqCst) - before, min_norm)
-}
-
-/// The counter sees an allocation on the stepping thread (else the test
-/// below could not fail).
-fn assert_counter_works() {
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
-    COUNTED.with(|c| c.set(true));
-    let v = std::hint::black_box(vec![1u8; 16]);
-    COUNTED.with(|c| c.set(false));
-    drop(v);
-    assert!(ALLOCATIONS.load(Ordering::SeqCst) > before, "the counting allocator missed an allocation");
+    (allocations, min_norm)
 }
 
 #[test]
