@@ -145,30 +145,14 @@ enum Command {
     Fastest {
         /// Model name (see `crane list`).
         model: String,
-        /// Scenario file: the path shape, parameters and [limits].
-        #[arg(long, value_name = "FILE.toml")]
-        scenario: Option<PathBuf>,
-        /// A limit |u| <= VALUE on an input, NAME=VALUE (repeatable).
-        #[arg(long = "limit", value_name = "NAME=VALUE")]
-        limit: Vec<String>,
-        /// A floor N >= VALUE on a rope tension, NAME=VALUE (repeatable).
-        #[arg(long = "min-tension", value_name = "NAME=VALUE")]
-        min_tension: Vec<String>,
-        /// Scheme of the evaluations (default bdf4).
-        #[arg(long, value_name = "SCHEME")]
-        scheme: Option<Scheme>,
-        /// Largest time step of the evaluations, s (default 0.05).
-        #[arg(long)]
-        dt: Option<f64>,
+        #[command(flatten)]
+        plan: PlanFlags,
         /// Bisection tolerance on the duration, s.
         #[arg(long, default_value_t = 1e-3)]
         tolerance: f64,
         /// Print fastest.json on stdout instead of the summary.
         #[arg(long)]
         json: bool,
-        /// Output directory (default out/MODEL).
-        #[arg(long)]
-        out: Option<PathBuf>,
     },
     /// Peaks and feasibility over a grid of parameters (and durations), in
     /// parallel: sweep.csv, and for two swept quantities a heat map sweep.svg.
@@ -181,30 +165,14 @@ enum Command {
         /// Swept durations of the move, LOW:HIGH:COUNT (default: its own).
         #[arg(long, value_name = "LOW:HIGH:COUNT")]
         duration: Option<String>,
-        /// Scenario file: the path shape, parameters and [limits].
-        #[arg(long, value_name = "FILE.toml")]
-        scenario: Option<PathBuf>,
-        /// A limit |u| <= VALUE for the `feasible` column, NAME=VALUE (repeatable).
-        #[arg(long = "limit", value_name = "NAME=VALUE")]
-        limit: Vec<String>,
-        /// A floor N >= VALUE for the `feasible` column, NAME=VALUE (repeatable).
-        #[arg(long = "min-tension", value_name = "NAME=VALUE")]
-        min_tension: Vec<String>,
-        /// Scheme of the runs (default bdf4).
-        #[arg(long, value_name = "SCHEME")]
-        scheme: Option<Scheme>,
-        /// Largest time step of the runs, s (default 0.05).
-        #[arg(long)]
-        dt: Option<f64>,
+        #[command(flatten)]
+        plan: PlanFlags,
         /// Worker threads (default: one per core).
         #[arg(long)]
         threads: Option<usize>,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
-        /// Output directory (default out/MODEL).
-        #[arg(long)]
-        out: Option<PathBuf>,
     },
     /// Write an FMI 2.0 co-simulation FMU of a built-in model (the inverse
     /// model: load target in, inputs, coordinates, multipliers and tensions
@@ -258,6 +226,30 @@ impl Formulation {
                 .map_err(CliError::from),
         }
     }
+}
+
+/// The flags `crane fastest` and `crane sweep` share.
+#[derive(clap::Args, Debug)]
+struct PlanFlags {
+    /// Scenario file: the path shape, parameters and [limits].
+    #[arg(long, value_name = "FILE.toml")]
+    scenario: Option<PathBuf>,
+    /// A limit |u| <= VALUE on an input, NAME=VALUE (repeatable).
+    #[arg(long = "limit", value_name = "NAME=VALUE")]
+    limit: Vec<String>,
+    /// A floor N >= VALUE on a rope tension, NAME=VALUE (repeatable; ropes
+    /// without one must stay taut).
+    #[arg(long = "min-tension", value_name = "NAME=VALUE")]
+    min_tension: Vec<String>,
+    /// Scheme of the runs (default bdf4).
+    #[arg(long, value_name = "SCHEME")]
+    scheme: Option<Scheme>,
+    /// Largest time step of the runs, s (default 0.05).
+    #[arg(long)]
+    dt: Option<f64>,
+    /// Output directory (default out/MODEL).
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
 /// Errors the command reports (then exits non-zero).
@@ -488,17 +480,14 @@ fn execute(command: Command) -> Result<(), CliError> {
             };
             dispatch(&model, Job::Bench { overrides, repeat, json }).map(|_| ())
         }
-        Command::Fastest { model, scenario, limit, min_tension, scheme, dt, tolerance, json, out } => {
-            let file = scenario.as_deref().map(ScenarioFile::load).transpose()?;
-            let out = out.unwrap_or_else(|| PathBuf::from("out").join(&model));
-            let settings = plan_settings(scheme, dt, Some(tolerance))?;
-            let plan = PlanArgs { limit: &limit, min_tension: &min_tension, settings, out: &out };
+        Command::Fastest { model, plan, tolerance, json } => {
+            let (file, out) = plan.files(&model)?;
+            let plan = plan.args(plan.settings(Some(tolerance))?, &out);
             dispatch(&model, Job::Fastest { file: file.as_ref(), plan, json }).map(|_| ())
         }
-        Command::Sweep { model, param, duration, scenario, limit, min_tension, scheme, dt, threads, quiet, out } => {
-            let file = scenario.as_deref().map(ScenarioFile::load).transpose()?;
-            let out = out.unwrap_or_else(|| PathBuf::from("out").join(&model));
-            let settings = plan_settings(scheme, dt, None)?;
+        Command::Sweep { model, param, duration, plan, threads, quiet } => {
+            let (file, out) = plan.files(&model)?;
+            let settings = plan.settings(None)?;
             let durations = match duration.as_deref() {
                 Some(spec) => planning::values(spec)
                     .filter(|d| d.iter().all(|&x| x > 0.0))
@@ -508,7 +497,7 @@ fn execute(command: Command) -> Result<(), CliError> {
             if param.is_empty() && durations.len() < 2 {
                 return Err(CliError::Planning("nothing to sweep: give --param NAME=LOW:HIGH:COUNT or --duration LOW:HIGH:COUNT".into()));
             }
-            let plan = PlanArgs { limit: &limit, min_tension: &min_tension, settings, out: &out };
+            let plan = plan.args(settings, &out);
             let job = || dispatch(&model, Job::Sweep { file: file.as_ref(), plan, params: &param, durations, quiet }).map(|_| ());
             match threads {
                 Some(0) => Err(CliError::Planning("--threads must be at least 1".into())),
@@ -556,15 +545,28 @@ fn execute(command: Command) -> Result<(), CliError> {
     }
 }
 
-/// The planner's settings from the flags (BDF-4, dt 0.05 s, 1 ms by default).
-fn plan_settings(scheme: Option<Scheme>, dt: Option<f64>, tolerance: Option<f64>) -> Result<crane_models::plan::Settings, CliError> {
-    let defaults = crane_models::plan::Settings::default();
-    let dt = dt.unwrap_or(defaults.dt);
-    let tolerance = tolerance.unwrap_or(defaults.tolerance);
-    if !(dt > 0.0 && dt.is_finite() && tolerance > 0.0 && tolerance.is_finite()) {
-        return Err(CliError::Planning(format!("--dt {dt} and --tolerance {tolerance} must be positive")));
+impl PlanFlags {
+    /// The scenario file (loaded) and the output directory.
+    fn files(&self, model: &str) -> Result<(Option<ScenarioFile>, PathBuf), CliError> {
+        let file = self.scenario.as_deref().map(ScenarioFile::load).transpose()?;
+        Ok((file, self.out.clone().unwrap_or_else(|| PathBuf::from("out").join(model))))
     }
-    Ok(crane_models::plan::Settings { dt, scheme: scheme.unwrap_or(defaults.scheme), tolerance, ..defaults })
+
+    /// The planner's settings from the flags (BDF-4, dt 0.05 s, 1 ms by default).
+    fn settings(&self, tolerance: Option<f64>) -> Result<crane_models::plan::Settings, CliError> {
+        let defaults = crane_models::plan::Settings::default();
+        let dt = self.dt.unwrap_or(defaults.dt);
+        let tolerance = tolerance.unwrap_or(defaults.tolerance);
+        if !(dt > 0.0 && dt.is_finite() && tolerance > 0.0 && tolerance.is_finite()) {
+            return Err(CliError::Planning(format!("--dt {dt} and --tolerance {tolerance} must be positive")));
+        }
+        Ok(crane_models::plan::Settings { dt, scheme: self.scheme.unwrap_or(defaults.scheme), tolerance, ..defaults })
+    }
+
+    /// What the jobs need of the flags.
+    fn args<'a>(&'a self, settings: crane_models::plan::Settings, out: &'a std::path::Path) -> PlanArgs<'a> {
+        PlanArgs { limit: &self.limit, min_tension: &self.min_tension, settings, out }
+    }
 }
 
 /// What `crane run` was asked to do.
