@@ -199,17 +199,7 @@ fn curves<const N: usize, const M: usize, const A: usize>(
 
 /// Named curves over time (each thinned to at most [`MAX_POINTS`] points).
 pub fn curves_over_time(title: &str, y_label: &str, curves: &[(&str, Vec<(f64, f64)>)]) -> Result<String, CliError> {
-    let series: Vec<Series> = curves
-        .iter()
-        .enumerate()
-        .map(|(c, (name, points))| Series {
-            name: name.to_string(),
-            points: thinned(points.len(), |i| points[i]),
-            color: PALETTE[c % PALETTE.len()],
-            dashed: false,
-        })
-        .collect();
-    draw(title, y_label, &series)
+    curves_with_levels(title, y_label, curves, &[])
 }
 
 /// Named curves over time with horizontal dashed lines at the `levels`
