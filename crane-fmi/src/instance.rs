@@ -159,6 +159,9 @@ pub struct Instance<C: Crane<N, M, A>, const N: usize, const M: usize, const A: 
     defaults: (Vec<f64>, [i32; 2]),
     reals: Vec<f64>,
     integers: [i32; 2],
+    /// Value references of the external target, `[k][order]` (found once:
+    /// `do_step` reads them on every step).
+    targets: Vec<[usize; 3]>,
     mode: Mode,
     start_time: f64,
     run: Option<Run<C::Model, N, M, A>>,
@@ -173,7 +176,14 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         for v in table.iter().filter(|v| v.integer) {
             integers[v.value_reference as usize] = v.start as i32;
         }
+        let mut targets = vec![[0; 3]; A];
+        for v in &table {
+            if let Role::Target(k, order) = v.role {
+                targets[k][order] = v.value_reference as usize;
+            }
+        }
         Ok(Self {
+            targets,
             defaults: (reals.clone(), integers),
             table,
             reals,
@@ -199,13 +209,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
 
     /// The external target in the inputs.
     fn target(&self) -> ServoTarget<A> {
-        let mut target = [SVector::zeros(); 3];
-        for (order, t) in target.iter_mut().enumerate() {
-            for k in 0..A {
-                t[k] = self.value(Role::Target(k, order));
-            }
-        }
-        target
+        std::array::from_fn(|order| SVector::from_fn(|k, _| self.reals[self.targets[k][order]]))
     }
 
     /// Whether a variable of `causality` may be set now.
