@@ -358,23 +358,28 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
         return Err(PlanError::Settings(format!("tolerance {} and dt {} must be positive", settings.tolerance, settings.dt)));
     }
     let mut evaluations = 0;
-    let mut feasible = |duration: f64| {
+    // one evaluation, kept: the last infeasible (`below`) and feasible
+    // (`above`, with its run) ones end as the bracket's
+    let mut probe = |duration: f64| {
         evaluations += 1;
-        let (e, _) = evaluate(case, duration, settings);
-        let ok = e.feasible::<C::Model, N, M, A>(limits);
-        (ok, e)
+        let (evaluation, solution) = evaluate(case, duration, settings);
+        let ok = evaluation.feasible::<C::Model, N, M, A>(limits);
+        (ok, evaluation, solution)
     };
     let spec = case.path().spec();
     let own = spec.t1 - spec.t0;
     // bracket: (infeasible lo, feasible hi)
-    let (mut lo, mut hi) = match feasible(own) {
-        (true, _) => {
+    let (mut lo, mut hi, mut below, mut above) = match probe(own) {
+        (true, evaluation, solution) => {
+            let mut above = (evaluation, solution);
             let mut hi = own;
             let mut lo = own / 2.0;
             loop {
-                if !feasible(lo).0 {
-                    break (lo, hi);
+                let (ok, evaluation, solution) = probe(lo);
+                if !ok {
+                    break (lo, hi, evaluation, above);
                 }
+                above = (evaluation, solution);
                 hi = lo;
                 lo /= 2.0;
                 if lo < settings.tolerance {
@@ -382,17 +387,19 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
                 }
             }
         }
-        (false, _) => {
+        (false, evaluation, _) => {
+            let mut below = evaluation;
             let mut lo = own;
             let mut hi = 2.0 * own;
             loop {
-                let (ok, e) = feasible(hi);
+                let (ok, evaluation, solution) = probe(hi);
                 if ok {
-                    break (lo, hi);
+                    break (lo, hi, below, (evaluation, solution));
                 }
                 if hi > 64.0 * own {
-                    return Err(PlanError::NoFeasibleDuration { duration: hi, reason: reason::<C::Model, N, M, A>(&e, limits) });
+                    return Err(PlanError::NoFeasibleDuration { duration: hi, reason: reason::<C::Model, N, M, A>(&evaluation, limits) });
                 }
+                below = evaluation;
                 lo = hi;
                 hi *= 2.0;
             }
@@ -401,15 +408,16 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
     let first_bracket = (lo, hi);
     while hi - lo > settings.tolerance {
         let mid = 0.5 * (lo + hi);
-        if feasible(mid).0 {
+        let (ok, evaluation, solution) = probe(mid);
+        if ok {
             hi = mid;
+            above = (evaluation, solution);
         } else {
             lo = mid;
+            below = evaluation;
         }
     }
-    let (_, below) = feasible(lo);
-    let (answer, solution) = evaluate(case, hi, settings);
-    evaluations += 1;
+    let (answer, solution) = above;
     let at_answer = answer.bindings::<C::Model, N, M, A>(limits);
     // the limit most violated just below the answer, with its value at the
     // answer and the time it is violated just below it
