@@ -109,6 +109,8 @@ mod tests {
         let (xml, guid) = model_description::<D, 7, 3, 2>().unwrap();
         let table = crate::variables::variables::<D, 7, 3, 2>().unwrap();
         assert_eq!(xml.matches("<ScalarVariable ").count(), table.len());
+        // the Reals first (the instance finds a Real by indexing the table)
+        assert!(table.iter().skip_while(|v| !v.integer).all(|v| v.integer));
         for (i, v) in table.iter().enumerate() {
             assert_eq!(xml.matches(&format!("name=\"{}\"", v.name)).count(), 1, "{}", v.name);
             let same_type = table.iter().filter(|w| w.integer == v.integer).position(|w| w.name == v.name).unwrap();

@@ -195,10 +195,13 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
     }
 
     /// The Real variable with value reference `vr`.
+    /// The table lists the Reals first, in value-reference order, so the
+    /// lookup is an index (`fmi2SetReal` of the external target runs every
+    /// step).
     fn real_variable(&self, vr: u32) -> Result<&Variable, String> {
         self.table
-            .iter()
-            .find(|v| !v.integer && v.value_reference == vr)
+            .get(vr as usize)
+            .filter(|v| !v.integer && v.value_reference == vr)
             .ok_or_else(|| format!("no Real variable has value reference {vr}"))
     }
 

@@ -113,7 +113,8 @@ impl PathKind {
 #[error("two FMU variables are called `{0}`; rename the model's parameter or coordinate")]
 pub struct NameClash(pub String);
 
-/// The variables of crane `C`, in model-description order.
+/// The variables of crane `C`, in model-description order: the Reals
+/// first, with value references `0..` in table order, then the Integers.
 pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Result<Vec<Variable>, NameClash> {
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
     let model = C::Model::default();
