@@ -53,13 +53,9 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             .states
             .iter()
             .find(|s| (s.t - T_ERROR).abs() < 0.5 * dt)
-            .ok_or_else(|| {
-                CliError::Convergence(format!("dt = {dt} s: no step at t = {T_ERROR} s"))
-            })?;
+            .ok_or_else(|| CliError::Convergence(format!("dt = {dt} s: no step at t = {T_ERROR} s")))?;
         let error = case.relative_input_error(state).ok_or_else(no_reference)?;
-        let order = rows
-            .last()
-            .map(|&(dt0, e0)| (e0 / error).ln() / (dt0 / dt).ln());
+        let order = rows.last().map(|&(dt0, e0)| (e0 / error).ln() / (dt0 / dt).ln());
         match order {
             Some(p) => println!("{dt:>8}  {error:>12.4e}  {p:>8.3}"),
             None => println!("{dt:>8}  {error:>12.4e}  {:>8}", "-"),

@@ -262,10 +262,7 @@ enum CliError {
     #[error(transparent)]
     Trajectory(#[from] crane_runtime::trajectory::TrajectoryError),
     #[error("{context}: {source}")]
-    Io {
-        context: String,
-        source: std::io::Error,
-    },
+    Io { context: String, source: std::io::Error },
     #[error("writing {what}: {message}")]
     Output { what: String, message: String },
     #[error("model `{0}` declares no minimal-coordinate map; use --formulation redundant")]
@@ -295,11 +292,33 @@ enum CliError {
 /// A command on one crane, run by [`registry::visit`] with the crane's
 /// description and sizes.
 enum Job<'a> {
-    Run { settings: RunSettings<'a>, file: Option<&'a ScenarioFile>, overrides: Overrides },
-    Bench { overrides: Overrides, repeat: usize, json: bool },
-    Convergence { file: Option<&'a ScenarioFile>, overrides: Overrides, out: &'a std::path::Path },
-    Fastest { file: Option<&'a ScenarioFile>, plan: PlanArgs<'a>, json: bool },
-    Sweep { file: Option<&'a ScenarioFile>, plan: PlanArgs<'a>, params: &'a [String], durations: Vec<f64>, quiet: bool },
+    Run {
+        settings: RunSettings<'a>,
+        file: Option<&'a ScenarioFile>,
+        overrides: Overrides,
+    },
+    Bench {
+        overrides: Overrides,
+        repeat: usize,
+        json: bool,
+    },
+    Convergence {
+        file: Option<&'a ScenarioFile>,
+        overrides: Overrides,
+        out: &'a std::path::Path,
+    },
+    Fastest {
+        file: Option<&'a ScenarioFile>,
+        plan: PlanArgs<'a>,
+        json: bool,
+    },
+    Sweep {
+        file: Option<&'a ScenarioFile>,
+        plan: PlanArgs<'a>,
+        params: &'a [String],
+        durations: Vec<f64>,
+        quiet: bool,
+    },
 }
 
 /// What `crane fastest` and `crane sweep` share.
@@ -314,11 +333,19 @@ impl Visit for Job<'_> {
     type Output = Result<Option<report::Summary>, CliError>;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
         match self {
-            Job::Run { settings, file, overrides } => {
+            Job::Run {
+                settings,
+                file,
+                overrides,
+            } => {
                 let (case, run_settings) = scenario::build::<C, N, M, A>(file, &overrides)?;
                 run(&case, &settings, &run_settings).map(Some)
             }
-            Job::Bench { overrides, repeat, json } => {
+            Job::Bench {
+                overrides,
+                repeat,
+                json,
+            } => {
                 let (case, settings) = scenario::build::<C, N, M, A>(None, &overrides)?;
                 bench(&case, settings.formulation, settings.scheme, settings.dt, repeat, json).map(|()| None)
             }
@@ -331,10 +358,19 @@ impl Visit for Job<'_> {
                 let limits = planning::limits::<C::Model, N, M, A>(&settings.limits, plan.limit, plan.min_tension)?;
                 planning::fastest(&case, &limits, &plan.settings, plan.out, json).map(|()| None)
             }
-            Job::Sweep { file, plan, params, durations, quiet } => {
+            Job::Sweep {
+                file,
+                plan,
+                params,
+                durations,
+                quiet,
+            } => {
                 let (case, settings) = scenario::build::<C, N, M, A>(file, &Overrides::default())?;
                 let limits = planning::limits::<C::Model, N, M, A>(&settings.limits, plan.limit, plan.min_tension)?;
-                let params = params.iter().map(|p| planning::range("--param", p)).collect::<Result<Vec<_>, _>>()?;
+                let params = params
+                    .iter()
+                    .map(|p| planning::range("--param", p))
+                    .collect::<Result<Vec<_>, _>>()?;
                 planning::sweep(&case, &params, &durations, &limits, &plan.settings, plan.out, quiet).map(|()| None)
             }
         }
@@ -451,10 +487,21 @@ fn execute(command: Command) -> Result<(), CliError> {
                 name: &model,
                 out: &out,
                 quiet,
-                replay: replay.then_some(ReplayRequest { plant, settle, feedback: feedback.as_deref().map(replay::FeedbackSpec::parse).transpose()? }),
+                replay: replay.then_some(ReplayRequest {
+                    plant,
+                    settle,
+                    feedback: feedback.as_deref().map(replay::FeedbackSpec::parse).transpose()?,
+                }),
             };
-            let summary = dispatch(&model, Job::Run { settings, file: file.as_ref(), overrides })?
-                .expect("a run returns its summary");
+            let summary = dispatch(
+                &model,
+                Job::Run {
+                    settings,
+                    file: file.as_ref(),
+                    overrides,
+                },
+            )?
+            .expect("a run returns its summary");
             let problems = report::infeasibilities(&summary);
             if strict && !problems.is_empty() {
                 return Err(CliError::Infeasible {
@@ -478,27 +525,73 @@ fn execute(command: Command) -> Result<(), CliError> {
                 formulation: Some(formulation),
                 scheme,
             };
-            dispatch(&model, Job::Bench { overrides, repeat, json }).map(|_| ())
+            dispatch(
+                &model,
+                Job::Bench {
+                    overrides,
+                    repeat,
+                    json,
+                },
+            )
+            .map(|_| ())
         }
-        Command::Fastest { model, plan, tolerance, json } => {
+        Command::Fastest {
+            model,
+            plan,
+            tolerance,
+            json,
+        } => {
             let (file, out) = plan.files(&model)?;
             let plan = plan.args(plan.settings(Some(tolerance))?, &out);
-            dispatch(&model, Job::Fastest { file: file.as_ref(), plan, json }).map(|_| ())
+            dispatch(
+                &model,
+                Job::Fastest {
+                    file: file.as_ref(),
+                    plan,
+                    json,
+                },
+            )
+            .map(|_| ())
         }
-        Command::Sweep { model, param, duration, plan, threads, quiet } => {
+        Command::Sweep {
+            model,
+            param,
+            duration,
+            plan,
+            threads,
+            quiet,
+        } => {
             let (file, out) = plan.files(&model)?;
             let settings = plan.settings(None)?;
             let durations = match duration.as_deref() {
                 Some(spec) => planning::values(spec)
                     .filter(|d| d.iter().all(|&x| x > 0.0))
-                    .ok_or_else(|| CliError::Planning(format!("--duration `{spec}`: expected LOW:HIGH:COUNT of positive durations, e.g. 3:5:5")))?,
+                    .ok_or_else(|| {
+                        CliError::Planning(format!(
+                            "--duration `{spec}`: expected LOW:HIGH:COUNT of positive durations, e.g. 3:5:5"
+                        ))
+                    })?,
                 None => Vec::new(),
             };
             if param.is_empty() && durations.len() < 2 {
-                return Err(CliError::Planning("nothing to sweep: give --param NAME=LOW:HIGH:COUNT or --duration LOW:HIGH:COUNT".into()));
+                return Err(CliError::Planning(
+                    "nothing to sweep: give --param NAME=LOW:HIGH:COUNT or --duration LOW:HIGH:COUNT".into(),
+                ));
             }
             let plan = plan.args(settings, &out);
-            let job = || dispatch(&model, Job::Sweep { file: file.as_ref(), plan, params: &param, durations, quiet }).map(|_| ());
+            let job = || {
+                dispatch(
+                    &model,
+                    Job::Sweep {
+                        file: file.as_ref(),
+                        plan,
+                        params: &param,
+                        durations,
+                        quiet,
+                    },
+                )
+                .map(|_| ())
+            };
             match threads {
                 Some(0) => Err(CliError::Planning("--threads must be at least 1".into())),
                 Some(n) => rayon::ThreadPoolBuilder::new()
@@ -514,15 +607,28 @@ fn execute(command: Command) -> Result<(), CliError> {
             let library = match library {
                 Some(path) => path,
                 None => std::env::current_exe()
-                    .map_err(|source| CliError::Io { context: "locating the crane executable".into(), source })?
+                    .map_err(|source| CliError::Io {
+                        context: "locating the crane executable".into(),
+                        source,
+                    })?
                     .with_file_name("libcrane_fmu.so"),
             };
             if !library.is_file() {
                 return Err(CliError::NoFmuLibrary(library.display().to_string()));
             }
-            registry::visit(&model, Package { library: &library, out: &out })
-                .unwrap_or_else(|| Err(CliError::UnknownModel(model.clone())))?;
-            println!("wrote {} (FMI 2.0 co-simulation, binaries/linux64/{}.so)", out.display(), crane_fmi::description::model_identifier(&model));
+            registry::visit(
+                &model,
+                Package {
+                    library: &library,
+                    out: &out,
+                },
+            )
+            .unwrap_or_else(|| Err(CliError::UnknownModel(model.clone())))?;
+            println!(
+                "wrote {} (FMI 2.0 co-simulation, binaries/linux64/{}.so)",
+                out.display(),
+                crane_fmi::description::model_identifier(&model)
+            );
             Ok(())
         }
         Command::Convergence {
@@ -540,7 +646,15 @@ fn execute(command: Command) -> Result<(), CliError> {
                 formulation,
                 scheme,
             };
-            dispatch(&model, Job::Convergence { file: file.as_ref(), overrides, out: &out }).map(|_| ())
+            dispatch(
+                &model,
+                Job::Convergence {
+                    file: file.as_ref(),
+                    overrides,
+                    out: &out,
+                },
+            )
+            .map(|_| ())
         }
     }
 }
@@ -549,7 +663,10 @@ impl PlanFlags {
     /// The scenario file (loaded) and the output directory.
     fn files(&self, model: &str) -> Result<(Option<ScenarioFile>, PathBuf), CliError> {
         let file = self.scenario.as_deref().map(ScenarioFile::load).transpose()?;
-        Ok((file, self.out.clone().unwrap_or_else(|| PathBuf::from("out").join(model))))
+        Ok((
+            file,
+            self.out.clone().unwrap_or_else(|| PathBuf::from("out").join(model)),
+        ))
     }
 
     /// The planner's settings from the flags (BDF-4, dt 0.05 s, 1 ms by default).
@@ -558,14 +675,26 @@ impl PlanFlags {
         let dt = self.dt.unwrap_or(defaults.dt);
         let tolerance = tolerance.unwrap_or(defaults.tolerance);
         if !(dt > 0.0 && dt.is_finite() && tolerance > 0.0 && tolerance.is_finite()) {
-            return Err(CliError::Planning(format!("--dt {dt} and --tolerance {tolerance} must be positive")));
+            return Err(CliError::Planning(format!(
+                "--dt {dt} and --tolerance {tolerance} must be positive"
+            )));
         }
-        Ok(crane_models::plan::Settings { dt, scheme: self.scheme.unwrap_or(defaults.scheme), tolerance, ..defaults })
+        Ok(crane_models::plan::Settings {
+            dt,
+            scheme: self.scheme.unwrap_or(defaults.scheme),
+            tolerance,
+            ..defaults
+        })
     }
 
     /// What the jobs need of the flags.
     fn args<'a>(&'a self, settings: crane_models::plan::Settings, out: &'a std::path::Path) -> PlanArgs<'a> {
-        PlanArgs { limit: &self.limit, min_tension: &self.min_tension, settings, out }
+        PlanArgs {
+            limit: &self.limit,
+            min_tension: &self.min_tension,
+            settings,
+            out,
+        }
     }
 }
 
@@ -600,9 +729,7 @@ fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let options = Options::new(dt, case.tf()).with_scheme(scenario.scheme);
     let clock = Instant::now();
     let mut progress = progress::Progress::new(name, quiet);
-    let solution = formulation.simulate(case, &start, &options, &mut |step, steps| {
-        progress.tick(step, steps)
-    });
+    let solution = formulation.simulate(case, &start, &options, &mut |step, steps| progress.tick(step, steps));
     progress.finish();
     let solution = solution?;
     let wall = clock.elapsed().as_secs_f64();
@@ -621,11 +748,17 @@ fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     // the reference curves of the plots on a grid as fine as the plot shows
     let samples = solution.steps().clamp(800, plot::MAX_POINTS);
     let fine: Option<Vec<_>> = has_reference
-        .then(|| (0..=samples).map(|i| case.reference(t0 + (tf - t0) * i as f64 / samples as f64)).collect())
+        .then(|| {
+            (0..=samples)
+                .map(|i| case.reference(t0 + (tf - t0) * i as f64 / samples as f64))
+                .collect()
+        })
         .flatten();
-    let snapshots = snapshots::svg(C::drawing(case.model()), &solution)?
-        .map(|svg| ("snapshots.svg".to_string(), svg));
-    let derived = output::Derived { names: case.derived_outputs(), values: &|s| case.derived(s) };
+    let snapshots = snapshots::svg(C::drawing(case.model()), &solution)?.map(|svg| ("snapshots.svg".to_string(), svg));
+    let derived = output::Derived {
+        names: case.derived_outputs(),
+        values: &|s| case.derived(s),
+    };
     let mut summary = summary;
     summary.internal_dynamics = report::internal_summary(case.model(), &solution);
     let internal = &summary.internal_dynamics;
@@ -661,7 +794,12 @@ fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     }
     let mut extra: Vec<(String, String)> = snapshots.into_iter().collect();
     if let Some(request) = &settings.replay {
-        let plant_values = scenario.plant.iter().cloned().chain(request.plant.iter().cloned()).collect::<Vec<_>>();
+        let plant_values = scenario
+            .plant
+            .iter()
+            .cloned()
+            .chain(request.plant.iter().cloned())
+            .collect::<Vec<_>>();
         let (replay_summary, files) = replay::run(case, &solution, &plant_values, request.settle, request.feedback)?;
         extra.extend(files);
         summary.replay = Some(replay_summary);

@@ -46,14 +46,22 @@ fn write_csv<const N: usize, const M: usize, const A: usize>(
     solution: &Solution<N, M, A>,
     derived: &Derived<N, M, A>,
 ) -> Result<(), CliError> {
-    let failed = |e: csv::Error| CliError::Output { what: path.display().to_string(), message: e.to_string() };
+    let failed = |e: csv::Error| CliError::Output {
+        what: path.display().to_string(),
+        message: e.to_string(),
+    };
     let mut writer = csv::Writer::from_path(path).map_err(failed)?;
     writer.write_record(header(solution, derived)).map_err(failed)?;
     let mut row: Vec<String> = Vec::new();
     for (i, s) in solution.states.iter().enumerate() {
         row.clear();
         row.push(format!("{}", s.t));
-        row.extend(s.q.iter().chain(s.u.iter()).chain(s.lambda.iter()).map(|v| format!("{v:e}")));
+        row.extend(
+            s.q.iter()
+                .chain(s.u.iter())
+                .chain(s.lambda.iter())
+                .map(|v| format!("{v:e}")),
+        );
         row.extend(solution.tensions_at(i).iter().map(|v| format!("{v:e}")));
         row.extend((derived.values)(s).iter().map(|v| format!("{v:e}")));
         writer.write_record(&row).map_err(failed)?;
@@ -75,7 +83,11 @@ impl Staged {
     /// Output into `dir` (created if missing).
     pub fn new(dir: &Path) -> Result<Self, CliError> {
         fs::create_dir_all(dir).map_err(io_error(format!("creating {}", dir.display())))?;
-        Ok(Self { dir: dir.to_path_buf(), files: Vec::new(), committed: false })
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            files: Vec::new(),
+            committed: false,
+        })
     }
 
     /// The temporary path to write `name` to.
@@ -124,10 +136,15 @@ pub fn write_all<const N: usize, const M: usize, const A: usize>(
     let mut staged = Staged::new(out)?;
     let csv = staged.path("results.csv");
     write_csv(&csv, solution, derived)?;
-    let json = serde_json::to_string_pretty(summary)
-        .map_err(|e| CliError::Output { what: "summary.json".into(), message: e.to_string() })?;
+    let json = serde_json::to_string_pretty(summary).map_err(|e| CliError::Output {
+        what: "summary.json".into(),
+        message: e.to_string(),
+    })?;
     staged.text("summary.json", json + "\n")?;
-    for (name, svg) in plot::all(solution, references)?.into_iter().chain(extra.iter().cloned()) {
+    for (name, svg) in plot::all(solution, references)?
+        .into_iter()
+        .chain(extra.iter().cloned())
+    {
         staged.text(&name, svg)?;
     }
     staged.commit()

@@ -34,14 +34,22 @@ pub fn limits<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A:
     tension: &[String],
 ) -> Result<Limits, CliError> {
     let info = Mdl::INFO;
-    let mut out = Limits { torque: scenario.to_vec(), tension: Vec::new() };
+    let mut out = Limits {
+        torque: scenario.to_vec(),
+        tension: Vec::new(),
+    };
     for item in torque {
         let (name, value) = name_value("--limit", item)?;
         let k = info.inputs.iter().position(|u| *u == name).ok_or_else(|| {
-            CliError::Planning(format!("--limit {name}: no such input; the inputs are {}", info.inputs.join(", ")))
+            CliError::Planning(format!(
+                "--limit {name}: no such input; the inputs are {}",
+                info.inputs.join(", ")
+            ))
         })?;
         if !(value > 0.0) {
-            return Err(CliError::Planning(format!("--limit {name}={value}: a limit on |{name}| must be positive")));
+            return Err(CliError::Planning(format!(
+                "--limit {name}={value}: a limit on |{name}| must be positive"
+            )));
         }
         out.torque.retain(|&(j, _)| j != k);
         out.torque.push((k, value));
@@ -50,7 +58,10 @@ pub fn limits<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A:
         let (name, value) = name_value("--min-tension", item)?;
         let r = info.ropes.iter().position(|r| r.tension == name).ok_or_else(|| {
             let ropes: Vec<&str> = info.ropes.iter().map(|r| r.tension).collect();
-            CliError::Planning(format!("--min-tension {name}: no such rope tension; the ropes are {}", ropes.join(", ")))
+            CliError::Planning(format!(
+                "--min-tension {name}: no such rope tension; the ropes are {}",
+                ropes.join(", ")
+            ))
         })?;
         out.tension.push((r, value));
     }
@@ -60,7 +71,11 @@ pub fn limits<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A:
 
 /// `NAME=LOW:HIGH:COUNT` as the name and `COUNT` evenly spaced values.
 pub fn range(flag: &str, item: &str) -> Result<(String, Vec<f64>), CliError> {
-    let bad = || CliError::Planning(format!("{flag} `{item}`: expected NAME=LOW:HIGH:COUNT with COUNT >= 1, e.g. {flag} m_l=80:120:5"));
+    let bad = || {
+        CliError::Planning(format!(
+            "{flag} `{item}`: expected NAME=LOW:HIGH:COUNT with COUNT >= 1, e.g. {flag} m_l=80:120:5"
+        ))
+    };
     let (name, spec) = item.split_once('=').ok_or_else(bad)?;
     Ok((name.trim().to_string(), values(spec).ok_or_else(bad)?))
 }
@@ -74,7 +89,17 @@ pub fn values(spec: &str) -> Option<Vec<f64>> {
     if count == 0 || !low.is_finite() || !high.is_finite() {
         return None;
     }
-    Some((0..count).map(|i| if count == 1 { low } else { low + (high - low) * i as f64 / (count - 1) as f64 }).collect())
+    Some(
+        (0..count)
+            .map(|i| {
+                if count == 1 {
+                    low
+                } else {
+                    low + (high - low) * i as f64 / (count - 1) as f64
+                }
+            })
+            .collect(),
+    )
 }
 
 /// A binding as JSON.
@@ -107,25 +132,45 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
         "tolerance": settings.tolerance,
         "wall_s": wall,
     });
-    let text = serde_json::to_string_pretty(&report).map_err(|e| CliError::Output { what: "fastest.json".into(), message: e.to_string() })?;
+    let text = serde_json::to_string_pretty(&report).map_err(|e| CliError::Output {
+        what: "fastest.json".into(),
+        message: e.to_string(),
+    })?;
     let solution = &best.solution;
     let mut staged = Staged::new(out)?;
     staged.text("fastest.json", text.clone() + "\n")?;
-    let inputs: Vec<(&str, Vec<(f64, f64)>)> =
-        info.inputs.iter().enumerate().map(|(k, name)| (*name, solution.states.iter().map(|s| (s.t, s.u[k])).collect())).collect();
+    let inputs: Vec<(&str, Vec<(f64, f64)>)> = info
+        .inputs
+        .iter()
+        .enumerate()
+        .map(|(k, name)| (*name, solution.states.iter().map(|s| (s.t, s.u[k])).collect()))
+        .collect();
     let levels: Vec<(usize, f64)> = limits.torque.iter().flat_map(|&(k, l)| [(k, l), (k, -l)]).collect();
     let title = format!("{}: inputs of the fastest move, T* = {:.3} s", C::NAME, best.duration);
-    staged.text("fastest-inputs.svg", plot::curves_with_levels(&title, "u [N m]", &inputs, &levels)?)?;
+    staged.text(
+        "fastest-inputs.svg",
+        plot::curves_with_levels(&title, "u [N m]", &inputs, &levels)?,
+    )?;
     if !info.ropes.is_empty() {
         let tensions: Vec<(&str, Vec<(f64, f64)>)> = info
             .ropes
             .iter()
             .enumerate()
-            .map(|(r, rope)| (rope.tension, (0..solution.states.len()).map(|i| (solution.states[i].t, solution.tensions_at(i)[r])).collect()))
+            .map(|(r, rope)| {
+                (
+                    rope.tension,
+                    (0..solution.states.len())
+                        .map(|i| (solution.states[i].t, solution.tensions_at(i)[r]))
+                        .collect(),
+                )
+            })
             .collect();
         let floors: Vec<(usize, f64)> = limits.tension.clone();
         let title = format!("{}: rope tensions of the fastest move", C::NAME);
-        staged.text("fastest-tensions.svg", plot::curves_with_levels(&title, "N [N]", &tensions, &floors)?)?;
+        staged.text(
+            "fastest-tensions.svg",
+            plot::curves_with_levels(&title, "N [N]", &tensions, &floors)?,
+        )?;
     }
     staged.commit()?;
     if print_json {
@@ -133,15 +178,24 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
     } else {
         let b = &best.binding;
         let bound = if b.tension {
-            format!("rope tension {} >= {} N (a faster move takes it below at t = {:.3} s)", b.name, b.limit, b.at)
+            format!(
+                "rope tension {} >= {} N (a faster move takes it below at t = {:.3} s)",
+                b.name, b.limit, b.at
+            )
         } else if b.limit.is_nan() {
             b.name.clone()
         } else {
-            format!("|{}| <= {} (peak {:.3} at the answer; a faster move exceeds it at t = {:.3} s)", b.name, b.limit, b.value, b.at)
+            format!(
+                "|{}| <= {} (peak {:.3} at the answer; a faster move exceeds it at t = {:.3} s)",
+                b.name, b.limit, b.value, b.at
+            )
         };
         println!(
             "{}: fastest feasible duration T* = {:.4} s (bracket {:.4} .. {:.4} s), bound by {bound}",
-            C::NAME, best.duration, best.bracket.0, best.bracket.1
+            C::NAME,
+            best.duration,
+            best.bracket.0,
+            best.bracket.1
         );
         println!(
             "  {} evaluations ({}, dt <= {} s) and {} for the interval check in {:.1} ms; {}",
@@ -153,7 +207,10 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
             if best.interval.holds {
                 "feasible durations form an interval on the bracket".to_string()
             } else {
-                format!("WARNING: feasible durations are not an interval on the bracket (at {:.4} s): the answer may not be the shortest", best.interval.counterexample.unwrap_or(f64::NAN))
+                format!(
+                    "WARNING: feasible durations are not an interval on the bracket (at {:.4} s): the answer may not be the shortest",
+                    best.interval.counterexample.unwrap_or(f64::NAN)
+                )
             }
         );
         println!("wrote {}", out.display());
@@ -175,7 +232,10 @@ pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
     for (name, _) in params {
         if !info.parameters.contains(&name.as_str()) {
-            return Err(CliError::Planning(format!("--param {name}: no such parameter; the parameters are {}", info.parameters.join(", "))));
+            return Err(CliError::Planning(format!(
+                "--param {name}: no such parameter; the parameters are {}",
+                info.parameters.join(", ")
+            )));
         }
     }
     let spec = case.path().spec();
@@ -205,7 +265,10 @@ pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     header.extend(info.ropes.iter().map(|r| format!("min_{}", r.tension)));
     header.extend(["feasible".into(), "error".into()]);
     let mut writer = csv::Writer::from_writer(Vec::new());
-    let failed_csv = |e: csv::Error| CliError::Output { what: "sweep.csv".into(), message: e.to_string() };
+    let failed_csv = |e: csv::Error| CliError::Output {
+        what: "sweep.csv".into(),
+        message: e.to_string(),
+    };
     writer.write_record(&header).map_err(failed_csv)?;
     for p in &points {
         let mut row: Vec<String> = p.values.iter().map(|v| format!("{v:?}")).collect();
@@ -221,7 +284,10 @@ pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         row.push(e.error.clone().unwrap_or_default());
         writer.write_record(&row).map_err(failed_csv)?;
     }
-    let bytes = writer.into_inner().map_err(|e| CliError::Output { what: "sweep.csv".into(), message: e.to_string() })?;
+    let bytes = writer.into_inner().map_err(|e| CliError::Output {
+        what: "sweep.csv".into(),
+        message: e.to_string(),
+    })?;
     let mut staged = Staged::new(out)?;
     staged.text("sweep.csv", bytes)?;
     // two swept quantities: a heat map of the largest |u| relative to its
@@ -243,23 +309,47 @@ pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     if axes.len() == 2 {
         let (ax, ay) = (&axes[0], &axes[1]);
         let index = |name: &str, p: &plan::SweepPoint| -> f64 {
-            if name == "duration" { p.duration } else { p.values[params.iter().position(|(n, _)| n == name).unwrap_or(0)] }
+            if name == "duration" {
+                p.duration
+            } else {
+                p.values[params.iter().position(|(n, _)| n == name).unwrap_or(0)]
+            }
         };
-        let grid: Vec<Vec<Option<f64>>> = ay
-            .1
-            .iter()
-            .map(|&y| {
-                ax.1.iter().map(|&x| points.iter().find(|p| index(&ax.0, p) == x && index(&ay.0, p) == y).and_then(|p| measure(&p.evaluation))).collect()
-            })
-            .collect();
-        let marked: Vec<Vec<bool>> = ay
-            .1
-            .iter()
-            .map(|&y| ax.1.iter().map(|&x| points.iter().any(|p| index(&ax.0, p) == x && index(&ay.0, p) == y && !p.feasible)).collect())
-            .collect();
-        let label = if limits.torque.is_empty() { format!("peak |{}|", info.inputs[0]) } else { "max |u|/limit".to_string() };
+        let grid: Vec<Vec<Option<f64>>> =
+            ay.1.iter()
+                .map(|&y| {
+                    ax.1.iter()
+                        .map(|&x| {
+                            points
+                                .iter()
+                                .find(|p| index(&ax.0, p) == x && index(&ay.0, p) == y)
+                                .and_then(|p| measure(&p.evaluation))
+                        })
+                        .collect()
+                })
+                .collect();
+        let marked: Vec<Vec<bool>> =
+            ay.1.iter()
+                .map(|&y| {
+                    ax.1.iter()
+                        .map(|&x| {
+                            points
+                                .iter()
+                                .any(|p| index(&ax.0, p) == x && index(&ay.0, p) == y && !p.feasible)
+                        })
+                        .collect()
+                })
+                .collect();
+        let label = if limits.torque.is_empty() {
+            format!("peak |{}|", info.inputs[0])
+        } else {
+            "max |u|/limit".to_string()
+        };
         let title = format!("{}: {label} over {} and {}", C::NAME, ax.0, ay.0);
-        staged.text("sweep.svg", plot::heat_map(&title, &ax.0, &ay.0, &ax.1, &ay.1, &grid, &marked, &label)?)?;
+        staged.text(
+            "sweep.svg",
+            plot::heat_map(&title, &ax.0, &ay.0, &ax.1, &ay.1, &grid, &marked, &label)?,
+        )?;
     }
     staged.commit()?;
     let failed = points.iter().filter(|p| p.evaluation.error.is_some()).count();

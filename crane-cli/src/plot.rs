@@ -15,11 +15,7 @@ static FONT: Once = Once::new();
 pub(crate) fn register_font() {
     FONT.call_once(|| {
         // the embedded font is valid TrueType; registration only fails on invalid data
-        let _ = plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            dejavu::sans::regular(),
-        );
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular());
     });
 }
 
@@ -48,12 +44,8 @@ fn draw(title: &str, y_label: &str, series: &[Series]) -> Result<String, CliErro
         what: format!("plot '{title}'"),
         message: e,
     };
-    let (mut x_min, mut x_max, mut y_min, mut y_max) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
+    let (mut x_min, mut x_max, mut y_min, mut y_max) =
+        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
     for s in series {
         for &(x, y) in &s.points {
             if x.is_finite() && y.is_finite() {
@@ -220,7 +212,12 @@ pub fn curves_with_levels(
             dashed: false,
         })
         .collect();
-    let span = curves.iter().flat_map(|(_, p)| p.first().zip(p.last())).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (f, l)| (a.min(f.0), b.max(l.0)));
+    let span = curves
+        .iter()
+        .flat_map(|(_, p)| p.first().zip(p.last()))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (f, l)| {
+            (a.min(f.0), b.max(l.0))
+        });
     for &(c, level) in levels {
         series.push(Series {
             name: format!("{} {level}", curves.get(c).map_or("limit", |c| c.0)),
@@ -247,18 +244,39 @@ pub fn heat_map(
     value_label: &str,
 ) -> Result<String, CliError> {
     register_font();
-    let failed = |e: String| CliError::Output { what: format!("plot '{title}'"), message: e };
-    let finite: Vec<f64> = values.iter().flatten().flatten().copied().filter(|v| v.is_finite()).collect();
-    let (lo, hi) = finite.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    let failed = |e: String| CliError::Output {
+        what: format!("plot '{title}'"),
+        message: e,
+    };
+    let finite: Vec<f64> = values
+        .iter()
+        .flatten()
+        .flatten()
+        .copied()
+        .filter(|v| v.is_finite())
+        .collect();
+    let (lo, hi) = finite
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
     if xs.len() < 2 || ys.len() < 2 || finite.is_empty() {
         return Err(failed("a heat map needs at least 2 x 2 points with values".into()));
     }
     let (lo, hi) = if hi > lo { (lo, hi) } else { (lo - 0.5, hi + 0.5) };
-    let half = |v: &[f64], i: usize| if i + 1 < v.len() { 0.5 * (v[i + 1] - v[i]) } else { 0.5 * (v[i] - v[i - 1]) };
+    let half = |v: &[f64], i: usize| {
+        if i + 1 < v.len() {
+            0.5 * (v[i + 1] - v[i])
+        } else {
+            0.5 * (v[i] - v[i - 1])
+        }
+    };
     let colour = |v: f64| {
         // blue (low) .. yellow .. red (high)
         let t = ((v - lo) / (hi - lo)).clamp(0.0, 1.0);
-        let (r, g, b) = if t < 0.5 { (2.0 * t, 2.0 * t, 1.0 - 2.0 * t) } else { (1.0, 2.0 - 2.0 * t, 0.0) };
+        let (r, g, b) = if t < 0.5 {
+            (2.0 * t, 2.0 * t, 1.0 - 2.0 * t)
+        } else {
+            (1.0, 2.0 - 2.0 * t, 0.0)
+        };
         RGBColor((255.0 * r) as u8, (200.0 * g) as u8, (255.0 * b) as u8)
     };
     let mut svg = String::new();
@@ -275,20 +293,35 @@ pub fn heat_map(
             .y_label_area_size(80)
             .build_cartesian_2d(x_range, y_range)
             .map_err(|e| failed(e.to_string()))?;
-        chart.configure_mesh().disable_mesh().x_desc(x_label).y_desc(y_label).label_style(("sans-serif", 15)).draw().map_err(|e| failed(e.to_string()))?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(x_label)
+            .y_desc(y_label)
+            .label_style(("sans-serif", 15))
+            .draw()
+            .map_err(|e| failed(e.to_string()))?;
         for (iy, row) in values.iter().enumerate() {
             for (ix, value) in row.iter().enumerate() {
                 let (x, y) = (xs[ix], ys[iy]);
                 let (hx, hy) = (half(xs, ix), half(ys, iy));
                 let fill = value.filter(|v| v.is_finite()).map_or(RGBColor(190, 190, 190), colour);
                 chart
-                    .draw_series(std::iter::once(Rectangle::new([(x - hx, y - hy), (x + hx, y + hy)], fill.filled())))
+                    .draw_series(std::iter::once(Rectangle::new(
+                        [(x - hx, y - hy), (x + hx, y + hy)],
+                        fill.filled(),
+                    )))
                     .map_err(|e| failed(e.to_string()))?;
                 if marked.get(iy).and_then(|row| row.get(ix)).copied().unwrap_or(false) {
                     let cross = ShapeStyle::from(&BLACK).stroke_width(1);
                     let (dx, dy) = (0.35 * hx, 0.35 * hy);
-                    for (a, b) in [((x - dx, y - dy), (x + dx, y + dy)), ((x - dx, y + dy), (x + dx, y - dy))] {
-                        chart.draw_series(std::iter::once(PathElement::new(vec![a, b], cross))).map_err(|e| failed(e.to_string()))?;
+                    for (a, b) in [
+                        ((x - dx, y - dy), (x + dx, y + dy)),
+                        ((x - dx, y + dy), (x + dx, y - dy)),
+                    ] {
+                        chart
+                            .draw_series(std::iter::once(PathElement::new(vec![a, b], cross)))
+                            .map_err(|e| failed(e.to_string()))?;
                     }
                 }
             }
@@ -298,14 +331,27 @@ pub fn heat_map(
             let v = lo + (hi - lo) * k as f64 / (steps - 1) as f64;
             let y0 = 560 - (k * 480 / steps) as i32;
             bar_area
-                .draw(&Rectangle::new([(20, y0 - 480 / steps as i32 - 1), (50, y0)], colour(v).filled()))
+                .draw(&Rectangle::new(
+                    [(20, y0 - 480 / steps as i32 - 1), (50, y0)],
+                    colour(v).filled(),
+                ))
                 .map_err(|e| failed(e.to_string()))?;
         }
-        for (text, y) in [(format!("{hi:.4}"), 70), (format!("{lo:.4}"), 572), (value_label.to_string(), 30)] {
-            bar_area.draw(&Text::new(text, (8, y), ("sans-serif", 14))).map_err(|e| failed(e.to_string()))?;
+        for (text, y) in [
+            (format!("{hi:.4}"), 70),
+            (format!("{lo:.4}"), 572),
+            (value_label.to_string(), 30),
+        ] {
+            bar_area
+                .draw(&Text::new(text, (8, y), ("sans-serif", 14)))
+                .map_err(|e| failed(e.to_string()))?;
         }
-        bar_area.draw(&Text::new("grey: failed".to_string(), (8, 596), ("sans-serif", 14))).map_err(|e| failed(e.to_string()))?;
-        bar_area.draw(&Text::new("x: infeasible".to_string(), (8, 614), ("sans-serif", 14))).map_err(|e| failed(e.to_string()))?;
+        bar_area
+            .draw(&Text::new("grey: failed".to_string(), (8, 596), ("sans-serif", 14)))
+            .map_err(|e| failed(e.to_string()))?;
+        bar_area
+            .draw(&Text::new("x: infeasible".to_string(), (8, 614), ("sans-serif", 14)))
+            .map_err(|e| failed(e.to_string()))?;
         root.present().map_err(|e| failed(e.to_string()))?;
     }
     Ok(svg)
@@ -364,7 +410,9 @@ pub fn all<const N: usize, const M: usize, const A: usize>(
             .enumerate()
             .map(|(r, rope)| Series {
                 name: rope.tension.to_string(),
-                points: thinned(solution.states.len(), |i| (solution.states[i].t, solution.tensions_at(i)[r])),
+                points: thinned(solution.states.len(), |i| {
+                    (solution.states[i].t, solution.tensions_at(i)[r])
+                }),
                 color: PALETTE[r % PALETTE.len()],
                 dashed: false,
             })
@@ -398,22 +446,23 @@ pub fn convergence(title: &str, rows: &[(f64, f64)], order: usize) -> Result<Str
     let Some(&coarsest) = finite.first() else {
         return Err(failed("no positive finite errors to plot".into()));
     };
-    let (dt_anchor, e_anchor) = finite.iter().rev().find(|&&(_, e)| e >= 1e-7).copied().unwrap_or(coarsest);
+    let (dt_anchor, e_anchor) = finite
+        .iter()
+        .rev()
+        .find(|&&(_, e)| e >= 1e-7)
+        .copied()
+        .unwrap_or(coarsest);
     let guide: Vec<(f64, f64)> = finite
         .iter()
         .map(|&(d, _)| (d, e_anchor * (d / dt_anchor).powi(order as i32)))
         .collect();
     let (x_min, x_max) = finite
         .iter()
-        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &(d, _)| {
-            (lo.min(d), hi.max(d))
-        });
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &(d, _)| (lo.min(d), hi.max(d)));
     let (y_min, y_max) = finite
         .iter()
         .chain(&guide)
-        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &(_, e)| {
-            (lo.min(e), hi.max(e))
-        });
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &(_, e)| (lo.min(e), hi.max(e)));
     // half a decade of room on each side of the data
     let (x_min, x_max, y_min, y_max) = (x_min / 1.5, x_max * 1.5, y_min / 2.0, y_max * 2.0);
     let mut svg = String::new();
@@ -460,10 +509,8 @@ pub fn convergence(title: &str, rows: &[(f64, f64)], order: usize) -> Result<Str
             ))
             .map_err(|e| failed(e.to_string()))?;
         let guide_name = format!("order {order} (slope {order})");
-        let entries: [(&str, RGBColor, bool); 2] = [
-            ("e_u at t = 1.5 s", color, false),
-            (guide_name.as_str(), BLACK, true),
-        ];
+        let entries: [(&str, RGBColor, bool); 2] =
+            [("e_u at t = 1.5 s", color, false), (guide_name.as_str(), BLACK, true)];
         let mut y = 60;
         for (name, c, dashed) in entries {
             let style = ShapeStyle::from(&c).stroke_width(if dashed { 1 } else { 2 });
@@ -499,7 +546,15 @@ mod tests {
     #[test]
     fn thinning_keeps_peaks_in_order() {
         let len = 200_000;
-        let value = |i: usize| if i == 123_457 { 50.0 } else if i == 7 { -3.0 } else { (i as f64 * 1e-4).sin() };
+        let value = |i: usize| {
+            if i == 123_457 {
+                50.0
+            } else if i == 7 {
+                -3.0
+            } else {
+                (i as f64 * 1e-4).sin()
+            }
+        };
         let points = thinned(len, |i| (i as f64, value(i)));
         assert!(points.len() <= MAX_POINTS + 2, "{}", points.len());
         assert!(points.windows(2).all(|w| w[0].0 < w[1].0));

@@ -29,7 +29,11 @@ impl Progress {
             bar.set_message(label.to_string());
             bar
         });
-        Self { bar, started: Instant::now(), enabled }
+        Self {
+            bar,
+            started: Instant::now(),
+            enabled,
+        }
     }
 
     /// Step `step` of `steps` is done.

@@ -29,8 +29,15 @@ impl FeedbackSpec {
         }
         let bad = || CliError::Feedback(text.to_string());
         let (kp, kd) = text.split_once(',').ok_or_else(bad)?;
-        let (kp, kd): (f64, f64) = (kp.trim().parse().map_err(|_| bad())?, kd.trim().parse().map_err(|_| bad())?);
-        if kp.is_finite() && kd.is_finite() && kp >= 0.0 && kd >= 0.0 { Ok(Self::Gains(kp, kd)) } else { Err(bad()) }
+        let (kp, kd): (f64, f64) = (
+            kp.trim().parse().map_err(|_| bad())?,
+            kd.trim().parse().map_err(|_| bad())?,
+        );
+        if kp.is_finite() && kd.is_finite() && kp >= 0.0 && kd >= 0.0 {
+            Ok(Self::Gains(kp, kd))
+        } else {
+            Err(bad())
+        }
     }
 
     fn gains<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
@@ -39,10 +46,19 @@ impl FeedbackSpec {
         start: &crane_runtime::State<N, M, A>,
     ) -> (Feedback<N>, String) {
         match self {
-            Self::Default => (Feedback::from_model(model, start), "default (critically damped at 4 sqrt(g/L))".into()),
+            Self::Default => (
+                Feedback::from_model(model, start),
+                "default (critically damped at 4 sqrt(g/L))".into(),
+            ),
             Self::Gains(kp, kd) => {
                 let robot = |k: f64| nalgebra::SVector::<f64, N>::from_fn(|i, _| if i < N - A { k } else { 0.0 });
-                (Feedback { kp: robot(kp), kd: robot(kd) }, format!("kp = {kp}, kd = {kd}"))
+                (
+                    Feedback {
+                        kp: robot(kp),
+                        kd: robot(kd),
+                    },
+                    format!("kp = {kp}, kd = {kd}"),
+                )
             }
         }
     }
@@ -62,11 +78,17 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let mut changed = BTreeMap::new();
     for (name, value) in plant {
         if !value.is_finite() {
-            return Err(CliError::PlantParameter { name: name.clone(), message: format!("{value} is not finite") });
+            return Err(CliError::PlantParameter {
+                name: name.clone(),
+                message: format!("{value} is not finite"),
+            });
         }
         model
             .set_parameter(name, *value)
-            .map_err(|e| CliError::PlantParameter { name: name.clone(), message: e.to_string() })?;
+            .map_err(|e| CliError::PlantParameter {
+                name: name.clone(),
+                message: e.to_string(),
+            })?;
         changed.insert(name.clone(), *value);
     }
     let end = inverse.states.last().expect("a run has its start");
@@ -89,7 +111,10 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     header.extend((1..=M).map(|i| format!("lambda{i}")));
     header.extend(info.ropes.iter().map(|r| r.tension.to_string()));
     header.push("load_deviation".into());
-    let failed = |e: csv::Error| CliError::Output { what: "replay.csv".into(), message: e.to_string() };
+    let failed = |e: csv::Error| CliError::Output {
+        what: "replay.csv".into(),
+        message: e.to_string(),
+    };
     writer.write_record(&header).map_err(failed)?;
     let mut row = Vec::new();
     for (i, s) in result.solution.states.iter().enumerate() {
@@ -100,19 +125,33 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         row.push(format!("{:e}", deviation(s)));
         writer.write_record(&row).map_err(failed)?;
     }
-    let csv = writer.into_inner().map_err(|e| CliError::Output { what: "replay.csv".into(), message: e.to_string() })?;
+    let csv = writer.into_inner().map_err(|e| CliError::Output {
+        what: "replay.csv".into(),
+        message: e.to_string(),
+    })?;
     let curve = |r: &crane_runtime::replay::Replay<N, M, A>| -> Vec<(f64, f64)> {
         r.solution.states.iter().map(|s| (s.t, deviation(s))).collect()
     };
     let plant_label = if changed.is_empty() {
         "the planned plant".to_string()
     } else {
-        changed.iter().map(|(k, v)| format!("{k} = {v}")).collect::<Vec<_>>().join(", ")
+        changed
+            .iter()
+            .map(|(k, v)| format!("{k} = {v}"))
+            .collect::<Vec<_>>()
+            .join(", ")
     };
-    let title = format!("{} - replay on {plant_label}: load deviation (torques held after {tf} s)", info.name);
+    let title = format!(
+        "{} - replay on {plant_label}: load deviation (torques held after {tf} s)",
+        info.name
+    );
     let svg = match &closed {
         None => plot::curves_over_time(&title, "|x - gamma| [m]", &[("open loop", curve(&open))])?,
-        Some(c) => plot::curves_over_time(&title, "|x - gamma| [m]", &[("open loop", curve(&open)), ("with feedback", curve(c))])?,
+        Some(c) => plot::curves_over_time(
+            &title,
+            "|x - gamma| [m]",
+            &[("open loop", curve(&open)), ("with feedback", curve(c))],
+        )?,
     };
     let peak = result.solution.tensions.iter().fold(0.0f64, |m, n| m.max(n.abs()));
     let mut first_slack = BTreeMap::new();
@@ -135,5 +174,11 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         open_loop_max_load_deviation: open.max_load_deviation,
         first_slack,
     };
-    Ok((summary, vec![("replay.csv".into(), String::from_utf8_lossy(&csv).into_owned()), ("replay.svg".into(), svg)]))
+    Ok((
+        summary,
+        vec![
+            ("replay.csv".into(), String::from_utf8_lossy(&csv).into_owned()),
+            ("replay.svg".into(), svg),
+        ],
+    ))
 }

@@ -207,7 +207,9 @@ struct StreamingExtremes<const K: usize> {
 
 impl<const K: usize> StreamingExtremes<K> {
     fn new() -> Self {
-        Self { worst: [(f64::NAN, f64::NAN); K] }
+        Self {
+            worst: [(f64::NAN, f64::NAN); K],
+        }
     }
 
     fn add(&mut self, t: f64, values: &nalgebra::SVector<f64, K>) {
@@ -219,7 +221,15 @@ impl<const K: usize> StreamingExtremes<K> {
     }
 
     fn into_extremes(self, names: &[&str]) -> Vec<Extreme> {
-        self.worst.iter().zip(names).map(|(&(t, value), name)| Extreme { name: name.to_string(), value, t }).collect()
+        self.worst
+            .iter()
+            .zip(names)
+            .map(|(&(t, value), name)| Extreme {
+                name: name.to_string(),
+                value,
+                t,
+            })
+            .collect()
     }
 }
 
@@ -241,10 +251,16 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         .iter()
         .enumerate()
         .map(|(r, rope)| {
-            let series = || states.iter().enumerate().map(|(i, s)| (s.t, solution.tensions_at(i)[r]));
+            let series = || {
+                states
+                    .iter()
+                    .enumerate()
+                    .map(|(i, s)| (s.t, solution.tensions_at(i)[r]))
+            };
             let peak = series().fold(0.0f64, |m, (_, n)| m.max(n.abs()));
-            let (t_min, min_tension) =
-                series().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap_or((f64::NAN, f64::NAN));
+            let (t_min, min_tension) = series()
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .unwrap_or((f64::NAN, f64::NAN));
             let first_slack = series().find(|(_, n)| *n < -SLACK_TOLERANCE * peak).map(|(t, _)| t);
             RopeSummary {
                 name: rope.tension.to_string(),
@@ -291,12 +307,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
     let newton = NewtonSummary {
         total_iterations: solution.newton_iterations.iter().sum(),
         mean_per_step: solution.mean_newton_iterations(),
-        max_per_step: solution
-            .newton_iterations
-            .iter()
-            .copied()
-            .max()
-            .unwrap_or(0),
+        max_per_step: solution.newton_iterations.iter().copied().max().unwrap_or(0),
         min_norm_steps: solution.min_norm_steps,
         redundant_start_steps: solution.redundant_start_steps,
     };
@@ -358,15 +369,24 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
     }
     if let Some(reference) = &summary.reference {
         if let Some(e) = reference.e_u_at_1_5s {
-            lines.push(format!("relative error of u at t = 1.5 s against the analytical reference (eq. 48): {e:.3e}"));
+            lines.push(format!(
+                "relative error of u at t = 1.5 s against the analytical reference (eq. 48): {e:.3e}"
+            ));
         }
     }
     let internal = &summary.internal_dynamics;
     lines.push(match (internal.dimension, internal.stable) {
-        (0, _) if internal.unresolved == 0 => "internal dynamics: none (flat), the torques are the unique ones".to_string(),
-        (0, _) => format!("internal dynamics: not resolved at {} of {} sampled states", internal.unresolved, internal.samples),
+        (0, _) if internal.unresolved == 0 => {
+            "internal dynamics: none (flat), the torques are the unique ones".to_string()
+        }
+        (0, _) => format!(
+            "internal dynamics: not resolved at {} of {} sampled states",
+            internal.unresolved, internal.samples
+        ),
         (k, true) => format!("internal dynamics: dimension {k}, stable"),
-        (k, false) => format!("WARNING: internal dynamics: dimension {k}, UNSTABLE: the torques are not a usable feedforward"),
+        (k, false) => {
+            format!("WARNING: internal dynamics: dimension {k}, UNSTABLE: the torques are not a usable feedforward")
+        }
     });
     lines
 }
@@ -383,12 +403,8 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
         })
         .collect();
     out.extend(summary.torque_limits.iter().filter_map(|l| {
-        l.first_violation.map(|t| {
-            format!(
-                "|{}| exceeds its limit {} N m at t = {t:.3} s",
-                l.name, l.limit
-            )
-        })
+        l.first_violation
+            .map(|t| format!("|{}| exceeds its limit {} N m at t = {t:.3} s", l.name, l.limit))
     }));
     let internal = &summary.internal_dynamics;
     if !internal.stable {
@@ -411,13 +427,16 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crane_models::coupled_trolley::CoupledTrolley as Coupled;
     use crane_runtime::nalgebra::vector;
     use crane_runtime::trajectory::Poly9;
     use crane_runtime::{Options, init, simulate};
-    use crane_models::coupled_trolley::CoupledTrolley as Coupled;
 
     fn run(c: f64) -> Solution<4, 1, 2> {
-        let crane = Coupled { c, ..Coupled::default() };
+        let crane = Coupled {
+            c,
+            ..Coupled::default()
+        };
         let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
         let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0]).unwrap();
         simulate(&crane, &path, &start, &Options::new(0.01, 5.0)).unwrap()
@@ -444,7 +463,10 @@ mod tests {
     /// Without the coupling: flat, nothing to report.
     #[test]
     fn a_flat_crane_is_reported_flat() {
-        let crane = Coupled { c: 0.0, ..Coupled::default() };
+        let crane = Coupled {
+            c: 0.0,
+            ..Coupled::default()
+        };
         let summary = internal_summary(&crane, &run(0.0));
         // structurally 2 (c is a parameter), numerically 0 at c = 0
         assert_eq!(summary.structural_dimension, Some(2), "{summary:?}");

@@ -36,11 +36,7 @@ fn project(spatial: bool, p: P3) -> (f64, f64) {
 
 /// Colour of snapshot `i` of `n`: light blue (early) to near black (late).
 fn shade(i: usize, n: usize) -> RGBColor {
-    let f = if n > 1 {
-        i as f64 / (n - 1) as f64
-    } else {
-        1.0
-    };
+    let f = if n > 1 { i as f64 / (n - 1) as f64 } else { 1.0 };
     let mix = |a: f64, b: f64| (a + (b - a) * f).round() as u8;
     RGBColor(mix(150.0, 10.0), mix(190.0, 20.0), mix(235.0, 70.0))
 }
@@ -134,12 +130,7 @@ fn draw(
         return Err(failed("no finite positions to draw".into()));
     }
     let (mut x0, mut x1, mut z0, mut z1) = points.iter().fold(
-        (
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ),
+        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
         |(a, b, c, d), &(x, z)| (a.min(x), b.max(x), c.min(z), d.max(z)),
     );
     let pad = 0.06 * (x1 - x0).max(z1 - z0).max(1.0);
@@ -169,15 +160,10 @@ fn draw(
     let plot_h = plot_h.round() as u32;
     let left_w = plot_w + Y_LABELS + 2 * MARGIN;
     let height = plot_h + X_LABELS + 2 * MARGIN + CAPTION;
-    let title = format!(
-        "{} - snapshots at {} instants (dt = {dt} s)",
-        info.name,
-        poses.len()
-    );
+    let title = format!("{} - snapshots at {} instants (dt = {dt} s)", info.name, poses.len());
     let mut svg = String::new();
     {
-        let root =
-            SVGBackend::with_string(&mut svg, (left_w + LEGEND_W, height)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (left_w + LEGEND_W, height)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| failed(e.to_string()))?;
         let root = root
             .titled(&title, ("sans-serif", 22))
@@ -209,10 +195,7 @@ fn draw(
         let load_path: Vec<(f64, f64)> = along.iter().map(|p| pr(p.load)).collect();
         let pulley_path: Vec<(f64, f64)> = along.iter().map(|p| pr(p.pulley)).collect();
         io(chart
-            .draw_series(LineSeries::new(
-                load_path,
-                ShapeStyle::from(&LOAD_PATH).stroke_width(1),
-            ))
+            .draw_series(LineSeries::new(load_path, ShapeStyle::from(&LOAD_PATH).stroke_width(1)))
             .map(|_| ())
             .map_err(err))?;
         io(chart
@@ -237,12 +220,11 @@ fn draw(
                 .map(|_| ())
                 .map_err(err))?;
             io(chart
-                .draw_series(pose.ropes.iter().map(|r| {
-                    PathElement::new(
-                        vec![pr(r[0]), pr(r[1])],
-                        ShapeStyle::from(&color).stroke_width(1),
-                    )
-                }))
+                .draw_series(
+                    pose.ropes
+                        .iter()
+                        .map(|r| PathElement::new(vec![pr(r[0]), pr(r[1])], ShapeStyle::from(&color).stroke_width(1))),
+                )
                 .map(|_| ())
                 .map_err(err))?;
             io(chart
@@ -311,20 +293,12 @@ fn draw(
         entry(y, geometry.ropes)?;
         y += 22;
         legend_area
-            .draw(&Circle::new(
-                (25, y + 8),
-                4,
-                ShapeStyle::from(&dark).stroke_width(2),
-            ))
+            .draw(&Circle::new((25, y + 8), 4, ShapeStyle::from(&dark).stroke_width(2)))
             .map_err(|e| failed(e.to_string()))?;
         entry(y, "main pulley B")?;
         y += 22;
         legend_area
-            .draw(&Circle::new(
-                (25, y + 8),
-                6,
-                ShapeStyle::from(&dark).filled(),
-            ))
+            .draw(&Circle::new((25, y + 8), 6, ShapeStyle::from(&dark).filled()))
             .map_err(|e| failed(e.to_string()))?;
         entry(y, "load C")?;
         y += 22;
@@ -340,14 +314,7 @@ fn draw(
                 ShapeStyle::from(&BLACK).filled(),
             ))
             .map_err(|e| failed(e.to_string()))?;
-        entry(
-            y,
-            if spatial {
-                "boom foot O"
-            } else {
-                "winches and boom tip"
-            },
-        )?;
+        entry(y, if spatial { "boom foot O" } else { "winches and boom tip" })?;
         y += 34;
         text("snapshots (light to dark):", y, 15)?;
         y += 24;
@@ -368,11 +335,7 @@ fn draw(
                     .draw(&PathElement::new(vec![(ox, oy), (ox + dx, oy + dy)], grey))
                     .map_err(|e| failed(e.to_string()))?;
                 legend_area
-                    .draw(&Text::new(
-                        label,
-                        (ox + dx + 4, oy + dy - 8),
-                        ("sans-serif", 15),
-                    ))
+                    .draw(&Text::new(label, (ox + dx + 4, oy + dy - 8), ("sans-serif", 15)))
                     .map_err(|e| failed(e.to_string()))?;
             }
         } else {
@@ -410,9 +373,6 @@ mod tests {
         let len = |r: &[P3; 2]| ((r[0][0] - r[1][0]).powi(2) + (r[0][2] - r[1][2]).powi(2)).sqrt();
         assert!((len(&pose.ropes[0]) - q[0]).abs() < 1e-9, "L1");
         assert!((len(&pose.ropes[1]) - q[2]).abs() < 1e-9, "L0");
-        assert!(
-            (len(&pose.ropes[2]) - (q[1] - q[2])).abs() < 1e-9,
-            "L2 - L0"
-        );
+        assert!((len(&pose.ropes[2]) - (q[1] - q[2])).abs() < 1e-9, "L2 - L0");
     }
 }

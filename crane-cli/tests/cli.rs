@@ -13,9 +13,7 @@ fn crane(args: &[&str]) -> Output {
 }
 
 fn example(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../examples")
-        .join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples").join(name)
 }
 
 /// Run `crane run MODEL --scenario` on `toml`; expect a failure whose message
@@ -72,11 +70,7 @@ fn unknown_key_in_a_table_is_named() {
 
 #[test]
 fn wrong_type_is_named() {
-    expect_error(
-        "navy-planar",
-        "dt = \"fast\"\n",
-        &["key `dt`", "invalid type"],
-    );
+    expect_error("navy-planar", "dt = \"fast\"\n", &["key `dt`", "invalid type"]);
     expect_error(
         "navy-planar",
         "[parameters]\nm_l = \"heavy\"\n",
@@ -130,11 +124,7 @@ fn unknown_parameter_is_named() {
 
 #[test]
 fn unknown_limit_input_is_named() {
-    expect_error(
-        "navy-planar",
-        "[limits]\nu7 = 3.0\n",
-        &["`limits.u7`", "u1, u2"],
-    );
+    expect_error("navy-planar", "[limits]\nu7 = 3.0\n", &["`limits.u7`", "u1, u2"]);
 }
 
 #[test]
@@ -161,18 +151,13 @@ fn example_scenario_end_to_end() {
         out.to_str().unwrap(),
         "--quiet",
     ]);
-    assert!(
-        result.status.success(),
-        "{}",
-        String::from_utf8_lossy(&result.stderr)
-    );
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     assert_eq!(
         header,
         [
-            "t", "L1", "L2", "L0", "x0", "z0", "x", "z", "u1", "u2", "lambda1", "lambda2",
-            "lambda3", "N1", "N2"
+            "t", "L1", "L2", "L0", "x0", "z0", "x", "z", "u1", "u2", "lambda1", "lambda2", "lambda3", "N1", "N2"
         ]
     );
     assert_eq!(
@@ -180,17 +165,9 @@ fn example_scenario_end_to_end() {
         1 + 401,
         "header and 401 rows (t = 0..4 s, dt = 0.01 s)"
     );
-    for name in [
-        "inputs.svg",
-        "coordinates.svg",
-        "multipliers.svg",
-        "tensions.svg",
-    ] {
+    for name in ["inputs.svg", "coordinates.svg", "multipliers.svg", "tensions.svg"] {
         let svg = std::fs::read_to_string(out.join(name)).unwrap();
-        assert!(
-            svg.len() > 1024 && svg.contains("<svg"),
-            "{name} is trivial"
-        );
+        assert!(svg.len() > 1024 && svg.contains("<svg"), "{name} is trivial");
     }
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
@@ -224,11 +201,7 @@ fn command_line_overrides_the_file() {
         out.to_str().unwrap(),
         "--quiet",
     ]);
-    assert!(
-        result.status.success(),
-        "{}",
-        String::from_utf8_lossy(&result.stderr)
-    );
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["dt"].as_f64(), Some(0.02));
@@ -254,17 +227,10 @@ fn strict_fails_on_a_violated_limit_but_writes_results() {
     let lenient = crane(&args);
     assert!(lenient.status.success());
     let stdout = String::from_utf8_lossy(&lenient.stdout);
-    assert!(
-        stdout.contains("WARNING: |u2| exceeds its limit 50 N m"),
-        "{stdout}"
-    );
+    assert!(stdout.contains("WARNING: |u2| exceeds its limit 50 N m"), "{stdout}");
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    assert!(
-        summary["torque_limits"][0]["first_violation"]
-            .as_f64()
-            .is_some()
-    );
+    assert!(summary["torque_limits"][0]["first_violation"].as_f64().is_some());
     std::fs::remove_dir_all(&out).unwrap();
     // with --strict: non-zero, results still written, and the message says so
     let strict = crane(&[&args[..], &["--strict"]].concat());
@@ -293,11 +259,7 @@ fn strict_passes_a_feasible_run() {
         "--strict",
         "--quiet",
     ]);
-    assert!(
-        result.status.success(),
-        "{}",
-        String::from_utf8_lossy(&result.stderr)
-    );
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
 }
 
 #[test]
@@ -343,17 +305,8 @@ fn every_example_parses_and_builds() {
 #[test]
 fn convergence_reports_first_order_and_writes_the_plot() {
     let dir = tempfile::tempdir().unwrap();
-    let result = crane(&[
-        "convergence",
-        "navy-planar",
-        "--out",
-        dir.path().to_str().unwrap(),
-    ]);
-    assert!(
-        result.status.success(),
-        "{}",
-        String::from_utf8_lossy(&result.stderr)
-    );
+    let result = crane(&["convergence", "navy-planar", "--out", dir.path().to_str().unwrap()]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     let csv = std::fs::read_to_string(dir.path().join("convergence.csv")).unwrap();
     let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
     assert_eq!(last[0], "0.001");
@@ -372,7 +325,13 @@ fn the_scheme_takes_effect_from_the_flag_and_the_file() {
     use crane_runtime::{Options, Scheme, simulate};
     let case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
     let api = |scheme: Scheme| {
-        let run = simulate(case.model(), case.path(), &case.start().unwrap(), &Options::new(0.02, 4.0).with_scheme(scheme)).unwrap();
+        let run = simulate(
+            case.model(),
+            case.path(),
+            &case.start().unwrap(),
+            &Options::new(0.02, 4.0).with_scheme(scheme),
+        )
+        .unwrap();
         let state = run.state_near(1.5).unwrap();
         let reference = case.reference(state.t).unwrap();
         (state.u - reference.u).norm() / reference.u.norm()
@@ -386,12 +345,20 @@ fn the_scheme_takes_effect_from_the_flag_and_the_file() {
         all.extend_from_slice(args);
         let result = crane(&all);
         assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
-        let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-        (json["scheme"].as_str().unwrap().to_string(), json["reference"]["e_u_at_1_5s"].as_f64().unwrap())
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        (
+            json["scheme"].as_str().unwrap().to_string(),
+            json["reference"]["e_u_at_1_5s"].as_f64().unwrap(),
+        )
     };
     let (name, e) = summary(&["--dt", "0.02", "--scheme", "bdf4"], "flag");
     assert_eq!(name, "bdf4");
-    assert!((e - api(Scheme::Bdf4)).abs() <= 1e-12 * e, "{e} vs {}", api(Scheme::Bdf4));
+    assert!(
+        (e - api(Scheme::Bdf4)).abs() <= 1e-12 * e,
+        "{e} vs {}",
+        api(Scheme::Bdf4)
+    );
     assert!(e < 2e-6, "{e}");
     let (name, e) = summary(&["--scenario", file.to_str().unwrap()], "file");
     assert_eq!(name, "bdf3");
@@ -402,7 +369,11 @@ fn the_scheme_takes_effect_from_the_flag_and_the_file() {
     let (name, e) = summary(&["--dt", "0.02"], "default");
     assert_eq!(name, "backward-euler");
     assert!((e - api(Scheme::BackwardEuler)).abs() <= 1e-12 * e && e > 1e-3);
-    expect_error("navy-planar", "scheme = \"rk4\"\n", &["`scheme`", "unknown scheme `rk4`", "bdf5"]);
+    expect_error(
+        "navy-planar",
+        "scheme = \"rk4\"\n",
+        &["`scheme`", "unknown scheme `rk4`", "bdf5"],
+    );
 }
 
 /// `crane convergence --scheme bdf2` measures order 2 and draws the slope-2
@@ -410,7 +381,14 @@ fn the_scheme_takes_effect_from_the_flag_and_the_file() {
 #[test]
 fn convergence_and_bench_take_the_scheme() {
     let dir = tempfile::tempdir().unwrap();
-    let result = crane(&["convergence", "navy-planar", "--scheme", "bdf2", "--out", dir.path().to_str().unwrap()]);
+    let result = crane(&[
+        "convergence",
+        "navy-planar",
+        "--scheme",
+        "bdf2",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     let csv = std::fs::read_to_string(dir.path().join("convergence.csv")).unwrap();
     // dt = 0.01 -> 0.005: e_u 3.6e-5 -> 8.7e-6, order 2.05
@@ -457,7 +435,10 @@ fn assert_column<const N: usize, const M: usize, const A: usize>(
     run: &crane_runtime::Solution<N, M, A>,
     value: impl Fn(&crane_runtime::State<N, M, A>, &[f64]) -> f64,
 ) {
-    let c = header.iter().position(|h| h == column).unwrap_or_else(|| panic!("no column {column}: {header:?}"));
+    let c = header
+        .iter()
+        .position(|h| h == column)
+        .unwrap_or_else(|| panic!("no column {column}: {header:?}"));
     assert_eq!(rows.len(), run.states.len());
     for (i, (row, state)) in rows.iter().zip(&run.states).enumerate() {
         assert_eq!(row[c], value(state, run.tensions_at(i)), "{column} at row {i}");
@@ -473,9 +454,19 @@ fn results_csv_columns_are_the_api_s_values() {
     let dir = tempfile::tempdir().unwrap();
     let out = run_ok("navy-planar", &["--dt", "0.02", "--scheme", "bdf2"], dir.path(), "csv");
     let (header, rows) = results(&out);
-    assert_eq!(header, ["t", "L1", "L2", "L0", "x0", "z0", "x", "z", "u1", "u2", "lambda1", "lambda2", "lambda3", "N1", "N2"]);
+    assert_eq!(
+        header,
+        [
+            "t", "L1", "L2", "L0", "x0", "z0", "x", "z", "u1", "u2", "lambda1", "lambda2", "lambda3", "N1", "N2"
+        ]
+    );
     let case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
-    let run = case.simulate(&case.start().unwrap(), &Options::new(0.02, 4.0).with_scheme(Scheme::Bdf2)).unwrap();
+    let run = case
+        .simulate(
+            &case.start().unwrap(),
+            &Options::new(0.02, 4.0).with_scheme(Scheme::Bdf2),
+        )
+        .unwrap();
     assert_column(&header, &rows, "t", &run, |s, _| s.t);
     for (k, name) in ["L1", "L2", "L0", "x0", "z0", "x", "z"].iter().enumerate() {
         assert_column(&header, &rows, name, &run, |s, _| s.q[k]);
@@ -510,26 +501,55 @@ fn scenario_keys_take_effect() {
     let default = run_ok("navy-planar", &["--dt", "0.02"], dir.path(), "default");
     // [parameters]: the load mass
     let file = write("mass.toml", "dt = 0.02\n[parameters]\nm_l = 120.0\n");
-    let heavy = run_ok("navy-planar", &["--scenario", file.to_str().unwrap()], dir.path(), "heavy");
+    let heavy = run_ok(
+        "navy-planar",
+        &["--scenario", file.to_str().unwrap()],
+        dir.path(),
+        "heavy",
+    );
     let mut case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
     case.model.set_parameter("m_l", 120.0).unwrap();
     let api = case.simulate(&case.start().unwrap(), &Options::new(0.02, 4.0)).unwrap();
-    assert_eq!(u_column(&heavy, "u2"), api.states.iter().map(|s| s.u[1]).collect::<Vec<_>>());
+    assert_eq!(
+        u_column(&heavy, "u2"),
+        api.states.iter().map(|s| s.u[1]).collect::<Vec<_>>()
+    );
     assert_ne!(u_column(&heavy, "u2"), u_column(&default, "u2"));
     // formulation
     let file = write("minimal.toml", "dt = 0.02\nformulation = \"minimal\"\n");
-    let minimal = run_ok("navy-planar", &["--scenario", file.to_str().unwrap()], dir.path(), "minimal");
+    let minimal = run_ok(
+        "navy-planar",
+        &["--scenario", file.to_str().unwrap()],
+        dir.path(),
+        "minimal",
+    );
     let case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
-    let api = case.simulate_minimal(&case.start().unwrap(), &Options::new(0.02, 4.0)).unwrap().unwrap();
-    assert_eq!(u_column(&minimal, "u1"), api.states.iter().map(|s| s.u[0]).collect::<Vec<_>>());
+    let api = case
+        .simulate_minimal(&case.start().unwrap(), &Options::new(0.02, 4.0))
+        .unwrap()
+        .unwrap();
+    assert_eq!(
+        u_column(&minimal, "u1"),
+        api.states.iter().map(|s| s.u[0]).collect::<Vec<_>>()
+    );
     assert_ne!(u_column(&minimal, "u1"), u_column(&default, "u1"));
     // path kind: the C6 profile of the 3D crane with pulley mass
     let file = write("smooth.toml", "dt = 0.1\ntrajectory = \"smooth-three-phase\"\n");
-    let smooth = run_ok("navy-3d-pulley", &["--scenario", file.to_str().unwrap()], dir.path(), "smooth");
+    let smooth = run_ok(
+        "navy-3d-pulley",
+        &["--scenario", file.to_str().unwrap()],
+        dir.path(),
+        "smooth",
+    );
     let paper = run_ok("navy-3d-pulley", &["--dt", "0.1"], dir.path(), "paper");
     let case = navy_3d_pulley::PaperCase::smooth(navy_3d_pulley::TF).unwrap();
-    let api = case.simulate(&case.start().unwrap(), &Options::new(0.1, case.tf())).unwrap();
-    assert_eq!(u_column(&smooth, "u4"), api.states.iter().map(|s| s.u[3]).collect::<Vec<_>>());
+    let api = case
+        .simulate(&case.start().unwrap(), &Options::new(0.1, case.tf()))
+        .unwrap();
+    assert_eq!(
+        u_column(&smooth, "u4"),
+        api.states.iter().map(|s| s.u[3]).collect::<Vec<_>>()
+    );
     assert_ne!(u_column(&smooth, "u4"), u_column(&paper, "u4"));
 }
 
@@ -541,7 +561,10 @@ fn list_shows_the_registry() {
     let text = String::from_utf8_lossy(&result.stdout);
     assert_eq!(crane_models::CATALOG.len(), 7);
     for e in crane_models::CATALOG {
-        let line = text.lines().find(|l| l.split_whitespace().next() == Some(e.name)).unwrap_or_else(|| panic!("{}: {text}", e.name));
+        let line = text
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(e.name))
+            .unwrap_or_else(|| panic!("{}: {text}", e.name));
         let fields: Vec<&str> = line.split_whitespace().collect();
         assert_eq!(fields[1..5], [e.n, e.m, e.a, e.dof()].map(|v| v.to_string()), "{line}");
     }
@@ -552,7 +575,14 @@ fn list_shows_the_registry() {
 #[test]
 fn convergence_in_minimal_coordinates() {
     let dir = tempfile::tempdir().unwrap();
-    let result = crane(&["convergence", "navy-planar", "--formulation", "minimal", "--out", dir.path().to_str().unwrap()]);
+    let result = crane(&[
+        "convergence",
+        "navy-planar",
+        "--formulation",
+        "minimal",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     let csv = std::fs::read_to_string(dir.path().join("convergence.csv")).unwrap();
     let order: f64 = csv.lines().last().unwrap().split(',').nth(2).unwrap().parse().unwrap();
@@ -566,18 +596,41 @@ fn a_slack_rope_is_reported_and_strict_fails_on_it() {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("fast.toml");
     std::fs::write(&file, "duration = 2.0\n").unwrap();
-    let out = run_ok("navy-planar", &["--scenario", file.to_str().unwrap()], dir.path(), "fast");
-    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    let rope = summary["ropes"].as_array().unwrap().iter().find(|r| r["name"] == "N1").unwrap();
+    let out = run_ok(
+        "navy-planar",
+        &["--scenario", file.to_str().unwrap()],
+        dir.path(),
+        "fast",
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let rope = summary["ropes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["name"] == "N1")
+        .unwrap();
     let slack = rope["first_slack"].as_f64().expect("rope N1 goes slack");
     assert!((slack - 1.06).abs() < 0.02, "{slack}");
     assert!(rope["min_tension"].as_f64().unwrap() < -100.0);
     let strict_out = dir.path().join("strict");
-    let result = crane(&["run", "navy-planar", "--scenario", file.to_str().unwrap(), "--strict", "--quiet", "--out", strict_out.to_str().unwrap()]);
+    let result = crane(&[
+        "run",
+        "navy-planar",
+        "--scenario",
+        file.to_str().unwrap(),
+        "--strict",
+        "--quiet",
+        "--out",
+        strict_out.to_str().unwrap(),
+    ]);
     assert!(!result.status.success());
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(stderr.contains("rope N1 goes slack at t = 1.060 s"), "{stderr}");
-    assert!(strict_out.join("results.csv").exists(), "--strict still writes the results");
+    assert!(
+        strict_out.join("results.csv").exists(),
+        "--strict still writes the results"
+    );
 }
 
 /// A run that fails in its middle (an unreachable end point: Newton fails at
@@ -588,11 +641,21 @@ fn a_failure_in_mid_run_leaves_no_results() {
     let file = dir.path().join("far.toml");
     std::fs::write(&file, "end = [8.0, -14.0]\nduration = 2.0\n").unwrap();
     let out = dir.path().join("far");
-    let result = crane(&["run", "navy-planar", "--scenario", file.to_str().unwrap(), "--quiet", "--out", out.to_str().unwrap()]);
+    let result = crane(&[
+        "run",
+        "navy-planar",
+        "--scenario",
+        file.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert!(!result.status.success());
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(stderr.contains("did not converge at t = 0.23 s"), "{stderr}");
-    let left: Vec<_> = std::fs::read_dir(&out).map(|d| d.map(|e| e.unwrap().file_name()).collect()).unwrap_or_default();
+    let left: Vec<_> = std::fs::read_dir(&out)
+        .map(|d| d.map(|e| e.unwrap().file_name()).collect())
+        .unwrap_or_default();
     assert!(left.is_empty(), "files left behind: {left:?}");
 }
 
@@ -600,8 +663,16 @@ fn a_failure_in_mid_run_leaves_no_results() {
 /// key (the built-in models declare their masses `positive`).
 #[test]
 fn a_negative_mass_in_the_scenario_names_the_key() {
-    expect_error("navy-planar", "[parameters]\nm_l = -100.0\n", &["`parameters.m_l` = -100 must be positive"]);
-    expect_error("gantry-3d", "[parameters]\nm_t = 0.0\n", &["`parameters.m_t` = 0 must be positive"]);
+    expect_error(
+        "navy-planar",
+        "[parameters]\nm_l = -100.0\n",
+        &["`parameters.m_l` = -100 must be positive"],
+    );
+    expect_error(
+        "gantry-3d",
+        "[parameters]\nm_t = 0.0\n",
+        &["`parameters.m_t` = 0 must be positive"],
+    );
 }
 
 /// `--replay` drives the forward dynamics with the computed torques: on the
@@ -615,7 +686,12 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
     let summary = |out: &Path| -> serde_json::Value {
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
     };
-    let exact = run_ok("navy-planar-pulley", &["--scheme", "bdf4", "--replay", "--settle", "9"], dir.path(), "exact");
+    let exact = run_ok(
+        "navy-planar-pulley",
+        &["--scheme", "bdf4", "--replay", "--settle", "9"],
+        dir.path(),
+        "exact",
+    );
     let replay = &summary(&exact)["replay"];
     assert!(replay["max_load_deviation"].as_f64().unwrap() < 1e-4, "{replay}");
     assert_eq!(replay["settle_time"].as_f64(), Some(9.0));
@@ -625,29 +701,78 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
     assert_eq!(header.len(), 19, "results.csv itself is unchanged: {header:?}");
     let text = std::fs::read_to_string(exact.join("replay.csv")).unwrap();
     assert!(text.lines().next().unwrap().ends_with(",load_deviation"));
-    assert_eq!(text.lines().count(), 1 + 4 * 400 + 4 * 900 + 1, "dt/4 over 4 + 9 s, and the header");
+    assert_eq!(
+        text.lines().count(),
+        1 + 4 * 400 + 4 * 900 + 1,
+        "dt/4 over 4 + 9 s, and the header"
+    );
     assert!(std::fs::metadata(exact.join("replay.svg")).unwrap().len() > 1024);
     assert_eq!(rows.len(), 401, "one row per inverse step");
-    let heavy = run_ok("navy-planar-pulley", &["--scheme", "bdf4", "--replay", "--plant", "m_l=110"], dir.path(), "heavy");
+    let heavy = run_ok(
+        "navy-planar-pulley",
+        &["--scheme", "bdf4", "--replay", "--plant", "m_l=110"],
+        dir.path(),
+        "heavy",
+    );
     let replay = &summary(&heavy)["replay"];
     assert!(replay["max_load_deviation"].as_f64().unwrap() > 1.0, "{replay}");
     assert_eq!(replay["plant"]["m_l"].as_f64(), Some(110.0));
     let file = dir.path().join("plant.toml");
     std::fs::write(&file, "scheme = \"bdf4\"\n[plant]\nm_l = 110.0\n").unwrap();
-    let from_file = run_ok("navy-planar-pulley", &["--scenario", file.to_str().unwrap(), "--replay"], dir.path(), "file");
-    assert_eq!(summary(&from_file)["replay"]["max_load_deviation"], replay["max_load_deviation"]);
+    let from_file = run_ok(
+        "navy-planar-pulley",
+        &["--scenario", file.to_str().unwrap(), "--replay"],
+        dir.path(),
+        "file",
+    );
+    assert_eq!(
+        summary(&from_file)["replay"]["max_load_deviation"],
+        replay["max_load_deviation"]
+    );
     // a lighter load that the planned torques over-lift: rope N1 would have
     // to push during the settling window, and the replay says so
-    let light = run_ok("navy-planar-pulley", &["--scheme", "bdf4", "--replay", "--plant", "m_l=90", "--settle", "9"], dir.path(), "light");
-    let slack = summary(&light)["replay"]["first_slack"]["N1"].as_f64().expect("N1 pushes");
+    let light = run_ok(
+        "navy-planar-pulley",
+        &["--scheme", "bdf4", "--replay", "--plant", "m_l=90", "--settle", "9"],
+        dir.path(),
+        "light",
+    );
+    let slack = summary(&light)["replay"]["first_slack"]["N1"]
+        .as_f64()
+        .expect("N1 pushes");
     assert!((9.0..10.5).contains(&slack), "{slack}");
     // --feedback default at least halves the heavier load's deviation
-    let fed = run_ok("navy-planar-pulley", &["--scheme", "bdf4", "--replay", "--plant", "m_l=110", "--feedback", "default"], dir.path(), "fed");
+    let fed = run_ok(
+        "navy-planar-pulley",
+        &[
+            "--scheme",
+            "bdf4",
+            "--replay",
+            "--plant",
+            "m_l=110",
+            "--feedback",
+            "default",
+        ],
+        dir.path(),
+        "fed",
+    );
     let with = &summary(&fed)["replay"];
     assert!(with["feedback"].as_str().unwrap().starts_with("default"));
     assert_eq!(with["open_loop_max_load_deviation"], replay["max_load_deviation"]);
-    assert!(with["max_load_deviation"].as_f64().unwrap() <= 0.5 * replay["max_load_deviation"].as_f64().unwrap(), "{with}");
-    let bad = crane(&["run", "navy-planar-pulley", "--replay", "--plant", "mass=3", "--quiet", "--out", dir.path().join("bad").to_str().unwrap()]);
+    assert!(
+        with["max_load_deviation"].as_f64().unwrap() <= 0.5 * replay["max_load_deviation"].as_f64().unwrap(),
+        "{with}"
+    );
+    let bad = crane(&[
+        "run",
+        "navy-planar-pulley",
+        "--replay",
+        "--plant",
+        "mass=3",
+        "--quiet",
+        "--out",
+        dir.path().join("bad").to_str().unwrap(),
+    ]);
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("plant parameter `mass`: unknown parameter"));
 }
@@ -665,7 +790,8 @@ fn unstable_internal_dynamics_are_reported_and_strict_fails_on_them() {
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(stderr.contains("unstable internal dynamics"), "{stderr}");
     assert!(stderr.contains("exceeds 1e6 times its size at the start"), "{stderr}");
-    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let internal = &summary["internal_dynamics"];
     assert_eq!(internal["structural_dimension"], 2, "{internal}");
     assert_eq!(internal["dimension"], 2, "{internal}");
@@ -673,11 +799,24 @@ fn unstable_internal_dynamics_are_reported_and_strict_fails_on_them() {
     assert!(internal["max_real_part"].as_f64().unwrap() >= 9.9045, "{internal}");
     assert!(internal["runaway_at"].as_f64().is_some_and(|t| t < 2.5), "{internal}");
     let strict_out = dir.path().join("strict");
-    let result = crane(&["run", "coupled-trolley", "--strict", "--quiet", "--out", strict_out.to_str().unwrap()]);
+    let result = crane(&[
+        "run",
+        "coupled-trolley",
+        "--strict",
+        "--quiet",
+        "--out",
+        strict_out.to_str().unwrap(),
+    ]);
     assert!(!result.status.success());
     let stderr = String::from_utf8_lossy(&result.stderr);
-    assert!(stderr.contains("infeasible (--strict): unstable internal dynamics"), "{stderr}");
-    assert!(strict_out.join("results.csv").exists(), "--strict still writes the results");
+    assert!(
+        stderr.contains("infeasible (--strict): unstable internal dynamics"),
+        "{stderr}"
+    );
+    assert!(
+        strict_out.join("results.csv").exists(),
+        "--strict still writes the results"
+    );
 }
 
 /// `crane fmu MODEL` zips the model description with the given library as
@@ -689,15 +828,32 @@ fn fmu_packages_the_description_and_the_library() {
     let library = dir.path().join("libfake.so");
     std::fs::write(&library, b"not really a library").unwrap();
     let out = dir.path().join("fmus").join("gantry-3d.fmu");
-    let result = crane(&["fmu", "gantry-3d", "--library", library.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let result = crane(&[
+        "fmu",
+        "gantry-3d",
+        "--library",
+        library.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     let bytes = std::fs::read(&out).unwrap();
     // a zip archive holding both entries (names are stored uncompressed)
     assert_eq!(&bytes[..4], b"PK\x03\x04");
     let text = String::from_utf8_lossy(&bytes);
-    assert!(text.contains("modelDescription.xml") && text.contains("binaries/linux64/gantry_3d.so"), "{text}");
+    assert!(
+        text.contains("modelDescription.xml") && text.contains("binaries/linux64/gantry_3d.so"),
+        "{text}"
+    );
     let missing = dir.path().join("none.fmu");
-    let result = crane(&["fmu", "gantry-3d", "--library", dir.path().join("absent.so").to_str().unwrap(), "--out", missing.to_str().unwrap()]);
+    let result = crane(&[
+        "fmu",
+        "gantry-3d",
+        "--library",
+        dir.path().join("absent.so").to_str().unwrap(),
+        "--out",
+        missing.to_str().unwrap(),
+    ]);
     assert!(!result.status.success());
     assert!(String::from_utf8_lossy(&result.stderr).contains("cargo build --release -p crane-fmu"));
     assert!(!missing.exists());
@@ -713,7 +869,17 @@ fn fmu_packages_the_description_and_the_library() {
 fn fastest_finds_the_binding_limit() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("fast");
-    let result = crane(&["fastest", "navy-planar", "--limit", "u2=150", "--min-tension", "N1=-1e9", "--json", "--out", out.to_str().unwrap()]);
+    let result = crane(&[
+        "fastest",
+        "navy-planar",
+        "--limit",
+        "u2=150",
+        "--min-tension",
+        "N1=-1e9",
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     let json: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
     let duration = json["duration"].as_f64().unwrap();
@@ -724,7 +890,15 @@ fn fastest_finds_the_binding_limit() {
         assert!(out.join(file).exists(), "{file}");
     }
     let taut = dir.path().join("taut");
-    let result = crane(&["fastest", "navy-planar", "--limit", "u2=150", "--json", "--out", taut.to_str().unwrap()]);
+    let result = crane(&[
+        "fastest",
+        "navy-planar",
+        "--limit",
+        "u2=150",
+        "--json",
+        "--out",
+        taut.to_str().unwrap(),
+    ]);
     let json: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
     assert_eq!(json["binding"]["name"], "N1", "{json}");
     assert!(json["duration"].as_f64().unwrap() > duration + 0.1, "{json}");
@@ -740,11 +914,26 @@ fn fastest_finds_the_binding_limit() {
 fn sweep_writes_a_row_per_point_and_survives_a_failure() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("sweep");
-    let result = crane(&["sweep", "navy-planar", "--param", "m_l=-10:110:3", "--duration", "3:5:3", "--limit", "u2=150", "--quiet", "--out", out.to_str().unwrap()]);
+    let result = crane(&[
+        "sweep",
+        "navy-planar",
+        "--param",
+        "m_l=-10:110:3",
+        "--duration",
+        "3:5:3",
+        "--limit",
+        "u2=150",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
     let mut lines = csv.lines();
-    assert_eq!(lines.next().unwrap(), "m_l,duration,peak_u1,peak_u2,min_N1,min_N2,feasible,error");
+    assert_eq!(
+        lines.next().unwrap(),
+        "m_l,duration,peak_u1,peak_u2,min_N1,min_N2,feasible,error"
+    );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 9);
     for row in &rows {
@@ -767,16 +956,38 @@ fn sweep_writes_a_row_per_point_and_survives_a_failure() {
 fn a_path_too_rough_for_the_crane_is_reported() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("rough");
-    let result = crane(&["run", "navy-3d-pulley", "--dt", "0.1", "--quiet", "--out", out.to_str().unwrap()]);
+    let result = crane(&[
+        "run",
+        "navy-3d-pulley",
+        "--dt",
+        "0.1",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert!(result.status.success());
     let stderr = String::from_utf8_lossy(&result.stderr);
-    assert!(stderr.contains("derivatives up to order 6, but this path is continuous only up to order 4"), "{stderr}");
-    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    assert_eq!(summary["path_smoothness"]["sufficient"], false, "{}", summary["path_smoothness"]);
+    assert!(
+        stderr.contains("derivatives up to order 6, but this path is continuous only up to order 4"),
+        "{stderr}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(
+        summary["path_smoothness"]["sufficient"], false,
+        "{}",
+        summary["path_smoothness"]
+    );
     let file = dir.path().join("smooth.toml");
     std::fs::write(&file, "dt = 0.1\ntrajectory = \"smooth-three-phase\"\n").unwrap();
-    let smooth = run_ok("navy-3d-pulley", &["--scenario", file.to_str().unwrap()], dir.path(), "smooth");
-    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(smooth.join("summary.json")).unwrap()).unwrap();
+    let smooth = run_ok(
+        "navy-3d-pulley",
+        &["--scenario", file.to_str().unwrap()],
+        dir.path(),
+        "smooth",
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(smooth.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["path_smoothness"]["needed"], 6);
     assert_eq!(summary["path_smoothness"]["sufficient"], true);
 }

@@ -15,12 +15,24 @@ fn navy_3d_reports_the_slewing_angle() {
     let csv = std::fs::read_to_string(out.path().join("results.csv")).unwrap();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     assert_eq!(header.last(), Some(&"phi"));
-    let last: Vec<f64> = csv.lines().last().unwrap().split(',').map(|v| v.parse().unwrap()).collect();
+    let last: Vec<f64> = csv
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
     // at rest at the end the boom points at the load (2, 5): phi = atan2(5, 2),
     // exact up to round-off (the massless pulley fixes the geometry algebraically)
     let phi = *last.last().unwrap();
     assert!((phi - 5f64.atan2(2.0)).abs() < 1e-9, "phi = {phi}");
     // the first value: the boom along the x axis at the start (eq. 87)
-    let first: Vec<f64> = csv.lines().nth(1).unwrap().split(',').map(|v| v.parse().unwrap()).collect();
+    let first: Vec<f64> = csv
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
     assert!(first.last().unwrap().abs() < 1e-12);
 }

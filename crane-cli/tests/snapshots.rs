@@ -46,10 +46,7 @@ fn check(svg: &str, tf: f64) {
     assert_eq!(labels.len(), 7, "snapshot labels: {labels:?}");
     assert_eq!(labels[0], "t = 0.00 s", "{labels:?}");
     assert_eq!(labels[6], format!("t = {tf:.2} s"), "{labels:?}");
-    assert!(
-        svg.matches("<circle").count() >= 7 * 3,
-        "too few pulley/load dots"
-    );
+    assert!(svg.matches("<circle").count() >= 7 * 3, "too few pulley/load dots");
     assert!(svg.contains("[m]"), "no axis unit");
     for needle in [
         "load C",
@@ -66,14 +63,8 @@ fn planar_crane_snapshots() {
     let svg = snapshots("navy-planar", "0.1");
     check(&svg, 4.0);
     // the winch A and the boom tip P are labelled
-    assert!(
-        has_text(&svg, "A") && has_text(&svg, "P"),
-        "fixed points not labelled"
-    );
-    assert!(
-        has_text(&svg, "x [m]") && has_text(&svg, "z [m]"),
-        "axis labels"
-    );
+    assert!(has_text(&svg, "A") && has_text(&svg, "P"), "fixed points not labelled");
+    assert!(has_text(&svg, "x [m]") && has_text(&svg, "z [m]"), "axis labels");
     assert!(svg.contains("equal scales"));
 }
 

@@ -11,12 +11,18 @@ use crate::variables::{Causality, NameClash, variables};
 /// not ASCII alphanumeric replaced by `_` (`navy-planar` → `navy_planar`);
 /// the binary in the FMU is `binaries/linux64/<identifier>.so`.
 pub fn model_identifier(name: &str) -> String {
-    name.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect()
+    name.chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect()
 }
 
 /// `text` with the five XML special characters escaped.
 fn escape(text: &str) -> String {
-    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;").replace('\'', "&apos;")
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+        .replace('\'', "&apos;")
 }
 
 /// A start value as XML reads it back exactly (shortest round trip).
@@ -26,7 +32,9 @@ fn number(value: f64) -> String {
 
 /// 64-bit FNV-1a of `bytes` from `seed`.
 fn fnv1a(bytes: &[u8], seed: u64) -> u64 {
-    bytes.iter().fold(seed, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
+    bytes
+        .iter()
+        .fold(seed, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
 }
 
 /// The GUID of a description body: two FNV-1a hashes of it, printed as a
@@ -46,7 +54,8 @@ fn guid(body: &str) -> String {
 }
 
 /// `modelDescription.xml` of crane `C` and its GUID.
-pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Result<(String, String), NameClash> {
+pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>()
+-> Result<(String, String), NameClash> {
     let table = variables::<C, N, M, A>()?;
     let maneuver = C::maneuver();
     let mut vars = String::new();
@@ -113,7 +122,11 @@ mod tests {
         assert!(table.iter().skip_while(|v| !v.integer).all(|v| v.integer));
         for (i, v) in table.iter().enumerate() {
             assert_eq!(xml.matches(&format!("name=\"{}\"", v.name)).count(), 1, "{}", v.name);
-            let same_type = table.iter().filter(|w| w.integer == v.integer).position(|w| w.name == v.name).unwrap();
+            let same_type = table
+                .iter()
+                .filter(|w| w.integer == v.integer)
+                .position(|w| w.name == v.name)
+                .unwrap();
             assert_eq!(v.value_reference as usize, same_type, "{}", v.name);
             if v.causality == crate::variables::Causality::Output {
                 assert!(xml.contains(&format!("<Unknown index=\"{}\"/>", i + 1)), "{}", v.name);
@@ -122,10 +135,22 @@ mod tests {
         // every start value reads back to the model's default exactly
         // (alpha, the boom angle, is not a short decimal)
         let values = crane_runtime::CraneModel::<7, 3, 2>::parameter_values(&navy_planar::NavyPlanar::default());
-        for (k, v) in table.iter().filter(|v| matches!(v.role, crate::variables::Role::Parameter(_))).enumerate() {
+        for (k, v) in table
+            .iter()
+            .filter(|v| matches!(v.role, crate::variables::Role::Parameter(_)))
+            .enumerate()
+        {
             let tag = format!("name=\"{}\"", v.name);
             let after = &xml[xml.find(&tag).unwrap()..];
-            let start: f64 = after.split("start=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+            let start: f64 = after
+                .split("start=\"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap();
             assert_eq!(start.to_bits(), values[k].to_bits(), "{}", v.name);
         }
         assert!(xml.contains(&format!("guid=\"{guid}\"")));

@@ -11,7 +11,10 @@ use std::ptr;
 use crane_models::Crane;
 
 use crate::description::model_description;
-use crate::fmi2::{self, Boolean, CallbackFunctions, Component as RawComponent, FmiString, FmuType, Integer, Real, Status, StatusKind, ValueReference};
+use crate::fmi2::{
+    self, Boolean, CallbackFunctions, Component as RawComponent, FmiString, FmuType, Integer, Real, Status, StatusKind,
+    ValueReference,
+};
 use crate::instance::{Component, Instance};
 
 /// One crane an exported library can instantiate: found by the GUID the
@@ -32,7 +35,11 @@ impl Entry {
         Self {
             name: C::NAME,
             description: || model_description::<C, N, M, A>().map_err(|e| e.to_string()),
-            instantiate: || Instance::<C, N, M, A>::new().map(|i| Box::new(i) as Box<dyn Component>).map_err(|e| e.to_string()),
+            instantiate: || {
+                Instance::<C, N, M, A>::new()
+                    .map(|i| Box::new(i) as Box<dyn Component>)
+                    .map_err(|e| e.to_string())
+            },
         }
     }
 }
@@ -61,7 +68,14 @@ fn log(callbacks: &CallbackFunctions, name: &CStr, status: Status, category: &st
     // SAFETY: the host's logger, called as FMI 2.0 specifies, with
     // NUL-terminated strings that live across the call
     unsafe {
-        logger(callbacks.component_environment, name.as_ptr(), status as c_int, category.as_ptr(), c"%s".as_ptr(), message.as_ptr());
+        logger(
+            callbacks.component_environment,
+            name.as_ptr(),
+            status as c_int,
+            category.as_ptr(),
+            c"%s".as_ptr(),
+            message.as_ptr(),
+        );
     }
 }
 
@@ -90,7 +104,11 @@ unsafe fn with_slave(c: RawComponent, what: &str, f: impl FnOnce(&mut dyn Compon
             Status::Error
         }
         Err(_) => {
-            slave.log(Status::Error, "logStatusError", &format!("{what}: internal error (panic); the instance must be reset"));
+            slave.log(
+                Status::Error,
+                "logStatusError",
+                &format!("{what}: internal error (panic); the instance must be reset"),
+            );
             Status::Error
         }
     }
@@ -157,19 +175,39 @@ pub unsafe fn instantiate(
                 return (entry.instantiate)();
             }
         }
-        Err(format!("GUID {guid} matches none of this library's cranes ({}); was the FMU packaged with this binary?", entries.iter().map(|e| e.name).collect::<Vec<_>>().join(", ")))
+        Err(format!(
+            "GUID {guid} matches none of this library's cranes ({}); was the FMU packaged with this binary?",
+            entries.iter().map(|e| e.name).collect::<Vec<_>>().join(", ")
+        ))
     }));
     match result {
         Ok(Ok(component)) => {
-            let slave = Box::new(Slave { component, name, callbacks, logging: logging_on != 0 });
+            let slave = Box::new(Slave {
+                component,
+                name,
+                callbacks,
+                logging: logging_on != 0,
+            });
             Box::into_raw(slave).cast()
         }
         Ok(Err(message)) => {
-            log(&callbacks, &name, Status::Error, "logStatusError", &format!("fmi2Instantiate: {message}"));
+            log(
+                &callbacks,
+                &name,
+                Status::Error,
+                "logStatusError",
+                &format!("fmi2Instantiate: {message}"),
+            );
             ptr::null_mut()
         }
         Err(_) => {
-            log(&callbacks, &name, Status::Error, "logStatusError", "fmi2Instantiate: internal error (panic)");
+            log(
+                &callbacks,
+                &name,
+                Status::Error,
+                "logStatusError",
+                "fmi2Instantiate: internal error (panic)",
+            );
             ptr::null_mut()
         }
     }
@@ -227,7 +265,11 @@ pub unsafe fn exit_initialization_mode(c: RawComponent) -> Status {
         // SAFETY: as `with_slave` (not null: the status is OK)
         let slave = unsafe { &*c.cast::<Slave>() };
         if slave.logging {
-            slave.log(Status::Ok, "logAll", &format!("consistent start found at t = {} s", slave.component.time()));
+            slave.log(
+                Status::Ok,
+                "logAll",
+                &format!("consistent start found at t = {} s", slave.component.time()),
+            );
         }
     }
     status
@@ -261,7 +303,10 @@ pub unsafe fn reset(c: RawComponent) -> Status {
 pub unsafe fn get_real(c: RawComponent, vr: *const ValueReference, nvr: usize, value: *mut Real) -> Status {
     unsafe {
         with_slave(c, "fmi2GetReal", |s| {
-            let (vr, value) = (slice(vr, nvr).ok_or("null array")?, slice_mut(value, nvr).ok_or("null array")?);
+            let (vr, value) = (
+                slice(vr, nvr).ok_or("null array")?,
+                slice_mut(value, nvr).ok_or("null array")?,
+            );
             s.get_real(vr, value)
         })
     }
@@ -274,7 +319,10 @@ pub unsafe fn get_real(c: RawComponent, vr: *const ValueReference, nvr: usize, v
 pub unsafe fn set_real(c: RawComponent, vr: *const ValueReference, nvr: usize, value: *const Real) -> Status {
     unsafe {
         with_slave(c, "fmi2SetReal", |s| {
-            let (vr, value) = (slice(vr, nvr).ok_or("null array")?, slice(value, nvr).ok_or("null array")?);
+            let (vr, value) = (
+                slice(vr, nvr).ok_or("null array")?,
+                slice(value, nvr).ok_or("null array")?,
+            );
             s.set_real(vr, value)
         })
     }
@@ -287,7 +335,10 @@ pub unsafe fn set_real(c: RawComponent, vr: *const ValueReference, nvr: usize, v
 pub unsafe fn get_integer(c: RawComponent, vr: *const ValueReference, nvr: usize, value: *mut Integer) -> Status {
     unsafe {
         with_slave(c, "fmi2GetInteger", |s| {
-            let (vr, value) = (slice(vr, nvr).ok_or("null array")?, slice_mut(value, nvr).ok_or("null array")?);
+            let (vr, value) = (
+                slice(vr, nvr).ok_or("null array")?,
+                slice_mut(value, nvr).ok_or("null array")?,
+            );
             s.get_integer(vr, value)
         })
     }
@@ -300,7 +351,10 @@ pub unsafe fn get_integer(c: RawComponent, vr: *const ValueReference, nvr: usize
 pub unsafe fn set_integer(c: RawComponent, vr: *const ValueReference, nvr: usize, value: *const Integer) -> Status {
     unsafe {
         with_slave(c, "fmi2SetInteger", |s| {
-            let (vr, value) = (slice(vr, nvr).ok_or("null array")?, slice(value, nvr).ok_or("null array")?);
+            let (vr, value) = (
+                slice(vr, nvr).ok_or("null array")?,
+                slice(value, nvr).ok_or("null array")?,
+            );
             s.set_integer(vr, value)
         })
     }
@@ -312,7 +366,15 @@ pub unsafe fn set_integer(c: RawComponent, vr: *const ValueReference, nvr: usize
 /// # Safety
 /// `c` from [`instantiate`].
 pub unsafe fn no_variables(c: RawComponent, what: &str, nvr: usize) -> Status {
-    unsafe { with_slave(c, what, |_| if nvr == 0 { Ok(()) } else { Err("this FMU has no variables of that type".into()) }) }
+    unsafe {
+        with_slave(c, what, |_| {
+            if nvr == 0 {
+                Ok(())
+            } else {
+                Err("this FMU has no variables of that type".into())
+            }
+        })
+    }
 }
 
 /// A function this FMU does not provide (FMU state, directional
@@ -321,7 +383,11 @@ pub unsafe fn no_variables(c: RawComponent, what: &str, nvr: usize) -> Status {
 /// # Safety
 /// `c` from [`instantiate`].
 pub unsafe fn unsupported(c: RawComponent, what: &str) -> Status {
-    unsafe { with_slave(c, what, |_| Err("not supported by this FMU (see its capability flags)".into())) }
+    unsafe {
+        with_slave(c, what, |_| {
+            Err("not supported by this FMU (see its capability flags)".into())
+        })
+    }
 }
 
 /// `fmi2DoStep`.
@@ -329,7 +395,11 @@ pub unsafe fn unsupported(c: RawComponent, what: &str) -> Status {
 /// # Safety
 /// `c` from [`instantiate`].
 pub unsafe fn do_step(c: RawComponent, current_communication_point: Real, communication_step_size: Real) -> Status {
-    unsafe { with_slave(c, "fmi2DoStep", |s| s.do_step(current_communication_point, communication_step_size)) }
+    unsafe {
+        with_slave(c, "fmi2DoStep", |s| {
+            s.do_step(current_communication_point, communication_step_size)
+        })
+    }
 }
 
 /// `fmi2GetStatus` and the typed variants: only `fmi2GetRealStatus` with

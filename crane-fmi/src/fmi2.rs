@@ -56,9 +56,8 @@ pub const LAST_SUCCESSFUL_TIME: StatusKind = 2;
 pub const TERMINATED: StatusKind = 3;
 
 /// `fmi2CallbackLogger`: `printf`-style, variadic.
-pub type CallbackLogger = Option<
-    unsafe extern "C" fn(ComponentEnvironment, FmiString, c_int, FmiString, FmiString, ...),
->;
+pub type CallbackLogger =
+    Option<unsafe extern "C" fn(ComponentEnvironment, FmiString, c_int, FmiString, FmiString, ...)>;
 
 /// `fmi2CallbackFunctions`.
 #[repr(C)]

@@ -88,7 +88,14 @@ fn hermite<const A: usize>(ta: f64, a: &ServoTarget<A>, tb: f64, b: &ServoTarget
         let p = b[0][k] - (c0 + c1 + c2);
         let v = b[1][k] * h - (c1 + 2.0 * c2);
         let acc = b[2][k] * h * h - 2.0 * c2;
-        let c = [c0, c1, c2, 10.0 * p - 4.0 * v + 0.5 * acc, -15.0 * p + 7.0 * v - acc, 6.0 * p - 3.0 * v + 0.5 * acc];
+        let c = [
+            c0,
+            c1,
+            c2,
+            10.0 * p - 4.0 * v + 0.5 * acc,
+            -15.0 * p + 7.0 * v - acc,
+            6.0 * p - 3.0 * v + 0.5 * acc,
+        ];
         out[0][k] = c.iter().rev().fold(0.0, |acc, &ci| acc * s + ci);
         out[1][k] = (1..6).rev().fold(0.0, |acc, i| acc * s + i as f64 * c[i]) / h;
         out[2][k] = (2..6).rev().fold(0.0, |acc, i| acc * s + (i * (i - 1)) as f64 * c[i]) / (h * h);
@@ -207,7 +214,10 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
 
     /// The Real variable playing `role`, its value.
     fn value(&self, role: Role) -> f64 {
-        self.table.iter().find(|v| v.role == role).map_or(f64::NAN, |v| self.reals[v.value_reference as usize])
+        self.table
+            .iter()
+            .find(|v| v.role == role)
+            .map_or(f64::NAN, |v| self.reals[v.value_reference as usize])
     }
 
     /// The external target in the inputs.
@@ -218,11 +228,13 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
     /// Whether a variable of `causality` may be set now.
     fn settable(&self, causality: Causality, name: &str) -> Result<(), String> {
         match (causality, self.mode) {
-            (_, Mode::Failed | Mode::Terminated) => Err(format!("`{name}` cannot be set after an error or fmi2Terminate (fmi2Reset first)")),
+            (_, Mode::Failed | Mode::Terminated) => Err(format!(
+                "`{name}` cannot be set after an error or fmi2Terminate (fmi2Reset first)"
+            )),
             (Causality::Output, _) => Err(format!("`{name}` is an output and cannot be set")),
-            (Causality::Parameter, Mode::Stepping) => {
-                Err(format!("parameter `{name}` can only be set before fmi2ExitInitializationMode"))
-            }
+            (Causality::Parameter, Mode::Stepping) => Err(format!(
+                "parameter `{name}` can only be set before fmi2ExitInitializationMode"
+            )),
             _ => Ok(()),
         }
     }
@@ -232,7 +244,9 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         let info = <C::Model as CraneModel<N, M, A>>::INFO;
         let mut model = C::Model::default();
         for (k, name) in info.parameters.iter().enumerate() {
-            model.set_parameter(name, self.value(Role::Parameter(k))).map_err(|e| e.to_string())?;
+            model
+                .set_parameter(name, self.value(Role::Parameter(k)))
+                .map_err(|e| e.to_string())?;
         }
         crane_runtime::driver::check_parameters(&model).map_err(|e| e.to_string())?;
         let dt = self.value(Role::Dt);
@@ -247,8 +261,12 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
             5 => Scheme::Bdf5,
             other => return Err(format!("scheme = {other}: expected 1 (backward Euler) or 2..5 (BDF-k)")),
         };
-        let kind = PathKind::from_value(self.integers[1])
-            .ok_or_else(|| format!("path = {}: expected 0 (poly9), 1 (three-phase), 2 (smooth three-phase) or 3 (external)", self.integers[1]))?;
+        let kind = PathKind::from_value(self.integers[1]).ok_or_else(|| {
+            format!(
+                "path = {}: expected 0 (poly9), 1 (three-phase), 2 (smooth three-phase) or 3 (external)",
+                self.integers[1]
+            )
+        })?;
         let position = |role: fn(usize) -> Role| SVector::<f64, A>::from_fn(|k, _| self.value(role(k)));
         let (path, external) = match kind {
             PathKind::External => {
@@ -266,8 +284,17 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                     _ => Profile::Poly9,
                 };
                 let t0 = self.value(Role::T0);
-                let spec = PathSpec { profile, t0, t1: t0 + self.value(Role::Duration), start: position(Role::Start), end: position(Role::End) };
-                (FmuPath::BuiltIn(Path::new(spec).map_err(|e| format!("the built-in move: {e}"))?), None)
+                let spec = PathSpec {
+                    profile,
+                    t0,
+                    t1: t0 + self.value(Role::Duration),
+                    start: position(Role::Start),
+                    end: position(Role::End),
+                };
+                (
+                    FmuPath::BuiltIn(Path::new(spec).map_err(|e| format!("the built-in move: {e}"))?),
+                    None,
+                )
             }
         };
         // the start of `crane run` where it holds (the default move), else
@@ -303,7 +330,10 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
     fn advance(&mut self, t: f64, h: f64) -> Result<(), String> {
         let external = self.run.as_ref().is_some_and(|r| r.external.is_some());
         let target_b = if external { self.target() } else { [SVector::zeros(); 3] };
-        let run = self.run.as_mut().ok_or("fmi2DoStep before fmi2ExitInitializationMode")?;
+        let run = self
+            .run
+            .as_mut()
+            .ok_or("fmi2DoStep before fmi2ExitInitializationMode")?;
         let now = run.stepper.state().t;
         let scale = 1.0f64.max(now.abs()).max(h.abs());
         if (t - now).abs() > 1e-9 * scale {
@@ -311,7 +341,10 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         }
         let k = (h / run.dt).round();
         if !(k >= 1.0 && (k * run.dt - h).abs() <= 1e-9 * h) {
-            return Err(format!("communication step h = {h} s is not a whole multiple of dt = {} s", run.dt));
+            return Err(format!(
+                "communication step h = {h} s is not a whole multiple of dt = {} s",
+                run.dt
+            ));
         }
         let k = k as usize;
         let tb = t + h;
@@ -320,7 +353,11 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
             let result = match run.external {
                 None => run.stepper.step(),
                 Some(ref target_a) => {
-                    let target = if i == k { target_b } else { hermite(t, target_a, tb, &target_b, ti) };
+                    let target = if i == k {
+                        target_b
+                    } else {
+                        hermite(t, target_a, tb, &target_b, ti)
+                    };
                     run.stepper.step_to(ti, &target)
                 }
             };
@@ -350,7 +387,10 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Componen
 
     fn get_real(&self, vr: &[u32], values: &mut [f64]) -> Result<(), String> {
         for (&r, value) in vr.iter().zip(values.iter_mut()) {
-            *value = *self.reals.get(r as usize).ok_or_else(|| format!("no Real variable has value reference {r}"))?;
+            *value = *self
+                .reals
+                .get(r as usize)
+                .ok_or_else(|| format!("no Real variable has value reference {r}"))?;
         }
         Ok(())
     }
@@ -370,7 +410,10 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Componen
 
     fn get_integer(&self, vr: &[u32], values: &mut [i32]) -> Result<(), String> {
         for (&r, value) in vr.iter().zip(values.iter_mut()) {
-            *value = *self.integers.get(r as usize).ok_or_else(|| format!("no Integer variable has value reference {r}"))?;
+            *value = *self
+                .integers
+                .get(r as usize)
+                .ok_or_else(|| format!("no Integer variable has value reference {r}"))?;
         }
         Ok(())
     }
@@ -414,7 +457,10 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Componen
 
     fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
         if self.mode != Mode::Stepping {
-            return Err("fmi2DoStep is only possible after fmi2ExitInitializationMode and before an error or fmi2Terminate".into());
+            return Err(
+                "fmi2DoStep is only possible after fmi2ExitInitializationMode and before an error or fmi2Terminate"
+                    .into(),
+            );
         }
         let result = self.advance(t, h);
         if result.is_err() {

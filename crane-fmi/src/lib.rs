@@ -77,7 +77,10 @@ pub fn built_in() -> Vec<ffi::Entry> {
             ffi::Entry::of::<C, N, M, A>()
         }
     }
-    crane_models::CATALOG.iter().filter_map(|e| crane_models::registry::visit(e.name, MakeEntry)).collect()
+    crane_models::CATALOG
+        .iter()
+        .filter_map(|e| crane_models::registry::visit(e.name, MakeEntry))
+        .collect()
 }
 
 /// Export the FMI 2.0 co-simulation functions (`fmi2Instantiate`,

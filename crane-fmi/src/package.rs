@@ -42,7 +42,10 @@ fn io(context: impl Into<String>) -> impl FnOnce(std::io::Error) -> PackageError
 
 /// Write the FMU of crane `C` to `out`, with the shared library `library`
 /// (a `cdylib` that calls [`export_fmu!`](crate::export_fmu) on `C`).
-pub fn package<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(library: &Path, out: &Path) -> Result<(), PackageError> {
+pub fn package<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    library: &Path,
+    out: &Path,
+) -> Result<(), PackageError> {
     let (xml, _) = model_description::<C, N, M, A>()?;
     let binary = std::fs::read(library).map_err(io(format!("reading the FMU library {}", library.display())))?;
     write_archive(&xml, &model_identifier(C::NAME), &binary, out)
@@ -54,15 +57,20 @@ pub fn write_archive(xml: &str, identifier: &str, binary: &[u8], out: &Path) -> 
         std::fs::create_dir_all(parent).map_err(io(format!("creating {}", parent.display())))?;
     }
     let partial = out.with_extension("fmu.partial");
-    let zip_error = |source| PackageError::Zip { path: out.to_path_buf(), source };
+    let zip_error = |source| PackageError::Zip {
+        path: out.to_path_buf(),
+        source,
+    };
     let result = (|| {
         let file = File::create(&partial).map_err(io(format!("creating {}", partial.display())))?;
         let mut zip = zip::ZipWriter::new(file);
         let options = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
         zip.start_file("modelDescription.xml", options).map_err(zip_error)?;
-        zip.write_all(xml.as_bytes()).map_err(io("writing modelDescription.xml"))?;
+        zip.write_all(xml.as_bytes())
+            .map_err(io("writing modelDescription.xml"))?;
         let so = options.unix_permissions(0o755);
-        zip.start_file(format!("binaries/linux64/{identifier}.so"), so).map_err(zip_error)?;
+        zip.start_file(format!("binaries/linux64/{identifier}.so"), so)
+            .map_err(zip_error)?;
         zip.write_all(binary).map_err(io("writing the library"))?;
         zip.finish().map_err(zip_error)?;
         std::fs::rename(&partial, out).map_err(io(format!("renaming to {}", out.display())))

@@ -95,7 +95,9 @@ pub enum PathKind {
 impl PathKind {
     /// The kind of an integer value, if it is one.
     pub fn from_value(value: i32) -> Option<Self> {
-        [Self::Poly9, Self::ThreePhase, Self::SmoothThreePhase, Self::External].into_iter().find(|k| *k as i32 == value)
+        [Self::Poly9, Self::ThreePhase, Self::SmoothThreePhase, Self::External]
+            .into_iter()
+            .find(|k| *k as i32 == value)
     }
 
     /// The kind of a built-in move's profile and its ramp duration, if any.
@@ -115,7 +117,8 @@ pub struct NameClash(pub String);
 
 /// The variables of crane `C`, in model-description order: the Reals
 /// first, with value references `0..` in table order, then the Integers.
-pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Result<Vec<Variable>, NameClash> {
+pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Result<Vec<Variable>, NameClash>
+{
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
     let model = C::Model::default();
     let maneuver = C::maneuver();
@@ -124,24 +127,81 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
     let mut table = Vec::new();
     let real = |table: &mut Vec<Variable>, name: String, causality, start, description: String, role| {
         let value_reference = table.iter().filter(|v: &&Variable| !v.integer).count() as u32;
-        table.push(Variable { name, integer: false, value_reference, causality, start, description, role });
+        table.push(Variable {
+            name,
+            integer: false,
+            value_reference,
+            causality,
+            start,
+            description,
+            role,
+        });
     };
     let values = model.parameter_values();
     for (k, name) in info.parameters.iter().enumerate() {
-        real(&mut table, name.to_string(), Causality::Parameter, values[k], format!("model parameter {name}"), Role::Parameter(k));
+        real(
+            &mut table,
+            name.to_string(),
+            Causality::Parameter,
+            values[k],
+            format!("model parameter {name}"),
+            Role::Parameter(k),
+        );
     }
-    real(&mut table, "dt".into(), Causality::Parameter, DEFAULT_DT, "internal time step, s; a communication step is a whole multiple of it".into(), Role::Dt);
-    real(&mut table, "t0".into(), Causality::Parameter, spec.t0, "start of the built-in move, s".into(), Role::T0);
-    real(&mut table, "duration".into(), Causality::Parameter, spec.t1 - spec.t0, "duration of the built-in move, s".into(), Role::Duration);
+    real(
+        &mut table,
+        "dt".into(),
+        Causality::Parameter,
+        DEFAULT_DT,
+        "internal time step, s; a communication step is a whole multiple of it".into(),
+        Role::Dt,
+    );
+    real(
+        &mut table,
+        "t0".into(),
+        Causality::Parameter,
+        spec.t0,
+        "start of the built-in move, s".into(),
+        Role::T0,
+    );
+    real(
+        &mut table,
+        "duration".into(),
+        Causality::Parameter,
+        spec.t1 - spec.t0,
+        "duration of the built-in move, s".into(),
+        Role::Duration,
+    );
     for (k, x) in load.iter().enumerate() {
-        real(&mut table, format!("start_{x}"), Causality::Parameter, spec.start[k], format!("load coordinate {x} at the start of the built-in move"), Role::Start(k));
+        real(
+            &mut table,
+            format!("start_{x}"),
+            Causality::Parameter,
+            spec.start[k],
+            format!("load coordinate {x} at the start of the built-in move"),
+            Role::Start(k),
+        );
     }
     for (k, x) in load.iter().enumerate() {
-        real(&mut table, format!("end_{x}"), Causality::Parameter, spec.end[k], format!("load coordinate {x} at the end of the built-in move"), Role::End(k));
+        real(
+            &mut table,
+            format!("end_{x}"),
+            Causality::Parameter,
+            spec.end[k],
+            format!("load coordinate {x} at the end of the built-in move"),
+            Role::End(k),
+        );
     }
     let (_, tau0) = PathKind::of_profile(spec.profile);
     let tau0 = tau0.unwrap_or((spec.t1 - spec.t0) / 4.0);
-    real(&mut table, "tau0".into(), Causality::Parameter, tau0, "ramp duration of the three-phase paths, s".into(), Role::Tau0);
+    real(
+        &mut table,
+        "tau0".into(),
+        Causality::Parameter,
+        tau0,
+        "ramp duration of the three-phase paths, s".into(),
+        Role::Tau0,
+    );
     for (k, x) in load.iter().enumerate() {
         for (order, suffix, what) in [(0, "", "position"), (1, "_d", "velocity"), (2, "_dd", "acceleration")] {
             real(
@@ -155,16 +215,44 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
         }
     }
     for (k, u) in info.inputs.iter().enumerate() {
-        real(&mut table, u.to_string(), Causality::Output, 0.0, format!("input {u}"), Role::Input(k));
+        real(
+            &mut table,
+            u.to_string(),
+            Causality::Output,
+            0.0,
+            format!("input {u}"),
+            Role::Input(k),
+        );
     }
     for (k, q) in info.coordinates.iter().enumerate() {
-        real(&mut table, q.to_string(), Causality::Output, 0.0, format!("coordinate {q}"), Role::Coordinate(k));
+        real(
+            &mut table,
+            q.to_string(),
+            Causality::Output,
+            0.0,
+            format!("coordinate {q}"),
+            Role::Coordinate(k),
+        );
     }
     for (k, g) in info.constraints.iter().enumerate() {
-        real(&mut table, format!("lambda{}", k + 1), Causality::Output, 0.0, format!("multiplier of constraint {g}"), Role::Multiplier(k));
+        real(
+            &mut table,
+            format!("lambda{}", k + 1),
+            Causality::Output,
+            0.0,
+            format!("multiplier of constraint {g}"),
+            Role::Multiplier(k),
+        );
     }
     for (k, rope) in info.ropes.iter().enumerate() {
-        real(&mut table, rope.tension.to_string(), Causality::Output, 0.0, format!("tension of rope {}, N", rope.tension), Role::Tension(k));
+        real(
+            &mut table,
+            rope.tension.to_string(),
+            Causality::Output,
+            0.0,
+            format!("tension of rope {}, N", rope.tension),
+            Role::Tension(k),
+        );
     }
     table.push(Variable {
         name: "scheme".into(),
@@ -181,7 +269,8 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
         value_reference: 1,
         causality: Causality::Parameter,
         start: f64::from(PathKind::of_profile(spec.profile).0 as i32),
-        description: "load path: 0 poly9, 1 three-phase, 2 smooth three-phase (the built-in move), 3 external target".into(),
+        description: "load path: 0 poly9, 1 three-phase, 2 smooth three-phase (the built-in move), 3 external target"
+            .into(),
         role: Role::Path,
     });
     let mut seen = HashSet::new();

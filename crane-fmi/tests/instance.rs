@@ -11,7 +11,12 @@ use crane_runtime::{Options, Trajectory};
 
 /// The value reference of the Real playing `role`.
 fn vr<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(role: Role) -> u32 {
-    variables::<C, N, M, A>().unwrap().into_iter().find(|v| v.role == role && !v.integer).unwrap().value_reference
+    variables::<C, N, M, A>()
+        .unwrap()
+        .into_iter()
+        .find(|v| v.role == role && !v.integer)
+        .unwrap()
+        .value_reference
 }
 
 /// An initialised instance of `C` with the defaults.
@@ -25,7 +30,10 @@ fn started<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() 
 
 /// Inputs and coordinates at the current state.
 fn outputs<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(fmu: &Instance<C, N, M, A>) -> Vec<f64> {
-    let refs: Vec<u32> = (0..A).map(|k| vr::<C, N, M, A>(Role::Input(k))).chain((0..N).map(|k| vr::<C, N, M, A>(Role::Coordinate(k)))).collect();
+    let refs: Vec<u32> = (0..A)
+        .map(|k| vr::<C, N, M, A>(Role::Input(k)))
+        .chain((0..N).map(|k| vr::<C, N, M, A>(Role::Coordinate(k))))
+        .collect();
     let mut values = vec![0.0; refs.len()];
     fmu.get_real(&refs, &mut values).unwrap();
     values
@@ -41,7 +49,9 @@ fn every_built_in_fmu_reproduces_the_api_run() {
         type Output = usize;
         fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> usize {
             let case = Case::<C, N, M, A>::maneuver().unwrap();
-            let run = case.simulate(&case.start().unwrap(), &Options::new(0.01, case.tf())).unwrap();
+            let run = case
+                .simulate(&case.start().unwrap(), &Options::new(0.01, case.tf()))
+                .unwrap();
             let mut fmu = started::<C, N, M, A>();
             for (i, state) in run.states.iter().enumerate() {
                 if i > 0 {
@@ -96,7 +106,10 @@ fn an_external_target_drives_the_same_crane() {
         external.enter_initialization_mode().unwrap();
         external.set_integer(&[1], &[3]).unwrap();
         external.exit_initialization_mode().unwrap();
-        let target_vr: Vec<u32> = (0..2).flat_map(|k| (0..3).map(move |o| (k, o))).map(|(k, o)| vr::<D, 7, 3, 2>(Role::Target(k, o))).collect();
+        let target_vr: Vec<u32> = (0..2)
+            .flat_map(|k| (0..3).map(move |o| (k, o)))
+            .map(|(k, o)| vr::<D, 7, 3, 2>(Role::Target(k, o)))
+            .collect();
         let steps = (4.0 / h).round() as usize;
         let mut worst = 0.0f64;
         for i in 0..steps {
@@ -110,9 +123,17 @@ fn an_external_target_drives_the_same_crane() {
             if h == 0.01 {
                 assert_eq!(a, b, "t = {}", t + h);
             }
-            worst = worst.max(a[2..].iter().zip(&b[2..]).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max));
+            worst = worst.max(
+                a[2..]
+                    .iter()
+                    .zip(&b[2..])
+                    .map(|(x, y)| (x - y).abs())
+                    .fold(0.0, f64::max),
+            );
         }
-        let sixth = (0..=4000).map(|i| path.derivative(i as f64 * 1e-3, 6).amax()).fold(0.0, f64::max);
+        let sixth = (0..=4000)
+            .map(|i| path.derivative(i as f64 * 1e-3, 6).amax())
+            .fold(0.0, f64::max);
         let bound = h.powi(6) / 720.0 * sixth;
         println!("h = {h}: largest coordinate difference {worst:.2e} m, interpolation bound {bound:.2e} m");
         assert!(worst <= bound, "h = {h}: {worst} > {bound}");
@@ -149,7 +170,11 @@ fn misuse_is_an_error_and_reset_starts_over() {
     fmu.setup_experiment(0.0).unwrap();
     fmu.enter_initialization_mode().unwrap();
     fmu.exit_initialization_mode().unwrap();
-    assert!(fmu.do_step(0.0, 0.015).unwrap_err().contains("not a whole multiple of dt"));
+    assert!(
+        fmu.do_step(0.0, 0.015)
+            .unwrap_err()
+            .contains("not a whole multiple of dt")
+    );
     fmu.reset();
     fmu.setup_experiment(0.0).unwrap();
     fmu.enter_initialization_mode().unwrap();
@@ -159,8 +184,16 @@ fn misuse_is_an_error_and_reset_starts_over() {
     fmu.setup_experiment(0.0).unwrap();
     fmu.enter_initialization_mode().unwrap();
     fmu.exit_initialization_mode().unwrap();
-    assert!(fmu.set_real(&[m_l], &[50.0]).unwrap_err().contains("only be set before"));
-    assert!(fmu.set_real(&[vr::<D, 7, 3, 2>(Role::Input(0))], &[1.0]).unwrap_err().contains("output"));
+    assert!(
+        fmu.set_real(&[m_l], &[50.0])
+            .unwrap_err()
+            .contains("only be set before")
+    );
+    assert!(
+        fmu.set_real(&[vr::<D, 7, 3, 2>(Role::Input(0))], &[1.0])
+            .unwrap_err()
+            .contains("output")
+    );
     assert!(fmu.get_real(&[9999], &mut [0.0]).is_err());
     fmu.do_step(0.0, 0.5).unwrap();
     assert_eq!(outputs(&fmu), reference, "after reset the run is the default run");
@@ -202,7 +235,11 @@ fn a_newton_failure_is_an_error_of_its_step() {
     let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
     fmu.setup_experiment(0.0).unwrap();
     fmu.enter_initialization_mode().unwrap();
-    fmu.set_real(&[vr::<D, 7, 3, 2>(Role::End(0)), vr::<D, 7, 3, 2>(Role::Duration)], &[8.0, 2.0]).unwrap();
+    fmu.set_real(
+        &[vr::<D, 7, 3, 2>(Role::End(0)), vr::<D, 7, 3, 2>(Role::Duration)],
+        &[8.0, 2.0],
+    )
+    .unwrap();
     fmu.exit_initialization_mode().unwrap();
     let mut failed = None;
     for k in 0..200 {

@@ -17,9 +17,23 @@ static GLOBAL: Counting = Counting;
 fn do_step_does_not_allocate() {
     type D = navy_planar::Description;
     let table = variables::<D, 7, 3, 2>().unwrap();
-    let vr = |role| table.iter().find(|v| v.role == role && !v.integer).unwrap().value_reference;
-    let refs = [vr(Role::Input(0)), vr(Role::Input(1)), vr(Role::Coordinate(5)), vr(Role::Tension(1))];
-    let targets: Vec<u32> = (0..2).flat_map(|k| (0..3).map(move |o| (k, o))).map(|(k, o)| vr(Role::Target(k, o))).collect();
+    let vr = |role| {
+        table
+            .iter()
+            .find(|v| v.role == role && !v.integer)
+            .unwrap()
+            .value_reference
+    };
+    let refs = [
+        vr(Role::Input(0)),
+        vr(Role::Input(1)),
+        vr(Role::Coordinate(5)),
+        vr(Role::Tension(1)),
+    ];
+    let targets: Vec<u32> = (0..2)
+        .flat_map(|k| (0..3).map(move |o| (k, o)))
+        .map(|(k, o)| vr(Role::Target(k, o)))
+        .collect();
     let path = navy_planar::PaperCase::maneuver().unwrap().path().clone();
     for (path_kind, h) in [(0, 0.01), (0, 0.05), (3, 0.01), (3, 0.04)] {
         let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
@@ -47,7 +61,10 @@ fn do_step_does_not_allocate() {
                 assert!(status.is_ok() && read.is_ok());
             }
         });
-        assert_eq!(allocations, 0, "path {path_kind}, h = {h}: {allocations} allocations in {steps} steps");
+        assert_eq!(
+            allocations, 0,
+            "path {path_kind}, h = {h}: {allocations} allocations in {steps} steps"
+        );
     }
     assert_counter_works();
 }

@@ -24,9 +24,7 @@ impl Ctxt {
 
     /// An error that points at `span`.
     pub fn error_at(&self, span: Span, message: impl Display) {
-        self.errors
-            .borrow_mut()
-            .push(syn::Error::new(span, message));
+        self.errors.borrow_mut().push(syn::Error::new(span, message));
     }
 
     /// An error that points at all of `tokens` (from their first to their
@@ -103,9 +101,6 @@ impl ToTokens for SpanRange {
         first.set_span(self.first);
         let mut last = proc_macro2::Punct::new('>', proc_macro2::Spacing::Alone);
         last.set_span(self.last);
-        tokens.extend([
-            proc_macro2::TokenTree::from(first),
-            proc_macro2::TokenTree::from(last),
-        ]);
+        tokens.extend([proc_macro2::TokenTree::from(first), proc_macro2::TokenTree::from(last)]);
     }
 }

@@ -60,11 +60,7 @@ impl<'a> Differentiator<'a> {
 
     /// Variable rule: `x' = 1` for the variable itself, `0` for any other symbol.
     fn symbol(&mut self, s: Sym, var: Sym) -> Id {
-        if s == var {
-            self.arena.one()
-        } else {
-            self.arena.zero()
-        }
+        if s == var { self.arena.one() } else { self.arena.zero() }
     }
 
     /// Sum rule: `(a + b + ...)' = a' + b' + ...`.

@@ -198,9 +198,7 @@ impl Kernels {
         let zero = arena.zero();
         let f: Vec<Id> = forces
             .iter()
-            .map(|&force| {
-                arena.substitute(force, &mut |s| matches!(s, Sym::Input(_)).then_some(zero))
-            })
+            .map(|&force| arena.substitute(force, &mut |s| matches!(s, Sym::Input(_)).then_some(zero)))
             .collect();
 
         let mut d = Differentiator::new(arena);
@@ -309,10 +307,7 @@ impl MinimalKernels {
                 .collect();
             d.arena().add(terms)
         };
-        let p_rate: Matrix = p
-            .iter()
-            .map(|row| row.iter().map(|&e| along(d, e)).collect())
-            .collect();
+        let p_rate: Matrix = p.iter().map(|row| row.iter().map(|&e| along(d, e)).collect()).collect();
 
         // w = [P' mu']_x = d/dt[D1 phi_x] mu1' + d/dt[D2 phi_x] mu2^ (eq. 17),
         // as the quadratic form sum_kl d^2 phi_x/dmu_k dmu_l mu_k' mu_l'
@@ -326,10 +321,7 @@ impl MinimalKernels {
                         let second = d.diff(p_ik, mu(l));
                         let twice = if k == l { 1.0 } else { 2.0 };
                         let arena = d.arena();
-                        let (mu_dot_k, mu_dot_l) = (
-                            arena.sym(Sym::MuDot(k as u16)),
-                            arena.sym(Sym::MuDot(l as u16)),
-                        );
+                        let (mu_dot_k, mu_dot_l) = (arena.sym(Sym::MuDot(k as u16)), arena.sym(Sym::MuDot(l as u16)));
                         let c = arena.constant(twice);
                         terms.push(arena.mul(vec![c, second, mu_dot_k, mu_dot_l]));
                     }
@@ -340,7 +332,11 @@ impl MinimalKernels {
 
         // dP_il/dmu_k (already in the graph: P' is built from them)
         let second: Vec<Matrix> = (0..f)
-            .map(|k| p.iter().map(|row| row.iter().map(|&e| d.diff(e, mu(k))).collect()).collect())
+            .map(|k| {
+                p.iter()
+                    .map(|row| row.iter().map(|&e| d.diff(e, mu(k))).collect())
+                    .collect()
+            })
             .collect();
 
         // d(P' mu')/dmu_j, with P' mu' = sum_l P'_il mu_l'
@@ -360,7 +356,14 @@ impl MinimalKernels {
             })
             .collect();
 
-        MinimalKernels { phi, p, p_rate, w, second, curvature_jacobian }
+        MinimalKernels {
+            phi,
+            p,
+            p_rate,
+            w,
+            second,
+            curvature_jacobian,
+        }
     }
 }
 
@@ -368,9 +371,7 @@ impl MinimalKernels {
 fn symmetric(n: usize, mut entry: impl FnMut(usize, usize) -> Id) -> Matrix {
     let mut rows: Matrix = Vec::with_capacity(n);
     for i in 0..n {
-        let row = (0..n)
-            .map(|j| if j < i { rows[j][i] } else { entry(i, j) })
-            .collect();
+        let row = (0..n).map(|j| if j < i { rows[j][i] } else { entry(i, j) }).collect();
         rows.push(row);
     }
     rows

@@ -282,11 +282,7 @@ impl Arena {
             if c < 0.0 {
                 let positive = self.with_coefficient(-c, body);
                 let value = self.intern(Node::Func(f, positive));
-                return if f == Func::Cos {
-                    value
-                } else {
-                    self.neg(value)
-                };
+                return if f == Func::Cos { value } else { self.neg(value) };
             }
         }
         // inverse functions: ln(exp(x)) → x
@@ -320,12 +316,7 @@ impl Arena {
         self.rebuild(id, replace, &mut HashMap::new())
     }
 
-    fn rebuild(
-        &mut self,
-        id: Id,
-        replace: &mut dyn FnMut(Sym) -> Option<Id>,
-        memo: &mut HashMap<Id, Id>,
-    ) -> Id {
+    fn rebuild(&mut self, id: Id, replace: &mut dyn FnMut(Sym) -> Option<Id>, memo: &mut HashMap<Id, Id>) -> Id {
         if let Some(&done) = memo.get(&id) {
             return done;
         }
@@ -333,17 +324,11 @@ impl Arena {
             Node::Const(_) => id,
             Node::Sym(s) => replace(s).unwrap_or(id),
             Node::Add(terms) => {
-                let terms = terms
-                    .into_iter()
-                    .map(|t| self.rebuild(t, replace, memo))
-                    .collect();
+                let terms = terms.into_iter().map(|t| self.rebuild(t, replace, memo)).collect();
                 self.add(terms)
             }
             Node::Mul(factors) => {
-                let factors = factors
-                    .into_iter()
-                    .map(|f| self.rebuild(f, replace, memo))
-                    .collect();
+                let factors = factors.into_iter().map(|f| self.rebuild(f, replace, memo)).collect();
                 self.mul(factors)
             }
             Node::Powi(a, n) => {

@@ -157,7 +157,13 @@ fn offsets(sigma: &[Vec<i64>], column: &[usize]) -> (Vec<i64>, Vec<i64>) {
     let mut d = vec![0i64; size];
     loop {
         let c: Vec<i64> = (0..size)
-            .map(|j| (0..size).filter(|&i| sigma[i][j] != ABSENT).map(|i| sigma[i][j] + d[i]).max().unwrap_or(0))
+            .map(|j| {
+                (0..size)
+                    .filter(|&i| sigma[i][j] != ABSENT)
+                    .map(|i| sigma[i][j] + d[i])
+                    .max()
+                    .unwrap_or(0)
+            })
             .collect();
         let next: Vec<i64> = (0..size).map(|i| c[column[i]] - sigma[i][column[i]]).collect();
         if next == d {
@@ -176,7 +182,11 @@ pub fn structure(model: &Model, k: &Kernels) -> Structure {
     let (c, d) = offsets(&sigma, &column);
     let dimension = c.iter().sum::<i64>() - d.iter().sum::<i64>();
     let small = |v: Vec<i64>| v.into_iter().map(|x| u8::try_from(x).unwrap_or(u8::MAX)).collect();
-    Structure::Internal { dimension: usize::try_from(dimension).unwrap_or(0), unknowns: small(c), equations: small(d) }
+    Structure::Internal {
+        dimension: usize::try_from(dimension).unwrap_or(0),
+        unknowns: small(c),
+        equations: small(d),
+    }
 }
 
 impl Structure {
@@ -184,7 +194,9 @@ impl Structure {
     /// last equations).
     pub fn describe(&self, a: usize) -> String {
         let order = match self {
-            Structure::Internal { equations, .. } => equations[equations.len().saturating_sub(a)..].iter().copied().max(),
+            Structure::Internal { equations, .. } => {
+                equations[equations.len().saturating_sub(a)..].iter().copied().max()
+            }
             Structure::Singular => None,
         };
         let smoothness = order
@@ -205,7 +217,6 @@ impl Structure {
         };
         count + &smoothness
     }
-
 }
 
 #[cfg(test)]
@@ -249,12 +260,21 @@ mod tests {
         for size in 1..=7 {
             for _ in 0..200 {
                 let weight: Vec<Vec<i64>> = (0..size)
-                    .map(|_| (0..size).map(|_| match next() % 5 { 0 | 1 => ABSENT, r => r as i64 - 2 }).collect())
+                    .map(|_| {
+                        (0..size)
+                            .map(|_| match next() % 5 {
+                                0 | 1 => ABSENT,
+                                r => r as i64 - 2,
+                            })
+                            .collect()
+                    })
                     .collect();
                 let expected = brute(&weight);
                 singular += usize::from(expected.is_none());
                 let found = max_transversal(&weight);
-                let sum = found.as_ref().map(|column| (0..size).map(|i| weight[i][column[i]]).sum::<i64>());
+                let sum = found
+                    .as_ref()
+                    .map(|column| (0..size).map(|i| weight[i][column[i]]).sum::<i64>());
                 assert_eq!(sum, expected, "{weight:?}");
                 if let Some(column) = found {
                     // the offsets bound sigma and meet it on the transversal

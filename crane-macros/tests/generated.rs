@@ -132,10 +132,7 @@ fn navy_forces_and_inputs_are_eq_34() {
     let q = navy_start();
     let v = SVector::<f64, 7>::from([0.1, -0.2, 0.3, 0.4, -0.5, 0.6, 0.7]);
     let f = crane.forces(&q, &v);
-    assert_eq!(
-        f,
-        SVector::from([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -crane.m_l * crane.g])
-    );
+    assert_eq!(f, SVector::from([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -crane.m_l * crane.g]));
     assert_eq!(f.fixed_rows::<5>(0), crane.f1(&q, &v));
     assert_eq!(f.fixed_rows::<2>(5), crane.f2(&q, &v));
     let bt = crane.input_matrix(&q);
@@ -179,10 +176,7 @@ fn navy_info_parameters_and_ropes() {
             }
         ]
     );
-    assert_eq!(
-        info.parameters,
-        ["m_l", "J1", "J2", "r1", "r2", "alpha", "l", "g"]
-    );
+    assert_eq!(info.parameters, ["m_l", "J1", "J2", "r1", "r2", "alpha", "l", "g"]);
     assert_eq!(
         (NavyPlanar::N, NavyPlanar::M, NavyPlanar::A, NavyPlanar::F),
         (7, 3, 2, 4)
@@ -191,16 +185,7 @@ fn navy_info_parameters_and_ropes() {
     let mut crane = NavyPlanar::default();
     assert_eq!(
         crane.parameter_values(),
-        vec![
-            100.0,
-            0.1,
-            0.1,
-            0.1,
-            0.1,
-            std::f64::consts::PI / 3.0,
-            10.0,
-            9.81
-        ]
+        vec![100.0, 0.1, 0.1, 0.1, 0.1, std::f64::consts::PI / 3.0, 10.0, 9.81]
     );
     crane.set_parameter("m_l", 250.0).unwrap();
     assert_eq!(crane.m_l, 250.0);
@@ -241,16 +226,9 @@ fn numerical_jacobian<const R: usize>(
     jac
 }
 
-fn assert_close<const R: usize, const C: usize>(
-    what: &str,
-    a: &SMatrix<f64, R, C>,
-    b: &SMatrix<f64, R, C>,
-) {
+fn assert_close<const R: usize, const C: usize>(what: &str, a: &SMatrix<f64, R, C>, b: &SMatrix<f64, R, C>) {
     let scale = 1.0 + b.amax();
-    assert!(
-        (a - b).amax() < 1e-7 * scale,
-        "{what}:\ngenerated {a}\nnumerical {b}"
-    );
+    assert!((a - b).amax() < 1e-7 * scale, "{what}:\ngenerated {a}\nnumerical {b}");
 }
 
 #[test]
@@ -315,16 +293,8 @@ fn awkward_forces_inputs_and_their_jacobians() {
     let (q, v) = awkward_point();
     let u = SVector::<f64, 2>::from([1.5, -0.8]);
     let (df_dq, df_dv) = model.force_jacobians(&q, &v);
-    assert_close(
-        "df/dq",
-        &df_dq,
-        &numerical_jacobian(&q, |q| model.forces(q, &v)),
-    );
-    assert_close(
-        "df/dv",
-        &df_dv,
-        &numerical_jacobian(&v, |v| model.forces(&q, v)),
-    );
+    assert_close("df/dq", &df_dq, &numerical_jacobian(&q, |q| model.forces(q, &v)));
+    assert_close("df/dv", &df_dv, &numerical_jacobian(&v, |v| model.forces(&q, v)));
     let bt_u = |q: &SVector<f64, 6>| model.input_matrix(q) * u;
     assert_close(
         "d(B^T u)/dq",
@@ -423,12 +393,7 @@ fn navy_samples() -> Vec<(SVector<f64, 4>, SVector<f64, 4>)> {
 /// `|a - b| <= tol (1 + |b|)` entrywise, with the largest violation in the
 /// message.
 #[track_caller]
-fn assert_within<const R: usize, const C: usize>(
-    what: &str,
-    a: &SMatrix<f64, R, C>,
-    b: &SMatrix<f64, R, C>,
-    tol: f64,
-) {
+fn assert_within<const R: usize, const C: usize>(what: &str, a: &SMatrix<f64, R, C>, b: &SMatrix<f64, R, C>, tol: f64) {
     let error = (a - b).amax() / (1.0 + b.amax());
     assert!(
         error <= tol,
@@ -454,10 +419,7 @@ fn navy_minimal_samples_give_a_real_crane() {
         let mut ropes = [0.0; 2];
         crane.rope_lengths(&q, &mut ropes);
         let (l0, hoisted) = (q[2], q[1] - q[2]);
-        assert!(
-            ropes[0] > 0.0 && ropes[1] > 0.0 && l0 > 0.0,
-            "mu = {mu}, q = {q}"
-        );
+        assert!(ropes[0] > 0.0 && ropes[1] > 0.0 && l0 > 0.0, "mu = {mu}, q = {q}");
         assert!((hoisted - mu[3]).abs() < 1e-12, "L = L2 - L0");
     }
 }
@@ -491,17 +453,13 @@ fn navy_null_space_is_the_jacobian_of_the_map() {
         for k in 0..4 {
             let mut e = SVector::<f64, 4>::zeros();
             e[k] = H;
-            numerical.set_column(
-                k,
-                &((crane.phi(&(mu + e)) - crane.phi(&(mu - e))) / (2.0 * H)),
-            );
+            numerical.set_column(k, &((crane.phi(&(mu + e)) - crane.phi(&(mu - e))) / (2.0 * H)));
         }
         assert_within("P", &p, &numerical, 1e-8);
 
         // dual numbers: exact to round-off
         for k in 0..4 {
-            let mu_d: SVector<Dual64, 4> =
-                SVector::from_fn(|i, _| Dual64::new(mu[i], if i == k { 1.0 } else { 0.0 }));
+            let mu_d: SVector<Dual64, 4> = SVector::from_fn(|i, _| Dual64::new(mu[i], if i == k { 1.0 } else { 0.0 }));
             let column = crane.phi(&mu_d).map(|x| x.eps);
             assert_within("P (dual)", &column, &p.column(k).into(), 1e-13);
         }
@@ -524,9 +482,7 @@ fn navy_null_space_rate_is_the_derivative_of_p_along_the_motion() {
     let crane = NavyPlanar::new();
     for (mu, mu_dot) in navy_samples() {
         let rate = crane.null_space_rate(&mu, &mu_dot);
-        let numerical = (crane.null_space(&(mu + mu_dot * H))
-            - crane.null_space(&(mu - mu_dot * H)))
-            / (2.0 * H);
+        let numerical = (crane.null_space(&(mu + mu_dot * H)) - crane.null_space(&(mu - mu_dot * H))) / (2.0 * H);
         assert_within("P'", &rate, &numerical, 1e-8);
 
         // dual numbers through the generated P: exact to round-off
@@ -548,9 +504,8 @@ fn navy_w_is_the_second_directional_derivative_of_phi_x() {
     let crane = NavyPlanar::new();
     for (mu, mu_dot) in navy_samples() {
         let w = crane.w(&mu, &mu_dot);
-        let numerical = (crane.phi_x(&(mu + mu_dot * H)) - crane.phi_x(&mu) * 2.0
-            + crane.phi_x(&(mu - mu_dot * H)))
-            / (H * H);
+        let numerical =
+            (crane.phi_x(&(mu + mu_dot * H)) - crane.phi_x(&mu) * 2.0 + crane.phi_x(&(mu - mu_dot * H))) / (H * H);
         assert_within("w", &w, &numerical, 1e-5);
 
         // the definition via P' (a different expression tree)
@@ -560,8 +515,7 @@ fn navy_w_is_the_second_directional_derivative_of_phi_x() {
         assert_within("w = [P' mu']_x", &w, &via_rate, 1e-13);
 
         // second-order dual numbers along mu': exact to round-off
-        let mu_d: SVector<Dual2_64, 4> =
-            SVector::from_fn(|i, _| Dual2_64::new(mu[i], mu_dot[i], 0.0));
+        let mu_d: SVector<Dual2_64, 4> = SVector::from_fn(|i, _| Dual2_64::new(mu[i], mu_dot[i], 0.0));
         let dual = crane.phi_x(&mu_d).map(|x| x.v2);
         assert_within("w (Dual2)", &w, &dual, 1e-13);
     }
@@ -638,16 +592,8 @@ fn trolley_map_with_colliding_names() {
     let trolley = Trolley::new();
     let mut rng = Rng(7);
     for _ in 0..100 {
-        let mu = SVector::from([
-            rng.uniform(-3.0, 3.0),
-            rng.uniform(-1.0, 1.0),
-            rng.uniform(1.0, 8.0),
-        ]);
-        let mu_dot = SVector::from([
-            rng.uniform(-1.0, 1.0),
-            rng.uniform(-1.0, 1.0),
-            rng.uniform(-1.0, 1.0),
-        ]);
+        let mu = SVector::from([rng.uniform(-3.0, 3.0), rng.uniform(-1.0, 1.0), rng.uniform(1.0, 8.0)]);
+        let mu_dot = SVector::from([rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)]);
         let [trolley_position, angle, length] = mu.into();
         let q = trolley.phi(&mu);
         let expected = SVector::<f64, 4>::from([
@@ -664,18 +610,14 @@ fn trolley_map_with_colliding_names() {
         for k in 0..3 {
             let mut e = SVector::<f64, 3>::zeros();
             e[k] = H;
-            numerical.set_column(
-                k,
-                &((trolley.phi(&(mu + e)) - trolley.phi(&(mu - e))) / (2.0 * H)),
-            );
+            numerical.set_column(k, &((trolley.phi(&(mu + e)) - trolley.phi(&(mu - e))) / (2.0 * H)));
         }
         assert_within("P", &p, &numerical, 1e-8);
 
         let mu_d: SVector<Dual64, 3> = SVector::from_fn(|i, _| Dual64::new(mu[i], mu_dot[i]));
         let dual = trolley.null_space(&mu_d).map(|x| x.eps);
         assert_within("P'", &trolley.null_space_rate(&mu, &mu_dot), &dual, 1e-13);
-        let mu_d: SVector<Dual2_64, 3> =
-            SVector::from_fn(|i, _| Dual2_64::new(mu[i], mu_dot[i], 0.0));
+        let mu_d: SVector<Dual2_64, 3> = SVector::from_fn(|i, _| Dual2_64::new(mu[i], mu_dot[i], 0.0));
         let w = trolley.phi_x(&mu_d).map(|x| x.v2);
         assert_within("w", &trolley.w(&mu, &mu_dot), &w, 1e-13);
     }
@@ -694,24 +636,56 @@ fn awkward_values_match_hand_written_formulas_at_random_points() {
     use rand::rngs::SmallRng;
     use rand::{Rng, SeedableRng};
     let crane = Awkward::default();
-    let (m, c, k, w, t) = (2.0, 0.3, 2f64.sqrt() * (-1f64).exp(), 1f64.atan2(2.0).powi(2), 3f64.ln());
+    let (m, c, k, w, t) = (
+        2.0,
+        0.3,
+        2f64.sqrt() * (-1f64).exp(),
+        1f64.atan2(2.0).powi(2),
+        3f64.ln(),
+    );
     assert_eq!(crane.parameter_values(), vec![m, c, k, w, t]);
     let mut rng = SmallRng::seed_from_u64(99);
     for _ in 0..500 {
         // inside the functions' domains: q + v > 0 ((q + v)^2.5), u > 0 (u^(1/3)), t0 != 0
         let qq: f64 = rng.random_range(0.1..2.0);
         let vv: f64 = rng.random_range(-0.05..2.0);
-        let [out, t0, u, lam] = [rng.random_range(-2.0..2.0), rng.random_range(0.3..2.0), rng.random_range(0.1..3.0), rng.random_range(-2.0..2.0)];
+        let [out, t0, u, lam] = [
+            rng.random_range(-2.0..2.0),
+            rng.random_range(0.3..2.0),
+            rng.random_range(0.1..3.0),
+            rng.random_range(-2.0..2.0),
+        ];
         let z = SVector::from([qq, vv, out, t0, u, lam]);
         let dz = SVector::from_fn(|_, _| rng.random_range(-2.0..2.0));
         let (dq, dv, dlam) = (dz[0], dz[1], dz[5]);
-        let close = |a: f64, b: f64, what: &str| assert!((a - b).abs() <= 1e-13 * b.abs().max(1.0), "{what}: {a} vs {b} at {z}");
+        let close = |a: f64, b: f64, what: &str| {
+            assert!((a - b).abs() <= 1e-13 * b.abs().max(1.0), "{what}: {a} vs {b} at {z}")
+        };
         let g = crane.constraints(&z);
-        close(g[0], 0.5 * ((u - qq).powi(2) + (lam - vv).powi(2) - (out + 1.0).powi(2)), "c1");
-        close(g[1], (2.0 + qq * qq).ln() - vv * t0.sin() + out.atan2(2.0 + u * u), "c2");
-        close(g[2], (qq + vv).powf(2.5) - (out / 3.0).exp() * t0.powi(-2) + u.cbrt() * lam, "c3");
+        close(
+            g[0],
+            0.5 * ((u - qq).powi(2) + (lam - vv).powi(2) - (out + 1.0).powi(2)),
+            "c1",
+        );
+        close(
+            g[1],
+            (2.0 + qq * qq).ln() - vv * t0.sin() + out.atan2(2.0 + u * u),
+            "c2",
+        );
+        close(
+            g[2],
+            (qq + vv).powf(2.5) - (out / 3.0).exp() * t0.powi(-2) + u.cbrt() * lam,
+            "c3",
+        );
         let f = crane.forces(&z, &dz);
-        let expected_f = [-c * dq * out.sin(), -k * dv.powi(3), 0.0, w * u.atan2(1.0 + vv * vv), 0.0, -m * 9.81 + c * (lam / 4.0).tan() * dlam];
+        let expected_f = [
+            -c * dq * out.sin(),
+            -k * dv.powi(3),
+            0.0,
+            w * u.atan2(1.0 + vv * vv),
+            0.0,
+            -m * 9.81 + c * (lam / 4.0).tan() * dlam,
+        ];
         for (i, e) in expected_f.iter().enumerate() {
             close(f[i], *e, &format!("f[{i}]"));
         }

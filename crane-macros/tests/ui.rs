@@ -19,10 +19,7 @@ fn ui() {
         .map(|entry| entry.file_name().to_string_lossy().into_owned())
         .collect();
     categories.sort();
-    assert!(
-        !categories.is_empty(),
-        "no compile-fail categories in tests/ui"
-    );
+    assert!(!categories.is_empty(), "no compile-fail categories in tests/ui");
     for category in categories {
         t.compile_fail(format!("tests/ui/{category}/*.rs"));
     }

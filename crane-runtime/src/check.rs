@@ -52,7 +52,12 @@ pub struct SampleBox<const N: usize> {
 impl<const N: usize> SampleBox<N> {
     /// Coordinates in the given box; velocities, multipliers and inputs in `[-1, 1]`.
     pub fn new(q: [(f64, f64); N]) -> Self {
-        Self { q, velocity: 1.0, multiplier: 1.0, input: 1.0 }
+        Self {
+            q,
+            velocity: 1.0,
+            multiplier: 1.0,
+            input: 1.0,
+        }
     }
 }
 
@@ -95,7 +100,10 @@ pub struct OutputJacobian {
 impl DerivativeReport {
     /// The largest error over all quantities.
     pub fn worst(&self) -> f64 {
-        self.quantities.iter().map(|q| q.worst_relative_error).fold(0.0, f64::max)
+        self.quantities
+            .iter()
+            .map(|q| q.worst_relative_error)
+            .fold(0.0, f64::max)
     }
 
     /// The entry for one quantity.
@@ -108,7 +116,11 @@ impl fmt::Display for DerivativeReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "derivatives against central differences at {} points:", self.points)?;
         for q in &self.quantities {
-            writeln!(f, "  {:<28} worst relative error {:.2e}", q.quantity, q.worst_relative_error)?;
+            writeln!(
+                f,
+                "  {:<28} worst relative error {:.2e}",
+                q.quantity, q.worst_relative_error
+            )?;
         }
         if let Some(d2) = &self.output_jacobian {
             writeln!(
@@ -195,16 +207,14 @@ where
     Mdl: CraneModel<N, M, A>,
 {
     let mut rng = SmallRng::seed_from_u64(seed);
-    let names = [
-        "G = dg/dq",
-        "d(G^T lambda)/dq",
-        "df/dq",
-        "df/dq'",
-        "d(B^T u)/dq",
-    ];
+    let names = ["G = dg/dq", "d(G^T lambda)/dq", "df/dq", "df/dq'", "d(B^T u)/dq"];
     let mut worst: Vec<QuantityError> = names
         .iter()
-        .map(|&quantity| QuantityError { quantity, worst_relative_error: 0.0, at: Vec::new() })
+        .map(|&quantity| QuantityError {
+            quantity,
+            worst_relative_error: 0.0,
+            at: Vec::new(),
+        })
         .collect();
     for _ in 0..points {
         let q = SVector::<f64, N>::from_fn(|i, _| rng.random_range(sample.q[i].0..=sample.q[i].1));
@@ -249,7 +259,11 @@ where
             }
         }
     }
-    DerivativeReport { points, quantities: worst, output_jacobian: None }
+    DerivativeReport {
+        points,
+        quantities: worst,
+        output_jacobian: None,
+    }
 }
 
 /// Check a minimal-coordinate map at `points` random `mu` from the box
@@ -285,7 +299,11 @@ where
     let mut output_jacobian: Option<OutputJacobian> = None;
     let mut worst: Vec<QuantityError> = names
         .iter()
-        .map(|&quantity| QuantityError { quantity, worst_relative_error: 0.0, at: Vec::new() })
+        .map(|&quantity| QuantityError {
+            quantity,
+            worst_relative_error: 0.0,
+            at: Vec::new(),
+        })
         .collect();
     for _ in 0..points {
         let mu = SVector::<f64, F>::from_fn(|i, _| rng.random_range(mu_box[i].0..=mu_box[i].1));
@@ -303,11 +321,23 @@ where
         let d2 = nalgebra::DMatrix::from_fn(A, A, |i, k| p[(off + i, split + k)]);
         let singular = d2.singular_values();
         let (smallest, largest) = (singular.min(), singular.max());
-        let worse = output_jacobian.as_ref().is_none_or(|o: &OutputJacobian| smallest < o.smallest_singular_value);
-        let condition = if smallest > 0.0 { largest / smallest } else { f64::INFINITY };
-        let largest_condition = output_jacobian.as_ref().map_or(condition, |o| o.largest_condition.max(condition));
+        let worse = output_jacobian
+            .as_ref()
+            .is_none_or(|o: &OutputJacobian| smallest < o.smallest_singular_value);
+        let condition = if smallest > 0.0 {
+            largest / smallest
+        } else {
+            f64::INFINITY
+        };
+        let largest_condition = output_jacobian
+            .as_ref()
+            .map_or(condition, |o| o.largest_condition.max(condition));
         if worse {
-            output_jacobian = Some(OutputJacobian { smallest_singular_value: smallest, largest_condition, at: mu.iter().copied().collect() });
+            output_jacobian = Some(OutputJacobian {
+                smallest_singular_value: smallest,
+                largest_condition,
+                at: mu.iter().copied().collect(),
+            });
         } else if let Some(o) = output_jacobian.as_mut() {
             o.largest_condition = largest_condition;
         }
@@ -320,7 +350,10 @@ where
             // expressions, other common subexpressions: round-off apart)
             relative_error(&derivatives.phi, &q)
                 .max(relative_error(&derivatives.null_space, &p))
-                .max(relative_error(&derivatives.null_space_rate(&mu_rate), &model.null_space_rate(&mu, &mu_rate))),
+                .max(relative_error(
+                    &derivatives.null_space_rate(&mu_rate),
+                    &model.null_space_rate(&mu, &mu_rate),
+                )),
             // the second derivatives dP/dmu_k, each against P along e_k
             (0..F)
                 .map(|k| {
@@ -345,7 +378,11 @@ where
             }
         }
     }
-    DerivativeReport { points, quantities: worst, output_jacobian }
+    DerivativeReport {
+        points,
+        quantities: worst,
+        output_jacobian,
+    }
 }
 
 /// The check the generated self-test of a model with a `sample` section
@@ -375,6 +412,12 @@ where
     Mdl: MinimalMap<N, M, A, F>,
 {
     let report = check_minimal_map(model, mu, 1.0, 100, 0x5eed);
-    let constraints = report.get("g(phi(mu)) = 0").map_or(f64::INFINITY, |e| e.worst_relative_error);
-    if constraints < 1e-12 && report.worst() < 1e-6 { Ok(report) } else { Err(report) }
+    let constraints = report
+        .get("g(phi(mu)) = 0")
+        .map_or(f64::INFINITY, |e| e.worst_relative_error);
+    if constraints < 1e-12 && report.worst() < 1e-6 {
+        Ok(report)
+    } else {
+        Err(report)
+    }
 }

@@ -62,10 +62,7 @@ pub trait Stepper<const N: usize, const M: usize, const A: usize> {
 }
 
 /// The load target `gamma, gamma', gamma''` of the step to `t`.
-pub(crate) fn servo_target<const A: usize>(
-    trajectory: &impl Trajectory<A>,
-    t: f64,
-) -> ServoTarget<A> {
+pub(crate) fn servo_target<const A: usize>(trajectory: &impl Trajectory<A>, t: f64) -> ServoTarget<A> {
     [0, 1, 2].map(|k| trajectory.derivative(t, k))
 }
 
@@ -96,17 +93,12 @@ pub(crate) fn check_step_time(t: f64, t_prev: f64, dt: f64) -> Result<(), Error>
 /// The runtime error for a failed Newton solve of the step to `t`.
 pub(crate) fn step_error(failure: NewtonFailure, t: f64) -> Error {
     match failure {
-        NewtonFailure::NotConverged {
-            iterations,
-            residual,
-        } => Error::NewtonNotConverged {
+        NewtonFailure::NotConverged { iterations, residual } => Error::NewtonNotConverged {
             t,
             iterations,
             residual,
         },
-        NewtonFailure::Singular { pivot_ratio } => {
-            Error::SingularIterationMatrix { t, pivot_ratio }
-        }
+        NewtonFailure::Singular { pivot_ratio } => Error::SingularIterationMatrix { t, pivot_ratio },
         NewtonFailure::NonFinite => Error::NonFinite {
             quantity: "Newton iterate",
             t,
@@ -143,14 +135,25 @@ pub fn check_parameters<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize
         if smallest < -1e-12 * scale {
             let direction = eigen.eigenvectors.column(index);
             let largest = direction.amax();
-            let coordinates: Vec<&str> =
-                (0..N).filter(|&i| direction[i].abs() > 0.1 * largest).map(|i| Mdl::INFO.coordinates[i]).collect();
-            let negative: Vec<&str> =
-                Mdl::INFO.parameters.iter().zip(&values).filter(|(_, v)| **v < 0.0).map(|(n, _)| *n).collect();
+            let coordinates: Vec<&str> = (0..N)
+                .filter(|&i| direction[i].abs() > 0.1 * largest)
+                .map(|i| Mdl::INFO.coordinates[i])
+                .collect();
+            let negative: Vec<&str> = Mdl::INFO
+                .parameters
+                .iter()
+                .zip(&values)
+                .filter(|(_, v)| **v < 0.0)
+                .map(|(n, _)| *n)
+                .collect();
             return Err(Error::IndefiniteMassMatrix {
                 smallest_eigenvalue: smallest,
                 coordinates: coordinates.join(", "),
-                negative_parameters: if negative.is_empty() { "none".into() } else { negative.join(", ") },
+                negative_parameters: if negative.is_empty() {
+                    "none".into()
+                } else {
+                    negative.join(", ")
+                },
             });
         }
     }
@@ -160,7 +163,11 @@ pub fn check_parameters<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize
 /// Refuse a time step that is not a finite positive number (every stepper
 /// and [`step_count`] starts with this).
 pub(crate) fn check_step_size(dt: f64) -> Result<(), Error> {
-    if dt.is_finite() && dt > 0.0 { Ok(()) } else { Err(Error::InvalidTimeStep { dt }) }
+    if dt.is_finite() && dt > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidTimeStep { dt })
+    }
 }
 
 /// Number of steps of size `dt` from `t0` to `tf`, refusing spans that are
@@ -219,13 +226,7 @@ where
     let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
     solution.push(model, start, 0, 0, &mut lengths);
     run(stepper, steps, |step, state, report| {
-        solution.push(
-            model,
-            state,
-            report.iterations,
-            report.min_norm_steps,
-            &mut lengths,
-        );
+        solution.push(model, state, report.iterations, report.min_norm_steps, &mut lengths);
         progress(step, steps);
         Ok(())
     })?;

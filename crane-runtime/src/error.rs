@@ -64,9 +64,7 @@ pub enum Error {
         value: f64,
     },
     /// A user-given start violates an equation that a consistent start must satisfy.
-    #[error(
-        "inconsistent start: {equation} is violated by {residual:.3e} (tolerance {tolerance:.1e})"
-    )]
+    #[error("inconsistent start: {equation} is violated by {residual:.3e} (tolerance {tolerance:.1e})")]
     InconsistentStart {
         /// The violated equation, named as in the model, e.g. "constraint `hoist` (g = 0)".
         equation: String,
@@ -110,9 +108,7 @@ pub enum Error {
         residual: f64,
     },
     /// The static-equilibrium Newton iteration did not converge.
-    #[error(
-        "no static equilibrium found from the guess: residual {residual:.3e} after {iterations} iterations"
-    )]
+    #[error("no static equilibrium found from the guess: residual {residual:.3e} after {iterations} iterations")]
     EquilibriumNotFound {
         /// Iterations taken.
         iterations: usize,

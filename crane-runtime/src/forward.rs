@@ -91,8 +91,8 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
         let dgl_dq = model.constraint_hessian(&q, &lambda_scaled);
         for j in 0..N {
             for i in 0..N {
-                jac[(i, j)] = da * self.mass[(i, j)] - dt2 * df_dq[(i, j)] - dv * df_dv[(i, j)] - dbu_dq[(i, j)]
-                    + dgl_dq[(i, j)];
+                jac[(i, j)] =
+                    da * self.mass[(i, j)] - dt2 * df_dq[(i, j)] - dv * df_dv[(i, j)] - dbu_dq[(i, j)] + dgl_dq[(i, j)];
             }
             for i in 0..M {
                 jac[(N + i, j)] = jac_g[(i, j)];
@@ -106,7 +106,13 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
                 jac[(N + i, N + l)] = 0.0;
             }
         }
-        normalised_residual(r, jac, z, |i| if i < N { inertia[i].abs().max(applied[i].abs()) } else { 0.0 })
+        normalised_residual(r, jac, z, |i| {
+            if i < N {
+                inertia[i].abs().max(applied[i].abs())
+            } else {
+                0.0
+            }
+        })
     }
 
     fn blocks(&self) -> &[Range<usize>] {
@@ -146,7 +152,11 @@ where
     ) -> Result<Self, Error> {
         check_step_size(dt)?;
         check_parameters(model)?;
-        let history = if start.v.amax() == 0.0 { History::at_rest(start.q) } else { History::start(start.q, start.v) };
+        let history = if start.v.amax() == 0.0 {
+            History::at_rest(start.q)
+        } else {
+            History::start(start.q, start.v)
+        };
         let mut z = DVector::zeros(N + M);
         z.rows_mut(0, N).copy_from(&start.q);
         z.rows_mut(N, M).copy_from(&(start.lambda * (dt * dt)));
@@ -182,19 +192,34 @@ where
         let t = self.t0 + (self.steps + 1) as f64 * dt;
         let input = self.inputs.at(t);
         if !input.iter().all(|x| x.is_finite()) {
-            return Err(Error::NonFinite { quantity: "input u(t)", t });
+            return Err(Error::NonFinite {
+                quantity: "input u(t)",
+                t,
+            });
         }
         let eq = &mut self.equations;
         eq.input = input;
         eq.formula = self.history.formula(self.scheme, dt);
         let predicted = self.history.predict(self.scheme, dt);
         self.z.rows_mut(0, N).copy_from(&predicted);
-        let converged = self.newton.solve(eq, &mut self.z).map_err(|failure| step_error(failure, t))?;
+        let converged = self
+            .newton
+            .solve(eq, &mut self.z)
+            .map_err(|failure| step_error(failure, t))?;
         let [q, v, _] = eq.kinematics(&self.z);
-        self.state = State { t, q, v, u: input, lambda: SVector::from_fn(|i, _| self.z[N + i] / (dt * dt)) };
+        self.state = State {
+            t,
+            q,
+            v,
+            u: input,
+            lambda: SVector::from_fn(|i, _| self.z[N + i] / (dt * dt)),
+        };
         self.history.push(q, v);
         self.steps += 1;
-        Ok(StepReport { iterations: converged.iterations, min_norm_steps: converged.min_norm_steps })
+        Ok(StepReport {
+            iterations: converged.iterations,
+            min_norm_steps: converged.min_norm_steps,
+        })
     }
 }
 
@@ -243,7 +268,10 @@ mod tests {
             coordinates: &["s", "L", "x", "z"],
             inputs: &["u1", "u2"],
             constraints: &["rope"],
-            ropes: &[Rope { tension: "N", constraint: 0 }],
+            ropes: &[Rope {
+                tension: "N",
+                constraint: 0,
+            }],
             parameters: &[],
             positive: &[],
         };
@@ -251,7 +279,10 @@ mod tests {
             Vec::new()
         }
         fn set_parameter(&mut self, name: &str, _: f64) -> Result<(), UnknownParameter> {
-            Err(UnknownParameter { name: name.into(), known: String::new() })
+            Err(UnknownParameter {
+                name: name.into(),
+                known: String::new(),
+            })
         }
         fn constraints<T: Scalar>(&self, q: &SVector<T, 4>) -> SVector<T, 1> {
             let d = q[2] - q[0];
@@ -266,13 +297,22 @@ mod tests {
             SMatrix::from_row_slice(&[l, z, -l, z, z, -l, z, z, -l, z, l, z, z, z, z, l])
         }
         fn mass_matrix<T: Scalar>(&self) -> SMatrix<T, 4, 4> {
-            SMatrix::from_diagonal(&SVector::from([T::from(50.0), T::from(5.0), T::from(200.0), T::from(200.0)]))
+            SMatrix::from_diagonal(&SVector::from([
+                T::from(50.0),
+                T::from(5.0),
+                T::from(200.0),
+                T::from(200.0),
+            ]))
         }
         fn forces<T: Scalar>(&self, _: &SVector<T, 4>, v: &SVector<T, 4>) -> SVector<T, 4> {
             // a little velocity-dependent friction on the trolley, so that df/dv counts
             SVector::from([-v[0] * 3.0, T::from(0.0), T::from(0.0), T::from(-200.0 * 9.81)])
         }
-        fn force_jacobians<T: Scalar>(&self, _: &SVector<T, 4>, _: &SVector<T, 4>) -> (SMatrix<T, 4, 4>, SMatrix<T, 4, 4>) {
+        fn force_jacobians<T: Scalar>(
+            &self,
+            _: &SVector<T, 4>,
+            _: &SVector<T, 4>,
+        ) -> (SMatrix<T, 4, 4>, SMatrix<T, 4, 4>) {
             let mut df_dv = SMatrix::zeros();
             df_dv[(0, 0)] = T::from(-3.0);
             (SMatrix::zeros(), df_dv)
@@ -337,7 +377,11 @@ mod tests {
                         worst = worst.max(((rp[i] - rm[i]) / (2.0 * h) - jac[(i, j)]).abs());
                     }
                 }
-                assert!(worst <= 1e-6 * jac.amax(), "{scheme}: worst {worst:e} of {}", jac.amax());
+                assert!(
+                    worst <= 1e-6 * jac.amax(),
+                    "{scheme}: worst {worst:e} of {}",
+                    jac.amax()
+                );
             }
         }
     }

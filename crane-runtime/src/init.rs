@@ -92,11 +92,9 @@ where
     // G q' = 0 (eq. 23)
     let jac_g = model.constraint_jacobian(&q);
     let gv = jac_g * v;
-    worst_row(
-        gv.as_slice(),
-        CONSISTENCY_TOLERANCE * scale * v.amax().max(1.0),
-        |i| format!("velocity constraint of `{}` (eq. 23)", info.constraints[i]),
-    )?;
+    worst_row(gv.as_slice(), CONSISTENCY_TOLERANCE * scale * v.amax().max(1.0), |i| {
+        format!("velocity constraint of `{}` (eq. 23)", info.constraints[i])
+    })?;
 
     // static balance: B^T u - G^T lambda = M q'' - f, least squares in (u, lambda)
     let mut accel = SVector::<f64, N>::zeros();
@@ -107,9 +105,7 @@ where
     let bt = model.input_matrix(&q);
     let mut balance = DMatrix::<f64>::zeros(N, A + M);
     balance.view_mut((0, 0), (N, A)).copy_from(&bt);
-    balance
-        .view_mut((0, A), (N, M))
-        .copy_from(&(-jac_g.transpose()));
+    balance.view_mut((0, A), (N, M)).copy_from(&(-jac_g.transpose()));
     let rhs_dyn = DVector::from_column_slice(rhs.as_slice());
     let solution = balance
         .clone()
@@ -123,16 +119,9 @@ where
     if at_rest {
         let residual = &balance * &solution - &rhs_dyn;
         let force_scale = rhs.amax().max((&balance * &solution).amax()).max(1.0);
-        worst_row(
-            residual.as_slice(),
-            CONSISTENCY_TOLERANCE * force_scale,
-            |i| {
-                format!(
-                    "static balance of coordinate `{}` (eq. 1a)",
-                    info.coordinates[i]
-                )
-            },
-        )?;
+        worst_row(residual.as_slice(), CONSISTENCY_TOLERANCE * force_scale, |i| {
+            format!("static balance of coordinate `{}` (eq. 1a)", info.coordinates[i])
+        })?;
     }
     let start = State {
         t: t0,
@@ -155,18 +144,17 @@ fn check_rope_lengths<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, 
     model.rope_lengths(&start.q, &mut lengths);
     for (rope, &length) in Mdl::INFO.ropes.iter().zip(&lengths) {
         if !(length > 0.0) {
-            return Err(Error::NonPositiveRopeLength { rope: rope.tension, length });
+            return Err(Error::NonPositiveRopeLength {
+                rope: rope.tension,
+                length,
+            });
         }
     }
     Ok(())
 }
 
 /// Error naming the row with the largest residual if it exceeds `tolerance`.
-fn worst_row(
-    residual: &[f64],
-    tolerance: f64,
-    name: impl Fn(usize) -> String,
-) -> Result<(), Error> {
+fn worst_row(residual: &[f64], tolerance: f64, name: impl Fn(usize) -> String) -> Result<(), Error> {
     let (index, value) = residual
         .iter()
         .enumerate()
@@ -226,8 +214,7 @@ where
     }
     let dim = N + M; // unknowns p (N - A), u (A), lambda (M); equations N + M
     let mut z = DVector::<f64>::zeros(dim);
-    z.rows_mut(0, p)
-        .copy_from(&DVector::from_column_slice(p_guess));
+    z.rows_mut(0, p).copy_from(&DVector::from_column_slice(p_guess));
 
     let assemble = |z: &DVector<f64>| -> (DVector<f64>, DMatrix<f64>) {
         let mut q = SVector::<f64, N>::zeros();
@@ -244,21 +231,17 @@ where
         let lambda = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
         let jac_g = model.constraint_jacobian(&q);
         let bt = model.input_matrix(&q);
-        let balance =
-            model.forces(&q, &v) + bt * u - jac_g.tr_mul(&lambda) - model.mass_matrix() * accel;
+        let balance = model.forces(&q, &v) + bt * u - jac_g.tr_mul(&lambda) - model.mass_matrix() * accel;
         let mut r = DVector::zeros(dim);
         r.rows_mut(0, N).copy_from(&balance);
         r.rows_mut(N, M).copy_from(&model.constraints(&q));
         let (df_dq, _) = model.force_jacobians(&q, &v);
-        let d_balance =
-            df_dq + model.input_jacobian(&q, &u) - model.constraint_hessian(&q, &lambda);
+        let d_balance = df_dq + model.input_jacobian(&q, &u) - model.constraint_hessian(&q, &lambda);
         let mut jac = DMatrix::zeros(dim, dim);
-        jac.view_mut((0, 0), (N, p))
-            .copy_from(&d_balance.columns(0, p));
+        jac.view_mut((0, 0), (N, p)).copy_from(&d_balance.columns(0, p));
         jac.view_mut((N, 0), (M, p)).copy_from(&jac_g.columns(0, p));
         jac.view_mut((0, p), (N, A)).copy_from(&bt);
-        jac.view_mut((0, N), (N, M))
-            .copy_from(&(-jac_g.transpose()));
+        jac.view_mut((0, N), (N, M)).copy_from(&(-jac_g.transpose()));
         (r, jac)
     };
 
@@ -272,12 +255,7 @@ where
                 t: t0,
             });
         }
-        if let Ok(ul) = jac
-            .columns(p, A + M)
-            .into_owned()
-            .svd(true, true)
-            .solve(&(-&r), 1e-12)
-        {
+        if let Ok(ul) = jac.columns(p, A + M).into_owned().svd(true, true).solve(&(-&r), 1e-12) {
             z.rows_mut(p, A + M).copy_from(&ul);
         }
     }
@@ -297,12 +275,10 @@ where
         let svd = scaled.svd(true, true);
         let sigma_max = svd.singular_values.max();
         let rhs = DVector::from_fn(dim, |i, _| -r[i] * row_scale[i]);
-        let step_scaled = svd
-            .solve(&rhs, 1e-12 * sigma_max)
-            .map_err(|_| Error::NonFinite {
-                quantity: "static equilibrium step",
-                t: t0,
-            })?;
+        let step_scaled = svd.solve(&rhs, 1e-12 * sigma_max).map_err(|_| Error::NonFinite {
+            quantity: "static equilibrium step",
+            t: t0,
+        })?;
         let step = DVector::from_fn(dim, |j, _| step_scaled[j] * col_scale[j]);
         // converged when each block's step (p, u, lambda) is below 1e-11 of the
         // block's size, or the residual is at round-off relative to |J| |z|
@@ -368,11 +344,7 @@ where
 /// largest entry about 1 (columns first, then rows).
 fn equilibrate(jac: &DMatrix<f64>) -> (Vec<f64>, Vec<f64>) {
     let inv = |m: f64| {
-        if m > 0.0 && m.is_finite() {
-            1.0 / m
-        } else {
-            1.0
-        }
+        if m > 0.0 && m.is_finite() { 1.0 / m } else { 1.0 }
     };
     let cols: Vec<f64> = jac.column_iter().map(|c| inv(c.amax())).collect();
     let rows: Vec<f64> = (0..jac.nrows())
@@ -413,10 +385,7 @@ fn free_direction(
 
 /// Whether `start` is at rest on its path: `v0 = 0` and `gamma' = gamma'' = 0`
 /// at `t0` (to round-off), as at the start of a rest-to-rest move.
-pub fn at_rest<Tr, const N: usize, const M: usize, const A: usize>(
-    trajectory: &Tr,
-    start: &State<N, M, A>,
-) -> bool
+pub fn at_rest<Tr, const N: usize, const M: usize, const A: usize>(trajectory: &Tr, start: &State<N, M, A>) -> bool
 where
     Tr: Trajectory<A>,
 {

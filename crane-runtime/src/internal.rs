@@ -137,8 +137,9 @@ fn left_null_basis(w: &DMatrix<f64>) -> DMatrix<f64> {
     padded.columns_mut(0, w.ncols()).copy_from(w);
     let svd = padded.svd(true, false);
     let largest = svd.singular_values.amax();
-    let columns: Vec<usize> =
-        (0..n).filter(|&i| svd.singular_values[i] <= RANK_TOLERANCE * largest.max(f64::MIN_POSITIVE)).collect();
+    let columns: Vec<usize> = (0..n)
+        .filter(|&i| svd.singular_values[i] <= RANK_TOLERANCE * largest.max(f64::MIN_POSITIVE))
+        .collect();
     match svd.u {
         Some(u) => DMatrix::from_fn(n, columns.len(), |i, j| u[(i, columns[j])]),
         None => DMatrix::zeros(n, 0),
@@ -253,10 +254,19 @@ where
         .filter(|s| system_jacobian_condition(s, &mass, &damping, &stiffness, &jac_g, &inputs) > REGULAR_TOLERANCE)
         .map(|s| s.dimension);
     if structural == Some(0) {
-        return Ok(InternalDynamics { t, dimension: 0, eigenvalues: Vec::new(), max_real_part: f64::NEG_INFINITY });
+        return Ok(InternalDynamics {
+            t,
+            dimension: 0,
+            eigenvalues: Vec::new(),
+            max_real_part: f64::NEG_INFINITY,
+        });
     }
     if left.ncols() != right.ncols() {
-        return Err(InternalDynamicsError::NotSquare { t, left: left.ncols(), right: right.ncols() });
+        return Err(InternalDynamicsError::NotSquare {
+            t,
+            left: left.ncols(),
+            right: right.ncols(),
+        });
     }
     let size = left.ncols();
     let a2 = left.transpose() * &mass * &right;
@@ -268,9 +278,18 @@ where
         return Err(InternalDynamicsError::MixedRank { t, rank: 0, size });
     };
     // nalgebra sorts singular values in decreasing order
-    let rank = svd.singular_values.iter().filter(|&&s| s > RANK_TOLERANCE * scale).count();
+    let rank = svd
+        .singular_values
+        .iter()
+        .filter(|&&s| s > RANK_TOLERANCE * scale)
+        .count();
     if rank == 0 && structural.is_none() {
-        return Ok(InternalDynamics { t, dimension: 0, eigenvalues: Vec::new(), max_real_part: f64::NEG_INFINITY });
+        return Ok(InternalDynamics {
+            t,
+            dimension: 0,
+            eigenvalues: Vec::new(),
+            max_real_part: f64::NEG_INFINITY,
+        });
     }
     // rows U^T, coordinates eta = V xi: the first `rank` rows read
     // S xi1'' + A1~ xi' + A0~ xi = 0, the others hold no second derivative;
@@ -290,7 +309,9 @@ where
         // reduction then returns round-off: navy-3d-pulley, singular values
         // 50 and 1e-10 along its move)
         let singular = a0_22.clone().svd(false, false).singular_values;
-        let inverse = (singular.min() > REDUCTION_TOLERANCE * singular.max()).then(|| a0_22.try_inverse()).flatten();
+        let inverse = (singular.min() > REDUCTION_TOLERANCE * singular.max())
+            .then(|| a0_22.try_inverse())
+            .flatten();
         match inverse {
             Some(inverse) if first_order <= RANK_TOLERANCE * (a1t.amax() + a0t.amax()).max(f64::MIN_POSITIVE) => {
                 inverse * a0t.view((r, 0), (rest, r))
@@ -318,7 +339,12 @@ where
         // the reduction above missed constraints hidden at higher derivatives
         return Err(InternalDynamicsError::MixedRank { t, rank, size });
     }
-    Ok(InternalDynamics { t, dimension: 2 * r, eigenvalues, max_real_part })
+    Ok(InternalDynamics {
+        t,
+        dimension: 2 * r,
+        eigenvalues,
+        max_real_part,
+    })
 }
 
 /// An input this many times the largest input at the start (at least 1) is
@@ -403,9 +429,15 @@ where
 {
     let states = &solution.states;
     let stride = (states.len() / samples.max(1)).max(1);
-    let mut diagnosis = RunDiagnosis { structural_dimension: Mdl::STRUCTURE.map(|s| s.dimension), ..RunDiagnosis::none() };
+    let mut diagnosis = RunDiagnosis {
+        structural_dimension: Mdl::STRUCTURE.map(|s| s.dimension),
+        ..RunDiagnosis::none()
+    };
     let scale = states.first().map_or(1.0, |s| s.u.amax().max(1.0));
-    diagnosis.runaway_at = states.iter().find(|s| !(s.u.amax() <= RUNAWAY_FACTOR * scale)).map(|s| s.t);
+    diagnosis.runaway_at = states
+        .iter()
+        .find(|s| !(s.u.amax() <= RUNAWAY_FACTOR * scale))
+        .map(|s| s.t);
     let runaway_at = diagnosis.runaway_at;
     let physical = |t: f64| runaway_at.is_none_or(|runaway| t < runaway);
     for state in states.iter().step_by(stride).take_while(|s| physical(s.t)) {
@@ -455,10 +487,15 @@ impl PathSmoothness {
 /// `navy-3d-pulley` on the paper's three-phase profile: needed 6,
 /// continuous 4, so its slewing torque has impulses at the ramp corners
 /// (1790 N m at dt = 0.0005 s, 446 N m at 0.002 s).
-pub fn path_smoothness<Mdl, Tr, const N: usize, const M: usize, const A: usize>(trajectory: &Tr) -> Option<PathSmoothness>
+pub fn path_smoothness<Mdl, Tr, const N: usize, const M: usize, const A: usize>(
+    trajectory: &Tr,
+) -> Option<PathSmoothness>
 where
     Mdl: CraneModel<N, M, A>,
     Tr: crate::trajectory::Trajectory<A>,
 {
-    Some(PathSmoothness { needed: Mdl::STRUCTURE?.path_order(A), continuous: trajectory.continuity()? })
+    Some(PathSmoothness {
+        needed: Mdl::STRUCTURE?.path_order(A),
+        continuous: trajectory.continuity()?,
+    })
 }

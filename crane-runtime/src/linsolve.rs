@@ -73,7 +73,11 @@ impl DenseSolver {
     /// spoil the pivoting or the singularity test (docs/numerics.md, minimal
     /// coordinates: condition 1e16 without it).
     pub fn equilibrated(n: usize) -> Self {
-        Self { equilibrate: true, scaled: DMatrix::zeros(n, n), ..Self::new(n) }
+        Self {
+            equilibrate: true,
+            scaled: DMatrix::zeros(n, n),
+            ..Self::new(n)
+        }
     }
 
     /// Solve `jac x = b` in place (`b` becomes `x`). `jac` is left unchanged.
@@ -133,8 +137,11 @@ impl DenseSolver {
     /// `diag(row) jac diag(col)` into `target`.
     fn write_scaled(&self, jac: &DMatrix<f64>, target: &mut DMatrix<f64>) {
         let n = jac.nrows();
-        for ((target, column), &scale) in
-            target.as_mut_slice().chunks_exact_mut(n).zip(jac.as_slice().chunks_exact(n)).zip(&self.col_scale)
+        for ((target, column), &scale) in target
+            .as_mut_slice()
+            .chunks_exact_mut(n)
+            .zip(jac.as_slice().chunks_exact(n))
+            .zip(&self.col_scale)
         {
             for ((t, x), row) in target.iter_mut().zip(column).zip(&self.row_scale) {
                 *t = x * row * scale;
@@ -195,7 +202,9 @@ impl DenseSolver {
     fn min_norm(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
         let pivot_ratio = self.pivot_ratio;
         self.normal.gemm_tr(1.0, jac, jac, 0.0);
-        let largest = (0..self.normal.nrows()).map(|i| self.normal[(i, i)]).fold(0.0, f64::max);
+        let largest = (0..self.normal.nrows())
+            .map(|i| self.normal[(i, i)])
+            .fold(0.0, f64::max);
         if !(largest.is_finite() && largest > 0.0) {
             return Err(Singular { pivot_ratio });
         }
@@ -233,7 +242,11 @@ fn power_of_two(m: f64) -> f64 {
     let exponent = ((bits >> 52) & 0x7ff) as i32 - 1023 + i32::from(bits & MANTISSA >= SQRT_2_MANTISSA);
     // 2^-exponent, with -exponent in -1022 ..= 1023 here (m normal); for
     // m near f64::MAX, 2^-1024 is subnormal: fall back
-    if -exponent < -1022 { 2f64.powi(-exponent) } else { f64::from_bits(((1023 - exponent) as u64) << 52) }
+    if -exponent < -1022 {
+        2f64.powi(-exponent)
+    } else {
+        f64::from_bits(((1023 - exponent) as u64) << 52)
+    }
 }
 
 /// LU factorisation with partial pivoting, in place (Doolittle, unit lower
@@ -349,7 +362,11 @@ mod tests {
             if (m.log2().fract().abs() - 0.5).abs() < 1e-9 {
                 continue;
             }
-            let expected = if exact < -1022 { 2f64.powi(exact) } else { f64::from_bits(((1023 + exact) as u64) << 52) };
+            let expected = if exact < -1022 {
+                2f64.powi(exact)
+            } else {
+                f64::from_bits(((1023 + exact) as u64) << 52)
+            };
             assert_eq!(power_of_two(m), expected, "m = {m:e}");
         }
         assert_eq!(power_of_two(1.0), 1.0);

@@ -44,15 +44,15 @@ use std::ops::Range;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 use crate::driver::{
-    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_time, check_target, check_step_size,
+    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_size, check_step_time, check_target,
     record, servo_target, step_count, step_error,
 };
 use crate::error::Error;
 use crate::init;
 use crate::linsolve::DenseSolver;
 use crate::model::{CraneModel, MapDerivatives, MinimalMap, Scalar};
-use crate::redundant::RedundantStepper;
 use crate::newton::{Newton, NewtonFailure, NewtonOptions, NonlinearSystem, normalised_residual};
+use crate::redundant::RedundantStepper;
 use crate::scheme::{History, Scheme, StepFormula};
 use crate::solution::{Solution, State};
 use crate::trajectory::Trajectory;
@@ -102,8 +102,7 @@ struct Residual<T: Scalar, const F: usize, const A: usize> {
     position: SVector<T, A>,
 }
 
-impl<Mdl, const N: usize, const M: usize, const A: usize, const F: usize>
-    MinimalEquations<'_, Mdl, N, M, A, F>
+impl<Mdl, const N: usize, const M: usize, const A: usize, const F: usize> MinimalEquations<'_, Mdl, N, M, A, F>
 where
     Mdl: MinimalMap<N, M, A, F>,
 {
@@ -141,7 +140,18 @@ where
         let inputs = model.input_matrix(&q);
         let forces = model.forces(&q, &v);
         let unbalanced = model.mass_matrix::<T>() * accel_q_dt2 - forces * dt2 - inputs * u_scaled;
-        Point { accel_dt2, u_scaled, map, q, p, p_rate, v, accel_q_dt2, inputs, unbalanced }
+        Point {
+            accel_dt2,
+            u_scaled,
+            map,
+            q,
+            p,
+            p_rate,
+            v,
+            accel_q_dt2,
+            inputs,
+            unbalanced,
+        }
     }
 
     fn residual<T: Scalar>(&self, x: &Point<T, N, F, A>) -> Residual<T, F, A> {
@@ -185,7 +195,18 @@ where
     fn iteration_matrix(&self, x: &Point<f64, N, F, A>, jac: &mut DMatrix<f64>) {
         let (dt, model) = (self.dt, self.model);
         let dt2 = dt * dt;
-        let Point { accel_dt2, u_scaled, map, q, p, p_rate, v, inputs, unbalanced: r, .. } = x;
+        let Point {
+            accel_dt2,
+            u_scaled,
+            map,
+            q,
+            p,
+            p_rate,
+            v,
+            inputs,
+            unbalanced: r,
+            ..
+        } = x;
         let p_accel = map.null_space_rate(accel_dt2); // d(P a)/dmu
         let hessian = map.phi_hessian(r);
         let mass = model.mass_matrix::<f64>();
@@ -195,8 +216,8 @@ where
         // of q' and constant in q (known from the declaration): those
         // Jacobians are neither evaluated nor multiplied
         let pt_mass = p.tr_mul(&mass);
-        let force_jacobians = (Mdl::FORCES_DEPEND_ON_VELOCITY || Mdl::FORCES_DEPEND_ON_POSITION)
-            .then(|| model.force_jacobians(q, v));
+        let force_jacobians =
+            (Mdl::FORCES_DEPEND_ON_VELOCITY || Mdl::FORCES_DEPEND_ON_POSITION).then(|| model.force_jacobians(q, v));
         let velocity_term = force_jacobians
             .filter(|_| Mdl::FORCES_DEPEND_ON_VELOCITY)
             .map(|(_, df_dv)| p.tr_mul(&df_dv) * dt2);
@@ -222,9 +243,16 @@ where
         };
         let zero = SVector::<f64, N>::zeros();
         for j in 0..F {
-            let (sigma, rho) = if j < split { (rate, (rate * dt) * (rate * dt)) } else { (0.0, 0.0) };
+            let (sigma, rho) = if j < split {
+                (rate, (rate * dt) * (rate * dt))
+            } else {
+                (0.0, 0.0)
+            };
             let (p_j, p_rate_j) = (p.column(j).into_owned(), p_rate.column(j).into_owned());
-            let dqdd_dt2 = p_accel.column(j) + map.curvature_jacobian.column(j) * dt2 + (p_rate_j * (2.0 * dt2 * sigma)) + p_j * rho;
+            let dqdd_dt2 = p_accel.column(j)
+                + map.curvature_jacobian.column(j) * dt2
+                + (p_rate_j * (2.0 * dt2 * sigma))
+                + p_j * rho;
             column(j, p_j, dqdd_dt2, p_rate_j + p_j * sigma);
         }
         for k in 0..A {
@@ -245,10 +273,7 @@ where
     }
 }
 
-fn write_residual<T: Scalar, const F: usize, const A: usize>(
-    r: &Residual<T, F, A>,
-    mut out: impl FnMut(usize, T),
-) {
+fn write_residual<T: Scalar, const F: usize, const A: usize>(r: &Residual<T, F, A>, mut out: impl FnMut(usize, T)) {
     for i in 0..F {
         out(i, r.dynamics[i]);
     }
@@ -313,7 +338,11 @@ where
     let tolerance = 1e-9 * start.v.amax().max(1.0);
     let residual = (p * mu_dot - start.v).amax();
     if residual > tolerance {
-        return Err(Error::InconsistentStart { equation: "q0' = P mu0' (eq. 8)".into(), residual, tolerance });
+        return Err(Error::InconsistentStart {
+            equation: "q0' = P mu0' (eq. 8)".into(),
+            residual,
+            tolerance,
+        });
     }
     Ok((mu, mu_dot))
 }
@@ -341,17 +370,28 @@ where
         let residual = state.q - model.phi(&mu);
         let p = model.null_space(&mu);
         if residual.amax() <= 1e-12 * scale {
-            let mu_dot = least_squares(&p, &state.v).ok_or(Error::NonFinite { quantity: "minimal start velocity", t: state.t })?;
+            let mu_dot = least_squares(&p, &state.v).ok_or(Error::NonFinite {
+                quantity: "minimal start velocity",
+                t: state.t,
+            })?;
             return Ok((mu, mu_dot, p));
         }
         if iteration == MAX_ITERATIONS || !residual.amax().is_finite() {
-            return Err(Error::MinimalStartNotFound { iterations: iteration, residual: residual.amax() });
+            return Err(Error::MinimalStartNotFound {
+                iterations: iteration,
+                residual: residual.amax(),
+            });
         }
-        let step = least_squares(&p, &residual)
-            .ok_or(Error::MinimalStartNotFound { iterations: iteration, residual: residual.amax() })?;
+        let step = least_squares(&p, &residual).ok_or(Error::MinimalStartNotFound {
+            iterations: iteration,
+            residual: residual.amax(),
+        })?;
         mu += step;
     }
-    Err(Error::MinimalStartNotFound { iterations: MAX_ITERATIONS, residual: f64::NAN })
+    Err(Error::MinimalStartNotFound {
+        iterations: MAX_ITERATIONS,
+        residual: f64::NAN,
+    })
 }
 
 /// A rope whose tension is below this fraction of the largest tension marks
@@ -381,15 +421,7 @@ fn degenerate<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A:
 /// Eqs. (24a-e) on a [`Scheme`], one step at a time; [`step`](Self::step)
 /// does not allocate.
 #[derive(Clone)]
-pub struct MinimalStepper<
-    'm,
-    Mdl,
-    Tr,
-    const N: usize,
-    const M: usize,
-    const A: usize,
-    const F: usize,
-> {
+pub struct MinimalStepper<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize> {
     equations: MinimalEquations<'m, Mdl, N, M, A, F>,
     trajectory: Tr,
     newton: Newton,
@@ -434,15 +466,7 @@ where
     where
         Tr: Clone,
     {
-        Self::with_scheme(
-            model,
-            trajectory,
-            start,
-            mu_guess,
-            dt,
-            Scheme::BackwardEuler,
-            newton,
-        )
+        Self::with_scheme(model, trajectory, start, mu_guess, dt, Scheme::BackwardEuler, newton)
     }
 
     /// A stepper on `scheme`; the scheme's history before the start comes
@@ -504,7 +528,8 @@ where
             redundant_steps: 0,
         };
         if degenerate(model, start) {
-            let redundant = RedundantStepper::with_scheme(model, stepper.trajectory.clone(), start, dt, scheme, newton)?;
+            let redundant =
+                RedundantStepper::with_scheme(model, stepper.trajectory.clone(), start, dt, scheme, newton)?;
             stepper.redundant_start = Some(redundant);
         }
         let p = model.null_space(&mu);
@@ -602,8 +627,7 @@ where
         let qdd = (p * accel_dt2) / dt2 + map.null_space_rate(&mu_dot) * mu_dot;
         // G G^T lambda = G (f + B^T u - M q'')
         let jac_g = model.constraint_jacobian(&q);
-        let rhs =
-            model.forces(&q, &v) + model.input_matrix(&q) * u - model.mass_matrix::<f64>() * qdd;
+        let rhs = model.forces(&q, &v) + model.input_matrix(&q) * u - model.mass_matrix::<f64>() * qdd;
         self.normal.copy_from(&(jac_g * jac_g.transpose()));
         self.normal_rhs.copy_from(&(jac_g * rhs));
         self.lambda_solver
@@ -657,7 +681,10 @@ where
             }
             self.output_solver
                 .solve(&self.output_jacobian, &mut self.output_rhs)
-                .map_err(|_| Error::SingularOutputJacobian { t: state.t, condition: f64::INFINITY })?;
+                .map_err(|_| Error::SingularOutputJacobian {
+                    t: state.t,
+                    condition: f64::INFINITY,
+                })?;
             Ok(SVector::from_fn(|k, _| self.output_rhs[k]))
         };
         let [gamma_rate, gamma_accel] = [1, 2].map(|k| self.trajectory.derivative(state.t, k));
@@ -666,10 +693,17 @@ where
             mu_dot[split + k] = mu2_hat[k];
         }
         // and s = dt^2 mu2'' from the servo constraint on acceleration level (24c)
-        let accel_dt2 = SVector::<f64, F>::from_fn(|i, _| if i < split { formula.kinematics(i, mu[i], dt).1 } else { 0.0 });
+        let accel_dt2 = SVector::<f64, F>::from_fn(|i, _| {
+            if i < split {
+                formula.kinematics(i, mu[i], dt).1
+            } else {
+                0.0
+            }
+        });
         let curvature = model.null_space_rate(&mu, &mu_dot) * mu_dot; // its load rows are w (eq. 17)
         let s = solve_servo(&|i| {
-            dt * dt * (gamma_accel[i] - curvature[off + i]) - (0..split).map(|j| p[(off + i, j)] * accel_dt2[j]).sum::<f64>()
+            dt * dt * (gamma_accel[i] - curvature[off + i])
+                - (0..split).map(|j| p[(off + i, j)] * accel_dt2[j]).sum::<f64>()
         })?;
         for i in 0..F {
             self.z[i] = mu[i];
@@ -740,14 +774,7 @@ where
 }
 
 /// [`simulate_minimal`], calling `progress(step, steps)` after every step.
-pub fn simulate_minimal_with_progress<
-    Mdl,
-    Tr,
-    const N: usize,
-    const M: usize,
-    const A: usize,
-    const F: usize,
->(
+pub fn simulate_minimal_with_progress<Mdl, Tr, const N: usize, const M: usize, const A: usize, const F: usize>(
     model: &Mdl,
     trajectory: Tr,
     start: &State<N, M, A>,

@@ -133,11 +133,7 @@ pub trait CraneModel<const N: usize, const M: usize, const A: usize> {
 
     /// Derivative of the constraint forces, `d(G^T lambda)/dq = sum_k lambda_k
     /// d^2 g_k / dq^2` (needed by Newton's iteration matrix).
-    fn constraint_hessian<T: Scalar>(
-        &self,
-        q: &SVector<T, N>,
-        lambda: &SVector<T, M>,
-    ) -> SMatrix<T, N, N>;
+    fn constraint_hessian<T: Scalar>(&self, q: &SVector<T, N>, lambda: &SVector<T, M>) -> SMatrix<T, N, N>;
 
     /// Constant mass matrix `M = diag(M1, M2)` from the kinetic energy
     /// `T = 1/2 q'^T M q'` (eq. 28).
@@ -147,11 +143,7 @@ pub trait CraneModel<const N: usize, const M: usize, const A: usize> {
     fn forces<T: Scalar>(&self, q: &SVector<T, N>, v: &SVector<T, N>) -> SVector<T, N>;
 
     /// Jacobians of the applied forces: `(df/dq, df/dq')`.
-    fn force_jacobians<T: Scalar>(
-        &self,
-        q: &SVector<T, N>,
-        v: &SVector<T, N>,
-    ) -> (SMatrix<T, N, N>, SMatrix<T, N, N>);
+    fn force_jacobians<T: Scalar>(&self, q: &SVector<T, N>, v: &SVector<T, N>) -> (SMatrix<T, N, N>, SMatrix<T, N, N>);
 
     /// Input matrix `B^T(q) = [B1^T; 0]` (eq. 11c): generalized force per unit input.
     fn input_matrix<T: Scalar>(&self, q: &SVector<T, N>) -> SMatrix<T, N, A>;
@@ -170,9 +162,7 @@ pub trait CraneModel<const N: usize, const M: usize, const A: usize> {
 /// `F = N - M` minimal coordinates `mu = [mu1; mu2]`; the last `A` are `mu2`,
 /// chosen so that `D2 phi_x` is regular (eq. 12). The map satisfies the
 /// constraints identically, `g(phi(mu)) = 0` (eq. 7), so `G P = 0`.
-pub trait MinimalMap<const N: usize, const M: usize, const A: usize, const F: usize>:
-    CraneModel<N, M, A>
-{
+pub trait MinimalMap<const N: usize, const M: usize, const A: usize, const F: usize>: CraneModel<N, M, A> {
     /// Names of the minimal coordinates `mu = [mu1; mu2]` as declared.
     const MINIMAL_COORDINATES: &'static [&'static str];
 

@@ -169,10 +169,9 @@ impl Newton {
             } else {
                 self.solver.solve_with_last_scales(&self.jac, &mut self.residual)
             };
-            let kind = solved
-                .map_err(|singular| NewtonFailure::Singular {
-                    pivot_ratio: singular.pivot_ratio,
-                })?;
+            let kind = solved.map_err(|singular| NewtonFailure::Singular {
+                pivot_ratio: singular.pivot_ratio,
+            })?;
             if kind == SolveKind::MinNorm {
                 min_norm_steps += 1;
             }

@@ -26,7 +26,7 @@ use std::ops::Range;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 use crate::driver::{
-    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_time, check_target, check_step_size,
+    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_size, check_step_time, check_target,
     record, servo_target, step_count, step_error,
 };
 use crate::error::Error;
@@ -51,9 +51,7 @@ struct StepEquations<'m, Mdl, const N: usize, const M: usize, const A: usize> {
     blocks: [Range<usize>; 3],
 }
 
-impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>
-    StepEquations<'_, Mdl, N, M, A>
-{
+impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> StepEquations<'_, Mdl, N, M, A> {
     const P: usize = N - A;
 
     /// `q`, `v`, `a` at the new time from the unknowns.
@@ -115,11 +113,8 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
         for j in 0..p {
             // d a_j/d p_j = c^2/dt^2, d v_j/d p_j = c/dt (scaled by dt^2)
             for i in 0..N {
-                jac[(i, j)] = da * self.mass[(i, j)]
-                    - dt2 * df_dq[(i, j)]
-                    - dv * df_dv[(i, j)]
-                    - dbu_dq[(i, j)]
-                    + dgl_dq[(i, j)];
+                jac[(i, j)] =
+                    da * self.mass[(i, j)] - dt2 * df_dq[(i, j)] - dv * df_dv[(i, j)] - dbu_dq[(i, j)] + dgl_dq[(i, j)];
             }
             for i in 0..M {
                 jac[(N + i, j)] = jac_g[(i, j)];
@@ -170,8 +165,7 @@ pub struct RedundantStepper<'m, Mdl, Tr, const N: usize, const M: usize, const A
     steps: usize,
 }
 
-impl<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize>
-    RedundantStepper<'m, Mdl, Tr, N, M, A>
+impl<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize> RedundantStepper<'m, Mdl, Tr, N, M, A>
 where
     Mdl: CraneModel<N, M, A>,
     Tr: Trajectory<A>,
@@ -315,14 +309,8 @@ where
     Tr: Trajectory<A>,
 {
     let steps = step_count(start.t, options.tf, options.dt)?;
-    let mut stepper = RedundantStepper::with_scheme(
-        model,
-        trajectory,
-        start,
-        options.dt,
-        options.scheme,
-        options.newton,
-    )?;
+    let mut stepper =
+        RedundantStepper::with_scheme(model, trajectory, start, options.dt, options.scheme, options.newton)?;
     record(model, start, &mut stepper, steps, options, &mut progress)
 }
 

@@ -33,13 +33,20 @@ pub struct InterpolatedInputs<'a, const N: usize, const M: usize, const A: usize
 impl<'a, const N: usize, const M: usize, const A: usize> InterpolatedInputs<'a, N, M, A> {
     /// Interpolation of `run`'s inputs through `points` (2..=6, clamped) steps.
     pub fn new(run: &'a Solution<N, M, A>, points: usize) -> Self {
-        Self { run, points: points.clamp(2, MAX_POINTS).min(run.states.len().max(1)) }
+        Self {
+            run,
+            points: points.clamp(2, MAX_POINTS).min(run.states.len().max(1)),
+        }
     }
 }
 
 impl<const N: usize, const M: usize, const A: usize> InterpolatedInputs<'_, N, M, A> {
     /// `field` of the run's states interpolated at `t` (held outside the run).
-    fn interpolate<const K: usize>(&self, t: f64, field: impl Fn(&crate::solution::State<N, M, A>) -> SVector<f64, K>) -> SVector<f64, K> {
+    fn interpolate<const K: usize>(
+        &self,
+        t: f64,
+        field: impl Fn(&crate::solution::State<N, M, A>) -> SVector<f64, K>,
+    ) -> SVector<f64, K> {
         let states = &self.run.states;
         let (first, last) = (&states[0], &states[states.len() - 1]);
         if t >= last.t {
@@ -95,7 +102,12 @@ impl Pendulum {
         let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
         model.rope_lengths(&state.q, &mut lengths);
         let length = lengths.iter().fold(1.0f64, |m, &l| m.max(l));
-        let g = Mdl::INFO.parameters.iter().zip(model.parameter_values()).find(|(n, _)| **n == "g").map_or(9.81, |(_, g)| g);
+        let g = Mdl::INFO
+            .parameters
+            .iter()
+            .zip(model.parameter_values())
+            .find(|(n, _)| **n == "g")
+            .map_or(9.81, |(_, g)| g);
         Self { length, g }
     }
 
@@ -118,7 +130,9 @@ pub fn load_deviation<Tr: Trajectory<A>, const N: usize, const M: usize, const A
     state: &crate::solution::State<N, M, A>,
 ) -> f64 {
     let target = path.derivative(state.t.min(tf), 0);
-    (0..A).map(|k| (state.q[N - A + k] - target[k]).abs()).fold(0.0, f64::max)
+    (0..A)
+        .map(|k| (state.q[N - A + k] - target[k]).abs())
+        .fold(0.0, f64::max)
 }
 
 /// A PD law on the robot coordinates about the inverse run's `p(t)`,
@@ -149,7 +163,13 @@ impl<const N: usize> Feedback<N> {
         let w = 4.0 * Pendulum::longest(model, start).frequency();
         let mass = model.mass_matrix::<f64>();
         let kp = SVector::from_fn(|i, _| if i < N - A { mass[(i, i)].max(0.0) * w * w } else { 0.0 });
-        let kd = SVector::from_fn(|i, _| if i < N - A { 2.0 * mass[(i, i)].max(0.0) * w } else { 0.0 });
+        let kd = SVector::from_fn(|i, _| {
+            if i < N - A {
+                2.0 * mass[(i, i)].max(0.0) * w
+            } else {
+                0.0
+            }
+        });
         Self { kp, kd }
     }
 }
@@ -168,8 +188,12 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> I
 {
     fn at(&self, t: f64) -> SVector<f64, A> {
         let state = self.last.get();
-        let (q_ref, v_ref) = (self.plan.interpolate(state.t, |s| s.q), self.plan.interpolate(state.t, |s| s.v));
-        let force = self.feedback.kp.component_mul(&(q_ref - state.q)) + self.feedback.kd.component_mul(&(v_ref - state.v));
+        let (q_ref, v_ref) = (
+            self.plan.interpolate(state.t, |s| s.q),
+            self.plan.interpolate(state.t, |s| s.v),
+        );
+        let force =
+            self.feedback.kp.component_mul(&(q_ref - state.q)) + self.feedback.kd.component_mul(&(v_ref - state.v));
         let bt = self.plant.input_matrix(&state.q);
         // (B B^T) u = B F, an a x a system, by Gaussian elimination with
         // partial pivoting on fixed-size arrays (no allocation)
@@ -182,7 +206,9 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> I
             rhs[k] = (0..N).map(|i| bt[(i, k)] * force[i]).sum();
         }
         for col in 0..A {
-            let pivot = (col..A).max_by(|&a, &b| system[a][col].abs().total_cmp(&system[b][col].abs())).unwrap_or(col);
+            let pivot = (col..A)
+                .max_by(|&a, &b| system[a][col].abs().total_cmp(&system[b][col].abs()))
+                .unwrap_or(col);
             system.swap(col, pivot);
             rhs.swap(col, pivot);
             let d = system[col][col];
@@ -227,7 +253,12 @@ impl ReplayOptions {
     /// quadratic interpolation of the torques does not amplify the start-up
     /// transient of a high-order inverse run, which a quartic does).
     pub fn new(settle: f64, scheme: Scheme) -> Self {
-        Self { refine: 4, settle, scheme, newton: NewtonOptions::default() }
+        Self {
+            refine: 4,
+            settle,
+            scheme,
+            newton: NewtonOptions::default(),
+        }
     }
 }
 
@@ -275,18 +306,34 @@ where
     Tr: Trajectory<A>,
 {
     let (Some(start), Some(end)) = (inverse.states.first(), inverse.states.last()) else {
-        return Err(Error::InvalidTimeSpan { t0: f64::NAN, tf: f64::NAN });
+        return Err(Error::InvalidTimeSpan {
+            t0: f64::NAN,
+            tf: f64::NAN,
+        });
     };
     let refine = options.refine.max(1);
     let dt = inverse.dt / refine as f64;
     let settle_steps = (options.settle.max(0.0) / dt).round();
     let tf = end.t + settle_steps * dt;
     let plan = InterpolatedInputs::new(inverse, options.scheme.order() + 1);
-    let forward = Options { dt, tf, scheme: options.scheme, newton: options.newton };
+    let forward = Options {
+        dt,
+        tf,
+        scheme: options.scheme,
+        newton: options.newton,
+    };
     let steps = step_count(start.t, tf, dt)?;
     let last = Cell::new(*start);
-    let gains = feedback.copied().unwrap_or(Feedback { kp: SVector::zeros(), kd: SVector::zeros() });
-    let inputs = ClosedLoop { plan, plant, feedback: gains, last: &last };
+    let gains = feedback.copied().unwrap_or(Feedback {
+        kp: SVector::zeros(),
+        kd: SVector::zeros(),
+    });
+    let inputs = ClosedLoop {
+        plan,
+        plant,
+        feedback: gains,
+        last: &last,
+    };
     let mut stepper = ForwardStepper::new(plant, inputs, start, dt, forward.scheme, forward.newton)?;
     let mut solution = Solution::with_capacity(Mdl::INFO, dt, forward.scheme, steps + 1)?;
     let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
@@ -309,7 +356,12 @@ where
             residual_sway = residual_sway.max(deviation);
         }
     }
-    Ok(Replay { solution, max_load_deviation, deviation_at_tf, residual_sway })
+    Ok(Replay {
+        solution,
+        max_load_deviation,
+        deviation_at_tf,
+        residual_sway,
+    })
 }
 
 #[cfg(test)]
@@ -336,13 +388,33 @@ mod tests {
         let states: Vec<State<1, 0, 1>> = (0..=20)
             .map(|i| {
                 let t = 0.1 * i as f64;
-                State { t, q: SVector::zeros(), v: SVector::zeros(), u: SVector::from([u(t)]), lambda: SVector::zeros() }
+                State {
+                    t,
+                    q: SVector::zeros(),
+                    v: SVector::zeros(),
+                    u: SVector::from([u(t)]),
+                    lambda: SVector::zeros(),
+                }
             })
             .collect();
-        let run = Solution { info: INFO, dt: 0.1, scheme: Scheme::Bdf3, states, newton_iterations: vec![0; 21], tensions: vec![], min_norm_steps: 0, redundant_start_steps: 0 };
+        let run = Solution {
+            info: INFO,
+            dt: 0.1,
+            scheme: Scheme::Bdf3,
+            states,
+            newton_iterations: vec![0; 21],
+            tensions: vec![],
+            min_norm_steps: 0,
+            redundant_start_steps: 0,
+        };
         let inputs = InterpolatedInputs::new(&run, 4);
         for t in [0.0, 0.03, 0.55, 1.234, 1.999, 2.0] {
-            assert!((inputs.at(t)[0] - u(t)).abs() < 1e-12, "t = {t}: {} vs {}", inputs.at(t)[0], u(t));
+            assert!(
+                (inputs.at(t)[0] - u(t)).abs() < 1e-12,
+                "t = {t}: {} vs {}",
+                inputs.at(t)[0],
+                u(t)
+            );
         }
         assert_eq!(inputs.at(5.0)[0], u(2.0), "held after the run");
     }

@@ -127,10 +127,7 @@ fn bdf_formula(k: usize) -> Formula {
         1 => (1.0, &[-1.0]),
         2 => (2.0 / 3.0, &[-4.0 / 3.0, 1.0 / 3.0]),
         3 => (6.0 / 11.0, &[-18.0 / 11.0, 9.0 / 11.0, -2.0 / 11.0]),
-        4 => (
-            12.0 / 25.0,
-            &[-48.0 / 25.0, 36.0 / 25.0, -16.0 / 25.0, 3.0 / 25.0],
-        ),
+        4 => (12.0 / 25.0, &[-48.0 / 25.0, 36.0 / 25.0, -16.0 / 25.0, 3.0 / 25.0]),
         _ => (
             60.0 / 137.0,
             &[
@@ -211,8 +208,7 @@ impl<const K: usize> StepFormula<K> {
         // dt^2 a = dt^2 rate (v - vbar) = (c dt) (v - vbar) ... written so
         // that backward Euler reads y - y_n - dt v_n exactly
         let c_dt = self.rate * dt;
-        let accel_dt2 =
-            (y - self.value_offset[i]) * (c_dt * c_dt) - self.rate_offset[i] * (c_dt * dt);
+        let accel_dt2 = (y - self.value_offset[i]) * (c_dt * c_dt) - self.rate_offset[i] * (c_dt * dt);
         (v, accel_dt2)
     }
 }
@@ -367,11 +363,7 @@ mod tests {
     fn predictor_extrapolates_polynomials() {
         for scheme in Scheme::ALL {
             let k = scheme.order().min(MAX_STEPS - 1);
-            let y = |t: f64| {
-                (0..=k)
-                    .map(|i| t.powi(i as i32) / (i + 1) as f64)
-                    .sum::<f64>()
-            };
+            let y = |t: f64| (0..=k).map(|i| t.powi(i as i32) / (i + 1) as f64).sum::<f64>();
             let past: Vec<_> = (0..MAX_STEPS).map(|j| vector![y(-(j as f64))]).collect();
             let history = History::<1>::from_past(&past, &past);
             let p = history.predict(scheme, 1.0)[0];

@@ -51,8 +51,7 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
     /// [`Error::TooManySteps`] if that much cannot be reserved.
     pub fn with_capacity(info: ModelInfo, dt: f64, scheme: Scheme, states: usize) -> Result<Self, Error> {
         let ropes = info.ropes.len();
-        let per_state =
-            std::mem::size_of::<State<N, M, A>>() + std::mem::size_of::<usize>() + ropes * 8;
+        let per_state = std::mem::size_of::<State<N, M, A>>() + std::mem::size_of::<usize>() + ropes * 8;
         let too_many = || Error::TooManySteps {
             steps: states.saturating_sub(1) as f64,
             bytes: states as f64 * per_state as f64,
@@ -67,10 +66,7 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
             min_norm_steps: 0,
             redundant_start_steps: 0,
         };
-        solution
-            .states
-            .try_reserve_exact(states)
-            .map_err(|_| too_many())?;
+        solution.states.try_reserve_exact(states).map_err(|_| too_many())?;
         solution
             .newton_iterations
             .try_reserve_exact(states)

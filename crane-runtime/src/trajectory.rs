@@ -104,10 +104,7 @@ pub enum TrajectoryError {
     },
 }
 
-fn check_points<const A: usize>(
-    start: &SVector<f64, A>,
-    end: &SVector<f64, A>,
-) -> Result<(), TrajectoryError> {
+fn check_points<const A: usize>(start: &SVector<f64, A>, end: &SVector<f64, A>) -> Result<(), TrajectoryError> {
     if !start.iter().all(|v| v.is_finite()) {
         return Err(TrajectoryError::NonFinitePoint { which: "start" });
     }
@@ -119,12 +116,7 @@ fn check_points<const A: usize>(
 
 impl<const A: usize> Poly9<A> {
     /// Rest-to-rest motion from `start` at `t0` to `end` at `tf`.
-    pub fn new(
-        t0: f64,
-        tf: f64,
-        start: SVector<f64, A>,
-        end: SVector<f64, A>,
-    ) -> Result<Self, TrajectoryError> {
+    pub fn new(t0: f64, tf: f64, start: SVector<f64, A>, end: SVector<f64, A>) -> Result<Self, TrajectoryError> {
         if !(t0.is_finite() && tf.is_finite() && tf > t0) {
             return Err(TrajectoryError::TimeSpan { t0, tf });
         }
@@ -197,7 +189,14 @@ impl<const A: usize> Phases<A> {
             return Err(TrajectoryError::Ramp { tau0, tau });
         }
         check_points(&start, &end)?;
-        Ok(Self { t0, tau, tau0, start, end, ramp })
+        Ok(Self {
+            t0,
+            tau,
+            tau0,
+            start,
+            end,
+            ramp,
+        })
     }
 
     /// `k`-th derivative of `h` at `t` (time since the ramp started).
@@ -432,7 +431,10 @@ mod tests {
         for &t in &[1.0, 4.0, 7.0, 16.0, 19.5] {
             for k in 1..=5 {
                 let exact = path.derivative(t, k)[0];
-                assert!((exact - fd(&path, t, k)).abs() <= 1e-6 * (1.0 + exact.abs()), "k={k} t={t}");
+                assert!(
+                    (exact - fd(&path, t, k)).abs() <= 1e-6 * (1.0 + exact.abs()),
+                    "k={k} t={t}"
+                );
             }
         }
         assert_eq!(path.derivative(20.0, 0)[0], 1.0);
@@ -476,7 +478,10 @@ mod tests {
             for k in 1..=8 {
                 let exact = path.derivative(t, k)[0];
                 let approx = fd(&path, t, k);
-                assert!((exact - approx).abs() <= 1e-6 * (1.0 + exact.abs()), "k={k} t={t}: {exact} vs {approx}");
+                assert!(
+                    (exact - approx).abs() <= 1e-6 * (1.0 + exact.abs()),
+                    "k={k} t={t}: {exact} vs {approx}"
+                );
             }
         }
         assert_eq!(path.derivative(0.0, 0)[0], 0.0);

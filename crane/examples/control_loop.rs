@@ -52,6 +52,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             println!("{t:8.2} {:16.2} {:16.2} {:18.2}", state.u[0], state.u[1], tension);
         }
     }
-    println!("slowest step: {:.1} us (budget per tick: {:.0} us)", slowest.as_secs_f64() * 1e6, dt * 1e6);
+    println!(
+        "slowest step: {:.1} us (budget per tick: {:.0} us)",
+        slowest.as_secs_f64() * 1e6,
+        dt * 1e6
+    );
     Ok(())
 }

@@ -36,8 +36,16 @@ where
         let q = SVector::<f64, N>::from_fn(|_, _| rng.random_range(-10.0..10.0));
         let v = SVector::<f64, N>::from_fn(|_, _| rng.random_range(-2.0..2.0));
         close(a.constraints(&q).as_slice(), b.constraints(&q).as_slice(), "g");
-        close(a.constraint_jacobian(&q).as_slice(), b.constraint_jacobian(&q).as_slice(), "G");
-        close(a.mass_matrix::<f64>().as_slice(), b.mass_matrix::<f64>().as_slice(), "M");
+        close(
+            a.constraint_jacobian(&q).as_slice(),
+            b.constraint_jacobian(&q).as_slice(),
+            "G",
+        );
+        close(
+            a.mass_matrix::<f64>().as_slice(),
+            b.mass_matrix::<f64>().as_slice(),
+            "M",
+        );
         close(a.forces(&q, &v).as_slice(), b.forces(&q, &v).as_slice(), "f");
         close(a.input_matrix(&q).as_slice(), b.input_matrix(&q).as_slice(), "B^T");
     }
@@ -45,7 +53,11 @@ where
 
 #[test]
 fn the_gantry_example_is_the_built_in_gantry() {
-    assert_same_model(&gantry::Gantry3d::default(), &crane_models::gantry_3d::Gantry3d::default(), 7);
+    assert_same_model(
+        &gantry::Gantry3d::default(),
+        &crane_models::gantry_3d::Gantry3d::default(),
+        7,
+    );
     let crane = gantry::Gantry3d::default();
     let start = init::check_start(&crane, &gantry::path(), 0.0, &gantry::P0, None).unwrap();
     let run = simulate(&crane, gantry::path(), &start, &Options::new(0.02, gantry::TF)).unwrap();
@@ -54,7 +66,11 @@ fn the_gantry_example_is_the_built_in_gantry() {
 
 #[test]
 fn the_tower_crane_example_is_the_built_in_tower_crane() {
-    assert_same_model(&tower::TowerCrane::default(), &crane_models::tower_crane::TowerCrane::default(), 11);
+    assert_same_model(
+        &tower::TowerCrane::default(),
+        &crane_models::tower_crane::TowerCrane::default(),
+        11,
+    );
     let crane = tower::TowerCrane::default();
     let start = init::check_start(&crane, &tower::path(), 0.0, &tower::P0, None).unwrap();
     let run = simulate(&crane, tower::path(), &start, &Options::new(0.02, tower::TF)).unwrap();

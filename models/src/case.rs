@@ -37,14 +37,26 @@ pub struct Case<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
 
 impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Clone for Case<C, N, M, A> {
     fn clone(&self) -> Self {
-        Self { model: self.model.clone(), path: self.path.clone(), p0: self.p0.clone(), tf: self.tf, crane: PhantomData }
+        Self {
+            model: self.model.clone(),
+            path: self.path.clone(),
+            p0: self.p0.clone(),
+            tf: self.tf,
+            crane: PhantomData,
+        }
     }
 }
 
 impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, N, M, A> {
     /// `model` on `path` from `p0`, run to `tf`.
     pub fn from_parts(model: C::Model, path: Path<A>, p0: Vec<f64>, tf: f64) -> Self {
-        Self { model, path, p0, tf, crane: PhantomData }
+        Self {
+            model,
+            path,
+            p0,
+            tf,
+            crane: PhantomData,
+        }
     }
 
     /// The default manoeuvre with the motion ending at `t1` (and the run
@@ -115,7 +127,11 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
 
     /// The run in minimal coordinates (eqs. 24a-e) from `start`, if the crane
     /// declares a minimal map; `None` if not.
-    pub fn simulate_minimal(&self, start: &State<N, M, A>, options: &Options) -> Option<Result<Solution<N, M, A>, Error>> {
+    pub fn simulate_minimal(
+        &self,
+        start: &State<N, M, A>,
+        options: &Options,
+    ) -> Option<Result<Solution<N, M, A>, Error>> {
         self.simulate_minimal_with_progress(start, options, &mut |_, _| {})
     }
 

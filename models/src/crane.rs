@@ -82,6 +82,9 @@ pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
 /// leave their domain on a user's path).
 pub fn finite_state<const N: usize, const M: usize, const A: usize>(state: State<N, M, A>) -> Option<State<N, M, A>> {
     let finite = |s: &[f64]| s.iter().all(|x| x.is_finite());
-    (finite(state.q.as_slice()) && finite(state.v.as_slice()) && finite(state.u.as_slice()) && finite(state.lambda.as_slice()))
-        .then_some(state)
+    (finite(state.q.as_slice())
+        && finite(state.v.as_slice())
+        && finite(state.u.as_slice())
+        && finite(state.lambda.as_slice()))
+    .then_some(state)
 }

@@ -70,7 +70,13 @@ pub struct Path<const A: usize> {
 impl<const A: usize> Path<A> {
     /// Build the path; errors for times, ramps or points the profile refuses.
     pub fn new(spec: PathSpec<A>) -> Result<Self, TrajectoryError> {
-        let PathSpec { profile, t0, t1, start, end } = spec;
+        let PathSpec {
+            profile,
+            t0,
+            t1,
+            start,
+            end,
+        } = spec;
         let built = match profile {
             Profile::Poly9 => Built::Poly9(Poly9::new(t0, t1, start, end)?),
             Profile::ThreePhase { tau0 } => Built::ThreePhase(ThreePhase::new(t0, t1 - t0, tau0, start, end)?),

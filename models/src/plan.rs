@@ -60,7 +60,12 @@ impl Default for Settings {
     /// BDF-4 at dt = 0.05 s (an evaluation of navy-planar's move is 80
     /// steps), 1 ms tolerance, 8 check points.
     fn default() -> Self {
-        Self { dt: 0.05, scheme: Scheme::Bdf4, tolerance: 1e-3, interval_points: 8 }
+        Self {
+            dt: 0.05,
+            scheme: Scheme::Bdf4,
+            tolerance: 1e-3,
+            interval_points: 8,
+        }
     }
 }
 
@@ -117,7 +122,10 @@ impl Limits {
 
 impl Evaluation {
     /// Each limited quantity's margin, largest relative excess first.
-    pub fn bindings<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(&self, limits: &Limits) -> Vec<Binding> {
+    pub fn bindings<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+        &self,
+        limits: &Limits,
+    ) -> Vec<Binding> {
         let info = Mdl::INFO;
         let mut out: Vec<Binding> = Vec::new();
         if self.error.is_some() {
@@ -156,8 +164,15 @@ impl Evaluation {
 
     /// Whether the run succeeded within every limit (a tension at its
     /// floor to within [`TENSION_ROUNDOFF`] counts as at it).
-    pub fn feasible<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(&self, limits: &Limits) -> bool {
-        self.error.is_none() && self.bindings::<Mdl, N, M, A>(limits).iter().all(|b| b.excess <= b.allowance)
+    pub fn feasible<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+        &self,
+        limits: &Limits,
+    ) -> bool {
+        self.error.is_none()
+            && self
+                .bindings::<Mdl, N, M, A>(limits)
+                .iter()
+                .all(|b| b.excess <= b.allowance)
     }
 }
 
@@ -177,8 +192,18 @@ pub fn with_duration<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
         Profile::ThreePhase { tau0 } => Profile::ThreePhase { tau0: tau0 * scale },
         Profile::SmoothThreePhase { tau0 } => Profile::SmoothThreePhase { tau0: tau0 * scale },
     };
-    let path = Path::new(PathSpec { profile, t1: spec.t0 + duration, ..spec }).map_err(|e| e.to_string())?;
-    Ok(Case::from_parts(model, path, case.p0.clone(), spec.t0 + duration + settle))
+    let path = Path::new(PathSpec {
+        profile,
+        t1: spec.t0 + duration,
+        ..spec
+    })
+    .map_err(|e| e.to_string())?;
+    Ok(Case::from_parts(
+        model,
+        path,
+        case.p0.clone(),
+        spec.t0 + duration + settle,
+    ))
 }
 
 /// The run of `case` (its own duration and model) under `settings`: the
@@ -200,7 +225,8 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         .start()
         .or_else(|_| init::static_equilibrium(case.model(), case.path(), t0, &case.p0))
         .map_err(|e| e.to_string())?;
-    case.simulate(&start, &Options::new(dt, tf).with_scheme(settings.scheme)).map_err(|e| e.to_string())
+    case.simulate(&start, &Options::new(dt, tf).with_scheme(settings.scheme))
+        .map_err(|e| e.to_string())
 }
 
 /// The extremum of the parabola through three equally spaced samples
@@ -244,7 +270,12 @@ pub fn peaks<const N: usize, const M: usize, const A: usize>(duration: f64, run:
             (-value, at)
         })
         .collect();
-    Evaluation { duration, peak_u, min_tension, error: None }
+    Evaluation {
+        duration,
+        peak_u,
+        min_tension,
+        error: None,
+    }
 }
 
 /// Evaluate `case` scaled to `duration`.
@@ -263,7 +294,17 @@ fn evaluate_model<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
     duration: f64,
     settings: &Settings,
 ) -> (Evaluation, Option<Solution<N, M, A>>) {
-    let failed = |error: String| (Evaluation { duration, peak_u: Vec::new(), min_tension: Vec::new(), error: Some(error) }, None);
+    let failed = |error: String| {
+        (
+            Evaluation {
+                duration,
+                peak_u: Vec::new(),
+                min_tension: Vec::new(),
+                error: Some(error),
+            },
+            None,
+        )
+    };
     let scaled = match with_duration(case, model, duration) {
         Ok(c) => c,
         Err(e) => return failed(e),
@@ -334,12 +375,17 @@ pub enum PlanError {
 }
 
 /// Why an evaluation is infeasible, in words.
-fn reason<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(e: &Evaluation, limits: &Limits) -> String {
+fn reason<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    e: &Evaluation,
+    limits: &Limits,
+) -> String {
     if let Some(error) = &e.error {
         return format!("the inverse dynamics failed: {error}");
     }
     match e.bindings::<Mdl, N, M, A>(limits).first() {
-        Some(b) if b.excess > b.allowance => format!("{} = {:.3} against {} at t = {:.3} s", b.name, b.value, b.limit, b.at),
+        Some(b) if b.excess > b.allowance => {
+            format!("{} = {:.3} against {} at t = {:.3} s", b.name, b.value, b.limit, b.at)
+        }
         _ => "feasible".into(),
     }
 }
@@ -355,7 +401,10 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
         return Err(PlanError::NoLimits);
     }
     if !(settings.tolerance > 0.0 && settings.dt > 0.0) {
-        return Err(PlanError::Settings(format!("tolerance {} and dt {} must be positive", settings.tolerance, settings.dt)));
+        return Err(PlanError::Settings(format!(
+            "tolerance {} and dt {} must be positive",
+            settings.tolerance, settings.dt
+        )));
     }
     let mut evaluations = 0;
     // one evaluation, kept: the last infeasible (`below`) and feasible
@@ -397,7 +446,10 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
                     break (lo, hi, below, (evaluation, solution));
                 }
                 if hi > 64.0 * own {
-                    return Err(PlanError::NoFeasibleDuration { duration: hi, reason: reason::<C::Model, N, M, A>(&evaluation, limits) });
+                    return Err(PlanError::NoFeasibleDuration {
+                        duration: hi,
+                        reason: reason::<C::Model, N, M, A>(&evaluation, limits),
+                    });
                 }
                 below = evaluation;
                 lo = hi;
@@ -435,7 +487,10 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
     };
     let binding = match violated {
         Some(b) => {
-            let value = at_answer.iter().find(|a| a.name == b.name).map_or(f64::NAN, |a| a.value);
+            let value = at_answer
+                .iter()
+                .find(|a| a.name == b.name)
+                .map_or(f64::NAN, |a| a.value);
             Binding { value, ..b }
         }
         None => at_answer.first().cloned().unwrap_or(Binding {
@@ -458,14 +513,21 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
             counterexample.get_or_insert(d);
         }
     }
-    let solution = solution.ok_or_else(|| PlanError::NoFeasibleDuration { duration: hi, reason: reason::<C::Model, N, M, A>(&answer, limits) })?;
+    let solution = solution.ok_or_else(|| PlanError::NoFeasibleDuration {
+        duration: hi,
+        reason: reason::<C::Model, N, M, A>(&answer, limits),
+    })?;
     Ok(Fastest {
         duration: hi,
         bracket: (lo, hi),
         binding,
         at_answer,
         evaluations,
-        interval: IntervalCheck { points, holds: counterexample.is_none(), counterexample },
+        interval: IntervalCheck {
+            points,
+            holds: counterexample.is_none(),
+            counterexample,
+        },
         solution,
     })
 }
@@ -503,9 +565,15 @@ pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let durations: &[f64] = if durations.is_empty() { &own } else { durations };
     let mut grid: Vec<(Vec<f64>, f64)> = vec![(Vec::new(), 0.0)];
     for (_, values) in params {
-        grid = grid.into_iter().flat_map(|(prefix, _)| values.iter().map(move |&v| ([prefix.clone(), vec![v]].concat(), 0.0))).collect();
+        grid = grid
+            .into_iter()
+            .flat_map(|(prefix, _)| values.iter().map(move |&v| ([prefix.clone(), vec![v]].concat(), 0.0)))
+            .collect();
     }
-    let grid: Vec<(Vec<f64>, f64)> = grid.into_iter().flat_map(|(values, _)| durations.iter().map(move |&d| (values.clone(), d))).collect();
+    let grid: Vec<(Vec<f64>, f64)> = grid
+        .into_iter()
+        .flat_map(|(values, _)| durations.iter().map(move |&d| (values.clone(), d)))
+        .collect();
     grid.into_par_iter()
         .map(|(values, duration)| {
             let point = sweep_point(case, params, &values, duration, limits, settings);
@@ -532,9 +600,19 @@ pub fn sweep_point<C: Crane<N, M, A>, const N: usize, const M: usize, const A: u
         }
     }
     let evaluation = match error {
-        Some(e) => Evaluation { duration, peak_u: Vec::new(), min_tension: Vec::new(), error: Some(e) },
+        Some(e) => Evaluation {
+            duration,
+            peak_u: Vec::new(),
+            min_tension: Vec::new(),
+            error: Some(e),
+        },
         None => evaluate_model(case, model, duration, settings).0,
     };
     let feasible = evaluation.feasible::<C::Model, N, M, A>(limits);
-    SweepPoint { values: values.to_vec(), duration, evaluation, feasible }
+    SweepPoint {
+        values: values.to_vec(),
+        duration,
+        evaluation,
+        feasible,
+    }
 }

@@ -12,8 +12,8 @@ use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
 use crane_models::{Case, Crane, navy_planar, navy_planar_pulley};
-use crane_runtime::newton::NewtonOptions;
 use crane_runtime::nalgebra::SVector;
+use crane_runtime::newton::NewtonOptions;
 use crane_runtime::{CraneModel, MinimalMap, MinimalStepper, Options, RedundantStepper, Scheme, State, simulate};
 use crane_tests::handwritten::HandNavyPlanar;
 
@@ -40,7 +40,11 @@ fn redundant_runs<Mdl: CraneModel<7, 3, 2>>(c: &mut Criterion, label: &str, mode
 }
 
 /// Full runs at dt = 0.01 of a case in both formulations.
-fn formulations<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(c: &mut Criterion, name: &str, case: &Case<C, N, M, A>) {
+fn formulations<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    c: &mut Criterion,
+    name: &str,
+    case: &Case<C, N, M, A>,
+) {
     let start = case.start().unwrap();
     let options = Options::new(0.01, case.tf());
     c.bench_function(&format!("{name}/redundant/run dt=0.01"), |b| {
@@ -77,10 +81,18 @@ fn one_step_each<const N: usize, const M: usize, const A: usize, const F: usize,
     // made up front, each step found its stepper out of cache, and the
     // minimal one (more workspace) by more (measured 1.4x to 3.0x over runs)
     c.bench_function(&format!("{name}/redundant/one step dt=0.01"), |b| {
-        b.iter_batched_ref(|| redundant.clone(), |stepper| stepper.step().unwrap(), BatchSize::PerIteration)
+        b.iter_batched_ref(
+            || redundant.clone(),
+            |stepper| stepper.step().unwrap(),
+            BatchSize::PerIteration,
+        )
     });
     c.bench_function(&format!("{name}/minimal/one step dt=0.01"), |b| {
-        b.iter_batched_ref(|| minimal.clone(), |stepper| stepper.step().unwrap(), BatchSize::PerIteration)
+        b.iter_batched_ref(
+            || minimal.clone(),
+            |stepper| stepper.step().unwrap(),
+            BatchSize::PerIteration,
+        )
     });
 }
 
@@ -96,16 +108,32 @@ fn schemes(c: &mut Criterion) {
         c.bench_function(&format!("schemes/navy-planar/{scheme}/run dt=0.01"), |b| {
             b.iter(|| simulate(black_box(case.model()), case.path(), &start, &options).unwrap())
         });
-        let mut at_1_5 =
-            RedundantStepper::with_scheme(case.model(), case.path(), &start, 0.01, scheme, NewtonOptions::default()).unwrap();
+        let mut at_1_5 = RedundantStepper::with_scheme(
+            case.model(),
+            case.path(),
+            &start,
+            0.01,
+            scheme,
+            NewtonOptions::default(),
+        )
+        .unwrap();
         for _ in 0..150 {
             at_1_5.step().unwrap();
         }
         c.bench_function(&format!("schemes/navy-planar/{scheme}/one step dt=0.01"), |b| {
-            b.iter_batched_ref(|| at_1_5.clone(), |stepper| stepper.step().unwrap(), BatchSize::SmallInput)
+            b.iter_batched_ref(
+                || at_1_5.clone(),
+                |stepper| stepper.step().unwrap(),
+                BatchSize::SmallInput,
+            )
         });
     }
-    for (scheme, dt) in [(Scheme::Bdf2, 0.00125), (Scheme::Bdf3, 0.00625), (Scheme::Bdf4, 0.02), (Scheme::Bdf5, 0.02)] {
+    for (scheme, dt) in [
+        (Scheme::Bdf2, 0.00125),
+        (Scheme::Bdf3, 0.00625),
+        (Scheme::Bdf4, 0.02),
+        (Scheme::Bdf5, 0.02),
+    ] {
         let options = Options::new(dt, 4.0).with_scheme(scheme);
         c.bench_function(&format!("schemes/navy-planar/{scheme}/run dt={dt}"), |b| {
             b.iter(|| simulate(black_box(case.model()), case.path(), &start, &options).unwrap())
@@ -117,7 +145,11 @@ fn benches(c: &mut Criterion) {
     redundant_runs(c, "generated", &navy_planar::NavyPlanar::default());
     redundant_runs(c, "hand-written", &HandNavyPlanar::default());
     formulations(c, "navy-planar", &navy_planar::PaperCase::new(4.0).unwrap());
-    formulations(c, "navy-planar-pulley", &navy_planar_pulley::PaperCase::new(4.0).unwrap());
+    formulations(
+        c,
+        "navy-planar-pulley",
+        &navy_planar_pulley::PaperCase::new(4.0).unwrap(),
+    );
     let planar = navy_planar::PaperCase::new(4.0).unwrap();
     let start = planar.start().unwrap();
     let guess = navy_planar::minimal_guess(planar.model(), &start);

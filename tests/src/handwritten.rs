@@ -83,9 +83,7 @@ impl CraneModel<7, 3, 2> for HandNavyPlanar {
     };
 
     fn parameter_values(&self) -> Vec<f64> {
-        vec![
-            self.m_l, self.J1, self.J2, self.r1, self.r2, self.alpha, self.l, self.g,
-        ]
+        vec![self.m_l, self.J1, self.J2, self.r1, self.r2, self.alpha, self.l, self.g]
     }
 
     fn set_parameter(&mut self, name: &str, value: f64) -> Result<(), UnknownParameter> {
@@ -147,11 +145,7 @@ impl CraneModel<7, 3, 2> for HandNavyPlanar {
     /// ```
     /// (`l_k = lambda_k`), every row is linear in `q`; differentiating gives
     /// the constant-in-`q`, symmetric matrix below.
-    fn constraint_hessian<T: Scalar>(
-        &self,
-        _q: &SVector<T, 7>,
-        lambda: &SVector<T, 3>,
-    ) -> SMatrix<T, 7, 7> {
+    fn constraint_hessian<T: Scalar>(&self, _q: &SVector<T, 7>, lambda: &SVector<T, 3>) -> SMatrix<T, 7, 7> {
         let (l1, l2, l3) = (lambda[0], lambda[1], lambda[2]);
         let s = l1 + l2 + l3;
         let zero = T::zero();
@@ -208,11 +202,7 @@ impl CraneModel<7, 3, 2> for HandNavyPlanar {
     }
 
     /// Zero: `B^T` does not depend on `q`.
-    fn input_jacobian<T: Scalar>(
-        &self,
-        _q: &SVector<T, 7>,
-        _u: &SVector<T, 2>,
-    ) -> SMatrix<T, 7, 7> {
+    fn input_jacobian<T: Scalar>(&self, _q: &SVector<T, 7>, _u: &SVector<T, 2>) -> SMatrix<T, 7, 7> {
         SMatrix::zeros()
     }
 
@@ -356,12 +346,7 @@ mod tests {
         let q = sample_points(1)[0];
         let m: SMatrix<f64, 7, 7> = model.mass_matrix();
         let expected = [10.0, 10.0, 0.0, 0.0, 0.0, 100.0, 100.0];
-        assert!(
-            m.diagonal()
-                .iter()
-                .zip(expected)
-                .all(|(a, b)| (a - b).abs() < 1e-12)
-        );
+        assert!(m.diagonal().iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-12));
         assert_eq!(m, SMatrix::from_diagonal(&m.diagonal()));
         let f = model.forces(&q, &SVector::zeros());
         assert_eq!(f.as_slice(), &[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -981.0]);
@@ -381,16 +366,7 @@ mod tests {
         let mut model = HandNavyPlanar::default();
         assert_eq!(
             model.parameter_values(),
-            vec![
-                100.0,
-                0.1,
-                0.1,
-                0.1,
-                0.1,
-                std::f64::consts::FRAC_PI_3,
-                10.0,
-                9.81
-            ]
+            vec![100.0, 0.1, 0.1, 0.1, 0.1, std::f64::consts::FRAC_PI_3, 10.0, 9.81]
         );
         model.set_parameter("l", 12.0).unwrap();
         model.set_parameter("J2", 0.2).unwrap();
@@ -405,15 +381,7 @@ mod tests {
     #[test]
     fn paper_start_is_consistent() {
         let model = HandNavyPlanar::default();
-        let q = SVector::<f64, 7>::from_column_slice(&[
-            5.0 * 3f64.sqrt(),
-            10.0,
-            5.0,
-            0.0,
-            -5.0,
-            0.0,
-            -10.0,
-        ]);
+        let q = SVector::<f64, 7>::from_column_slice(&[5.0 * 3f64.sqrt(), 10.0, 5.0, 0.0, -5.0, 0.0, -10.0]);
         assert!(model.constraints(&q).amax() < 1e-13);
     }
 }

@@ -41,11 +41,15 @@ pub fn run_to<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>
     dt: f64,
     tf: f64,
 ) -> Solution<N, M, A> {
-    let start = case.start().unwrap_or_else(|e| panic!("{}: the start is consistent: {e}", C::NAME));
+    let start = case
+        .start()
+        .unwrap_or_else(|e| panic!("{}: the start is consistent: {e}", C::NAME));
     let options = Options::new(dt, tf).with_scheme(scheme);
     let result = match formulation {
         Formulation::Redundant => case.simulate(&start, &options),
-        Formulation::Minimal => case.simulate_minimal(&start, &options).unwrap_or_else(|| panic!("{} has no minimal map", C::NAME)),
+        Formulation::Minimal => case
+            .simulate_minimal(&start, &options)
+            .unwrap_or_else(|| panic!("{} has no minimal map", C::NAME)),
     };
     result.unwrap_or_else(|e| panic!("{} {formulation:?} {scheme} at dt = {dt}: {e}", C::NAME))
 }
@@ -68,7 +72,8 @@ pub fn e_u<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
 ) -> f64 {
     let state = solution.state_near(T_ERROR).expect("a step near 1.5 s");
     assert!((state.t - T_ERROR).abs() < 1e-9, "no step at 1.5 s: {}", state.t);
-    case.relative_input_error(state).unwrap_or_else(|| panic!("{} has no reference at 1.5 s", C::NAME))
+    case.relative_input_error(state)
+        .unwrap_or_else(|| panic!("{} has no reference at 1.5 s", C::NAME))
 }
 
 /// The observed order between errors `e0` at step `dt0` and `e1` at `dt1`.
@@ -86,7 +91,10 @@ pub fn assert_order<C: Crane<N, M, A>, const N: usize, const M: usize, const A: 
     dts: &[f64],
     band: RangeInclusive<f64>,
 ) -> Vec<f64> {
-    let errors: Vec<f64> = dts.iter().map(|&dt| e_u(case, &run(case, formulation, scheme, dt))).collect();
+    let errors: Vec<f64> = dts
+        .iter()
+        .map(|&dt| e_u(case, &run(case, formulation, scheme, dt)))
+        .collect();
     let label = format!("{} {formulation:?} {scheme}, tf = {}", C::NAME, case.tf());
     for (dt, e) in dts.iter().zip(&errors) {
         println!("{label}: dt = {dt:<7} e_u = {e:.4e}");
@@ -96,8 +104,15 @@ pub fn assert_order<C: Crane<N, M, A>, const N: usize, const M: usize, const A: 
     }
     let n = dts.len();
     let order = observed_order(dts[n - 2], errors[n - 2], dts[n - 1], errors[n - 1]);
-    println!("{label}: observed order between dt = {} and {}: {order:.4}", dts[n - 2], dts[n - 1]);
-    assert!(band.contains(&order), "{label}: observed order {order} outside {band:?}");
+    println!(
+        "{label}: observed order between dt = {} and {}: {order:.4}",
+        dts[n - 2],
+        dts[n - 1]
+    );
+    assert!(
+        band.contains(&order),
+        "{label}: observed order {order} outside {band:?}"
+    );
     errors
 }
 
@@ -109,7 +124,12 @@ pub fn input_differences<const N: usize, const M: usize, const A: usize>(
     include: impl Fn(f64) -> bool + Copy,
 ) -> Vec<[f64; A]> {
     runs.windows(2)
-        .map(|pair| pair[0].input_difference(&pair[1], include).expect("each run has half the step of the one before").map(|(d, _)| d))
+        .map(|pair| {
+            pair[0]
+                .input_difference(&pair[1], include)
+                .expect("each run has half the step of the one before")
+                .map(|(d, _)| d)
+        })
         .collect()
 }
 
@@ -120,8 +140,12 @@ pub fn largest_input_difference<const N: usize, const M: usize, const A: usize>(
     fine: &Solution<N, M, A>,
     include: impl Fn(f64) -> bool,
 ) -> (f64, f64) {
-    let per_input = coarse.input_difference(fine, include).expect("the fine run has half the step");
-    per_input.into_iter().fold((0.0, 0.0), |w, d| if d.0 > w.0 { d } else { w })
+    let per_input = coarse
+        .input_difference(fine, include)
+        .expect("the fine run has half the step");
+    per_input
+        .into_iter()
+        .fold((0.0, 0.0), |w, d| if d.0 > w.0 { d } else { w })
 }
 
 /// Asserts that a ratio `D(dt)/D(dt/2)` of errors or differences that
@@ -129,7 +153,10 @@ pub fn largest_input_difference<const N: usize, const M: usize, const A: usize>(
 /// `scheme` (the band leaves room for the next term at the coarser step).
 pub fn assert_ratio_of_order(what: &str, scheme: Scheme, ratio: f64) {
     let expected = 2f64.powi(scheme.order() as i32);
-    assert!((ratio / expected - 1.0).abs() <= 0.25, "{what} {scheme}: ratio {ratio}, expected 2^k = {expected} within 25 %");
+    assert!(
+        (ratio / expected - 1.0).abs() <= 0.25,
+        "{what} {scheme}: ratio {ratio}, expected 2^k = {expected} within 25 %"
+    );
 }
 
 /// The largest entry.
@@ -156,5 +183,12 @@ pub fn redundant_minimal_difference<const N: usize, const M: usize, const A: usi
 /// One stand-in path: rest to rest (Poly9, eqs. 41-45) from `start` at
 /// t = 0 to `end` at `duration`.
 pub fn stand_in_path<const A: usize>(start: SVector<f64, A>, end: SVector<f64, A>, duration: f64) -> Path<A> {
-    Path::new(PathSpec { profile: Profile::Poly9, t0: 0.0, t1: duration, start, end }).expect("a valid stand-in path")
+    Path::new(PathSpec {
+        profile: Profile::Poly9,
+        t0: 0.0,
+        t1: duration,
+        start,
+        end,
+    })
+    .expect("a valid stand-in path")
 }

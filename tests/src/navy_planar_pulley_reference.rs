@@ -5,9 +5,7 @@
 //! eqs. (51), (55), (56) are independent transcriptions that must agree.
 
 use crane_models::navy_planar_pulley::NavyPlanarPulley;
-use crane_models::navy_planar_pulley::reference::{
-    ReferenceState, reference, reference_at,
-};
+use crane_models::navy_planar_pulley::reference::{ReferenceState, reference, reference_at};
 use crane_runtime::{CraneModel, Trajectory};
 use nalgebra::{SMatrix, SVector};
 
@@ -77,14 +75,9 @@ fn reference_satisfies_generated_equations_of_motion() {
             worst_r = worst_r.max(r.amax() / weight);
             assert!(g.amax() < 1e-10, "tf = {tf}, t = {t}: g = {g:?}");
             assert!(gv.amax() < 1e-10, "tf = {tf}, t = {t}: G q' = {gv:?}");
-            assert!(
-                r.amax() < 1e-12 * weight,
-                "tf = {tf}, t = {t}: residual {r:?}"
-            );
+            assert!(r.amax() < 1e-12 * weight, "tf = {tf}, t = {t}: residual {r:?}");
         }
-        println!(
-            "tf = {tf}: max |g|, |G q'| = {worst_g:.1e}; max residual / ((m_l + m0) g) = {worst_r:.1e}"
-        );
+        println!("tf = {tf}: max |g|, |G q'| = {worst_g:.1e}; max residual / ((m_l + m0) g) = {worst_r:.1e}");
     }
 }
 
@@ -110,11 +103,7 @@ fn reference_with_finite_difference_accelerations() {
     let (r1, r2) = (worst(2e-3), worst(1e-3));
     println!("finite-difference q'': max residual {r1:.2e} N (h = 2e-3), {r2:.2e} N (h = 1e-3)");
     assert!(r2 < 7.5e-3, "residual {r2:e} N");
-    assert!(
-        (3.5..4.5).contains(&(r1 / r2)),
-        "order: ratio {} for h -> h/2",
-        r1 / r2
-    );
+    assert!((3.5..4.5).contains(&(r1 / r2)), "order: ratio {} for h -> h/2", r1 / r2);
 }
 
 /// At t0 the reference is the corrected start (66)-(67) and a static
@@ -147,10 +136,7 @@ fn rope_tensions_are_consistent_and_positive() {
     for tf in [4.0, 15.0] {
         let path = PaperPath { tf };
         let mut min = [f64::INFINITY; 3];
-        for t in std::iter::once(0.0)
-            .chain(times(tf, 50))
-            .chain(std::iter::once(tf))
-        {
+        for t in std::iter::once(0.0).chain(times(tf, 50)).chain(std::iter::once(tf)) {
             let s = reference_at(&params, &path, t);
             let mut lengths = [0.0; 3];
             model.rope_lengths(&s.q, &mut lengths);
@@ -161,18 +147,11 @@ fn rope_tensions_are_consistent_and_positive() {
                     "{} at t = {t}",
                     rope.tension
                 );
-                assert!(
-                    n > 0.0,
-                    "{} = {n} <= 0 at t = {t} (tf = {tf})",
-                    rope.tension
-                );
+                assert!(n > 0.0, "{} = {n} <= 0 at t = {t} (tf = {tf})", rope.tension);
                 min[i] = min[i].min(n);
             }
             let n0 = s.lambda[1] * s.q[3];
-            assert!(
-                (n0 - s.tensions[2]).abs() < 1e-9 * s.tensions[2],
-                "N0 = N3 at t = {t}"
-            );
+            assert!((n0 - s.tensions[2]).abs() < 1e-9 * s.tensions[2], "N0 = N3 at t = {t}");
         }
         println!(
             "tf = {tf}: min N1 = {:.2}, min N2 = {:.2}, min N3 = {:.2}",

@@ -18,10 +18,7 @@ struct PaperPath {
 
 impl Trajectory<2> for PaperPath {
     fn derivative(&self, t: f64, k: usize) -> SVector<f64, 2> {
-        let (g0, gf) = (
-            SVector::<f64, 2>::new(0.0, -10.0),
-            SVector::<f64, 2>::new(-3.0, -14.0),
-        );
+        let (g0, gf) = (SVector::<f64, 2>::new(0.0, -10.0), SVector::<f64, 2>::new(-3.0, -14.0));
         let tau = t / self.tf;
         let mut coeffs = [0.0, 0.0, 0.0, 0.0, 0.0, 126.0, -420.0, 540.0, -315.0, 70.0];
         for _ in 0..k {
@@ -40,7 +37,11 @@ impl Trajectory<2> for PaperPath {
 
 fn params_of(model: &HandNavyPlanar) -> NavyPlanar {
     let mut params = NavyPlanar::default();
-    for (name, value) in <NavyPlanar as CraneModel<7, 3, 2>>::INFO.parameters.iter().zip(model.parameter_values()) {
+    for (name, value) in <NavyPlanar as CraneModel<7, 3, 2>>::INFO
+        .parameters
+        .iter()
+        .zip(model.parameter_values())
+    {
         params.set_parameter(name, value).expect("the same parameters");
     }
     params
@@ -78,14 +79,9 @@ fn reference_satisfies_handwritten_equations_of_motion() {
             worst_r = worst_r.max(r.amax() / weight);
             assert!(g.amax() < 1e-10, "tf = {tf}, t = {t}: g = {g:?}");
             assert!(gv.amax() < 1e-10, "tf = {tf}, t = {t}: G q' = {gv:?}");
-            assert!(
-                r.amax() < 1e-9 * weight,
-                "tf = {tf}, t = {t}: residual {r:?}"
-            );
+            assert!(r.amax() < 1e-9 * weight, "tf = {tf}, t = {t}: residual {r:?}");
         }
-        println!(
-            "tf = {tf}: max |g|, |G q'| = {worst_g:.1e}; max residual / (m_l g) = {worst_r:.1e}"
-        );
+        println!("tf = {tf}: max |g|, |G q'| = {worst_g:.1e}; max residual / (m_l g) = {worst_r:.1e}");
     }
 }
 
@@ -112,11 +108,7 @@ fn reference_with_finite_difference_accelerations() {
     let (r1, r2) = (worst(2e-3), worst(1e-3));
     println!("finite-difference q'': max residual {r1:.2e} N (h = 2e-3), {r2:.2e} N (h = 1e-3)");
     assert!(r2 < 5e-3, "residual {r2:e} N");
-    assert!(
-        (3.5..4.5).contains(&(r1 / r2)),
-        "order: ratio {} for h -> h/2",
-        r1 / r2
-    );
+    assert!((3.5..4.5).contains(&(r1 / r2)), "order: ratio {} for h -> h/2", r1 / r2);
 }
 
 /// At t0 the reference is the paper's start (46)-(47), rope 1 is slack
@@ -147,10 +139,7 @@ fn rope_tensions_are_consistent_and_nonnegative() {
     for tf in [4.0, 15.0] {
         let path = PaperPath { tf };
         let mut min = [f64::INFINITY; 2];
-        for t in std::iter::once(0.0)
-            .chain(times(tf, 50))
-            .chain(std::iter::once(tf))
-        {
+        for t in std::iter::once(0.0).chain(times(tf, 50)).chain(std::iter::once(tf)) {
             let s = reference_at(&params, &path, t);
             let mut lengths = [0.0; 2];
             model.rope_lengths(&s.q, &mut lengths);
@@ -162,11 +151,7 @@ fn rope_tensions_are_consistent_and_nonnegative() {
                     rope.tension
                 );
                 // N1 is 2 N2 cos(pi/2) ~ 1e-13 at the slack start.
-                assert!(
-                    n >= -1e-10,
-                    "{} = {n} < 0 at t = {t} (tf = {tf})",
-                    rope.tension
-                );
+                assert!(n >= -1e-10, "{} = {n} < 0 at t = {t} (tf = {tf})", rope.tension);
                 min[i] = min[i].min(n);
             }
         }

@@ -80,7 +80,15 @@ impl CraneModel<7, 3, 2> for Broken {
 
 fn sample() -> SampleBox<7> {
     SampleBox {
-        q: [(1.0, 20.0), (1.0, 20.0), (1.0, 20.0), (-15.0, 15.0), (-15.0, 0.0), (-15.0, 15.0), (-20.0, 0.0)],
+        q: [
+            (1.0, 20.0),
+            (1.0, 20.0),
+            (1.0, 20.0),
+            (-15.0, 15.0),
+            (-15.0, 0.0),
+            (-15.0, 15.0),
+            (-20.0, 0.0),
+        ],
         velocity: 1.0,
         multiplier: 500.0,
         input: 100.0,
@@ -89,7 +97,15 @@ fn sample() -> SampleBox<7> {
 
 #[test]
 fn a_wrong_jacobian_entry_is_caught() {
-    let report = check_derivatives(&Broken { model: HandNavyPlanar::default(), flaw: Flaw::Jacobian }, &sample(), 50, 1);
+    let report = check_derivatives(
+        &Broken {
+            model: HandNavyPlanar::default(),
+            flaw: Flaw::Jacobian,
+        },
+        &sample(),
+        50,
+        1,
+    );
     println!("{report}");
     // the doubled entry (x - x0) is of the size of the matrix: O(1) relative error
     assert!(report.get("G = dg/dq").unwrap().worst_relative_error > 0.1, "{report}");
@@ -99,15 +115,34 @@ fn a_wrong_jacobian_entry_is_caught() {
 
 #[test]
 fn a_missing_hessian_term_is_caught() {
-    let report = check_derivatives(&Broken { model: HandNavyPlanar::default(), flaw: Flaw::Hessian }, &sample(), 50, 2);
+    let report = check_derivatives(
+        &Broken {
+            model: HandNavyPlanar::default(),
+            flaw: Flaw::Hessian,
+        },
+        &sample(),
+        50,
+        2,
+    );
     println!("{report}");
-    assert!(report.get("d(G^T lambda)/dq").unwrap().worst_relative_error > 0.1, "{report}");
+    assert!(
+        report.get("d(G^T lambda)/dq").unwrap().worst_relative_error > 0.1,
+        "{report}"
+    );
     assert!(report.get("G = dg/dq").unwrap().worst_relative_error < 1e-6);
 }
 
 #[test]
 fn the_correct_model_passes() {
-    let report = check_derivatives(&Broken { model: HandNavyPlanar::default(), flaw: Flaw::None }, &sample(), 50, 3);
+    let report = check_derivatives(
+        &Broken {
+            model: HandNavyPlanar::default(),
+            flaw: Flaw::None,
+        },
+        &sample(),
+        50,
+        3,
+    );
     // central differences on quadratic constraints: round-off only, ~1e-10
     assert!(report.worst() < 1e-6, "{report}");
 }
@@ -117,7 +152,15 @@ fn the_correct_model_passes() {
 /// comparison sees it as wrong by 100 %.
 #[test]
 fn a_wrong_small_entry_is_caught() {
-    let report = check_derivatives(&Broken { model: HandNavyPlanar::default(), flaw: Flaw::SmallEntry }, &sample(), 50, 4);
+    let report = check_derivatives(
+        &Broken {
+            model: HandNavyPlanar::default(),
+            flaw: Flaw::SmallEntry,
+        },
+        &sample(),
+        50,
+        4,
+    );
     println!("{report}");
     assert!(report.get("G = dg/dq").unwrap().worst_relative_error > 0.5, "{report}");
     assert!(report.get("df/dq").unwrap().worst_relative_error < 1e-6);

@@ -41,7 +41,10 @@ fn replaying_the_analytical_inputs_keeps_the_load_on_the_path() {
             .collect();
         let order = (deviations[0] / deviations[1]).log2();
         let k = scheme.order() as f64;
-        println!("forward {scheme}: largest |x - gamma| = {:.3e} / {:.3e} m, order {order:.2}", deviations[0], deviations[1]);
+        println!(
+            "forward {scheme}: largest |x - gamma| = {:.3e} / {:.3e} m, order {order:.2}",
+            deviations[0], deviations[1]
+        );
         assert!((k - 0.3..=k + 0.7).contains(&order), "{scheme}: {deviations:?}");
     }
 }
@@ -62,7 +65,11 @@ fn on_a_smooth_path_the_replay_has_order_k() {
     use crane_models::gantry_3d::{DefaultCase, reference::reference_at as gantry_reference};
     use crane_models::{Path, PathSpec, Profile};
     let mut case = DefaultCase::maneuver().unwrap();
-    case.path = Path::new(PathSpec { profile: Profile::SmoothThreePhase { tau0: 3.0 }, ..*case.path.spec() }).unwrap();
+    case.path = Path::new(PathSpec {
+        profile: Profile::SmoothThreePhase { tau0: 3.0 },
+        ..*case.path.spec()
+    })
+    .unwrap();
     let start = case.start().unwrap();
     let (model, path) = (case.model().clone(), case.path().clone());
     for scheme in [Scheme::BackwardEuler, Scheme::Bdf2, Scheme::Bdf3, Scheme::Bdf4] {
@@ -70,12 +77,19 @@ fn on_a_smooth_path_the_replay_has_order_k() {
             .iter()
             .map(|&dt| {
                 let inputs = |t: f64| gantry_reference(&model, &path, t).u;
-                let run = simulate_forward(case.model(), inputs, &start, &Options::new(dt, 8.0).with_scheme(scheme)).unwrap();
-                run.states.iter().map(|s| (s.q.fixed_rows::<3>(3) - path.derivative(s.t, 0)).amax()).fold(0.0, f64::max)
+                let run =
+                    simulate_forward(case.model(), inputs, &start, &Options::new(dt, 8.0).with_scheme(scheme)).unwrap();
+                run.states
+                    .iter()
+                    .map(|s| (s.q.fixed_rows::<3>(3) - path.derivative(s.t, 0)).amax())
+                    .fold(0.0, f64::max)
             })
             .collect();
         let (order, k) = ((d[0] / d[1]).log2(), scheme.order() as f64);
-        println!("gantry, C6 path, forward {scheme}: largest |x - gamma| = {:.3e} / {:.3e} m, order {order:.2}", d[0], d[1]);
+        println!(
+            "gantry, C6 path, forward {scheme}: largest |x - gamma| = {:.3e} / {:.3e} m, order {order:.2}",
+            d[0], d[1]
+        );
         assert!((k - 0.3..=k + 0.7).contains(&order), "{scheme}: {d:?}");
     }
 }
@@ -94,18 +108,25 @@ fn on_a_smooth_path_the_replay_has_order_k() {
 /// transient overshooting.
 #[test]
 fn replaying_the_inverse_runs_torques() {
-    use crane_runtime::replay::{ReplayOptions, replay};
     use crane_runtime::CraneModel;
+    use crane_runtime::replay::{ReplayOptions, replay};
     let case = PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
-    let inverse = |scheme: Scheme| case.simulate(&start, &Options::new(0.01, 4.0).with_scheme(scheme)).unwrap();
+    let inverse = |scheme: Scheme| {
+        case.simulate(&start, &Options::new(0.01, 4.0).with_scheme(scheme))
+            .unwrap()
+    };
     let options = ReplayOptions::new(9.0, Scheme::Bdf2);
     let be = replay(case.model(), case.path(), &inverse(Scheme::BackwardEuler), &options).unwrap();
     let bdf4 = replay(case.model(), case.path(), &inverse(Scheme::Bdf4), &options).unwrap();
     let mut heavy = case.model().clone();
     heavy.set_parameter("m_l", 110.0).unwrap();
     let mismatched = replay(&heavy, case.path(), &inverse(Scheme::Bdf4), &options).unwrap();
-    for (name, r) in [("backward Euler", &be), ("BDF-4", &bdf4), ("BDF-4, m_l + 10 %", &mismatched)] {
+    for (name, r) in [
+        ("backward Euler", &be),
+        ("BDF-4", &bdf4),
+        ("BDF-4, m_l + 10 %", &mismatched),
+    ] {
         println!(
             "replay of {name}: max |x - gamma| = {:.3e} m, at tf {:.3e} m, residual sway {:.3e} m ({} forward steps)",
             r.max_load_deviation,
@@ -115,7 +136,12 @@ fn replaying_the_inverse_runs_torques() {
         );
     }
     assert_eq!(bdf4.solution.steps(), 4 * 400 + 4 * 900, "dt/4 over 4 + 9 s");
-    assert!(bdf4.max_load_deviation * 100.0 <= be.max_load_deviation, "{} vs {}", bdf4.max_load_deviation, be.max_load_deviation);
+    assert!(
+        bdf4.max_load_deviation * 100.0 <= be.max_load_deviation,
+        "{} vs {}",
+        bdf4.max_load_deviation,
+        be.max_load_deviation
+    );
     assert!(mismatched.max_load_deviation > 100.0 * bdf4.max_load_deviation);
     assert!(mismatched.residual_sway > 100.0 * bdf4.residual_sway);
 }
@@ -132,7 +158,9 @@ fn feedback_takes_away_the_mismatch() {
     use crane_runtime::replay::{Feedback, ReplayOptions, replay, replay_with_feedback};
     let case = PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
-    let inverse = case.simulate(&start, &Options::new(0.01, 4.0).with_scheme(Scheme::Bdf4)).unwrap();
+    let inverse = case
+        .simulate(&start, &Options::new(0.01, 4.0).with_scheme(Scheme::Bdf4))
+        .unwrap();
     let options = ReplayOptions::new(9.0, Scheme::Bdf2);
     let gains = Feedback::from_model(case.model(), &start);
     for m_l in [110.0, 90.0, 100.0] {
@@ -145,7 +173,10 @@ fn feedback_takes_away_the_mismatch() {
             open.max_load_deviation, open.residual_sway, closed.max_load_deviation, closed.residual_sway
         );
         if m_l != 100.0 {
-            assert!(closed.max_load_deviation <= 0.5 * open.max_load_deviation, "m_l = {m_l}");
+            assert!(
+                closed.max_load_deviation <= 0.5 * open.max_load_deviation,
+                "m_l = {m_l}"
+            );
             assert!(closed.residual_sway <= 0.5 * open.residual_sway, "m_l = {m_l}");
         } else {
             assert!(closed.max_load_deviation < 1e-3, "{}", closed.max_load_deviation);
@@ -173,14 +204,23 @@ fn the_free_crane_keeps_its_energy_to_the_scheme_s_order() {
         let drifts: Vec<f64> = [0.01, 0.005]
             .iter()
             .map(|&dt| {
-                let run = simulate_forward(model, |_t: f64| nalgebra::SVector::zeros(), &start, &Options::new(dt, 2.0).with_scheme(scheme)).unwrap();
+                let run = simulate_forward(
+                    model,
+                    |_t: f64| nalgebra::SVector::zeros(),
+                    &start,
+                    &Options::new(dt, 2.0).with_scheme(scheme),
+                )
+                .unwrap();
                 let e0 = energy(&run.states[0]);
                 let fall = model.m_l * model.g * (run.states.last().unwrap().q[5] - start.q[5]).abs();
                 run.states.iter().map(|s| (energy(s) - e0).abs()).fold(0.0, f64::max) / fall
             })
             .collect();
         let order = (drifts[0] / drifts[1]).log2();
-        println!("free gantry, {scheme}: relative energy drift over 2 s = {:.3e} / {:.3e} (dt = 0.01 / 0.005), order {order:.2}", drifts[0], drifts[1]);
+        println!(
+            "free gantry, {scheme}: relative energy drift over 2 s = {:.3e} / {:.3e} (dt = 0.01 / 0.005), order {order:.2}",
+            drifts[0], drifts[1]
+        );
         let k = scheme.order() as f64;
         assert!((k - 0.3..=k + 0.7).contains(&order), "{scheme}: {drifts:?}");
     }
@@ -201,12 +241,26 @@ fn replay_deviation_falls_with_the_inverse_scheme_s_order() {
             let d: Vec<f64> = [0.02, 0.01]
                 .iter()
                 .map(|&dt| {
-                    let inverse = case.simulate(&start, &Options::new(dt, case.tf()).with_scheme(scheme)).unwrap();
-                    replay(case.model(), case.path(), &inverse, &ReplayOptions::new(0.0, Scheme::Bdf2)).unwrap().max_load_deviation
+                    let inverse = case
+                        .simulate(&start, &Options::new(dt, case.tf()).with_scheme(scheme))
+                        .unwrap();
+                    replay(
+                        case.model(),
+                        case.path(),
+                        &inverse,
+                        &ReplayOptions::new(0.0, Scheme::Bdf2),
+                    )
+                    .unwrap()
+                    .max_load_deviation
                 })
                 .collect();
             let (order, k) = ((d[0] / d[1]).log2(), scheme.order() as f64);
-            println!("{} replay of {scheme} torques: max |x - gamma| = {:.3e} / {:.3e} m, order {order:.2}", C::NAME, d[0], d[1]);
+            println!(
+                "{} replay of {scheme} torques: max |x - gamma| = {:.3e} / {:.3e} m, order {order:.2}",
+                C::NAME,
+                d[0],
+                d[1]
+            );
             assert!((k - 0.3..=k + 0.7).contains(&order), "{} {scheme}: {d:?}", C::NAME);
         }
     }

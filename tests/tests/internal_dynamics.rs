@@ -1,11 +1,11 @@
 //! Internal dynamics: which cranes are flat, and the coupled crane
 //! whose causal inverse explodes (`crane_runtime::internal`).
 
+use crane_models::coupled_trolley::CoupledTrolley as Coupled;
 use crane_runtime::internal::internal_dynamics;
 use crane_runtime::nalgebra::vector;
 use crane_runtime::trajectory::Poly9;
 use crane_runtime::{Trajectory, init};
-use crane_models::coupled_trolley::CoupledTrolley as Coupled;
 
 /// The coupled crane at rest, load straight below the trolley at depth |z|:
 /// the load's row reads c s'' - lambda s = -lambda x - m x'' with
@@ -23,11 +23,21 @@ fn the_coupled_crane_has_the_internal_dynamics_of_its_derivation() {
         let z_dd = path.derivative(0.0, 2)[1];
         let lambda = -crane.m * (crane.g + z_dd) / z0;
         let rate = (lambda.abs() / crane.c).sqrt();
-        println!("z0 = {z0}: {diagnosis:?}, expected rate {rate:.4} 1/s ({})", if unstable { "real" } else { "imaginary" });
+        println!(
+            "z0 = {z0}: {diagnosis:?}, expected rate {rate:.4} 1/s ({})",
+            if unstable { "real" } else { "imaginary" }
+        );
         assert_eq!(diagnosis.dimension, 2);
         for &(re, im) in &diagnosis.eigenvalues {
-            let (along, across) = if unstable { (re.abs(), im.abs()) } else { (im.abs(), re.abs()) };
-            assert!((along - rate).abs() <= 0.01 * rate, "z0 = {z0}: eigenvalue ({re}, {im}) against {rate}");
+            let (along, across) = if unstable {
+                (re.abs(), im.abs())
+            } else {
+                (im.abs(), re.abs())
+            };
+            assert!(
+                (along - rate).abs() <= 0.01 * rate,
+                "z0 = {z0}: eigenvalue ({re}, {im}) against {rate}"
+            );
             assert!(across <= 1e-6 * rate, "z0 = {z0}: eigenvalue ({re}, {im})");
         }
         assert_eq!(diagnosis.is_stable(), !unstable, "{diagnosis:?}");
@@ -38,7 +48,10 @@ fn the_coupled_crane_has_the_internal_dynamics_of_its_derivation() {
 /// the directions the load path leaves free.
 #[test]
 fn without_the_coupling_the_crane_is_flat() {
-    let crane = Coupled { c: 0.0, ..Coupled::default() };
+    let crane = Coupled {
+        c: 0.0,
+        ..Coupled::default()
+    };
     let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
     let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0]).unwrap();
     let diagnosis = internal_dynamics(&crane, &start).unwrap();
@@ -59,9 +72,13 @@ fn without_the_coupling_the_crane_is_flat() {
 /// reduction alone gave spurious pairs such as +-64.6 1/s there.
 #[test]
 fn the_built_in_cranes_are_flat_along_their_manoeuvres() {
-    fn check<C: crane_models::Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(case: &crane_models::Case<C, N, M, A>) {
+    fn check<C: crane_models::Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+        case: &crane_models::Case<C, N, M, A>,
+    ) {
         let start = case.start().unwrap();
-        let run = case.simulate(&start, &crane_runtime::Options::new(0.01, case.tf())).unwrap();
+        let run = case
+            .simulate(&start, &crane_runtime::Options::new(0.01, case.tf()))
+            .unwrap();
         let mut checked = 0;
         for state in run.states.iter().step_by(50) {
             match internal_dynamics(case.model(), state) {
@@ -91,7 +108,10 @@ fn the_unstable_inverse_explodes() {
     let run = crane_runtime::simulate(&crane, &path, &start, &crane_runtime::Options::new(0.01, 5.0)).unwrap();
     let mid = run.state_near(2.5).unwrap();
     let scale = start.u.amax();
-    println!("coupled crane, dt = 0.01: u(2.5 s) = {:?} (static |u| = {scale:.1})", mid.u.as_slice());
+    println!(
+        "coupled crane, dt = 0.01: u(2.5 s) = {:?} (static |u| = {scale:.1})",
+        mid.u.as_slice()
+    );
     assert!(mid.u.amax() > 1e6 * scale);
 }
 
@@ -107,12 +127,24 @@ fn the_declarations_state_their_structure() {
     }
     assert_eq!(dimension(&Coupled::default()), Some(2));
     let built_in = [
-        ("navy-planar", dimension(&crane_models::navy_planar::NavyPlanar::default())),
-        ("navy-planar-pulley", dimension(&crane_models::navy_planar_pulley::NavyPlanarPulley::default())),
+        (
+            "navy-planar",
+            dimension(&crane_models::navy_planar::NavyPlanar::default()),
+        ),
+        (
+            "navy-planar-pulley",
+            dimension(&crane_models::navy_planar_pulley::NavyPlanarPulley::default()),
+        ),
         ("navy-3d", dimension(&crane_models::navy_3d::Navy3d::default())),
-        ("navy-3d-pulley", dimension(&crane_models::navy_3d_pulley::Navy3dPulley::default())),
+        (
+            "navy-3d-pulley",
+            dimension(&crane_models::navy_3d_pulley::Navy3dPulley::default()),
+        ),
         ("gantry-3d", dimension(&crane_models::gantry_3d::Gantry3d::default())),
-        ("tower-crane", dimension(&crane_models::tower_crane::TowerCrane::default())),
+        (
+            "tower-crane",
+            dimension(&crane_models::tower_crane::TowerCrane::default()),
+        ),
     ];
     println!("{built_in:?}");
     for (name, d) in built_in {
@@ -140,16 +172,34 @@ fn the_structure_says_how_smooth_the_path_must_be() {
     assert_eq!(order(&crane_models::tower_crane::TowerCrane::default()), 4);
     assert_eq!(order(&Coupled::default()), 2);
     use crane_models::{Path, PathSpec, Profile};
-    let path = |profile| Path::new(PathSpec { profile, t0: 0.0, t1: 20.0, start: vector![0.0], end: vector![1.0] }).unwrap();
+    let path = |profile| {
+        Path::new(PathSpec {
+            profile,
+            t0: 0.0,
+            t1: 20.0,
+            start: vector![0.0],
+            end: vector![1.0],
+        })
+        .unwrap()
+    };
     assert_eq!(path(Profile::Poly9).continuity(), Some(4));
     assert_eq!(path(Profile::ThreePhase { tau0: 5.0 }).continuity(), Some(4));
     assert_eq!(path(Profile::SmoothThreePhase { tau0: 5.0 }).continuity(), Some(6));
     // the claim checked on the profiles themselves: the derivative past the
     // continuity jumps at the start of the motion, the one at it does not
-    for (profile, k) in [(Profile::Poly9, 4), (Profile::ThreePhase { tau0: 5.0 }, 4), (Profile::SmoothThreePhase { tau0: 5.0 }, 6)] {
+    for (profile, k) in [
+        (Profile::Poly9, 4),
+        (Profile::ThreePhase { tau0: 5.0 }, 4),
+        (Profile::SmoothThreePhase { tau0: 5.0 }, 6),
+    ] {
         let p = path(profile);
         let jump = |order: usize| (p.derivative(1e-7, order)[0] - p.derivative(-1e-7, order)[0]).abs();
-        assert!(jump(k) < 1e-6 && jump(k + 1) > 1e-6, "{profile:?}: {} {}", jump(k), jump(k + 1));
+        assert!(
+            jump(k) < 1e-6 && jump(k + 1) > 1e-6,
+            "{profile:?}: {} {}",
+            jump(k),
+            jump(k + 1)
+        );
     }
 }
 
@@ -165,17 +215,31 @@ fn the_structure_says_how_smooth_the_path_must_be() {
 fn a_path_too_rough_for_the_crane_gives_impulses() {
     use crane_models::navy_3d_pulley::PaperCase;
     let peak = |case: &PaperCase, dt: f64| {
-        let run = case.simulate(&case.start().unwrap(), &crane_runtime::Options::new(dt, 0.01)).unwrap();
+        let run = case
+            .simulate(&case.start().unwrap(), &crane_runtime::Options::new(dt, 0.01))
+            .unwrap();
         run.states.iter().map(|s| s.u[3].abs()).fold(0.0, f64::max)
     };
     let rough = PaperCase::maneuver().unwrap();
     let smooth = PaperCase::smooth(crane_models::navy_3d_pulley::TF).unwrap();
     let (r1, r2) = (peak(&rough, 0.001), peak(&rough, 0.0005));
     let (s1, s2) = (peak(&smooth, 0.001), peak(&smooth, 0.0005));
-    println!("peak |u4| in the first 0.01 s: three-phase {r1:.1} / {r2:.1} N m, smooth {s1:.3e} / {s2:.3e} N m (dt = 0.001 / 0.0005 s)");
+    println!(
+        "peak |u4| in the first 0.01 s: three-phase {r1:.1} / {r2:.1} N m, smooth {s1:.3e} / {s2:.3e} N m (dt = 0.001 / 0.0005 s)"
+    );
     assert!((r2 / r1 - 2.0).abs() < 0.2, "{r1} {r2}");
     assert!(s2 / s1 < 1.5 && s2 < 1e-3 * r2, "{s1} {s2}");
-    let rough_path = crane_runtime::internal::path_smoothness::<crane_models::navy_3d_pulley::Navy3dPulley, _, 12, 5, 4>(rough.path()).unwrap();
+    let rough_path =
+        crane_runtime::internal::path_smoothness::<crane_models::navy_3d_pulley::Navy3dPulley, _, 12, 5, 4>(
+            rough.path(),
+        )
+        .unwrap();
     assert!(!rough_path.is_sufficient());
-    assert!(crane_runtime::internal::path_smoothness::<crane_models::navy_3d_pulley::Navy3dPulley, _, 12, 5, 4>(smooth.path()).unwrap().is_sufficient());
+    assert!(
+        crane_runtime::internal::path_smoothness::<crane_models::navy_3d_pulley::Navy3dPulley, _, 12, 5, 4>(
+            smooth.path()
+        )
+        .unwrap()
+        .is_sufficient()
+    );
 }

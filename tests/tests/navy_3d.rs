@@ -27,13 +27,8 @@ fn case() -> PaperCase {
 fn run(case: &PaperCase, dt: f64) -> (Run, f64) {
     let start = case.start().expect("the paper's start is consistent");
     let clock = Instant::now();
-    let solution = simulate(
-        case.model(),
-        case.path(),
-        &start,
-        &Options::new(dt, case.tf()),
-    )
-    .unwrap_or_else(|e| panic!("the run at dt = {dt} converges: {e}"));
+    let solution = simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf()))
+        .unwrap_or_else(|e| panic!("the run at dt = {dt} converges: {e}"));
     (solution, clock.elapsed().as_secs_f64())
 }
 
@@ -93,8 +88,7 @@ impl Paper {
         let (b1, r, z2) = (self.0.beta1, self.r(), self.z2());
         SVector::<f64, 4>::new(
             0.5 * (x2 * x2 + y2 * y2 - r * r),
-            0.5 * ((x0 - b1 * x2).powi(2) + (y0 - b1 * y2).powi(2) + (z0 - b1 * z2).powi(2)
-                - l1 * l1),
+            0.5 * ((x0 - b1 * x2).powi(2) + (y0 - b1 * y2).powi(2) + (z0 - b1 * z2).powi(2) - l1 * l1),
             0.5 * ((x0 - x2).powi(2) + (y0 - y2).powi(2) + (z0 - z2).powi(2) - l0 * l0),
             0.5 * ((x - x0).powi(2) + (y - y0).powi(2) + (z - z0).powi(2) - (l2 - l0).powi(2)),
         )
@@ -172,26 +166,20 @@ fn generated_model_matches_the_paper_equations() {
     let generated = Navy3d::default();
     assert_eq!(
         Navy3d::INFO.coordinates,
-        [
-            "L1", "L2", "L0", "x0", "y0", "z0", "x2", "y2", "x", "y", "z"
-        ]
+        ["L1", "L2", "L0", "x0", "y0", "z0", "x2", "y2", "x", "y", "z"]
     );
     assert_eq!(Navy3d::INFO.inputs, ["u1", "u2", "u3"]);
-    assert_eq!(
-        Navy3d::INFO.constraints,
-        ["slew", "rope1", "rope0", "hoist"]
-    );
-    let ropes: Vec<_> = Navy3d::INFO
-        .ropes
-        .iter()
-        .map(|r| (r.tension, r.constraint))
-        .collect();
+    assert_eq!(Navy3d::INFO.constraints, ["slew", "rope1", "rope0", "hoist"]);
+    let ropes: Vec<_> = Navy3d::INFO.ropes.iter().map(|r| (r.tension, r.constraint)).collect();
     assert_eq!(ropes, [("N1", 1), ("N2", 3)]);
     assert_eq!((Navy3d::N, Navy3d::M, Navy3d::A), (11, 4, 3));
     // the declared defaults are the values of sect. 6.1.1 (J_b = M r^2 =
     // 6.4 * 75, beta1 = 1/2, g = 9.81): m_l, J_b, J1, J2, r1, r2, alpha, k, l, beta1, g
     let pi = std::f64::consts::PI;
-    assert_eq!(generated.parameter_values(), [100.0, 480.0, 0.1, 0.1, 0.1, 0.1, pi / 3.0, 5.0, 5.0, 0.5, 9.81]);
+    assert_eq!(
+        generated.parameter_values(),
+        [100.0, 480.0, 0.1, 0.1, 0.1, 0.1, pi / 3.0, 5.0, 5.0, 0.5, 9.81]
+    );
     let paper = Paper(generated.clone());
     // implicit parameters (docs/errata.md): r = (k + l) sin(alpha) = 5 sqrt 3, M = J_b / r^2 = 6.4 kg
     assert!((paper.r() - 5.0 * 3f64.sqrt()).abs() < 1e-14);
@@ -200,10 +188,7 @@ fn generated_model_matches_the_paper_equations() {
     let close = |a: &[f64], b: &[f64], what: &str| {
         let scale = b.iter().fold(1.0f64, |m, x| m.max(x.abs()));
         for (i, (x, y)) in a.iter().zip(b).enumerate() {
-            assert!(
-                (x - y).abs() <= 1e-12 * scale,
-                "{what}[{i}]: generated {x}, paper {y}"
-            );
+            assert!((x - y).abs() <= 1e-12 * scale, "{what}[{i}]: generated {x}, paper {y}");
         }
     };
     close(
@@ -226,11 +211,7 @@ fn generated_model_matches_the_paper_equations() {
             paper.constraint_jacobian(&q).as_slice(),
             "G",
         );
-        close(
-            generated.forces(&q, &v).as_slice(),
-            paper.forces().as_slice(),
-            "f",
-        );
+        close(generated.forces(&q, &v).as_slice(), paper.forces().as_slice(), "f");
         close(
             generated.input_matrix(&q).as_slice(),
             paper.input_matrix(&q).as_slice(),
@@ -270,12 +251,7 @@ fn paper_start_is_consistent() {
         );
     }
     // force scale m_l g ~ 1e3
-    assert!(
-        (start.u - reference.u).amax() < 1e-9,
-        "{} vs {}",
-        start.u,
-        reference.u
-    );
+    assert!((start.u - reference.u).amax() < 1e-9, "{} vs {}", start.u, reference.u);
     assert!(
         (start.lambda - reference.lambda).amax() < 1e-9,
         "{} vs {}",
@@ -312,10 +288,7 @@ fn inconsistent_start_names_the_violated_constraint() {
     p0[2] = ((x0 - x2).powi(2) + y0 * y0 + (z0 - z2).powi(2)).sqrt();
     p0[1] = p0[2] + (y0 * y0 + (z0 + 10.0).powi(2)).sqrt();
     let error = init::check_start(case.model(), case.path(), 0.0, &p0, None).unwrap_err();
-    assert!(
-        error.to_string().contains("static balance of coordinate"),
-        "{error}"
-    );
+    assert!(error.to_string().contains("static balance of coordinate"), "{error}");
 }
 
 /// As for navy-planar: from a rough guess near the paper's start the static
@@ -355,12 +328,7 @@ fn end_state_is_a_consistent_equilibrium() {
         state.u.as_slice(),
         state.lambda.as_slice()
     );
-    assert!(
-        (state.u - reference.u).amax() < 1e-9,
-        "{} vs {}",
-        state.u,
-        reference.u
-    );
+    assert!((state.u - reference.u).amax() < 1e-9, "{} vs {}", state.u, reference.u);
     assert!((state.lambda - reference.lambda).amax() < 1e-9);
     assert!(state.u[2].abs() < 1e-10, "u3 = {}", state.u[2]);
     let n1 = reference.lambda[1] * reference.q[0];
@@ -388,18 +356,8 @@ fn static_solve_finds_the_regular_end_equilibrium() {
         state.u.as_slice(),
         state.lambda.as_slice()
     );
-    assert!(
-        (state.q - reference.q).amax() < 1e-9,
-        "{} vs {}",
-        state.q,
-        reference.q
-    );
-    assert!(
-        (state.u - reference.u).amax() < 1e-7,
-        "{} vs {}",
-        state.u,
-        reference.u
-    );
+    assert!((state.q - reference.q).amax() < 1e-9, "{} vs {}", state.q, reference.q);
+    assert!((state.u - reference.u).amax() < 1e-7, "{} vs {}", state.u, reference.u);
     assert!((state.lambda - reference.lambda).amax() < 1e-7);
     assert!(state.u[2].abs() < 1e-8, "u3 = {}", state.u[2]);
     assert!((slewing_angle(&state) - 5f64.atan2(2.0)).abs() < 1e-12);
@@ -424,9 +382,7 @@ fn reference_satisfies_the_equations_of_motion() {
         let r = reference_at(&params, case.path(), t).unwrap();
         let g = model.constraints(&r.q);
         let jac = model.constraint_jacobian(&r.q);
-        let balance = model.mass_matrix::<f64>() * r.a
-            - model.forces(&r.q, &r.v)
-            - model.input_matrix(&r.q) * r.u
+        let balance = model.mass_matrix::<f64>() * r.a - model.forces(&r.q, &r.v) - model.input_matrix(&r.q) * r.u
             + jac.tr_mul(&r.lambda);
         worst[0] = worst[0].max(g.amax() / 100.0); // g ~ 1/2 L^2
         worst[1] = worst[1].max((jac * r.v).amax() / 10.0);
@@ -462,13 +418,7 @@ fn paper_runs_converge_and_ropes_stay_taut() {
         let peak = solution.tensions.iter().fold(0.0f64, |m, n| m.max(n.abs()));
         let mut lowest = [f64::INFINITY; 2];
         for (i, state) in solution.states.iter().enumerate() {
-            for (k, (rope, n)) in solution
-                .info
-                .ropes
-                .iter()
-                .zip(solution.tensions_at(i))
-                .enumerate()
-            {
+            for (k, (rope, n)) in solution.info.ropes.iter().zip(solution.tensions_at(i)).enumerate() {
                 // N1 is exactly 0 at the degenerate start, ~1e-13 N of either sign in floating point
                 assert!(
                     *n >= -1e-9 * peak,
@@ -482,12 +432,7 @@ fn paper_runs_converge_and_ropes_stay_taut() {
             }
         }
         let peak_u: Vec<f64> = (0..3)
-            .map(|k| {
-                solution
-                    .states
-                    .iter()
-                    .fold(0.0f64, |m, s| m.max(s.u[k].abs()))
-            })
+            .map(|k| solution.states.iter().fold(0.0f64, |m, s| m.max(s.u[k].abs())))
             .collect();
         println!(
             "dt = {dt}: {} steps in {:.2} ms ({:.2} us/step), {:.2} Newton iterations/step, {} min-norm steps; \
@@ -510,7 +455,10 @@ fn paper_runs_converge_and_ropes_stay_taut() {
     // 5.6e-2 and 5.6e-5 N), so the positive sign above is a measured value
     // of the expected size, not round-off
     let ratio = lowest_n1[0] / lowest_n1[1];
-    assert!((500.0..=2000.0).contains(&ratio), "N1 after t0 scales like dt^3: {lowest_n1:?}");
+    assert!(
+        (500.0..=2000.0).contains(&ratio),
+        "N1 after t0 scales like dt^3: {lowest_n1:?}"
+    );
 }
 
 /// docs/errata.md, "Where the discretisation error sits", holds in 3D too: the servo
@@ -571,7 +519,10 @@ fn u_converges_to_the_reference_with_order_one() {
         println!("observed order from dt = {dt} to {}: {order:.3}", dt / 2.0);
         assert!((0.75..=1.1).contains(order), "order {order}: {errors:?}");
     }
-    assert!(orders.windows(2).all(|w| w[1] > w[0]), "the orders approach 1: {orders:?}");
+    assert!(
+        orders.windows(2).all(|w| w[1] > w[0]),
+        "the orders approach 1: {orders:?}"
+    );
 }
 
 /// Self-convergence without a reference: `D(dt) = max_t |u(dt) - u(dt/2)|`
@@ -604,10 +555,7 @@ fn u_converges_with_order_one_between_step_sizes() {
         assert!((1.6..=2.2).contains(r), "ratio {r}: {diffs:?}");
     }
     // in the asymptotic range the ratio approaches 2
-    assert!(
-        (ratios[1] - 2.0).abs() < (ratios[0] - 2.0).abs(),
-        "{ratios:?}"
-    );
+    assert!((ratios[1] - 2.0).abs() < (ratios[0] - 2.0).abs(), "{ratios:?}");
 }
 
 /// The boom turns from phi = 0 (load below P at the start, eq. 87) to
@@ -638,22 +586,14 @@ fn slewing_angle_follows_the_path() {
         );
     }
     assert_eq!(phi[0], 0.0);
-    assert!(
-        (phi[phi.len() - 1] - end).abs() < 1e-9,
-        "{}",
-        phi[phi.len() - 1]
-    );
+    assert!((phi[phi.len() - 1] - end).abs() < 1e-9, "{}", phi[phi.len() - 1]);
     for w in phi.windows(2) {
         assert!(w[1] >= w[0] - 1e-12, "phi decreases: {w:?}");
     }
     for state in &solution.states {
         if state.t > 5.0 + 1e-9 && state.t < 15.0 - 1e-9 {
             let load_azimuth = state.q[9].atan2(state.q[8]);
-            assert!(
-                (slewing_angle(state) - load_azimuth).abs() < 1e-9,
-                "t = {}",
-                state.t
-            );
+            assert!((slewing_angle(state) - load_azimuth).abs() < 1e-9, "t = {}", state.t);
         }
         // the boom tip stays on its circle
         let r = state.q[6].hypot(state.q[7]);

@@ -22,13 +22,8 @@ const SWITCHES: [f64; 4] = [0.0, 5.0, 15.0, 20.0];
 fn run(case: &PaperCase, dt: f64) -> (Run, f64) {
     let start = case.start().expect("the paper's start is consistent");
     let clock = Instant::now();
-    let solution = simulate(
-        case.model(),
-        case.path(),
-        &start,
-        &Options::new(dt, case.tf()),
-    )
-    .unwrap_or_else(|e| panic!("the run at dt = {dt} converges: {e}"));
+    let solution = simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf()))
+        .unwrap_or_else(|e| panic!("the run at dt = {dt} converges: {e}"));
     (solution, clock.elapsed().as_secs_f64())
 }
 
@@ -63,9 +58,7 @@ fn generated_derivatives_match_central_differences() {
     assert_eq!(report.points, 200);
     assert_eq!(
         Navy3dPulley::INFO.coordinates,
-        [
-            "L1", "L2", "L3", "L0", "x0", "y0", "x3", "y3", "x", "y", "z", "z0"
-        ]
+        ["L1", "L2", "L3", "L0", "x0", "y0", "x3", "y3", "x", "y", "z", "z0"]
     );
     assert_eq!(Navy3dPulley::INFO.inputs, ["u1", "u2", "u3", "u4"]);
     assert_eq!(
@@ -78,10 +71,7 @@ fn generated_derivatives_match_central_differences() {
         .map(|r| (r.tension, r.constraint))
         .collect();
     assert_eq!(ropes, [("N1", 1), ("N2", 2), ("N3", 4)]);
-    assert_eq!(
-        (Navy3dPulley::N, Navy3dPulley::M, Navy3dPulley::A),
-        (12, 5, 4)
-    );
+    assert_eq!((Navy3dPulley::N, Navy3dPulley::M, Navy3dPulley::A), (12, 5, 4));
     // implicit parameter (docs/errata.md): M = J_b / r^2 = 6.4 kg with r = (k + l) sin(alpha)
     let m = Navy3dPulley::default();
     let r = (m.k + m.l) * m.alpha.sin();
@@ -107,23 +97,13 @@ fn paper_start_is_consistent() {
     let n = [20.0 * g * 3f64.sqrt() / 2.0, 20.0 * g * l2 / 5.0, 100.0 * g];
     let expected_u = [-0.1 * n[0], -0.1 * n[1], -0.1 * n[2], 0.0];
     for (i, e) in expected_u.iter().enumerate() {
-        assert!(
-            (start.u[i] - e).abs() < 1e-9,
-            "u{} = {} vs {e}",
-            i + 1,
-            start.u[i]
-        );
+        assert!((start.u[i] - e).abs() < 1e-9, "u{} = {} vs {e}", i + 1, start.u[i]);
     }
     // tensions N = lambda * length
     let lengths = [start.q[0], start.q[1], start.q[2] - start.q[3]];
     for (k, c) in [1, 2, 4].iter().enumerate() {
         let tension = start.lambda[*c] * lengths[k];
-        assert!(
-            (tension - n[k]).abs() < 1e-8,
-            "N{} = {tension} vs {}",
-            k + 1,
-            n[k]
-        );
+        assert!((tension - n[k]).abs() < 1e-8, "N{} = {tension} vs {}", k + 1, n[k]);
     }
     assert_eq!(slewing_angle(&start), 0.0);
     // the printed 6.6144 (eq. 99) is off by 2.2e-5 m from sqrt(43.75): the
@@ -159,18 +139,8 @@ fn static_equilibrium_recovers_the_start() {
         state.q.as_slice(),
         state.u.as_slice()
     );
-    assert!(
-        (state.q - start.q).amax() < 1e-9,
-        "{} vs {}",
-        state.q,
-        start.q
-    );
-    assert!(
-        (state.u - start.u).amax() < 1e-7,
-        "{} vs {}",
-        state.u,
-        start.u
-    );
+    assert!((state.q - start.q).amax() < 1e-9, "{} vs {}", state.q, start.q);
+    assert!((state.u - start.u).amax() < 1e-7, "{} vs {}", state.u, start.u);
     assert!(
         (state.lambda - start.lambda).amax() < 1e-7,
         "{} vs {}",
@@ -197,12 +167,7 @@ fn runs_converge_and_ropes_stay_taut() {
                 }
             }
             let peak_u: Vec<f64> = (0..4)
-                .map(|k| {
-                    solution
-                        .states
-                        .iter()
-                        .fold(0.0f64, |m, s| m.max(s.u[k].abs()))
-                })
+                .map(|k| solution.states.iter().fold(0.0f64, |m, s| m.max(s.u[k].abs())))
                 .collect();
             let end = solution.states.last().unwrap();
             println!(
@@ -213,10 +178,7 @@ fn runs_converge_and_ropes_stay_taut() {
                 solution.mean_newton_iterations(),
                 slewing_angle(end),
             );
-            assert!(
-                lowest.iter().all(|&n| n > 0.0),
-                "{name} dt = {dt}: {lowest:?}"
-            );
+            assert!(lowest.iter().all(|&n| n > 0.0), "{name} dt = {dt}: {lowest:?}");
             // the boom tip stays on its circle; at the end the boom points at the load
             for s in &solution.states {
                 assert!((s.q[6].hypot(s.q[7]) - 5.0 * 3f64.sqrt()).abs() < 1e-9);
@@ -283,11 +245,7 @@ fn u_converges_with_order_one_paper_profile() {
         assert!(*r < 0.7, "u4 everywhere: {:?}", all[3]);
     }
     for r in &away[3] {
-        assert!(
-            (1.6..=2.4).contains(r),
-            "u4 away from the switches: {:?}",
-            away[3]
-        );
+        assert!((1.6..=2.4).contains(r), "u4 away from the switches: {:?}", away[3]);
     }
 }
 
@@ -330,10 +288,7 @@ fn u4_spikes_at_the_switches_only_on_the_paper_profile() {
     for dt in dts {
         let paper = run(&PaperCase::new(TF).unwrap(), dt).0;
         let smooth = run(&PaperCase::smooth(TF).unwrap(), dt).0;
-        let (p, s) = (
-            u4_near_switches(&paper, 0.2),
-            u4_near_switches(&smooth, 0.2),
-        );
+        let (p, s) = (u4_near_switches(&paper, 0.2), u4_near_switches(&smooth, 0.2));
         let away = |r: &Run| {
             r.states
                 .iter()
@@ -358,10 +313,7 @@ fn u4_spikes_at_the_switches_only_on_the_paper_profile() {
             peak(&w[1]) * dt / 2.0
         );
     }
-    let growth: Vec<f64> = paper_peaks
-        .windows(2)
-        .map(|w| peak(&w[1]) / peak(&w[0]))
-        .collect();
+    let growth: Vec<f64> = paper_peaks.windows(2).map(|w| peak(&w[1]) / peak(&w[0])).collect();
     for r in &growth[3..] {
         assert!((1.7..=2.3).contains(r), "{growth:?}: {paper_peaks:?}");
     }
@@ -394,12 +346,29 @@ fn generated_model_matches_the_transcribed_equations_91_to_96() {
     let big_m = c.J_b / (r * r);
     assert!((big_m - 6.4).abs() < 1e-12, "M = J_b / r^2 = 6.4 kg (sect. 6.2.1)");
     // (92): M1 = diag(J1/r1^2, J2/r2^2, J3/r3^2, 0, m0, m0, M, M), M2 = diag(m_l, m_l, m_l, m0)
-    let diagonal = [c.J1 / (c.r1 * c.r1), c.J2 / (c.r2 * c.r2), c.J3 / (c.r3 * c.r3), 0.0, c.m0, c.m0, big_m, big_m, c.m_l, c.m_l, c.m_l, c.m0];
+    let diagonal = [
+        c.J1 / (c.r1 * c.r1),
+        c.J2 / (c.r2 * c.r2),
+        c.J3 / (c.r3 * c.r3),
+        0.0,
+        c.m0,
+        c.m0,
+        big_m,
+        big_m,
+        c.m_l,
+        c.m_l,
+        c.m_l,
+        c.m0,
+    ];
     let mass = c.mass_matrix::<f64>();
     for i in 0..12 {
         for j in 0..12 {
             let expected = if i == j { diagonal[i] } else { 0.0 };
-            assert!((mass[(i, j)] - expected).abs() <= 1e-15 * expected.abs().max(1.0), "M[{i}][{j}] = {} vs {expected}", mass[(i, j)]);
+            assert!(
+                (mass[(i, j)] - expected).abs() <= 1e-15 * expected.abs().max(1.0),
+                "M[{i}][{j}] = {} vs {expected}",
+                mass[(i, j)]
+            );
         }
     }
     let (b1, b2) = (c.beta1, c.beta2);
@@ -451,11 +420,19 @@ fn generated_model_matches_the_transcribed_equations_91_to_96() {
         close(c.constraints(&q).as_slice(), &g, "g (93)");
         let jac = c.constraint_jacobian(&q);
         for (i, row) in gt.iter().enumerate() {
-            close(&jac.column(i).iter().copied().collect::<Vec<_>>(), row, &format!("G^T row {i} (95, 96)"));
+            close(
+                &jac.column(i).iter().copied().collect::<Vec<_>>(),
+                row,
+                &format!("G^T row {i} (95, 96)"),
+            );
         }
         let input = c.input_matrix(&q);
         for (i, row) in bt.iter().enumerate() {
-            close(&input.row(i).iter().copied().collect::<Vec<_>>(), row, &format!("B^T row {i} (94)"));
+            close(
+                &input.row(i).iter().copied().collect::<Vec<_>>(),
+                row,
+                &format!("B^T row {i} (94)"),
+            );
         }
         close(c.forces(&q, &v).as_slice(), &f, "f (94)");
     }
@@ -507,9 +484,23 @@ fn in_the_vertical_plane_it_is_the_planar_pulley_crane_of_appendix_b() {
     }
     assert_eq!((planar.s, planar.l), (5.0, 5.0));
     let (start, end) = (vector![-2.5 * 3f64.sqrt(), -17.5, -12.5], vector![-2.0, -16.0, -15.0]);
-    let planar_path = Path::new(PathSpec { profile: Profile::Poly9, t0: 0.0, t1: 4.0, start, end }).unwrap();
+    let planar_path = Path::new(PathSpec {
+        profile: Profile::Poly9,
+        t0: 0.0,
+        t1: 4.0,
+        start,
+        end,
+    })
+    .unwrap();
     let lift = |p: SVector<f64, 3>| vector![p[0] + tip[0], 0.0, p[1] + tip[1], p[2] + tip[1]];
-    let path = Path::new(PathSpec { profile: Profile::Poly9, t0: 0.0, t1: 4.0, start: lift(start), end: lift(end) }).unwrap();
+    let path = Path::new(PathSpec {
+        profile: Profile::Poly9,
+        t0: 0.0,
+        t1: 4.0,
+        start: lift(start),
+        end: lift(end),
+    })
+    .unwrap();
     let q = reference_at(&planar, &planar_path, 0.0).q; // [L1, L2, L3, L0, x0 | x, z, z0]
     let p0 = vec![q[0], q[1], q[2], q[3], q[4] + tip[0], 0.0, r, 0.0];
     let case = PaperCase::from_parts(crane.clone(), path, p0, 4.0);
@@ -517,7 +508,9 @@ fn in_the_vertical_plane_it_is_the_planar_pulley_crane_of_appendix_b() {
         let errors: Vec<f64> = [0.02, 0.01]
             .iter()
             .map(|&dt| {
-                let run = case.simulate(&case.start().unwrap(), &Options::new(dt, 1.5).with_scheme(scheme)).unwrap();
+                let run = case
+                    .simulate(&case.start().unwrap(), &Options::new(dt, 1.5).with_scheme(scheme))
+                    .unwrap();
                 let off_plane = run
                     .states
                     .iter()
@@ -531,7 +524,10 @@ fn in_the_vertical_plane_it_is_the_planar_pulley_crane_of_appendix_b() {
             .collect();
         let order = (errors[0] / errors[1]).log2();
         let k = scheme.order() as f64;
-        println!("navy-3d-pulley in the plane, {scheme}: e_u(1.5 s) against Appendix B = {:.3e} / {:.3e}, order {order:.2}", errors[0], errors[1]);
+        println!(
+            "navy-3d-pulley in the plane, {scheme}: e_u(1.5 s) against Appendix B = {:.3e} / {:.3e}, order {order:.2}",
+            errors[0], errors[1]
+        );
         assert!(errors[1] < errors[0] && errors[0] < 2e-2, "{errors:?}");
         assert!((k - 0.3..=k + 0.7).contains(&order), "{scheme}: order {order}");
     }

@@ -11,7 +11,9 @@ const DTS: [f64; 6] = [0.1, 0.05, 0.02, 0.01, 0.005, 0.001];
 
 fn run_minimal(case: &PaperCase, dt: f64) -> Solution<7, 3, 2> {
     let start = case.start().unwrap();
-    case.simulate_minimal(&start, &Options::new(dt, case.tf())).unwrap().expect("the minimal run converges")
+    case.simulate_minimal(&start, &Options::new(dt, case.tf()))
+        .unwrap()
+        .expect("the minimal run converges")
 }
 
 fn run_redundant(case: &PaperCase, dt: f64) -> Solution<7, 3, 2> {
@@ -21,7 +23,13 @@ fn run_redundant(case: &PaperCase, dt: f64) -> Solution<7, 3, 2> {
 
 #[test]
 fn minimal_formulation_converges_with_order_one_tf4() {
-    kit::assert_order(&PaperCase::new(4.0).unwrap(), Formulation::Minimal, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
+    kit::assert_order(
+        &PaperCase::new(4.0).unwrap(),
+        Formulation::Minimal,
+        Scheme::BackwardEuler,
+        &DTS,
+        0.9..=1.1,
+    );
 }
 
 /// The slow maneuver of Fig. 9, down to dt = 0.001 (the first steps, while
@@ -29,7 +37,13 @@ fn minimal_formulation_converges_with_order_one_tf4() {
 /// `degenerate_start_then_minimal_coordinates_follow_appendix_a`).
 #[test]
 fn minimal_formulation_converges_with_order_one_tf15() {
-    kit::assert_order(&PaperCase::new(15.0).unwrap(), Formulation::Minimal, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
+    kit::assert_order(
+        &PaperCase::new(15.0).unwrap(),
+        Formulation::Minimal,
+        Scheme::BackwardEuler,
+        &DTS,
+        0.9..=1.1,
+    );
 }
 
 /// At the paper's start rope L1 is slack (N1 = 0, eq. 46), and while N1 is
@@ -54,7 +68,10 @@ fn degenerate_start_then_minimal_coordinates_follow_appendix_a() {
             assert!(k >= 1, "rope L1 is slack at the paper's start: tf = {tf}, dt = {dt}");
             assert_eq!(minimal.states[..=k], redundant.states[..=k], "tf = {tf}, dt = {dt}");
             let tension_ratio = |i: usize| minimal.tensions_at(i)[0] / minimal.tensions_at(i)[1];
-            assert!(tension_ratio(k) >= 1e-5 && tension_ratio(k - 1) < 1e-5, "tf = {tf}, dt = {dt}, k = {k}");
+            assert!(
+                tension_ratio(k) >= 1e-5 && tension_ratio(k - 1) < 1e-5,
+                "tf = {tf}, dt = {dt}, k = {k}"
+            );
             let error = |s: &crane_runtime::State<7, 3, 2>| (s.q - case.reference(s.t).unwrap().q).amax();
             let start_error = minimal.states[..=k].iter().map(error).fold(0.0, f64::max);
             let minimal_error = minimal.states[k..].iter().map(error).fold(0.0, f64::max);
@@ -153,7 +170,10 @@ fn minimal_map_satisfies_the_constraints_and_its_derivatives_check() {
     let mu_box = [(0.2, 0.9), (1.2, 2.2), (-0.5, 0.5), (2.0, 10.0)];
     let report = check_minimal_map(&NavyPlanar::default(), &mu_box, 1.0, 200, 3);
     println!("{report}");
-    assert!(report.get("g(phi(mu)) = 0").unwrap().worst_relative_error < 1e-13, "{report}");
+    assert!(
+        report.get("g(phi(mu)) = 0").unwrap().worst_relative_error < 1e-13,
+        "{report}"
+    );
     assert!(report.get("G P = 0").unwrap().worst_relative_error < 1e-13, "{report}");
     assert!(report.worst() < 1e-6, "{report}");
 }

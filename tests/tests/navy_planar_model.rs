@@ -12,7 +12,15 @@ use rand::{Rng, SeedableRng};
 /// Coordinates around the paper's maneuver: lengths 1..20 m, positions -15..15 m.
 fn sample_box() -> SampleBox<7> {
     SampleBox {
-        q: [(1.0, 20.0), (1.0, 20.0), (1.0, 20.0), (-15.0, 15.0), (-15.0, 0.0), (-15.0, 15.0), (-20.0, 0.0)],
+        q: [
+            (1.0, 20.0),
+            (1.0, 20.0),
+            (1.0, 20.0),
+            (-15.0, 15.0),
+            (-15.0, 0.0),
+            (-15.0, 15.0),
+            (-20.0, 0.0),
+        ],
         velocity: 2.0,
         multiplier: 500.0,
         input: 200.0,
@@ -49,7 +57,11 @@ fn generated_model_matches_the_paper_equations() {
         let v = SVector::<f64, 7>::from_fn(|_, _| rng.random_range(-2.0..=2.0));
         let lambda = SVector::<f64, 3>::from_fn(|_, _| rng.random_range(-500.0..=500.0));
         let u = SVector::<f64, 2>::from_fn(|_, _| rng.random_range(-200.0..=200.0));
-        close(generated.constraints(&q).as_slice(), paper.constraints(&q).as_slice(), "g (eq. 33)");
+        close(
+            generated.constraints(&q).as_slice(),
+            paper.constraints(&q).as_slice(),
+            "g (eq. 33)",
+        );
         close(
             generated.constraint_jacobian(&q).as_slice(),
             paper.constraint_jacobian(&q).as_slice(),
@@ -65,8 +77,16 @@ fn generated_model_matches_the_paper_equations() {
             paper.mass_matrix::<f64>().as_slice(),
             "M = diag(M1, M2) (eq. 29)",
         );
-        close(generated.forces(&q, &v).as_slice(), paper.forces(&q, &v).as_slice(), "f (eq. 34)");
-        close(generated.input_matrix(&q).as_slice(), paper.input_matrix(&q).as_slice(), "B^T (eq. 34)");
+        close(
+            generated.forces(&q, &v).as_slice(),
+            paper.forces(&q, &v).as_slice(),
+            "f (eq. 34)",
+        );
+        close(
+            generated.input_matrix(&q).as_slice(),
+            paper.input_matrix(&q).as_slice(),
+            "B^T (eq. 34)",
+        );
         close(
             generated.input_jacobian(&q, &u).as_slice(),
             paper.input_jacobian(&q, &u).as_slice(),
@@ -97,7 +117,11 @@ fn constraint_jacobian_at_the_paper_start() {
     ];
     for (i, row) in expected.iter().enumerate() {
         for (j, value) in row.iter().enumerate() {
-            assert!((g[(i, j)] - value).abs() < 1e-12, "G[{i},{j}] = {} vs {value}", g[(i, j)]);
+            assert!(
+                (g[(i, j)] - value).abs() < 1e-12,
+                "G[{i},{j}] = {} vs {value}",
+                g[(i, j)]
+            );
         }
     }
 }

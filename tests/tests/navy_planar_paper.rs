@@ -26,7 +26,12 @@ fn paper_start_is_consistent_and_matches_appendix_a() {
     // u and lambda of the static balance against the flatness solution at t0
     // (force scale m_l g ~ 1e3: 1e-10 relative)
     assert!((start.u - reference.u).amax() < 1e-7, "{} vs {}", start.u, reference.u);
-    assert!((start.lambda - reference.lambda).amax() < 1e-7, "{} vs {}", start.lambda, reference.lambda);
+    assert!(
+        (start.lambda - reference.lambda).amax() < 1e-7,
+        "{} vs {}",
+        start.lambda,
+        reference.lambda
+    );
     // the slack rope L1 of the degenerate start (docs/errata.md)
     assert!(start.lambda[0].abs() < 1e-10);
 }
@@ -54,7 +59,10 @@ fn perturbed_start_names_the_violated_constraint() {
     let l1 = (x0 + l * alpha.sin()).hypot(z0 + l * alpha.cos());
     let l2 = l0 + (0.0 - x0).hypot(-10.0 - z0);
     let error = init::check_start(case.model(), case.path(), 0.0, &[l1, l2, l0, x0, z0], None).unwrap_err();
-    assert!(error.to_string().contains("static balance of coordinate `x`"), "{error}");
+    assert!(
+        error.to_string().contains("static balance of coordinate `x`"),
+        "{error}"
+    );
 }
 
 #[test]
@@ -80,7 +88,13 @@ fn static_solve_reports_the_non_unique_equilibrium() {
 fn static_solve_finds_a_regular_equilibrium() {
     let case = PaperCase::new(4.0).unwrap();
     let reference = case.reference(4.0).unwrap();
-    let guess = [reference.q[0] + 0.5, reference.q[1] - 0.5, reference.q[2] + 0.4, reference.q[3] - 0.3, reference.q[4] + 0.3];
+    let guess = [
+        reference.q[0] + 0.5,
+        reference.q[1] - 0.5,
+        reference.q[2] + 0.4,
+        reference.q[3] - 0.3,
+        reference.q[4] + 0.3,
+    ];
     let state = init::static_equilibrium(case.model(), case.path(), 4.0, &guess).unwrap();
     // Newton converges to round-off (1e-11 relative update test); the
     // reference is exact: agreement to 1e-9 in metres and 1e-7 in N m, N/m
@@ -94,14 +108,26 @@ fn static_solve_finds_a_regular_equilibrium() {
 
 #[test]
 fn u_converges_with_order_one_tf4() {
-    let errors = kit::assert_order(&PaperCase::new(4.0).unwrap(), Formulation::Redundant, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
+    let errors = kit::assert_order(
+        &PaperCase::new(4.0).unwrap(),
+        Formulation::Redundant,
+        Scheme::BackwardEuler,
+        &DTS,
+        0.9..=1.1,
+    );
     // Fig. 7 (left): errors of a few percent at dt = 0.1 down to ~1e-4
     assert!(errors[0] < 0.05 && errors[5] < 1e-3, "{errors:?}");
 }
 
 #[test]
 fn u_converges_with_order_one_tf15() {
-    kit::assert_order(&PaperCase::new(15.0).unwrap(), Formulation::Redundant, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
+    kit::assert_order(
+        &PaperCase::new(15.0).unwrap(),
+        Formulation::Redundant,
+        Scheme::BackwardEuler,
+        &DTS,
+        0.9..=1.1,
+    );
 }
 
 /// docs/errata.md, "Where the discretisation error sits": for the massless pulley the
@@ -135,7 +161,12 @@ fn ropes_stay_taut_along_the_maneuver() {
             for (rope, n) in solution.info.ropes.iter().zip(solution.tensions_at(i)) {
                 // N1 is exactly 0 at the degenerate start and evaluates to
                 // ~1e-13 N of either sign; anything below -1e-9 peak is slack
-                assert!(*n >= -1e-9 * peak, "rope {} slack at t = {}: {n}", rope.tension, state.t);
+                assert!(
+                    *n >= -1e-9 * peak,
+                    "rope {} slack at t = {}: {n}",
+                    rope.tension,
+                    state.t
+                );
             }
         }
     }

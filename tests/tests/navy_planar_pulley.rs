@@ -111,16 +111,7 @@ impl Paper {
 
     fn forces(&self) -> SVector<f64, 8> {
         let p = &self.0;
-        SVector::<f64, 8>::from_column_slice(&[
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            -p.m_l * p.g,
-            -p.m0 * p.g,
-        ])
+        SVector::<f64, 8>::from_column_slice(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -p.m_l * p.g, -p.m0 * p.g])
     }
 
     fn input_matrix(&self) -> SMatrix<f64, 8, 3> {
@@ -151,10 +142,7 @@ fn generated_model_matches_the_paper_equations() {
     let close = |a: &[f64], b: &[f64], what: &str| {
         let scale = b.iter().fold(1.0f64, |m, x| m.max(x.abs()));
         for (x, y) in a.iter().zip(b) {
-            assert!(
-                (x - y).abs() <= 1e-12 * scale,
-                "{what}: generated {a:?} vs paper {b:?}"
-            );
+            assert!((x - y).abs() <= 1e-12 * scale, "{what}: generated {a:?} vs paper {b:?}");
         }
     };
     close(
@@ -187,17 +175,10 @@ fn generated_model_matches_the_paper_equations() {
         );
         let mut lengths = [0.0; 3];
         generated.rope_lengths(&q, &mut lengths);
-        close(
-            &lengths,
-            &[q[0], q[1], q[2] - q[3]],
-            "rope lengths L1, L2, L3 - L0",
-        );
+        close(&lengths, &[q[0], q[1], q[2] - q[3]], "rope lengths L1, L2, L3 - L0");
     }
     let info = NavyPlanarPulley::INFO;
-    assert_eq!(
-        info.coordinates,
-        ["L1", "L2", "L3", "L0", "x0", "x", "z", "z0"]
-    );
+    assert_eq!(info.coordinates, ["L1", "L2", "L3", "L0", "x0", "x", "z", "z0"]);
     assert_eq!(info.inputs, ["u1", "u2", "u3"]);
     assert_eq!(info.constraints, ["rope1", "rope0", "rope2", "hoist"]);
     assert_eq!(
@@ -233,13 +214,7 @@ fn generated_model_matches_the_paper_equations() {
 
 fn run(case: &PaperCase, dt: f64) -> Solution<8, 4, 3> {
     let start = case.start().expect("the paper's start is consistent");
-    simulate(
-        case.model(),
-        case.path(),
-        &start,
-        &Options::new(dt, case.tf()),
-    )
-    .expect("the run converges")
+    simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf())).expect("the run converges")
 }
 
 /// Eq. (66) with docs/errata.md is the flatness solution at t0; `u` and `lambda` of
@@ -268,12 +243,7 @@ fn paper_start_is_consistent_and_matches_appendix_b() {
         (start.u - reference.u).amax(),
         (start.lambda - reference.lambda).amax()
     );
-    assert!(
-        (start.u - reference.u).amax() < 1e-9,
-        "{} vs {}",
-        start.u,
-        reference.u
-    );
+    assert!((start.u - reference.u).amax() < 1e-9, "{} vs {}", start.u, reference.u);
     assert!(
         (start.lambda - reference.lambda).amax() < 1e-9,
         "{} vs {}",
@@ -295,9 +265,7 @@ fn printed_p0_is_refused() {
     let printed = [10.0, 15.0, 13.23, 10.0, -2.5 * 3f64.sqrt()];
     let error = init::check_start(case.model(), case.path(), 0.0, &printed, None).unwrap_err();
     match &error {
-        Error::InconsistentStart {
-            equation, residual, ..
-        } => {
+        Error::InconsistentStart { equation, residual, .. } => {
             assert!(equation.contains("rope2"), "{error}");
             // g_rope2 = 1/2 (x0^2 + z0^2 - 15^2) = 1/2 (175 - 225)
             assert!((residual - 25.0).abs() < 1e-12, "{error}");
@@ -313,13 +281,7 @@ fn static_solve_recovers_the_paper_start() {
     let case = PaperCase::new(4.0).unwrap();
     let reference = case.reference(0.0).unwrap();
     let p0 = paper_p0();
-    let guess = [
-        p0[0] + 0.5,
-        p0[1] - 0.4,
-        p0[2] + 0.6,
-        p0[3] - 0.3,
-        p0[4] + 0.4,
-    ];
+    let guess = [p0[0] + 0.5, p0[1] - 0.4, p0[2] + 0.6, p0[3] - 0.3, p0[4] + 0.4];
     let state = init::static_equilibrium(case.model(), case.path(), 0.0, &guess).unwrap();
     println!(
         "static solve: |q - q_ref| = {:.1e}, |u - u_ref| = {:.1e}, |lambda - lambda_ref| = {:.1e}",
@@ -328,31 +290,15 @@ fn static_solve_recovers_the_paper_start() {
         (state.lambda - reference.lambda).amax()
     );
     for (i, e) in p0.iter().enumerate() {
-        assert!(
-            (state.q[i] - e).abs() < 1e-9,
-            "p[{i}] = {} vs {e}",
-            state.q[i]
-        );
+        assert!((state.q[i] - e).abs() < 1e-9, "p[{i}] = {} vs {e}", state.q[i]);
     }
     // Newton to round-off (1e-11 relative update test) against exact formulas
-    assert!(
-        (state.q - reference.q).amax() < 1e-9,
-        "{} vs {}",
-        state.q,
-        reference.q
-    );
-    assert!(
-        (state.u - reference.u).amax() < 1e-7,
-        "{} vs {}",
-        state.u,
-        reference.u
-    );
+    assert!((state.q - reference.q).amax() < 1e-9, "{} vs {}", state.q, reference.q);
+    assert!((state.u - reference.u).amax() < 1e-7, "{} vs {}", state.u, reference.u);
     assert!((state.lambda - reference.lambda).amax() < 1e-7);
     // and at the end of the maneuver (load 1 m below the pulley)
     let end = case.reference(4.0).unwrap();
-    let guess: Vec<f64> = (0..5)
-        .map(|i| end.q[i] + [0.3, -0.3, 0.2, 0.2, -0.2][i])
-        .collect();
+    let guess: Vec<f64> = (0..5).map(|i| end.q[i] + [0.3, -0.3, 0.2, 0.2, -0.2][i]).collect();
     let state = init::static_equilibrium(case.model(), case.path(), 4.0, &guess).unwrap();
     assert!((state.q - end.q).amax() < 1e-9, "{} vs {}", state.q, end.q);
     assert!((state.u - end.u).amax() < 1e-7, "{} vs {}", state.u, end.u);
@@ -363,13 +309,25 @@ fn static_solve_recovers_the_paper_start() {
 
 #[test]
 fn u_converges_with_order_one_tf4() {
-    let errors = kit::assert_order(&PaperCase::new(4.0).unwrap(), Formulation::Redundant, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
+    let errors = kit::assert_order(
+        &PaperCase::new(4.0).unwrap(),
+        Formulation::Redundant,
+        Scheme::BackwardEuler,
+        &DTS,
+        0.9..=1.1,
+    );
     assert!(errors[0] < 0.1 && errors[5] < 1e-3, "{errors:?}");
 }
 
 #[test]
 fn u_converges_with_order_one_tf15() {
-    kit::assert_order(&PaperCase::new(15.0).unwrap(), Formulation::Redundant, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
+    kit::assert_order(
+        &PaperCase::new(15.0).unwrap(),
+        Formulation::Redundant,
+        Scheme::BackwardEuler,
+        &DTS,
+        0.9..=1.1,
+    );
 }
 
 /// docs/errata.md, "Where the discretisation error sits": the servo constraints (with
@@ -430,19 +388,8 @@ fn ropes_stay_taut_along_the_maneuver() {
         let (mut min, mut peak, mut worst) = ([f64::INFINITY; 3], [0.0f64; 3], [0.0f64; 3]);
         for (i, state) in solution.states.iter().enumerate() {
             let reference = reference_at(&params, case.path(), state.t);
-            for (k, (rope, &n)) in solution
-                .info
-                .ropes
-                .iter()
-                .zip(solution.tensions_at(i))
-                .enumerate()
-            {
-                assert!(
-                    n > 0.0,
-                    "rope {} slack at t = {}: {n}",
-                    rope.tension,
-                    state.t
-                );
+            for (k, (rope, &n)) in solution.info.ropes.iter().zip(solution.tensions_at(i)).enumerate() {
+                assert!(n > 0.0, "rope {} slack at t = {}: {n}", rope.tension, state.t);
                 assert!(
                     reference.tensions[k] > 0.0,
                     "reference {} at t = {}",

@@ -19,13 +19,7 @@ fn run_minimal(case: &PaperCase, dt: f64) -> Solution<8, 4, 3> {
 
 fn run_redundant(case: &PaperCase, dt: f64) -> Solution<8, 4, 3> {
     let start = case.start().unwrap();
-    simulate(
-        case.model(),
-        case.path(),
-        &start,
-        &Options::new(dt, case.tf()),
-    )
-    .unwrap()
+    simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf())).unwrap()
 }
 
 // ---------------------------------------------------------------------------
@@ -60,10 +54,7 @@ fn minimal_map_satisfies_the_constraints_and_its_derivatives_check() {
     println!("mu along the maneuvers: {range:.4?}");
     let mu_box = [(0.7, 1.3), (0.8, 1.3), (-0.3, 0.3), (0.5, 8.0)];
     for (r, b) in range.iter().zip(&mu_box) {
-        assert!(
-            b.0 < r.0 && r.1 < b.1,
-            "maneuver {r:?} outside the box {b:?}"
-        );
+        assert!(b.0 < r.0 && r.1 < b.1, "maneuver {r:?} outside the box {b:?}");
     }
     let report = check_minimal_map(&NavyPlanarPulley::default(), &mu_box, 1.0, 200, 5);
     println!("{report}");
@@ -71,10 +62,7 @@ fn minimal_map_satisfies_the_constraints_and_its_derivatives_check() {
         report.get("g(phi(mu)) = 0").unwrap().worst_relative_error < 1e-13,
         "{report}"
     );
-    assert!(
-        report.get("G P = 0").unwrap().worst_relative_error < 1e-13,
-        "{report}"
-    );
+    assert!(report.get("G P = 0").unwrap().worst_relative_error < 1e-13, "{report}");
     assert!(report.worst() < 1e-6, "{report}");
 }
 
@@ -119,10 +107,9 @@ fn output_jacobian_is_regular() {
             for theta in [-0.25, 0.0, 0.25] {
                 for big_l in [1.0, 4.0, 7.0] {
                     let mu = SVector::<f64, 4>::from([beta, gamma, theta, big_l]);
-                    let d2: SMatrix<f64, 3, 3> =
-                        model.null_space(&mu).fixed_view::<3, 3>(5, 1).into_owned();
-                    let expected = -big_l * l * beta.sin() * (a - beta).cos()
-                        / (gamma + theta + a - beta).sin().powi(2);
+                    let d2: SMatrix<f64, 3, 3> = model.null_space(&mu).fixed_view::<3, 3>(5, 1).into_owned();
+                    let expected =
+                        -big_l * l * beta.sin() * (a - beta).cos() / (gamma + theta + a - beta).sin().powi(2);
                     let det = d2.determinant();
                     assert!(
                         (det - expected).abs() < 1e-12 * expected.abs(),
@@ -143,14 +130,26 @@ fn output_jacobian_is_regular() {
 
 #[test]
 fn minimal_formulation_converges_with_order_one_tf4() {
-    kit::assert_order(&PaperCase::new(4.0).unwrap(), Formulation::Minimal, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
+    kit::assert_order(
+        &PaperCase::new(4.0).unwrap(),
+        Formulation::Minimal,
+        Scheme::BackwardEuler,
+        &DTS,
+        0.9..=1.1,
+    );
 }
 
 /// The slow maneuver of Fig. 18; unlike the massless-pulley crane's
 /// degenerate start, the regular start (66) lets it run down to dt = 0.001.
 #[test]
 fn minimal_formulation_converges_with_order_one_tf15() {
-    kit::assert_order(&PaperCase::new(15.0).unwrap(), Formulation::Minimal, Scheme::BackwardEuler, &DTS, 0.9..=1.1);
+    kit::assert_order(
+        &PaperCase::new(15.0).unwrap(),
+        Formulation::Minimal,
+        Scheme::BackwardEuler,
+        &DTS,
+        0.9..=1.1,
+    );
 }
 
 // ---------------------------------------------------------------------------
@@ -158,11 +157,7 @@ fn minimal_formulation_converges_with_order_one_tf15() {
 
 /// Largest differences over a run: `[u_red - u_min, lambda_red - lambda_min,
 /// q_red - q_min, q_red - q_ref, q_min - q_ref]` (max norms).
-fn differences(
-    case: &PaperCase,
-    redundant: &Solution<8, 4, 3>,
-    minimal: &Solution<8, 4, 3>,
-) -> [f64; 5] {
+fn differences(case: &PaperCase, redundant: &Solution<8, 4, 3>, minimal: &Solution<8, 4, 3>) -> [f64; 5] {
     assert_eq!(redundant.states.len(), minimal.states.len());
     let mut worst = [0.0f64; 5];
     for (r, m) in redundant.states.iter().zip(&minimal.states) {
@@ -219,14 +214,8 @@ fn redundant_and_minimal_formulations_agree_as_dt_shrinks() {
         );
     }
     for w in table.windows(2) {
-        assert!(
-            w[1][0] < w[0][0],
-            "u difference must shrink with dt: {table:?}"
-        );
-        assert!(
-            w[1][1] < w[0][1],
-            "lambda difference must shrink with dt: {table:?}"
-        );
+        assert!(w[1][0] < w[0][0], "u difference must shrink with dt: {table:?}");
+        assert!(w[1][1] < w[0][1], "lambda difference must shrink with dt: {table:?}");
     }
     let n = DTS.len();
     let order = (table[n - 2][0] / table[n - 1][0]).ln() / (DTS[n - 2] / DTS[n - 1]).ln();

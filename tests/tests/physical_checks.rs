@@ -84,7 +84,12 @@ fn a_negative_mass_from_a_parameter_is_refused() {
     crane.set_parameter("mt", -10.0).unwrap();
     let path = Poly9::new(0.0, 5.0, vector![0.0, 5.0], vector![3.0, 4.0]).unwrap();
     let error = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 50.0]).unwrap_err();
-    let Error::IndefiniteMassMatrix { smallest_eigenvalue, coordinates, negative_parameters } = &error else {
+    let Error::IndefiniteMassMatrix {
+        smallest_eigenvalue,
+        coordinates,
+        negative_parameters,
+    } = &error
+    else {
         panic!("{error:?}")
     };
     assert!((smallest_eigenvalue + 10.0).abs() < 1e-12, "{smallest_eigenvalue}");
@@ -106,12 +111,29 @@ fn a_non_positive_declared_parameter_is_refused() {
     let mut crane = case.model().clone();
     crane.set_parameter("m_l", -100.0).unwrap();
     let error = simulate(&crane, case.path(), &start, &Options::new(0.01, 4.0)).unwrap_err();
-    assert_eq!(error, Error::NonPositiveParameter { name: "m_l", value: -100.0 });
-    assert_eq!(error.to_string(), "parameter `m_l` = -100 must be positive (it is declared `positive`)");
+    assert_eq!(
+        error,
+        Error::NonPositiveParameter {
+            name: "m_l",
+            value: -100.0
+        }
+    );
+    assert_eq!(
+        error.to_string(),
+        "parameter `m_l` = -100 must be positive (it is declared `positive`)"
+    );
     crane.set_parameter("m_l", 0.0).unwrap();
-    assert!(matches!(case_start(&crane), Err(Error::NonPositiveParameter { name: "m_l", .. })));
+    assert!(matches!(
+        case_start(&crane),
+        Err(Error::NonPositiveParameter { name: "m_l", .. })
+    ));
     // the boom angle is not declared positive: a negative alpha is a geometry
-    assert!(<crane_models::navy_planar::NavyPlanar as CraneModel<7, 3, 2>>::INFO.positive.iter().all(|&k| k != 5));
+    assert!(
+        <crane_models::navy_planar::NavyPlanar as CraneModel<7, 3, 2>>::INFO
+            .positive
+            .iter()
+            .all(|&k| k != 5)
+    );
 }
 
 fn case_start(crane: &crane_models::navy_planar::NavyPlanar) -> Result<(), Error> {
@@ -126,7 +148,13 @@ fn case_start(crane: &crane_models::navy_planar::NavyPlanar) -> Result<(), Error
 fn a_start_with_a_negative_rope_length_is_refused() {
     let case = crane_models::gantry_3d::DefaultCase::maneuver().unwrap();
     let error = init::static_equilibrium(case.model(), case.path(), 0.0, &[3.0, 3.0, -5.0]).unwrap_err();
-    assert_eq!(error, Error::NonPositiveRopeLength { rope: "N", length: -5.0 });
+    assert_eq!(
+        error,
+        Error::NonPositiveRopeLength {
+            rope: "N",
+            length: -5.0
+        }
+    );
     assert!(init::static_equilibrium(case.model(), case.path(), 0.0, &[3.0, 3.0, 5.0]).is_ok());
 }
 
@@ -155,7 +183,10 @@ fn the_overhead_crane_runs_in_both_formulations() {
             })
             .collect();
         let ratio = differences[0] / differences[1];
-        println!("overhead crane {scheme}: max |u_red - u_min| = {:.3e} / {:.3e}, ratio {ratio:.2}", differences[0], differences[1]);
+        println!(
+            "overhead crane {scheme}: max |u_red - u_min| = {:.3e} / {:.3e}, ratio {ratio:.2}",
+            differences[0], differences[1]
+        );
         kit::assert_ratio_of_order("overhead crane", scheme, ratio);
     }
 }
@@ -168,14 +199,27 @@ fn the_overhead_crane_runs_in_both_formulations() {
 #[test]
 fn the_minimal_map_check_reports_the_conditioning_of_d2_phi_x() {
     use crane_runtime::check::check_minimal_map;
-    let report = check_minimal_map(&Overhead::default(), &[(-5.0, 5.0), (-5.0, 5.0), (1.0, 10.0)], 1.0, 50, 1);
+    let report = check_minimal_map(
+        &Overhead::default(),
+        &[(-5.0, 5.0), (-5.0, 5.0), (1.0, 10.0)],
+        1.0,
+        50,
+        1,
+    );
     let d2 = report.output_jacobian.clone().expect("a minimal map reports D2 phi_x");
-    assert_eq!((d2.smallest_singular_value, d2.largest_condition), (1.0, 1.0), "{report}");
+    assert_eq!(
+        (d2.smallest_singular_value, d2.largest_condition),
+        (1.0, 1.0),
+        "{report}"
+    );
     assert_eq!(d2.at.len(), 3);
     let navy = crane_models::navy_planar::NavyPlanar::default();
     let report = check_minimal_map(&navy, &[(0.2, 0.9), (1.2, 2.2), (-0.5, 0.5), (2.0, 10.0)], 1.0, 200, 2);
     println!("{report}");
     let d2 = report.output_jacobian.expect("reported");
     assert!((d2.smallest_singular_value - 1.0).abs() < 1e-12, "{d2:?}");
-    assert!(d2.largest_condition > 2.0 && d2.largest_condition <= 10.0 + 1e-9, "{d2:?}");
+    assert!(
+        d2.largest_condition > 2.0 && d2.largest_condition <= 10.0 + 1e-9,
+        "{d2:?}"
+    );
 }

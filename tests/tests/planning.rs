@@ -12,16 +12,30 @@ use crane_runtime::nalgebra::vector;
 #[test]
 fn the_fastest_move_is_feasible_and_a_faster_one_is_not() {
     let case = navy_planar::PaperCase::maneuver().unwrap();
-    let limits = Limits { torque: vec![(1, 150.0)], tension: vec![] };
+    let limits = Limits {
+        torque: vec![(1, 150.0)],
+        tension: vec![],
+    };
     let settings = Settings::default();
     let best = fastest(&case, &limits, &settings).unwrap();
-    println!("T* = {:.4} s after {} evaluations; {} = {:.3} at t = {:.3} s; interval {:?}", best.duration, best.evaluations, best.binding.name, best.binding.value, best.binding.at, best.interval);
-    let at = |d: f64| evaluate(&case, d, &settings).0.feasible::<navy_planar::NavyPlanar, 7, 3, 2>(&limits);
+    println!(
+        "T* = {:.4} s after {} evaluations; {} = {:.3} at t = {:.3} s; interval {:?}",
+        best.duration, best.evaluations, best.binding.name, best.binding.value, best.binding.at, best.interval
+    );
+    let at = |d: f64| {
+        evaluate(&case, d, &settings)
+            .0
+            .feasible::<navy_planar::NavyPlanar, 7, 3, 2>(&limits)
+    };
     assert!(at(best.duration));
     assert!(!at(0.98 * best.duration));
     assert!(best.bracket.1 - best.bracket.0 <= settings.tolerance);
     assert_eq!(best.binding.name, "u2");
-    assert!(best.binding.value <= 150.0 && best.binding.value > 149.0, "{:?}", best.binding);
+    assert!(
+        best.binding.value <= 150.0 && best.binding.value > 149.0,
+        "{:?}",
+        best.binding
+    );
     assert!(best.interval.holds);
 }
 
@@ -35,19 +49,43 @@ fn the_fastest_move_is_feasible_and_a_faster_one_is_not() {
 /// error of sampling the tension every step (relative ~(dt/T)^2, 1e-7 s).
 #[test]
 fn a_tension_floor_gives_the_closed_form_duration() {
-    let s2 = |t: f64| 2520.0 * t.powi(3) - 12600.0 * t.powi(4) + 22680.0 * t.powi(5) - 17640.0 * t.powi(6) + 5040.0 * t.powi(7);
-    let max_s2 = (0..=1_000_000).map(|i| s2(i as f64 * 1e-6)).fold(f64::NEG_INFINITY, f64::max);
+    let s2 = |t: f64| {
+        2520.0 * t.powi(3) - 12600.0 * t.powi(4) + 22680.0 * t.powi(5) - 17640.0 * t.powi(6) + 5040.0 * t.powi(7)
+    };
+    let max_s2 = (0..=1_000_000)
+        .map(|i| s2(i as f64 * 1e-6))
+        .fold(f64::NEG_INFINITY, f64::max);
     let (dz, g) = (5.0f64, 9.81);
     let expected = (2.0 * dz * max_s2 / g).sqrt();
     let model = gantry_3d::Gantry3d::default();
-    let path = Path::new(PathSpec { profile: Profile::Poly9, t0: 0.0, t1: 8.0, start: vector![0.0, 0.0, -3.0], end: vector![0.0, 0.0, -8.0] }).unwrap();
+    let path = Path::new(PathSpec {
+        profile: Profile::Poly9,
+        t0: 0.0,
+        t1: 8.0,
+        start: vector![0.0, 0.0, -3.0],
+        end: vector![0.0, 0.0, -8.0],
+    })
+    .unwrap();
     let floor = 0.5 * model.m_l * g;
     let case = Case::<gantry_3d::Description, 6, 1, 3>::from_parts(model, path, vec![0.0, 0.0, 3.0], 8.0);
-    let limits = Limits { torque: vec![], tension: vec![(0, floor)] };
-    let settings = Settings { dt: 1e-3, ..Settings::default() };
+    let limits = Limits {
+        torque: vec![],
+        tension: vec![(0, floor)],
+    };
+    let settings = Settings {
+        dt: 1e-3,
+        ..Settings::default()
+    };
     let best = fastest(&case, &limits, &settings).unwrap();
-    println!("T* = {:.6} s, closed form {expected:.6} s (max s'' = {max_s2:.6}), {} evaluations", best.duration, best.evaluations);
-    assert!(best.duration >= expected - 1e-6 && best.duration <= expected + settings.tolerance + 1e-6, "{} vs {expected}", best.duration);
+    println!(
+        "T* = {:.6} s, closed form {expected:.6} s (max s'' = {max_s2:.6}), {} evaluations",
+        best.duration, best.evaluations
+    );
+    assert!(
+        best.duration >= expected - 1e-6 && best.duration <= expected + settings.tolerance + 1e-6,
+        "{} vs {expected}",
+        best.duration
+    );
     assert_eq!(best.binding.name, "N");
 }
 
@@ -58,13 +96,26 @@ fn a_tension_floor_gives_the_closed_form_duration() {
 #[test]
 fn brute_force_agrees_with_the_bisection() {
     let case = navy_planar::PaperCase::maneuver().unwrap();
-    let limits = Limits { torque: vec![(0, 150.0), (1, 150.0)], tension: vec![] };
+    let limits = Limits {
+        torque: vec![(0, 150.0), (1, 150.0)],
+        tension: vec![],
+    };
     let settings = Settings::default();
     let best = fastest(&case, &limits, &settings).unwrap();
     let grid: Vec<f64> = (0..=300).map(|i| best.duration - 0.3007 + 0.002 * i as f64).collect();
-    let feasible: Vec<bool> = grid.iter().map(|&d| evaluate(&case, d, &settings).0.feasible::<navy_planar::NavyPlanar, 7, 3, 2>(&limits)).collect();
+    let feasible: Vec<bool> = grid
+        .iter()
+        .map(|&d| {
+            evaluate(&case, d, &settings)
+                .0
+                .feasible::<navy_planar::NavyPlanar, 7, 3, 2>(&limits)
+        })
+        .collect();
     let first = grid.iter().zip(&feasible).find(|(_, f)| **f).map(|(d, _)| *d).unwrap();
-    println!("bisection {:.4} s ({} evaluations), brute force {first:.4} s (301 evaluations)", best.duration, best.evaluations);
+    println!(
+        "bisection {:.4} s ({} evaluations), brute force {first:.4} s (301 evaluations)",
+        best.duration, best.evaluations
+    );
     for (&d, &f) in grid.iter().zip(&feasible) {
         if (d - best.duration).abs() > settings.tolerance {
             assert_eq!(f, d > best.duration, "d = {d}");
@@ -79,12 +130,19 @@ fn brute_force_agrees_with_the_bisection() {
 #[test]
 fn sweep_rows_are_single_runs_whatever_the_threads() {
     let case = navy_planar::PaperCase::maneuver().unwrap();
-    let limits = Limits { torque: vec![(1, 150.0)], tension: vec![] };
+    let limits = Limits {
+        torque: vec![(1, 150.0)],
+        tension: vec![],
+    };
     let settings = Settings::default();
     let params = vec![("m_l".to_string(), vec![-1.0, 80.0, 100.0, 120.0])];
     let durations = [3.0, 4.0, 5.0];
     let in_pool = |threads: usize| {
-        rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| sweep(&case, &params, &durations, &limits, &settings, &|| {}))
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| sweep(&case, &params, &durations, &limits, &settings, &|| {}))
     };
     let (one, two) = (in_pool(1), in_pool(2));
     assert_eq!(one, two);
@@ -100,11 +158,23 @@ fn sweep_rows_are_single_runs_whatever_the_threads() {
             // and the single run by hand: the parameter set on the model
             let mut model = *case.model();
             crane_runtime::CraneModel::<7, 3, 2>::set_parameter(&mut model, "m_l", point.values[0]).unwrap();
-            let by_hand = Case::<navy_planar::Description, 7, 3, 2>::from_parts(model, case.path().clone(), case.p0.clone(), case.tf());
+            let by_hand = Case::<navy_planar::Description, 7, 3, 2>::from_parts(
+                model,
+                case.path().clone(),
+                case.p0.clone(),
+                case.tf(),
+            );
             assert_eq!(evaluate(&by_hand, point.duration, &settings).0, point.evaluation);
         }
     }
     // heavier loads need more torque
-    let peak = |m: f64, d: f64| one.iter().find(|p| p.values[0] == m && p.duration == d).unwrap().evaluation.peak_u[1].0;
+    let peak = |m: f64, d: f64| {
+        one.iter()
+            .find(|p| p.values[0] == m && p.duration == d)
+            .unwrap()
+            .evaluation
+            .peak_u[1]
+            .0
+    };
     assert!(peak(120.0, 4.0) > peak(100.0, 4.0) && peak(100.0, 4.0) > peak(80.0, 4.0));
 }

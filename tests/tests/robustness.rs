@@ -35,13 +35,7 @@ fn config() -> Config {
 /// angle alpha in (0.2, 1.3) rad, gravity around 9.81.
 fn params() -> impl Strategy<Value = NavyPlanar> {
     (
-        (
-            10.0..1000.0f64,
-            0.01..1.0f64,
-            0.01..1.0f64,
-            0.05..0.5f64,
-            0.05..0.5f64,
-        ),
+        (10.0..1000.0f64, 0.01..1.0f64, 0.01..1.0f64, 0.05..0.5f64, 0.05..0.5f64),
         (0.2..1.3f64, 5.0..20.0f64, 9.0..10.5f64),
     )
         .prop_map(|((m_l, j1, j2, r1, r2), (alpha, l, g))| NavyPlanar {
@@ -82,12 +76,8 @@ fn assert_descriptive(error: &Error) {
         | Error::NonFinite { .. }
         | Error::SingularOutputJacobian { .. } => message.contains("t = "),
         Error::NonFiniteParameter { name, .. } => message.contains(&format!("`{name}`")),
-        Error::InconsistentStart { equation, .. } => {
-            !equation.is_empty() && message.contains(equation.as_str())
-        }
-        Error::NonUniqueEquilibrium { free, .. } => {
-            !free.is_empty() && message.contains(free.as_str())
-        }
+        Error::InconsistentStart { equation, .. } => !equation.is_empty() && message.contains(equation.as_str()),
+        Error::NonUniqueEquilibrium { free, .. } => !free.is_empty() && message.contains(free.as_str()),
         Error::InvalidTimeStep { .. } | Error::StepsDoNotFit { .. } => message.contains("dt = "),
         Error::InvalidTimeSpan { .. } => message.contains("t0 = "),
         Error::WrongStepTime { .. } => message.contains("t_n + dt = "),
@@ -95,9 +85,7 @@ fn assert_descriptive(error: &Error) {
         Error::NonPositiveParameter { name, .. } => message.contains(&format!("`{name}`")),
         Error::NonPositiveRopeLength { rope, .. } => message.contains(&format!("`{rope}`")),
         Error::TooManySteps { .. } => message.contains("steps cannot be held"),
-        Error::MinimalStartNotFound { .. } | Error::EquilibriumNotFound { .. } => {
-            message.contains("residual")
-        }
+        Error::MinimalStartNotFound { .. } | Error::EquilibriumNotFound { .. } => message.contains("residual"),
     };
     assert!(ok, "undescriptive error message: {message}");
 }
@@ -105,24 +93,17 @@ fn assert_descriptive(error: &Error) {
 /// Masses, inertias and radii within +-20 % of the paper's (sect. 5.1.3)
 /// with the paper's geometry (alpha = pi/3, l = 10 m).
 fn paper_like_params() -> impl Strategy<Value = NavyPlanar> {
-    (
-        0.8..1.2f64,
-        0.8..1.2f64,
-        0.8..1.2f64,
-        0.8..1.2f64,
-        0.8..1.2f64,
-    )
-        .prop_map(|(a, b, c, d, e)| {
-            let paper = NavyPlanar::default();
-            NavyPlanar {
-                m_l: a * paper.m_l,
-                J1: b * paper.J1,
-                J2: c * paper.J2,
-                r1: d * paper.r1,
-                r2: e * paper.r2,
-                ..paper
-            }
-        })
+    (0.8..1.2f64, 0.8..1.2f64, 0.8..1.2f64, 0.8..1.2f64, 0.8..1.2f64).prop_map(|(a, b, c, d, e)| {
+        let paper = NavyPlanar::default();
+        NavyPlanar {
+            m_l: a * paper.m_l,
+            J1: b * paper.J1,
+            J2: c * paper.J2,
+            r1: d * paper.r1,
+            r2: e * paper.r2,
+            ..paper
+        }
+    })
 }
 
 proptest! {
@@ -266,24 +247,8 @@ proptest! {
 #[test]
 fn non_finite_points_and_starts_are_errors() {
     for bad in [f64::NAN, f64::INFINITY] {
-        assert!(
-            Poly9::new(
-                0.0,
-                4.0,
-                SVector::from([0.0, -10.0]),
-                SVector::from([bad, -14.0])
-            )
-            .is_err()
-        );
-        assert!(
-            Poly9::new(
-                0.0,
-                bad,
-                SVector::from([0.0, -10.0]),
-                SVector::from([-3.0, -14.0])
-            )
-            .is_err()
-        );
+        assert!(Poly9::new(0.0, 4.0, SVector::from([0.0, -10.0]), SVector::from([bad, -14.0])).is_err());
+        assert!(Poly9::new(0.0, bad, SVector::from([0.0, -10.0]), SVector::from([-3.0, -14.0])).is_err());
         let case = PaperCase::new(4.0).unwrap();
         let mut p0 = paper_p0();
         p0[3] = bad;
@@ -304,8 +269,7 @@ fn static_solve_with_a_nan_guess_is_an_error() {
         let case = PaperCase::new(4.0).unwrap();
         let mut p0 = paper_p0();
         p0[3] = f64::NAN;
-        let _ =
-            sender.send(init::static_equilibrium(&case.model, &case.path, 0.0, &p0).map(|_| ()));
+        let _ = sender.send(init::static_equilibrium(&case.model, &case.path, 0.0, &p0).map(|_| ()));
     });
     match receiver.recv_timeout(std::time::Duration::from_secs(10)) {
         Ok(result) => assert_descriptive(&result.unwrap_err()),
@@ -324,11 +288,31 @@ fn newton_not_converged_names_the_step() {
     use crane_runtime::newton::NewtonOptions;
     let case = PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
-    let newton = NewtonOptions { max_iterations: 1, rtol: 0.0, atol: 0.0, residual_tol: 0.0 };
-    let error = simulate(case.model(), case.path(), &start, &Options { newton, ..Options::new(0.01, 4.0) }).unwrap_err();
-    assert!(matches!(error, Error::NewtonNotConverged { iterations: 1, t, .. } if (t - 0.01).abs() < 1e-15), "{error:?}");
+    let newton = NewtonOptions {
+        max_iterations: 1,
+        rtol: 0.0,
+        atol: 0.0,
+        residual_tol: 0.0,
+    };
+    let error = simulate(
+        case.model(),
+        case.path(),
+        &start,
+        &Options {
+            newton,
+            ..Options::new(0.01, 4.0)
+        },
+    )
+    .unwrap_err();
+    assert!(
+        matches!(error, Error::NewtonNotConverged { iterations: 1, t, .. } if (t - 0.01).abs() < 1e-15),
+        "{error:?}"
+    );
     let message = error.to_string();
-    assert!(message.starts_with("Newton's method did not converge at t = 0.01 s after 1 iterations"), "{message}");
+    assert!(
+        message.starts_with("Newton's method did not converge at t = 0.01 s after 1 iterations"),
+        "{message}"
+    );
 }
 
 /// A path that turns NaN at t = 0.5 s stops the run there with a typed error.
@@ -337,9 +321,18 @@ fn a_nan_in_the_path_is_reported_at_its_time() {
     let case = PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
     let paper = case.path().clone();
-    let path = FromFn(move |t: f64, k: usize| if t >= 0.5 { SVector::from([f64::NAN; 2]) } else { paper.derivative(t, k) });
+    let path = FromFn(move |t: f64, k: usize| {
+        if t >= 0.5 {
+            SVector::from([f64::NAN; 2])
+        } else {
+            paper.derivative(t, k)
+        }
+    });
     let error = simulate(case.model(), path, &start, &Options::new(0.01, 4.0)).unwrap_err();
-    assert!(matches!(error, Error::NonFinite { quantity: "load target gamma(t)", t } if (t - 0.5).abs() < 1e-9), "{error:?}");
+    assert!(
+        matches!(error, Error::NonFinite { quantity: "load target gamma(t)", t } if (t - 0.5).abs() < 1e-9),
+        "{error:?}"
+    );
     assert_eq!(error.to_string(), "non-finite load target gamma(t) at t = 0.5 s");
 }
 
@@ -351,7 +344,12 @@ fn minimal_start_not_found_is_reported() {
     let start = case.start().unwrap();
     let error = minimal_start(case.model(), &start, &SVector::from([f64::NAN; 4])).unwrap_err();
     assert!(matches!(error, Error::MinimalStartNotFound { .. }), "{error:?}");
-    assert!(error.to_string().starts_with("no minimal coordinates mu0 with phi(mu0) = q0 found"), "{error}");
+    assert!(
+        error
+            .to_string()
+            .starts_with("no minimal coordinates mu0 with phi(mu0) = q0 found"),
+        "{error}"
+    );
 }
 
 /// A guess far from any equilibrium of the tower crane (the jib tip 48 m
@@ -360,8 +358,19 @@ fn minimal_start_not_found_is_reported() {
 #[test]
 fn equilibrium_not_found_is_reported() {
     let case = crane_models::tower_crane::DefaultCase::maneuver().unwrap();
-    let guess = [47.19863718547629, -6.315327887620903, -48.806484527285164, -27.6042164463024, 45.54762570674258];
+    let guess = [
+        47.19863718547629,
+        -6.315327887620903,
+        -48.806484527285164,
+        -27.6042164463024,
+        45.54762570674258,
+    ];
     let error = init::static_equilibrium(case.model(), case.path(), 0.0, &guess).unwrap_err();
     assert!(matches!(error, Error::EquilibriumNotFound { .. }), "{error:?}");
-    assert!(error.to_string().starts_with("no static equilibrium found from the guess: residual"), "{error}");
+    assert!(
+        error
+            .to_string()
+            .starts_with("no static equilibrium found from the guess: residual"),
+        "{error}"
+    );
 }

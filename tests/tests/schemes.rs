@@ -64,11 +64,7 @@ fn assert_order<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
     let k = scheme.order() as f64;
     let band = k - 0.3..=k + 0.7;
     let runs = [0.04, 0.02, 0.01, 0.005].map(|dt| run(case, formulation, scheme, dt));
-    let table = [
-        e_u(case, &runs[1]),
-        e_u(case, &runs[2]),
-        e_u(case, &runs[3]),
-    ];
+    let table = [e_u(case, &runs[1]), e_u(case, &runs[2]), e_u(case, &runs[3])];
     let order_at_1_5 = (table[0] / table[1]).log2();
     let windows = runs.each_ref().map(|r| window_error(case, r));
     let (coarse, order) = if scheme == Scheme::Bdf5 {
@@ -108,7 +104,10 @@ fn assert_order<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
 
 /// Every scheme in both formulations of one crane; each order more accurate
 /// than the one before it at dt = 0.01.
-fn assert_orders_of_every_scheme<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(name: &str, case: &Case<C, N, M, A>) {
+fn assert_orders_of_every_scheme<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    name: &str,
+    case: &Case<C, N, M, A>,
+) {
     for formulation in [Formulation::Redundant, Formulation::Minimal] {
         let mut previous = f64::INFINITY;
         for scheme in Scheme::ALL {
@@ -135,10 +134,7 @@ fn navy_planar_pulley_converges_with_order_k_in_both_formulations() {
 fn the_default_scheme_is_backward_euler() {
     assert_eq!(Options::new(0.01, 1.0).scheme, Scheme::BackwardEuler);
     let case = navy_planar::PaperCase::new(4.0).unwrap();
-    let e = e_u(
-        &case,
-        &run(&case, Formulation::Redundant, Scheme::default(), 0.01),
-    );
+    let e = e_u(&case, &run(&case, Formulation::Redundant, Scheme::default(), 0.01));
     assert!((1.4e-3..1.6e-3).contains(&e), "{e}");
 }
 
@@ -175,11 +171,7 @@ fn coordinates_stay_on_the_reference_for_every_scheme() {
                 "{scheme} dt = {dt}: max |q - q_ref| = {:.2e} m (navy-planar, t >= 0.1 s), {worst_pulley:.2e} m (pulley)",
                 worst(&a.states)
             );
-            assert!(
-                worst(&a.states) < 2e-11,
-                "{scheme} dt = {dt}: {}",
-                worst(&a.states)
-            );
+            assert!(worst(&a.states) < 2e-11, "{scheme} dt = {dt}: {}", worst(&a.states));
             assert!(worst_pulley < 1e-13, "{scheme} dt = {dt}: {worst_pulley}");
         }
     }
@@ -199,8 +191,8 @@ fn a_start_in_mid_move_keeps_order_k() {
     let reference = case.reference(t0).unwrap();
     let p0: Vec<f64> = reference.q.iter().take(5).copied().collect();
     let v0: Vec<f64> = reference.v.iter().take(5).copied().collect();
-    let start = init::check_start(case.model(), case.path(), t0, &p0, Some(&v0))
-        .expect("the reference state is consistent");
+    let start =
+        init::check_start(case.model(), case.path(), t0, &p0, Some(&v0)).expect("the reference state is consistent");
     assert!(!init::at_rest(case.path(), &start));
     for scheme in Scheme::ALL {
         let k = scheme.order() as f64;
@@ -220,10 +212,7 @@ fn a_start_in_mid_move_keeps_order_k() {
             "{scheme}: start at t0 = 1 s: e_u(1.5 s) = {:.2e} / {:.2e} at dt = 0.02 / 0.01 (order {order:.2}); from rest {:.2e} / {:.2e}",
             errors[0].0, errors[1].0, errors[0].1, errors[1].1
         );
-        assert!(
-            (k - 0.3..=k + 0.7).contains(&order),
-            "{scheme}: order {order}"
-        );
+        assert!((k - 0.3..=k + 0.7).contains(&order), "{scheme}: order {order}");
         // the start-up has left: within 10 % of the run from rest
         for (mid, rest) in errors {
             assert!(
@@ -248,10 +237,7 @@ fn assert_self_convergence<const N: usize, const M: usize, const A: usize>(
     let expected = 2f64.powi(scheme.order() as i32);
     for &k in inputs {
         let ratios: Vec<f64> = differences.windows(2).map(|w| w[0][k] / w[1][k]).collect();
-        let d: Vec<String> = differences
-            .iter()
-            .map(|d| format!("{:.2e}", d[k]))
-            .collect();
+        let d: Vec<String> = differences.iter().map(|d| format!("{:.2e}", d[k])).collect();
         let label = if A == 1 {
             "largest over the inputs".to_string()
         } else {
@@ -369,15 +355,8 @@ fn a_step_to_the_wrong_time_is_refused() {
             expected: 0.01
         }
     );
-    assert_eq!(
-        error.to_string(),
-        "a step must go to t_n + dt = 0.01 s, not 0.02 s"
-    );
-    assert_eq!(
-        stepper.state().t,
-        0.0,
-        "a refused step leaves the state alone"
-    );
+    assert_eq!(error.to_string(), "a step must go to t_n + dt = 0.01 s, not 0.02 s");
+    assert_eq!(stepper.state().t, 0.0, "a refused step leaves the state alone");
     stepper.step_to(0.01, &target(0.01)).unwrap();
     assert!((stepper.state().t - 0.01).abs() < 1e-15);
 }

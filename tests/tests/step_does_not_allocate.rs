@@ -7,8 +7,8 @@
 //! One test function, so that no other test allocates while one counts.
 
 use crane_models::navy_planar::{PaperCase, minimal_guess};
-use crane_runtime::newton::NewtonOptions;
 use crane_runtime::forward::ForwardStepper;
+use crane_runtime::newton::NewtonOptions;
 use crane_runtime::{MinimalStepper, RedundantStepper, Scheme, Stepper};
 use crane_tests::counting::{Counting, allocations_during, assert_counter_works};
 
@@ -38,15 +38,24 @@ fn stepping_does_not_allocate() {
         for dt in [0.01f64, 0.001] {
             let steps = (4.0 / dt).round() as usize;
             let newton = NewtonOptions::default();
-            let mut redundant = RedundantStepper::with_scheme(case.model(), case.path(), &start, dt, scheme, newton).unwrap();
+            let mut redundant =
+                RedundantStepper::with_scheme(case.model(), case.path(), &start, dt, scheme, newton).unwrap();
             let (allocations, min_norm) = allocations_in(&mut redundant, steps);
-            assert_eq!(allocations, 0, "redundant {scheme} dt = {dt}: {allocations} allocations in {steps} steps");
+            assert_eq!(
+                allocations, 0,
+                "redundant {scheme} dt = {dt}: {allocations} allocations in {steps} steps"
+            );
             assert!((redundant.state().t - 4.0).abs() < 1e-9);
-            println!("redundant {scheme} dt = {dt}: {steps} steps, {min_norm} minimum-norm Newton steps, 0 allocations");
+            println!(
+                "redundant {scheme} dt = {dt}: {steps} steps, {min_norm} minimum-norm Newton steps, 0 allocations"
+            );
             let mut minimal =
                 MinimalStepper::with_scheme(case.model(), case.path(), &start, &guess, dt, scheme, newton).unwrap();
             let (allocations, min_norm) = allocations_in(&mut minimal, steps);
-            assert_eq!(allocations, 0, "minimal {scheme} dt = {dt}: {allocations} allocations in {steps} steps");
+            assert_eq!(
+                allocations, 0,
+                "minimal {scheme} dt = {dt}: {allocations} allocations in {steps} steps"
+            );
             println!("minimal {scheme} dt = {dt}: {steps} steps, {min_norm} minimum-norm Newton steps, 0 allocations");
             // the forward problem, driven by the inputs of the inverse run's last state
             let u = redundant.state().u;

@@ -42,10 +42,7 @@ fn assert_first_order<const N: usize, const M: usize, const A: usize>(
         assert!((1.7..=2.3).contains(r), "{name}: ratio {r}: {diffs:?}");
     }
     let last = ratios[ratios.len() - 1];
-    assert!(
-        (last - 2.0).abs() < 0.1,
-        "{name}: the ratio approaches 2: {ratios:?}"
-    );
+    assert!((last - 2.0).abs() < 0.1, "{name}: the ratio approaches 2: {ratios:?}");
 }
 
 /// Self-convergence of BDF-k (k = 2, 3, 4): `u(dt) = u + C(t) dt^k + ...`,
@@ -67,20 +64,25 @@ fn assert_order_k<const N: usize, const M: usize, const A: usize>(
         let diffs: Vec<f64> = solutions
             .windows(2)
             .map(|w| {
-                let per_input = w[0].input_difference(&w[1], |t| t >= 1.0).expect("fine run has half the step");
+                let per_input = w[0]
+                    .input_difference(&w[1], |t| t >= 1.0)
+                    .expect("fine run has half the step");
                 per_input.iter().fold(0.0f64, |m, d| m.max(d.0))
             })
             .collect();
         let ratio = diffs[0] / diffs[1];
-        println!("{name} {scheme}: D(0.08), D(0.04) = {:.3e}, {:.3e}; ratio {ratio:.2} (2^k = {})", diffs[0], diffs[1], 2f64.powi(scheme.order() as i32));
+        println!(
+            "{name} {scheme}: D(0.08), D(0.04) = {:.3e}, {:.3e}; ratio {ratio:.2} (2^k = {})",
+            diffs[0],
+            diffs[1],
+            2f64.powi(scheme.order() as i32)
+        );
         kit::assert_ratio_of_order(name, scheme, ratio);
     }
 }
 
 /// The lowest rope tension along a run (after the start).
-fn lowest_tension<const N: usize, const M: usize, const A: usize>(
-    run: &Solution<N, M, A>,
-) -> (f64, f64) {
+fn lowest_tension<const N: usize, const M: usize, const A: usize>(run: &Solution<N, M, A>) -> (f64, f64) {
     let mut lowest = (f64::INFINITY, 0.0);
     for (i, state) in run.states.iter().enumerate() {
         for &n in run.tensions_at(i) {
@@ -132,7 +134,10 @@ mod gantry {
             worst[1] = worst[1].max(model.constraints(&r.q).amax());
             worst[2] = worst[2].max((model.constraint_jacobian(&r.q) * r.v).amax());
         }
-        println!("gantry reference: max |EOM residual| = {:.2e} N, |g| = {:.2e}, |G q'| = {:.2e}", worst[0], worst[1], worst[2]);
+        println!(
+            "gantry reference: max |EOM residual| = {:.2e} N, |g| = {:.2e}, |G q'| = {:.2e}",
+            worst[0], worst[1], worst[2]
+        );
         assert!(worst[0] < 1e-9 * 500.0 * 9.81, "{worst:?}");
         assert!(worst[1] < 1e-12 && worst[2] < 1e-12, "{worst:?}");
         // at rest at the ends: the load below the trolley, no horizontal force
@@ -159,14 +164,21 @@ mod gantry {
                 .iter()
                 .map(|&dt| {
                     let run = run_with(dt, scheme);
-                    let q_error = run.states.iter().map(|s| (s.q - case.reference(s.t).unwrap().q).amax()).fold(0.0, f64::max);
+                    let q_error = run
+                        .states
+                        .iter()
+                        .map(|s| (s.q - case.reference(s.t).unwrap().q).amax())
+                        .fold(0.0, f64::max);
                     assert!(q_error < 1e-11, "{scheme} dt = {dt}: q off by {q_error}");
                     case.relative_input_error(run.state_near(4.0).unwrap()).unwrap()
                 })
                 .collect();
             let pair = if scheme == Scheme::Bdf4 { 0 } else { 1 };
             let order = (errors[pair] / errors[pair + 1]).log2();
-            println!("gantry {scheme}: relative error of u at 4 s = {:?}, order {order:.2}", errors.iter().map(|e| format!("{e:.3e}")).collect::<Vec<_>>());
+            println!(
+                "gantry {scheme}: relative error of u at 4 s = {:?}, order {order:.2}",
+                errors.iter().map(|e| format!("{e:.3e}")).collect::<Vec<_>>()
+            );
             assert!(errors[1] < errors[0] && errors[2] < errors[1], "{scheme}: {errors:?}");
             assert!((k - 0.3..=k + 0.7).contains(&order), "{scheme}: order {order}");
         }
@@ -223,12 +235,7 @@ mod gantry {
             found.u.as_slice(),
             found.lambda.as_slice()
         );
-        assert!(
-            (found.q - checked.q).amax() < 1e-9,
-            "{} vs {}",
-            found.q,
-            checked.q
-        );
+        assert!((found.q - checked.q).amax() < 1e-9, "{} vs {}", found.q, checked.q);
         assert!((found.u - checked.u).amax() < 1e-6);
         let weight = crane.m_l * crane.g;
         assert!((found.lambda[0] * found.q[2] - weight).abs() < 1e-6);
@@ -249,9 +256,7 @@ mod gantry {
         // at rest at the end the load hangs below the trolley at (6, 3)
         let end = solution.states.last().unwrap();
         assert!(
-            (end.q[0] - 6.0).abs() < 1e-6
-                && (end.q[1] - 3.0).abs() < 1e-6
-                && (end.q[2] - 3.0).abs() < 1e-6,
+            (end.q[0] - 6.0).abs() < 1e-6 && (end.q[1] - 3.0).abs() < 1e-6 && (end.q[2] - 3.0).abs() < 1e-6,
             "{}",
             end.q
         );
@@ -349,21 +354,12 @@ mod tower {
             found.u.as_slice(),
             found.lambda.as_slice()
         );
-        assert!(
-            (found.q - checked.q).amax() < 1e-9,
-            "{} vs {}",
-            found.q,
-            checked.q
-        );
+        assert!((found.q - checked.q).amax() < 1e-9, "{} vs {}", found.q, checked.q);
         assert!((found.u - checked.u).amax() < 1e-6);
         let weight = crane.m_l * crane.g;
         assert!((found.lambda[2] * found.q[4] - weight).abs() < 1e-6);
         assert!((found.u[2] + weight * crane.r_w).abs() < 1e-6);
-        assert!(
-            found.u[0].abs() < 1e-6 && found.u[1].abs() < 1e-6,
-            "{}",
-            found.u
-        );
+        assert!(found.u[0].abs() < 1e-6 && found.u[1].abs() < 1e-6, "{}", found.u);
     }
 
     /// The rope pulls throughout; the jib tip stays on its circle and the
@@ -375,12 +371,7 @@ mod tower {
         let (lowest, at) = lowest_tension(&solution);
         let peak = solution.tensions.iter().copied().fold(0.0, f64::max);
         let peak_u: Vec<f64> = (0..3)
-            .map(|k| {
-                solution
-                    .states
-                    .iter()
-                    .fold(0.0f64, |m, s| m.max(s.u[k].abs()))
-            })
+            .map(|k| solution.states.iter().fold(0.0f64, |m, s| m.max(s.u[k].abs())))
             .collect();
         println!(
             "tower_crane: rope tension between {lowest:.1} N (t = {at:.2} s) and {peak:.1} N; peak |u| = {peak_u:.1?}; mean Newton iterations {:.2}",
@@ -427,7 +418,12 @@ fn assert_formulations_agree<C: crane_models::Crane<N, M, A>, const N: usize, co
             })
             .collect();
         let ratio = d[0] / d[1];
-        println!("{} {scheme}: max |u_red - u_min| = {:.3e} / {:.3e}, ratio {ratio:.2}", C::NAME, d[0], d[1]);
+        println!(
+            "{} {scheme}: max |u_red - u_min| = {:.3e} / {:.3e}, ratio {ratio:.2}",
+            C::NAME,
+            d[0],
+            d[1]
+        );
         kit::assert_ratio_of_order(C::NAME, scheme, ratio);
     }
 }
@@ -457,13 +453,25 @@ fn both_topologies_run_to_rest_in_minimal_coordinates_at_a_fine_step() {
             let minimal = kit::run(case, Formulation::Minimal, scheme, 0.001);
             let redundant = kit::run(case, Formulation::Redundant, scheme, 0.001);
             let last = minimal.states.last().unwrap();
-            assert!((last.t - case.tf()).abs() < 1e-9, "{} {scheme}: ended at {}", C::NAME, last.t);
+            assert!(
+                (last.t - case.tf()).abs() < 1e-9,
+                "{} {scheme}: ended at {}",
+                C::NAME,
+                last.t
+            );
             let end = crane_runtime::Trajectory::derivative(case.path(), case.tf(), 0);
             let load = last.q.rows(N - A, A).into_owned();
-            assert!((&load - end).amax() < 1e-9, "{} {scheme}: load {load} off the path's end {end}", C::NAME);
+            assert!(
+                (&load - end).amax() < 1e-9,
+                "{} {scheme}: load {load} off the path's end {end}",
+                C::NAME
+            );
             let du = kit::redundant_minimal_difference(&redundant, &minimal).0;
             let peak = redundant.states.iter().map(|s| s.u.amax()).fold(0.0, f64::max);
-            println!("{} {scheme}: dt = 0.001, max |u_red - u_min| = {du:.3e} of peak {peak:.3e}", C::NAME);
+            println!(
+                "{} {scheme}: dt = 0.001, max |u_red - u_min| = {du:.3e} of peak {peak:.3e}",
+                C::NAME
+            );
             assert!(du < 1e-4 * peak, "{} {scheme}: {du} of {peak}", C::NAME);
         }
     }

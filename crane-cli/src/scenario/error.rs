@@ -24,9 +24,19 @@ pub enum ScenarioError {
     #[error("scenario: `t1` = {t1} s must be after `t0` = {t0} s")]
     MotionEndsBeforeStart { t1: f64, t0: f64 },
     #[error("scenario: `{key}` needs {expected} numbers for {model} ({names}), got {found}")]
-    WrongCount { key: &'static str, expected: usize, model: String, names: String, found: usize },
+    WrongCount {
+        key: &'static str,
+        expected: usize,
+        model: String,
+        names: String,
+        found: usize,
+    },
     #[error("scenario: `{key}`: entry {index} ({name}) is not finite")]
-    EntryNotFinite { key: &'static str, index: usize, name: String },
+    EntryNotFinite {
+        key: &'static str,
+        index: usize,
+        name: String,
+    },
     #[error("scenario: `tau0` applies only to trajectory = \"three-phase\" and \"smooth-three-phase\"")]
     RampWithoutPhases,
     #[error(

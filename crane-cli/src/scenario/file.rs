@@ -87,10 +87,7 @@ fn describe(text: &str, error: &toml::de::Error) -> String {
     for line in before.lines() {
         let line = line.trim();
         if line.starts_with('[') && !line.contains('=') {
-            table = line
-                .trim_matches(|c| c == '[' || c == ']')
-                .trim()
-                .to_string();
+            table = line.trim_matches(|c| c == '[' || c == ']').trim().to_string();
         }
     }
     let line = text[before.rfind('\n').map_or(0, |i| i + 1)..]
@@ -108,4 +105,3 @@ fn describe(text: &str, error: &toml::de::Error) -> String {
         None => format!("{message} ({at})"),
     }
 }
-

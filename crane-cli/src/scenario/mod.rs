@@ -72,8 +72,23 @@ mod tests {
     use proptest::prelude::*;
 
     const KEYS: [&str; 17] = [
-        "dt", "tf", "formulation", "scheme", "p0", "trajectory", "tau0", "start", "end", "t0", "t1", "duration",
-        "model", "parameters.m_l", "parameters.mass", "limits.u1", "limits.u9",
+        "dt",
+        "tf",
+        "formulation",
+        "scheme",
+        "p0",
+        "trajectory",
+        "tau0",
+        "start",
+        "end",
+        "t0",
+        "t1",
+        "duration",
+        "model",
+        "parameters.m_l",
+        "parameters.mass",
+        "limits.u1",
+        "limits.u9",
     ];
 
     /// A TOML value of any kind: numbers (also negative, zero, huge, nan,
@@ -81,8 +96,16 @@ mod tests {
     fn value() -> impl Strategy<Value = String> {
         prop_oneof![
             (-1e3..1e3f64).prop_map(|v| format!("{v:?}")),
-            prop_oneof![Just("0.0"), Just("-0.01"), Just("1e308"), Just("nan"), Just("inf"), Just("-inf"), Just("3")]
-                .prop_map(String::from),
+            prop_oneof![
+                Just("0.0"),
+                Just("-0.01"),
+                Just("1e308"),
+                Just("nan"),
+                Just("inf"),
+                Just("-inf"),
+                Just("3")
+            ]
+            .prop_map(String::from),
             prop_oneof![
                 Just("\"poly9\""),
                 Just("\"three-phase\""),
@@ -95,8 +118,10 @@ mod tests {
             ]
             .prop_map(String::from),
             any::<bool>().prop_map(|b| b.to_string()),
-            prop::collection::vec(-20.0..20.0f64, 0..7)
-                .prop_map(|v| format!("[{}]", v.iter().map(|x| format!("{x:?}")).collect::<Vec<_>>().join(", "))),
+            prop::collection::vec(-20.0..20.0f64, 0..7).prop_map(|v| format!(
+                "[{}]",
+                v.iter().map(|x| format!("{x:?}")).collect::<Vec<_>>().join(", ")
+            )),
         ]
     }
 
@@ -135,7 +160,9 @@ mod tests {
         };
         let message = error.to_string();
         match &error {
-            ScenarioError::Parse { message: m, .. } => assert!(m.contains("line") || m.contains('`'), "{text}: {message}"),
+            ScenarioError::Parse { message: m, .. } => {
+                assert!(m.contains("line") || m.contains('`'), "{text}: {message}")
+            }
             ScenarioError::Read { .. } => panic!("{text}: {message}"),
             ScenarioError::EndTwice => assert!(message.contains("`t1`") && message.contains("`duration`")),
             other => {

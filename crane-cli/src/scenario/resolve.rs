@@ -6,18 +6,37 @@ use crane_models::{Case, Crane, Path, PathSpec, Profile};
 use crane_runtime::CraneModel;
 use nalgebra::SVector;
 
-use super::{Kind, Overrides, ScenarioError, ScenarioFile, Settings, DEFAULT_DT};
+use super::{DEFAULT_DT, Kind, Overrides, ScenarioError, ScenarioFile, Settings};
 
 fn positive(key: &'static str, value: f64) -> Result<f64, ScenarioError> {
-    if value.is_finite() && value > 0.0 { Ok(value) } else { Err(ScenarioError::NotPositiveTime { key, value }) }
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(ScenarioError::NotPositiveTime { key, value })
+    }
 }
 
-fn vector<const K: usize>(key: &'static str, values: &[f64], model: &str, names: &[&str]) -> Result<SVector<f64, K>, ScenarioError> {
+fn vector<const K: usize>(
+    key: &'static str,
+    values: &[f64],
+    model: &str,
+    names: &[&str],
+) -> Result<SVector<f64, K>, ScenarioError> {
     if values.len() != K {
-        return Err(ScenarioError::WrongCount { key, expected: K, model: model.into(), names: names.join(", "), found: values.len() });
+        return Err(ScenarioError::WrongCount {
+            key,
+            expected: K,
+            model: model.into(),
+            names: names.join(", "),
+            found: values.len(),
+        });
     }
     if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-        return Err(ScenarioError::EntryNotFinite { key, index: i + 1, name: names[i].to_string() });
+        return Err(ScenarioError::EntryNotFinite {
+            key,
+            index: i + 1,
+            name: names[i].to_string(),
+        });
     }
     Ok(SVector::from_column_slice(values))
 }
@@ -35,7 +54,10 @@ fn path_of<const A: usize>(
 ) -> Result<PathSpec<A>, ScenarioError> {
     let t0 = file.t0.unwrap_or(default.t0);
     if !t0.is_finite() {
-        return Err(ScenarioError::NotFinite { key: "t0".into(), value: t0 });
+        return Err(ScenarioError::NotFinite {
+            key: "t0".into(),
+            value: t0,
+        });
     }
     if let Some(tf) = tf_given.filter(|tf| !(tf.is_finite() && *tf > t0)) {
         return Err(ScenarioError::EndBeforeStart { tf, t0 });
@@ -63,7 +85,11 @@ fn path_of<const A: usize>(
         Kind::Poly9 => Profile::Poly9,
         Kind::ThreePhase | Kind::SmoothThreePhase => {
             let tau0 = file.tau0.or(default_tau0).ok_or(ScenarioError::RampMissing)?;
-            if kind == Kind::ThreePhase { Profile::ThreePhase { tau0 } } else { Profile::SmoothThreePhase { tau0 } }
+            if kind == Kind::ThreePhase {
+                Profile::ThreePhase { tau0 }
+            } else {
+                Profile::SmoothThreePhase { tau0 }
+            }
         }
     };
     let start = match &file.start {
@@ -74,7 +100,13 @@ fn path_of<const A: usize>(
         Some(v) => vector::<A>("end", v, name, loads)?,
         None => default.end,
     };
-    Ok(PathSpec { profile, t0, t1, start, end })
+    Ok(PathSpec {
+        profile,
+        t0,
+        t1,
+        start,
+        end,
+    })
 }
 
 /// Build the case and settings of `crane run MODEL` from a scenario (or none:
@@ -88,11 +120,17 @@ pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let name = C::NAME;
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
     if let Some(model) = file.model.as_ref().filter(|m| *m != name) {
-        return Err(ScenarioError::WrongModel { given: model.clone(), running: name.into() });
+        return Err(ScenarioError::WrongModel {
+            given: model.clone(),
+            running: name.into(),
+        });
     }
     let default = C::maneuver();
     let dt = positive("dt", overrides.dt.or(file.dt).unwrap_or(DEFAULT_DT))?;
-    let formulation = overrides.formulation.or(file.formulation).unwrap_or(crate::Formulation::Redundant);
+    let formulation = overrides
+        .formulation
+        .or(file.formulation)
+        .unwrap_or(crate::Formulation::Redundant);
     let scheme = match (overrides.scheme, &file.scheme) {
         (Some(scheme), _) => scheme,
         (None, Some(name)) => name.parse().map_err(ScenarioError::Scheme)?,
@@ -108,16 +146,25 @@ pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let mut model = C::Model::default();
     for (key, value) in &file.parameters {
         if !value.is_finite() {
-            return Err(ScenarioError::NotFinite { key: format!("parameters.{key}"), value: *value });
+            return Err(ScenarioError::NotFinite {
+                key: format!("parameters.{key}"),
+                value: *value,
+            });
         }
-        model.set_parameter(key, *value).map_err(|source| ScenarioError::Parameter { key: key.clone(), source })?;
+        model
+            .set_parameter(key, *value)
+            .map_err(|source| ScenarioError::Parameter {
+                key: key.clone(),
+                source,
+            })?;
     }
     // masses, inertias and lengths declared positive, and a positive
     // semi-definite mass matrix, with the file's values
     crane_runtime::driver::check_parameters(&model).map_err(|e| match e {
-        crane_runtime::Error::NonPositiveParameter { name, value } => {
-            ScenarioError::NotPositiveParameter { key: name.to_string(), value }
-        }
+        crane_runtime::Error::NonPositiveParameter { name, value } => ScenarioError::NotPositiveParameter {
+            key: name.to_string(),
+            value,
+        },
         other => ScenarioError::Physical(other),
     })?;
     let robot = &info.coordinates[..N - A];
@@ -136,16 +183,32 @@ pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     };
     let mut limits = Vec::new();
     for (key, &limit) in &file.limits {
-        let k = info.inputs.iter().position(|n| n == key).ok_or_else(|| ScenarioError::UnknownInput {
-            key: key.clone(),
-            model: name.into(),
-            inputs: info.inputs.join(", "),
-        })?;
+        let k = info
+            .inputs
+            .iter()
+            .position(|n| n == key)
+            .ok_or_else(|| ScenarioError::UnknownInput {
+                key: key.clone(),
+                model: name.into(),
+                inputs: info.inputs.join(", "),
+            })?;
         if !(limit.is_finite() && limit > 0.0) {
-            return Err(ScenarioError::LimitNotPositive { key: key.clone(), value: limit });
+            return Err(ScenarioError::LimitNotPositive {
+                key: key.clone(),
+                value: limit,
+            });
         }
         limits.push((k, limit));
     }
     let plant = file.plant.iter().map(|(k, v)| (k.clone(), *v)).collect();
-    Ok((Case::from_parts(model, path, p0, tf), Settings { dt, formulation, scheme, limits, plant }))
+    Ok((
+        Case::from_parts(model, path, p0, tf),
+        Settings {
+            dt,
+            formulation,
+            scheme,
+            limits,
+            plant,
+        },
+    ))
 }

@@ -50,8 +50,7 @@ pub(super) fn first_doc_line(attrs: &[syn::Attribute]) -> String {
         if let syn::Meta::NameValue(nv) = &attr.meta
             && nv.path.is_ident("doc")
             && let syn::Expr::Lit(syn::ExprLit {
-                lit: syn::Lit::Str(s),
-                ..
+                lit: syn::Lit::Str(s), ..
             }) = &nv.value
         {
             let value = s.value();

@@ -56,12 +56,7 @@ pub struct Scope {
 
 /// Checks the block and lowers the map; `None` if anything was reported.
 /// `a` is the number of load coordinates, `m` of constraints.
-pub(super) fn check(
-    section: &Section<MinimalDecl>,
-    a: usize,
-    m: usize,
-    lower: &mut Lowerer<'_>,
-) -> Option<Minimal> {
+pub(super) fn check(section: &Section<MinimalDecl>, a: usize, m: usize, lower: &mut Lowerer<'_>) -> Option<Minimal> {
     let (names, cx) = (lower.names, lower.cx);
     let decl = &section.body;
     let n = names.coords.len();
@@ -280,10 +275,7 @@ fn taken_by(lower: &Lowerer<'_>, ident: &Ident) -> Option<String> {
     if let Some((_, why)) = RESERVED.iter().find(|(r, _)| *r == name) {
         return Some(format!("reserved ({why})"));
     }
-    lower
-        .names
-        .get(ident)
-        .map(|(kind, _)| kind.describe().to_owned())
+    lower.names.get(ident).map(|(kind, _)| kind.describe().to_owned())
 }
 
 /// The explanation of what may stand left of `=`.
@@ -332,18 +324,14 @@ impl Lowerer<'_> {
                     return value;
                 }
                 let message = if scope.coord_at[k] == Some(scope.statement) {
-                    format!(
-                        "`{ident} = ...` uses `{ident}` itself: a coordinate cannot be defined in terms of itself"
-                    )
+                    format!("`{ident} = ...` uses `{ident}` itself: a coordinate cannot be defined in terms of itself")
                 } else if scope.coord_at[k].is_some() {
                     format!(
                         "coordinate `{ident}` is used above its mapping: the block reads top to bottom, so move \
                          `{ident} = ...;` above this line (this also rules out circular definitions)"
                     )
                 } else {
-                    format!(
-                        "coordinate `{ident}` has no mapping to stand for; map it above this line"
-                    )
+                    format!("coordinate `{ident}` has no mapping to stand for; map it above this line")
                 };
                 self.cx.error_at(span, message);
                 None
@@ -367,10 +355,8 @@ impl Lowerer<'_> {
                 None
             }
             None => {
-                self.cx.error_at(
-                    span,
-                    format!("unknown symbol `{ident}`; {}", self.allowed_in_minimal()),
-                );
+                self.cx
+                    .error_at(span, format!("unknown symbol `{ident}`; {}", self.allowed_in_minimal()));
                 None
             }
         }
@@ -388,16 +374,9 @@ impl Lowerer<'_> {
         };
         kinds.push(format!("minimal coordinates ({})", join(&scope.mu)));
         let or_none = |s: String| {
-            if s.is_empty() {
-                "none yet".to_owned()
-            } else {
-                s
-            }
+            if s.is_empty() { "none yet".to_owned() } else { s }
         };
-        kinds.push(format!(
-            "`let` names above ({})",
-            or_none(join(&scope.lets_above))
-        ));
+        kinds.push(format!("`let` names above ({})", or_none(join(&scope.lets_above))));
         let mapped: Vec<Ident> = scope
             .coord_values
             .iter()
@@ -405,10 +384,7 @@ impl Lowerer<'_> {
             .filter(|(v, _)| v.is_some())
             .map(|(_, c)| c.clone())
             .collect();
-        kinds.push(format!(
-            "coordinates mapped above ({})",
-            or_none(join(&mapped))
-        ));
+        kinds.push(format!("coordinates mapped above ({})", or_none(join(&mapped))));
         kinds.push("PI".to_owned());
         format!("allowed in `minimal`: {}", kinds.join(", "))
     }

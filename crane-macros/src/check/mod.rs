@@ -59,10 +59,7 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
     for p in params {
         lower.lower(&p.default, Place::ParamDefault);
     }
-    let kinetic = s
-        .kinetic
-        .as_ref()
-        .and_then(|k| check_kinetic(&k.body, &mut lower));
+    let kinetic = s.kinetic.as_ref().and_then(|k| check_kinetic(&k.body, &mut lower));
     let forces = check_forces(decl, n_robot, &mut lower);
     let constraints = check_constraints(constraints, &mut lower);
     let minimal = s
@@ -71,7 +68,10 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         .and_then(|section| minimal::check(section, lists.load.len(), m, &mut lower));
     let (runtime, self_test_enabled, attrs) = crane_options(&decl.attrs, cx);
     let self_test = s.sample.as_ref().and_then(|section| {
-        let mu: Option<Vec<Ident>> = s.minimal.as_ref().map(|m| m.body.mu1.iter().chain(&m.body.mu2).cloned().collect());
+        let mu: Option<Vec<Ident>> = s
+            .minimal
+            .as_ref()
+            .map(|m| m.body.mu1.iter().chain(&m.body.mu2).cloned().collect());
         check_sample(section, &names.coords, mu.as_deref(), &mut lower)
     });
     if cx.has_errors() {
@@ -117,8 +117,13 @@ pub fn negative_inertia(
     kernels: &crate::model::Kernels,
 ) -> Option<syn::Error> {
     let kinetic = decl.sections.kinetic.as_ref()?;
-    let (i, value) = (0..model.coords.len())
-        .find_map(|i| model.arena.as_const(kernels.mass[i][i]).filter(|v| *v < 0.0).map(|v| (i, v)))?;
+    let (i, value) = (0..model.coords.len()).find_map(|i| {
+        model
+            .arena
+            .as_const(kernels.mass[i][i])
+            .filter(|v| *v < 0.0)
+            .map(|v| (i, v))
+    })?;
     let coord = &model.coords[i];
     Some(syn::Error::new(
         kinetic.keyword.span(),

@@ -72,10 +72,7 @@ impl Names {
         if let Some((previous, _)) = self.map.get(&name) {
             cx.error_at(
                 ident.span(),
-                format!(
-                    "duplicate name `{name}`: already declared as {}",
-                    previous.describe()
-                ),
+                format!("duplicate name `{name}`: already declared as {}", previous.describe()),
             );
             return false;
         }
@@ -117,11 +114,7 @@ impl Place {
 }
 
 pub(super) fn join(idents: &[Ident]) -> String {
-    idents
-        .iter()
-        .map(ToString::to_string)
-        .collect::<Vec<_>>()
-        .join(", ")
+    idents.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ")
 }
 
 /// Lowers expressions into the arena, reporting unknown or misplaced names.
@@ -229,10 +222,8 @@ impl Lowerer<'_> {
             return None;
         }
         let Some((kind, index)) = self.names.get(ident) else {
-            self.cx.error_at(
-                span,
-                format!("unknown symbol `{ident}`; {}", self.allowed(place)),
-            );
+            self.cx
+                .error_at(span, format!("unknown symbol `{ident}`; {}", self.allowed(place)));
             return None;
         };
         let sym = match kind {
@@ -293,10 +284,7 @@ impl Lowerer<'_> {
             Some((kind, _)) => {
                 self.cx.error_at(
                     coord.span(),
-                    format!(
-                        "dot() takes a coordinate, but `{coord}` is {}",
-                        kind.describe()
-                    ),
+                    format!("dot() takes a coordinate, but `{coord}` is {}", kind.describe()),
                 );
                 None
             }

@@ -109,11 +109,7 @@ pub(super) fn check_forces(decl: &Declaration, n_robot: usize, lower: &mut Lower
     let zero = lower.arena.zero();
     let mut forces: Vec<Option<Id>> = vec![None; names.coords.len()];
     let mut declared = vec![false; names.coords.len()];
-    let items = decl
-        .sections
-        .forces
-        .as_ref()
-        .map_or(&[][..], |f| &f.body[..]);
+    let items = decl.sections.forces.as_ref().map_or(&[][..], |f| &f.body[..]);
     for item in items {
         let coord = &item.coord;
         let index = match names.get(coord) {
@@ -147,15 +143,7 @@ pub(super) fn check_forces(decl: &Declaration, n_robot: usize, lower: &mut Lower
             continue;
         }
         if let Some(id) = lower.lower(&item.force, Place::Force) {
-            check_force(
-                coord,
-                &item.force,
-                id,
-                index >= n_robot,
-                names,
-                lower.arena,
-                cx,
-            );
+            check_force(coord, &item.force, id, index >= n_robot, names, lower.arena, cx);
             forces[index] = Some(id);
         }
     }
@@ -185,16 +173,9 @@ pub(super) fn check_constraints(constraints: &[ConstraintDecl], lower: &mut Lowe
     let mut checked = Vec::new();
     for c in constraints {
         let g = lower.lower(&c.expr, Place::Constraint);
-        let length = c
-            .rope
-            .as_ref()
-            .map(|r| lower.lower(&r.length, Place::RopeLength));
+        let length = c.rope.as_ref().map(|r| lower.lower(&r.length, Place::RopeLength));
         let Some(g) = g else { continue };
-        if lower
-            .arena
-            .find_symbol(g, |s| matches!(s, Sym::Coord(_)))
-            .is_none()
-        {
+        if lower.arena.find_symbol(g, |s| matches!(s, Sym::Coord(_))).is_none() {
             lower.cx.error_spanned_by(
                 c.expr.range(),
                 format!("constraint `{}` does not depend on any coordinate", c.name),
@@ -254,11 +235,7 @@ pub(super) fn check_kinetic(e: &Expr, lower: &mut Lowerer<'_>) -> Option<Id> {
         }
     }
     // the whole energy, with signs, once every term is known to be fine
-    if ok {
-        lower.lower(root, Place::Kinetic)
-    } else {
-        None
-    }
+    if ok { lower.lower(root, Place::Kinetic) } else { None }
 }
 
 /// `Ok` if `t` is `1/2 v^T H v` with a constant `H`, else why not.
@@ -292,13 +269,9 @@ fn quadratic_form(arena: &mut Arena, t: Id, names: &Names) -> Result<(), String>
     }
     // no part of degree 0 or 1: t(0) = 0 and dt/dv(0) = 0
     let zero = d.arena().zero();
-    let at_rest = |arena: &mut Arena, e: Id| {
-        arena.substitute(e, &mut |s| matches!(s, Sym::Vel(_)).then_some(zero))
-    };
+    let at_rest = |arena: &mut Arena, e: Id| arena.substitute(e, &mut |s| matches!(s, Sym::Vel(_)).then_some(zero));
     if at_rest(d.arena(), t) != zero {
-        return Err(format!(
-            "{NOT_QUADRATIC}: this term has a part without velocities"
-        ));
+        return Err(format!("{NOT_QUADRATIC}: this term has a part without velocities"));
     }
     for &vi in &vels {
         let di = d.diff(t, vi);
@@ -338,15 +311,7 @@ fn describe_sym(sym: Sym, names: &Names) -> String {
 }
 
 /// Checks that a generalized force is `f(q, q') + B^T(q) u` (eq. 11c).
-fn check_force(
-    coord: &Ident,
-    e: &Expr,
-    force: Id,
-    is_load: bool,
-    names: &Names,
-    arena: &mut Arena,
-    cx: &Ctxt,
-) {
+fn check_force(coord: &Ident, e: &Expr, force: Id, is_load: bool, names: &Names, arena: &mut Arena, cx: &Ctxt) {
     let inputs: Vec<Sym> = arena
         .symbols(force)
         .into_iter()

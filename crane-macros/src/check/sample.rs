@@ -40,12 +40,20 @@ pub(super) fn check_sample(
             continue;
         };
         if slot.is_some() {
-            lower.cx.error_at(item.name.span(), format!("duplicate range for `{}` in `sample`", item.name));
+            lower.cx.error_at(
+                item.name.span(),
+                format!("duplicate range for `{}` in `sample`", item.name),
+            );
         }
         *slot = Some((item.low.clone(), item.high.clone()));
     }
     let missing = |ranges: &[Option<(Expr, Expr)>], names: &[Ident]| -> Vec<String> {
-        ranges.iter().zip(names).filter(|(r, _)| r.is_none()).map(|(_, n)| n.to_string()).collect()
+        ranges
+            .iter()
+            .zip(names)
+            .filter(|(r, _)| r.is_none())
+            .map(|(_, n)| n.to_string())
+            .collect()
     };
     let q_missing = missing(&q_ranges, coords);
     if !q_missing.is_empty() {
@@ -78,5 +86,8 @@ pub(super) fn check_sample(
         }
         None => None,
     };
-    Some(SelfTest { q: q_ranges.into_iter().flatten().collect(), mu: mu_ranges })
+    Some(SelfTest {
+        q: q_ranges.into_iter().flatten().collect(),
+        mu: mu_ranges,
+    })
 }

@@ -47,9 +47,7 @@ pub(super) fn default_value(e: &Expr) -> TokenStream {
     let tokens = default_tokens(e);
     let mut iter = tokens.clone().into_iter();
     match (iter.next(), iter.next()) {
-        (Some(proc_macro2::TokenTree::Group(g)), None)
-            if g.delimiter() == proc_macro2::Delimiter::Parenthesis =>
-        {
+        (Some(proc_macro2::TokenTree::Group(g)), None) if g.delimiter() == proc_macro2::Delimiter::Parenthesis => {
             g.stream()
         }
         _ => tokens,

@@ -141,12 +141,6 @@ fn block_methods(model: &Model, k: &Kernels) -> TokenStream {
 }
 
 /// Whether every entry of the given block is the literal 0.
-fn block_is_zero(
-    arena: &Arena,
-    m: &[Vec<Id>],
-    rows: std::ops::Range<usize>,
-    cols: std::ops::Range<usize>,
-) -> bool {
-    rows.into_iter()
-        .all(|i| cols.clone().all(|j| arena.is_zero(m[i][j])))
+fn block_is_zero(arena: &Arena, m: &[Vec<Id>], rows: std::ops::Range<usize>, cols: std::ops::Range<usize>) -> bool {
+    rows.into_iter().all(|i| cols.clone().all(|j| arena.is_zero(m[i][j])))
 }

@@ -28,12 +28,7 @@ pub(super) fn generate_minimal(
 
 /// `impl Name { ... }` with `MINIMAL_SPLIT` and the parts of `phi`, `P` and
 /// `P'` the servo problem needs (eqs. 6, 12, 15-17).
-fn minimal_inherent_impl(
-    model: &Model,
-    minimal: &Minimal,
-    k: &MinimalKernels,
-    lints: &TokenStream,
-) -> TokenStream {
+fn minimal_inherent_impl(model: &Model, minimal: &Minimal, k: &MinimalKernels, lints: &TokenStream) -> TokenStream {
     let name = &model.name;
     let (n, a, f) = (model.n(), model.a(), minimal.mu.len());
     let nr = model.n_robot;
@@ -123,12 +118,7 @@ fn minimal_docs(model: &Model, minimal: &Minimal) -> (TokenStream, TokenStream, 
 
 /// `impl MinimalMap<N, M, A, F> for Name { ... }`: `phi` (documented with
 /// the declared map), `P` and `P'`.
-fn minimal_map_impl(
-    model: &Model,
-    minimal: &Minimal,
-    k: &MinimalKernels,
-    lints: &TokenStream,
-) -> TokenStream {
+fn minimal_map_impl(model: &Model, minimal: &Minimal, k: &MinimalKernels, lints: &TokenStream) -> TokenStream {
     let name = &model.name;
     let (n, m, a, f) = (model.n(), model.m(), model.a(), minimal.mu.len());
     let (n_lit, m_lit, a_lit, f_lit) = (index(n), index(m), index(a), index(f));

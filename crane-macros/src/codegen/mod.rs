@@ -58,11 +58,7 @@ fn doc(text: impl AsRef<str>) -> TokenStream {
 }
 
 fn names_list(idents: &[Ident]) -> String {
-    idents
-        .iter()
-        .map(|i| format!("`{i}`"))
-        .collect::<Vec<_>>()
-        .join(", ")
+    idents.iter().map(|i| format!("`{i}`")).collect::<Vec<_>>().join(", ")
 }
 
 fn str_list(idents: impl IntoIterator<Item = String>) -> TokenStream {

@@ -23,7 +23,11 @@ pub(super) fn crane_model_impl(model: &Model, k: &Kernels, structure: &Structure
     let on_velocity = !zero(&k.df_dv);
     let on_position = !(zero(&k.df_dq) && zero(&k.dbtu_dq));
     let structure = match structure {
-        Structure::Internal { dimension, unknowns, equations } => {
+        Structure::Internal {
+            dimension,
+            unknowns,
+            equations,
+        } => {
             let dimension = index(*dimension);
             let unknowns = unknowns.iter().map(|&c| index(c.into()));
             let equations = equations.iter().map(|&d| index(d.into()));
@@ -65,7 +69,12 @@ fn model_info(model: &Model) -> TokenStream {
     });
     let description = &model.description;
     let name_str = model.name.to_string();
-    let positive = model.params.iter().enumerate().filter(|(_, p)| p.positive).map(|(i, _)| index(i));
+    let positive = model
+        .params
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.positive)
+        .map(|(i, _)| index(i));
     quote! {
         const INFO: __crane_runtime::ModelInfo = __crane_runtime::ModelInfo {
             name: #name_str,

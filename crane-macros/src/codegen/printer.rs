@@ -66,11 +66,7 @@ pub(super) fn float_literal(value: f64) -> TokenStream {
 /// A (possibly negative) `f64` literal.
 fn signed_literal(value: f64) -> TokenStream {
     let magnitude = float_literal(value.abs());
-    if value < 0.0 {
-        quote!(-#magnitude)
-    } else {
-        magnitude
-    }
+    if value < 0.0 { quote!(-#magnitude) } else { magnitude }
 }
 
 /// Prints expressions of one function body, given the `let` bindings.
@@ -100,11 +96,7 @@ impl Printer<'_> {
     /// Parenthesizes `p` if it binds less tightly than `prec`.
     fn at_least(p: Printed, prec: Prec) -> TokenStream {
         let tokens = p.tokens;
-        if p.prec < prec {
-            quote!((#tokens))
-        } else {
-            tokens
-        }
+        if p.prec < prec { quote!((#tokens)) } else { tokens }
     }
 
     /// `p` as the receiver of a method call.
@@ -219,9 +211,7 @@ impl Printer<'_> {
     /// `a + b - c + 1.0`: a positive term first (constants last), negative
     /// terms as subtractions.
     fn sum(&self, terms: &[Id]) -> Printed {
-        let (constants, mut order): (Vec<Id>, Vec<Id>) = terms
-            .iter()
-            .partition(|&&t| self.arena.as_const(t).is_some());
+        let (constants, mut order): (Vec<Id>, Vec<Id>) = terms.iter().partition(|&&t| self.arena.as_const(t).is_some());
         if let Some(first) = order.iter().position(|&t| self.negative_term(t).is_none()) {
             let t = order.remove(first);
             order.insert(0, t);
@@ -332,10 +322,7 @@ impl Printer<'_> {
     /// `d1 * d2 * ...` as the right operand of `/`.
     fn joined_unary(&self, factors: Vec<Printed>) -> TokenStream {
         if factors.len() == 1 {
-            let p = factors
-                .into_iter()
-                .next()
-                .map(|p| Self::at_least(p, Prec::Unary));
+            let p = factors.into_iter().next().map(|p| Self::at_least(p, Prec::Unary));
             return quote!(#p);
         }
         self.joined(factors)

@@ -13,7 +13,9 @@ use crate::model::Model;
 /// for a minimal map) at 100 random points of the declared box. Correct
 /// derivatives show ~1e-9, a wrong one O(1); the threshold is 1e-6.
 pub(super) fn self_test(model: &Model) -> TokenStream {
-    let Some(sample) = &model.self_test else { return TokenStream::new() };
+    let Some(sample) = &model.self_test else {
+        return TokenStream::new();
+    };
     let runtime = &model.runtime;
     let name = &model.name;
     let module = format_ident!("__crane_self_test_{}", name.to_string().to_lowercase());

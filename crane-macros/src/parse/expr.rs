@@ -12,8 +12,7 @@ use super::ast::{BinOp, Expr, Function, PREFIX_BP};
 use crate::ctxt::SpanRange;
 
 /// What the error messages list as supported functions.
-pub const SUPPORTED_FUNCTIONS: &str =
-    "sin, cos, tan, sqrt, exp, ln, atan2(y, x), and dot(coordinate) for a velocity";
+pub const SUPPORTED_FUNCTIONS: &str = "sin, cos, tan, sqrt, exp, ln, atan2(y, x), and dot(coordinate) for a velocity";
 
 /// What the error messages list as supported operators.
 pub const SUPPORTED_OPERATORS: &str = "+ - * / ^ (power) and parentheses";
@@ -153,10 +152,9 @@ fn primary(input: ParseStream) -> syn::Result<Expr> {
                 format!("unsupported function `{name}`; supported: {SUPPORTED_FUNCTIONS}"),
             ));
         };
-        let args: Vec<Expr> =
-            Punctuated::<Expr, Token![,]>::parse_terminated_with(&content, parse_expr)?
-                .into_iter()
-                .collect();
+        let args: Vec<Expr> = Punctuated::<Expr, Token![,]>::parse_terminated_with(&content, parse_expr)?
+            .into_iter()
+            .collect();
         if args.len() != func.arity() {
             let expected = match func {
                 Function::Unary(_) => "1 argument".to_owned(),
@@ -185,9 +183,7 @@ fn primary(input: ParseStream) -> syn::Result<Expr> {
         };
         return Err(syn::Error::new(punct.span(), message));
     }
-    Err(input.error(
-        "expected an expression: a number, a name, `dot(coordinate)`, a function call or `( ... )`",
-    ))
+    Err(input.error("expected an expression: a number, a name, `dot(coordinate)`, a function call or `( ... )`"))
 }
 
 fn finite(value: f64, span: Span) -> syn::Result<f64> {

@@ -68,7 +68,11 @@ pub(super) fn parse_sample(input: ParseStream) -> syn::Result<SampleDecl> {
             format!("a range needs both bounds: `{name} = low .. high`"),
         ));
     }
-    Ok(SampleDecl { name, low: parse_expr.parse2(low)?, high: parse_expr.parse2(high)? })
+    Ok(SampleDecl {
+        name,
+        low: parse_expr.parse2(low)?,
+        high: parse_expr.parse2(high)?,
+    })
 }
 
 pub(super) fn parse_force(input: ParseStream) -> syn::Result<ForceDecl> {
@@ -92,10 +96,7 @@ pub(super) fn parse_constraint(input: ParseStream) -> syn::Result<ConstraintDecl
             ));
         }
         if rope.is_some() {
-            return Err(syn::Error::new_spanned(
-                attr,
-                "duplicate `#[rope(...)]` attribute",
-            ));
+            return Err(syn::Error::new_spanned(attr, "duplicate `#[rope(...)]` attribute"));
         }
         rope = Some(attr.parse_args_with(|input: ParseStream| {
             let tension: Ident = input.parse()?;

@@ -25,8 +25,7 @@ use syn::{Attribute, Token, Visibility};
 use crate::ctxt::Ctxt;
 
 pub use ast::{
-    BinOp, ConstraintDecl, Declaration, Expr, Function, MinimalDecl, MinimalStmt, ParamDecl,
-    SampleDecl, Section,
+    BinOp, ConstraintDecl, Declaration, Expr, Function, MinimalDecl, MinimalStmt, ParamDecl, SampleDecl, Section,
 };
 /// For the unit tests, which parse expressions on their own.
 #[cfg(test)]
@@ -35,17 +34,16 @@ pub use expr::parse_expr;
 /// Parses a whole invocation. Returns `None` if not even the struct header
 /// could be read; every problem is reported to `cx`.
 pub fn parse(tokens: TokenStream, cx: &Ctxt) -> Option<Declaration> {
-    let header =
-        |input: ParseStream| -> syn::Result<(Vec<Attribute>, Visibility, Ident, TokenStream)> {
-            let attrs = input.call(Attribute::parse_outer)?;
-            let vis: Visibility = input.parse()?;
-            input.parse::<Token![struct]>()?;
-            let name: Ident = input.parse()?;
-            let content;
-            syn::braced!(content in input);
-            let body: TokenStream = content.parse()?;
-            Ok((attrs, vis, name, body))
-        };
+    let header = |input: ParseStream| -> syn::Result<(Vec<Attribute>, Visibility, Ident, TokenStream)> {
+        let attrs = input.call(Attribute::parse_outer)?;
+        let vis: Visibility = input.parse()?;
+        input.parse::<Token![struct]>()?;
+        let name: Ident = input.parse()?;
+        let content;
+        syn::braced!(content in input);
+        let body: TokenStream = content.parse()?;
+        Ok((attrs, vis, name, body))
+    };
     let (attrs, vis, name, body) = match header.parse2(tokens) {
         Ok(header) => header,
         Err(error) => {

@@ -4,15 +4,13 @@
 //! section and item boundaries and one typo does not hide the others.
 
 use proc_macro2::{Delimiter, Ident, Span, TokenStream, TokenTree};
+use syn::Token;
 use syn::parse::{ParseStream, Parser};
 use syn::punctuated::Punctuated;
-use syn::Token;
 
 use super::ast::{MinimalDecl, Section, Sections};
 use super::expr::parse_expr;
-use super::items::{
-    parse_constraint, parse_force, parse_minimal_stmt, parse_mu, parse_param, parse_sample,
-};
+use super::items::{parse_constraint, parse_force, parse_minimal_stmt, parse_mu, parse_param, parse_sample};
 use crate::ctxt::{Ctxt, SpanRange};
 
 /// Section keywords and what follows each.
@@ -29,8 +27,7 @@ const SECTIONS: &[(&str, Follow)] = &[
 ];
 
 /// The list of section names for error messages.
-pub const SECTION_NAMES: &str =
-    "params, robot, load, inputs, kinetic, forces, constraints, minimal, sample";
+pub const SECTION_NAMES: &str = "params, robot, load, inputs, kinetic, forces, constraints, minimal, sample";
 
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Follow {
@@ -95,10 +92,7 @@ pub(super) fn parse_sections(body: TokenStream, cx: &Ctxt) -> Sections {
         };
         if !follow.matches(tts.get(i + 1)) {
             let span = tts.get(i + 1).map_or(keyword.span(), TokenTree::span);
-            cx.error_at(
-                span,
-                format!("expected {} after `{keyword}`", follow.describe()),
-            );
+            cx.error_at(span, format!("expected {} after `{keyword}`", follow.describe()));
             i = skip_to_section(&tts, i + 1);
             continue;
         }
@@ -148,20 +142,8 @@ fn group_stream(tt: &TokenTree) -> TokenStream {
     }
 }
 
-fn parse_section(
-    keyword: &Ident,
-    tts: &[TokenTree],
-    range: SpanRange,
-    sections: &mut Sections,
-    cx: &Ctxt,
-) {
-    fn store<T>(
-        slot: &mut Option<Section<T>>,
-        keyword: &Ident,
-        range: SpanRange,
-        body: T,
-        cx: &Ctxt,
-    ) {
+fn parse_section(keyword: &Ident, tts: &[TokenTree], range: SpanRange, sections: &mut Sections, cx: &Ctxt) {
+    fn store<T>(slot: &mut Option<Section<T>>, keyword: &Ident, range: SpanRange, body: T, cx: &Ctxt) {
         if slot.is_some() {
             cx.error_at(keyword.span(), format!("duplicate section `{keyword}`"));
         } else {
@@ -177,31 +159,12 @@ fn parse_section(
             let items = parse_items(group_stream(&tts[0]), ',', parse_param, cx);
             store(&mut sections.params, keyword, range, items, cx);
         }
-        "robot" => store(
-            &mut sections.robot,
-            keyword,
-            range,
-            parse_names(&tts[0], cx),
-            cx,
-        ),
-        "load" => store(
-            &mut sections.load,
-            keyword,
-            range,
-            parse_names(&tts[0], cx),
-            cx,
-        ),
-        "inputs" => store(
-            &mut sections.inputs,
-            keyword,
-            range,
-            parse_names(&tts[0], cx),
-            cx,
-        ),
+        "robot" => store(&mut sections.robot, keyword, range, parse_names(&tts[0], cx), cx),
+        "load" => store(&mut sections.load, keyword, range, parse_names(&tts[0], cx), cx),
+        "inputs" => store(&mut sections.inputs, keyword, range, parse_names(&tts[0], cx), cx),
         "kinetic" => {
             // tts = `=` expr... [;]
-            let ends_with_semi =
-                matches!(tts.last(), Some(TokenTree::Punct(p)) if p.as_char() == ';');
+            let ends_with_semi = matches!(tts.last(), Some(TokenTree::Punct(p)) if p.as_char() == ';');
             let expr_tokens: TokenStream = if ends_with_semi {
                 tts[1..tts.len() - 1].iter().cloned().collect()
             } else {
@@ -259,12 +222,7 @@ fn parse_section(
                 &mut sections.minimal,
                 keyword,
                 range,
-                MinimalDecl {
-                    split,
-                    mu1,
-                    mu2,
-                    body,
-                },
+                MinimalDecl { split, mu1, mu2, body },
                 cx,
             );
         }

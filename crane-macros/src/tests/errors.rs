@@ -16,13 +16,7 @@ fn expand_errors(source: &str) -> (Vec<String>, bool) {
     let mut stub = false;
     for item in file.items {
         match item {
-            syn::Item::Macro(m)
-                if m.mac
-                    .path
-                    .segments
-                    .last()
-                    .is_some_and(|s| s.ident == "compile_error") =>
-            {
+            syn::Item::Macro(m) if m.mac.path.segments.last().is_some_and(|s| s.ident == "compile_error") => {
                 let message: syn::LitStr = m.mac.parse_body().expect("a string literal");
                 messages.push(message.value());
             }
@@ -35,20 +29,14 @@ fn expand_errors(source: &str) -> (Vec<String>, bool) {
 
 /// The planar crane with `from` replaced by `to` (which must occur).
 fn navy_with(from: &str, to: &str) -> String {
-    assert!(
-        NAVY.contains(from),
-        "test bug: `{from}` is not in the declaration"
-    );
+    assert!(NAVY.contains(from), "test bug: `{from}` is not in the declaration");
     NAVY.replacen(from, to, 1)
 }
 
 /// The planar crane with its `minimal` block, with `from` replaced by `to`
 /// in the block (where it must occur).
 fn minimal_with(from: &str, to: &str) -> String {
-    assert!(
-        MINIMAL.contains(from),
-        "test bug: `{from}` is not in the minimal block"
-    );
+    assert!(MINIMAL.contains(from), "test bug: `{from}` is not in the minimal block");
     navy_minimal_source().replacen(from, to, 1)
 }
 
@@ -218,9 +206,7 @@ fn forces_must_be_linear_in_the_inputs() {
 fn velocities_and_inputs_where_not_allowed() {
     assert_errors(
         &navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(dot(x0)^2"),
-        &[
-            "velocity `dot(x0)` is not allowed in `constraints`: velocities may appear only in `kinetic` and `forces`",
-        ],
+        &["velocity `dot(x0)` is not allowed in `constraints`: velocities may appear only in `kinetic` and `forces`"],
     );
     assert_errors(
         &navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(u1^2"),
@@ -232,9 +218,7 @@ fn velocities_and_inputs_where_not_allowed() {
     );
     assert_errors(
         &navy_with("#[rope(N1 = L1)]", "#[rope(N1 = dot(L1))]"),
-        &[
-            "velocity `dot(L1)` is not allowed in a rope length: velocities may appear only in `kinetic` and `forces`",
-        ],
+        &["velocity `dot(L1)` is not allowed in a rope length: velocities may appear only in `kinetic` and `forces`"],
     );
     assert_errors(
         &navy_with("dot(L1)^2", "dot(u1)^2"),
@@ -272,9 +256,7 @@ fn forces_keyed_by_unknown_or_repeated_coordinates() {
     );
     assert_errors(
         &navy_with("z: -m_l*g", "m_l: -m_l*g"),
-        &[
-            "`m_l` is a parameter, not a coordinate: `forces` maps coordinates to generalized forces",
-        ],
+        &["`m_l` is a parameter, not a coordinate: `forces` maps coordinates to generalized forces"],
     );
     assert_errors(
         &navy_with("z: -m_l*g", "z: -m_l*g, z: 1"),
@@ -346,10 +328,7 @@ fn sections() {
         &["expected `[ ... ]` after `robot`"],
     );
     assert_errors(
-        &navy_with(
-            "inputs [u1, u2]",
-            "inputs [u1, u2] minimal [beta, gamma | theta, L]",
-        ),
+        &navy_with("inputs [u1, u2]", "inputs [u1, u2] minimal [beta, gamma | theta, L]"),
         &["expected `{ ... }` with the map `q = phi(mu)` after `minimal [...]`"],
     );
 }
@@ -365,9 +344,7 @@ fn a_pendulum_without_constraints_section() {
     "#;
     assert_errors(
         source,
-        &[
-            "missing section `constraints`: declare it, e.g. `constraints { rope: 0.5*(x^2 + z^2 - L^2) }`",
-        ],
+        &["missing section `constraints`: declare it, e.g. `constraints { rope: 0.5*(x^2 + z^2 - L^2) }`"],
     );
 }
 
@@ -375,15 +352,11 @@ fn a_pendulum_without_constraints_section() {
 fn parameter_defaults_must_be_constant() {
     assert_errors(
         &navy_with("l = 10.0", "l = 2*alpha"),
-        &[
-            "parameter defaults must be constant (numbers, PI and functions of them); `alpha` is a parameter",
-        ],
+        &["parameter defaults must be constant (numbers, PI and functions of them); `alpha` is a parameter"],
     );
     assert_errors(
         &navy_with("l = 10.0", "l = 2*L1"),
-        &[
-            "parameter defaults must be constant (numbers, PI and functions of them); `L1` is a robot coordinate",
-        ],
+        &["parameter defaults must be constant (numbers, PI and functions of them); `L1` is a robot coordinate"],
     );
 }
 
@@ -400,8 +373,7 @@ fn a_constraint_must_depend_on_a_coordinate() {
 
 #[test]
 fn all_errors_are_reported_at_once() {
-    let source =
-        navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(xx^2").replace("L1: u1/r1", "L1: u1^2/r1");
+    let source = navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(xx^2").replace("L1: u1/r1", "L1: u1^2/r1");
     let (messages, stub) = expand_errors(&source);
     assert_eq!(messages.len(), 2, "{messages:?}");
     assert!(messages[0].starts_with("force on `L1` is not linear in the inputs"));
@@ -479,10 +451,7 @@ fn minimal_split() {
 #[test]
 fn minimal_count_is_the_degrees_of_freedom() {
     assert_errors(
-        &minimal_with(
-            "[beta, gamma | theta, L]",
-            "[beta, gamma, kappa | theta, L]",
-        ),
+        &minimal_with("[beta, gamma | theta, L]", "[beta, gamma, kappa | theta, L]"),
         &[
             "`minimal` declares 5 minimal coordinates (beta, gamma, kappa, theta, L), but the crane has \
              f = n - m = 7 - 3 = 4 degrees of freedom",
@@ -498,12 +467,9 @@ fn minimal_coordinates_need_names_of_their_own() {
         .replace("cos(theta)", "cos(g)");
     assert_errors(
         &source,
-        &[
-            "duplicate name `g`: already declared as a parameter; minimal coordinates need names of their own",
-        ],
+        &["duplicate name `g`: already declared as a parameter; minimal coordinates need names of their own"],
     );
-    let source = minimal_with("[beta, gamma | theta, L]", "[beta, beta | theta, L]")
-        .replace("gamma", "beta");
+    let source = minimal_with("[beta, gamma | theta, L]", "[beta, beta | theta, L]").replace("gamma", "beta");
     assert_errors(
         &source,
         &[
@@ -529,27 +495,19 @@ fn minimal_coordinates_need_names_of_their_own() {
 fn minimal_lets_shadow_nothing() {
     assert_errors(
         &minimal_with("L0 = d;", "L0 = d; let x0 = 1;"),
-        &[
-            "`let x0` would shadow `x0`, which is a robot coordinate: choose another name for the abbreviation",
-        ],
+        &["`let x0` would shadow `x0`, which is a robot coordinate: choose another name for the abbreviation"],
     );
     assert_errors(
         &minimal_with("L0 = d;", "L0 = d; let d = 2*l;"),
-        &[
-            "`let d` would shadow `d`, which is a `let` above: choose another name for the abbreviation",
-        ],
+        &["`let d` would shadow `d`, which is a `let` above: choose another name for the abbreviation"],
     );
     assert_errors(
         &minimal_with("L0 = d;", "L0 = d; let theta = 0;"),
-        &[
-            "`let theta` would shadow `theta`, which is a minimal coordinate: choose another name for the abbreviation",
-        ],
+        &["`let theta` would shadow `theta`, which is a minimal coordinate: choose another name for the abbreviation"],
     );
     assert_errors(
         &minimal_with("L0 = d;", "L0 = d; let sqrt = 2;"),
-        &[
-            "`let sqrt` would shadow `sqrt`, which is reserved (a function): choose another name for the abbreviation",
-        ],
+        &["`let sqrt` would shadow `sqrt`, which is reserved (a function): choose another name for the abbreviation"],
     );
 }
 
@@ -647,9 +605,7 @@ fn minimal_reads_top_to_bottom() {
     );
     assert_errors(
         &minimal_with("L0 = d;", "L0 = e; let e = d;"),
-        &[
-            "`e` is used above its `let`: the block reads top to bottom, so move `let e = ...;` above this line",
-        ],
+        &["`e` is used above its `let`: the block reads top to bottom, so move `let e = ...;` above this line"],
     );
     assert_errors(
         &minimal_with(
@@ -665,13 +621,10 @@ fn minimal_reads_top_to_bottom() {
 
 #[test]
 fn minimal_coordinates_must_all_be_used() {
-    let source =
-        minimal_with("x  = x0 + L*sin(theta);", "x  = x0;").replace("z0 - L*cos(theta)", "z0 - L");
+    let source = minimal_with("x  = x0 + L*sin(theta);", "x  = x0;").replace("z0 - L*cos(theta)", "z0 - L");
     assert_errors(
         &source,
-        &[
-            "minimal coordinate `theta` appears in no mapping: P = D phi (eq. 8) would have a zero column",
-        ],
+        &["minimal coordinate `theta` appears in no mapping: P = D phi (eq. 8) would have a zero column"],
     );
 }
 
@@ -728,7 +681,9 @@ fn sample_section_generates_a_self_test() {
 fn sample_section_errors() {
     assert_errors(
         &navy_with_sample("sample { L1 = 1.0 .. 20.0 }"),
-        &["`sample` needs a range for every coordinate; missing: L2, L0, x0, z0, x, z (write e.g. `L2 = -10.0 .. 10.0`)"],
+        &[
+            "`sample` needs a range for every coordinate; missing: L2, L0, x0, z0, x, z (write e.g. `L2 = -10.0 .. 10.0`)",
+        ],
     );
     assert_errors(
         &navy_with_sample(&format!("sample {{ {FULL_SAMPLE}, m_l = 1.0 .. 2.0 }}")),
@@ -742,10 +697,16 @@ fn sample_section_errors() {
         &navy_with_sample("sample { L1 = 1.0 }"),
         &["expected a range `L1 = low .. high` (constant bounds)"],
     );
-    let (messages, _) = expand_errors(&navy_with_sample(&format!("sample {{ {FULL_SAMPLE}, L1 = l .. 20.0 }}")));
+    let (messages, _) = expand_errors(&navy_with_sample(&format!(
+        "sample {{ {FULL_SAMPLE}, L1 = l .. 20.0 }}"
+    )));
     assert!(!messages.is_empty(), "a non-constant bound must be an error");
     assert_errors(
-        &navy_with_sample(&format!("sample {{ {FULL_SAMPLE} }}")).replacen("pub struct", "#[crane(self_check)] pub struct", 1),
+        &navy_with_sample(&format!("sample {{ {FULL_SAMPLE} }}")).replacen(
+            "pub struct",
+            "#[crane(self_check)] pub struct",
+            1,
+        ),
         &["unknown `crane` option: expected `runtime = path::to::crane_runtime` or `no_self_test`"],
     );
 }

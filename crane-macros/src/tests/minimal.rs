@@ -68,10 +68,7 @@ fn the_kernels_have_the_structure_of_eqs_8_9_17_and_40() {
     // D2 phi_x = [[L cos(theta), sin(theta)], [L sin(theta), -cos(theta)]] (eq. 40)
     let (theta, big_l) = (arena.sym(THETA), arena.sym(L));
     let (sin, cos) = (arena.func(Func::Sin, theta), arena.func(Func::Cos, theta));
-    let eq40: [[Id; 2]; 2] = [
-        [arena.mul2(big_l, cos), sin],
-        [arena.mul2(big_l, sin), arena.neg(cos)],
-    ];
+    let eq40: [[Id; 2]; 2] = [[arena.mul2(big_l, cos), sin], [arena.mul2(big_l, sin), arena.neg(cos)]];
     for (i, row) in eq40.iter().enumerate() {
         assert_eq!(k.p[5 + i][2..], row[..]);
     }
@@ -93,9 +90,7 @@ fn the_kernels_have_the_structure_of_eqs_8_9_17_and_40() {
     // w with mu1' = 0 is the pendulum's: -L sin(theta) theta'^2 + 2 cos(theta) theta' L'
     let zero = arena.zero();
     let pendulum_only = |arena: &mut crate::expr::Arena, e: Id| {
-        arena.substitute(e, &mut |s| {
-            matches!(s, Sym::MuDot(0) | Sym::MuDot(1)).then_some(zero)
-        })
+        arena.substitute(e, &mut |s| matches!(s, Sym::MuDot(0) | Sym::MuDot(1)).then_some(zero))
     };
     let w_x = pendulum_only(arena, k.w[0]);
     let (theta_dot, l_dot) = (arena.sym(Sym::MuDot(2)), arena.sym(Sym::MuDot(3)));

@@ -83,10 +83,7 @@ fn products_and_sums_are_left_associative() {
 #[test]
 fn calls_velocities_and_constants() {
     assert_eq!(parsed("atan2(y, x - 1)"), "(atan2 y (- x 1))");
-    assert_eq!(
-        parsed("sin(alpha)*cos(PI/3)"),
-        "(* (sin alpha) (cos (/ PI 3)))"
-    );
+    assert_eq!(parsed("sin(alpha)*cos(PI/3)"), "(* (sin alpha) (cos (/ PI 3)))");
     assert_eq!(parsed("dot(x)^2 + 1e-3"), "(+ (^ (dot x) 2) 1e-3)");
     assert_eq!(parsed("sqrt(exp(ln(tan(x))))"), "(sqrt (exp (ln (tan x))))");
 }
@@ -111,18 +108,12 @@ fn unsupported_syntax_is_an_error_not_a_panic() {
         parse_error("x.sin()"),
         "unsupported operator `.`: write functions as `sin(x)`, not `x.sin()`"
     );
-    assert_eq!(
-        parse_error("x ** 2"),
-        "unexpected `*`: write powers as `x^n`"
-    );
+    assert_eq!(parse_error("x ** 2"), "unexpected `*`: write powers as `x^n`");
     assert_eq!(
         parse_error("cosh(x)"),
         "unsupported function `cosh`; supported: sin, cos, tan, sqrt, exp, ln, atan2(y, x), and dot(coordinate) for a velocity"
     );
-    assert_eq!(
-        parse_error("atan2(x)"),
-        "`atan2` takes 2 arguments (y, x), found 1"
-    );
+    assert_eq!(parse_error("atan2(x)"), "`atan2` takes 2 arguments (y, x), found 1");
     assert_eq!(parse_error("sin(x, y)"), "`sin` takes 1 argument, found 2");
     assert_eq!(
         parse_error("dot(x + y)"),
@@ -147,19 +138,10 @@ fn sections_of_the_planar_crane() {
     assert!(cx.check().is_ok());
     assert_eq!(decl.name, "NavyPlanar");
     let s = &decl.sections;
-    let names = |v: &[proc_macro2::Ident]| {
-        v.iter()
-            .map(ToString::to_string)
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
+    let names = |v: &[proc_macro2::Ident]| v.iter().map(ToString::to_string).collect::<Vec<_>>().join(" ");
     let params = &s.params.as_ref().unwrap().body;
     assert_eq!(
-        params
-            .iter()
-            .map(|p| p.name.to_string())
-            .collect::<Vec<_>>()
-            .join(" "),
+        params.iter().map(|p| p.name.to_string()).collect::<Vec<_>>().join(" "),
         "m_l J1 J2 r1 r2 alpha l g"
     );
     assert_eq!(params[5].default.to_string(), "PI / 3.0");
@@ -203,10 +185,7 @@ fn sections_in_any_order() {
     let decl = parse(tokens(source), &cx).expect("header parses");
     assert!(cx.check().is_ok());
     let minimal = &decl.sections.minimal.as_ref().unwrap().body;
-    assert_eq!(
-        (minimal.mu1.len(), minimal.mu2.len(), minimal.body.len()),
-        (1, 1, 3)
-    );
+    assert_eq!((minimal.mu1.len(), minimal.mu2.len(), minimal.body.len()), (1, 1, 3));
     assert!(matches!(&minimal.body[0], crate::parse::MinimalStmt::Let { name, .. } if name == "s"));
 }
 
@@ -224,18 +203,8 @@ fn minimal_block(source: &str) -> Result<(String, String, Vec<String>), String> 
     if let Err(error) = cx.check() {
         return Err(error.to_string());
     }
-    let minimal = &decl
-        .sections
-        .minimal
-        .as_ref()
-        .expect("a minimal block")
-        .body;
-    let names = |v: &[proc_macro2::Ident]| {
-        v.iter()
-            .map(ToString::to_string)
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
+    let minimal = &decl.sections.minimal.as_ref().expect("a minimal block").body;
+    let names = |v: &[proc_macro2::Ident]| v.iter().map(ToString::to_string).collect::<Vec<_>>().join(" ");
     let statements = minimal
         .body
         .iter()
@@ -281,11 +250,7 @@ fn minimal_splits() {
             .unwrap_err()
             .starts_with("missing `|` between mu1 and mu2")
     );
-    assert!(
-        block("a | b | c")
-            .unwrap_err()
-            .starts_with("only one `|` is allowed")
-    );
+    assert!(block("a | b | c").unwrap_err().starts_with("only one `|` is allowed"));
     assert_eq!(block("a b | c").unwrap_err(), "expected `,`");
     assert_eq!(block("a, 1 | c").unwrap_err(), "expected identifier");
 }
@@ -296,10 +261,7 @@ fn minimal_statements() {
         minimal_block(&format!("struct A {{ minimal [a | b] {{ {body} }} }}"))
             .map(|(_, _, statements)| statements.join("; "))
     };
-    assert_eq!(
-        statements("let c = a^2; x = c + b;; ").unwrap_err(),
-        "unexpected `;`"
-    );
+    assert_eq!(statements("let c = a^2; x = c + b;; ").unwrap_err(), "unexpected `;`");
     assert_eq!(
         statements("let c = a^2; x = c + b; y = -x").unwrap(),
         "let c = a^2; x = c + b; y = -x"

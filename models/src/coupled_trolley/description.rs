@@ -24,13 +24,20 @@ pub const TF: f64 = 5.0;
 impl Crane<4, 1, 2> for Description {
     type Model = CoupledTrolley;
     const NAME: &'static str = "coupled-trolley";
-    const DESCRIPTION: &'static str = "planar trolley crane, trolley-load coupling: NOT flat (unstable internal dynamics)";
+    const DESCRIPTION: &'static str =
+        "planar trolley crane, trolley-load coupling: NOT flat (unstable internal dynamics)";
 
     /// Poly9 (eqs. 41-45) from `(0, -5)` to `(4, -3)` in [`TF`]; the start
     /// `p0 = [s, L] = [0, 5]`: at rest below the trolley.
     fn maneuver() -> Maneuver<2> {
         Maneuver {
-            path: PathSpec { profile: Profile::Poly9, t0: 0.0, t1: TF, start: vector![0.0, -5.0], end: vector![4.0, -3.0] },
+            path: PathSpec {
+                profile: Profile::Poly9,
+                t0: 0.0,
+                t1: TF,
+                start: vector![0.0, -5.0],
+                end: vector![4.0, -3.0],
+            },
             p0: vec![0.0, 5.0],
         }
     }
@@ -44,7 +51,12 @@ impl Crane<4, 1, 2> for Description {
             pose: Box::new(|q| {
                 let trolley = [q[0], 0.0, 0.0];
                 let load = [q[2], 0.0, q[3]];
-                Pose { boom: vec![[-5.0, 0.0, 0.0], [10.0, 0.0, 0.0]], ropes: vec![[trolley, load]], pulley: trolley, load }
+                Pose {
+                    boom: vec![[-5.0, 0.0, 0.0], [10.0, 0.0, 0.0]],
+                    ropes: vec![[trolley, load]],
+                    pulley: trolley,
+                    load,
+                }
             }),
             ropes: "rail, trolley B at s, rope B-C (L)",
         })

@@ -35,7 +35,13 @@ impl Crane<6, 1, 3> for Description {
     /// start `p0 = [X, Y, L] = [0, 0, 5]`: at rest below the trolley.
     fn maneuver() -> Maneuver<3> {
         Maneuver {
-            path: PathSpec { profile: Profile::Poly9, t0: 0.0, t1: TF, start: vector![0.0, 0.0, -5.0], end: vector![6.0, 3.0, -3.0] },
+            path: PathSpec {
+                profile: Profile::Poly9,
+                t0: 0.0,
+                t1: TF,
+                start: vector![0.0, 0.0, -5.0],
+                end: vector![6.0, 3.0, -3.0],
+            },
             p0: vec![0.0, 0.0, 5.0],
         }
     }
@@ -43,7 +49,13 @@ impl Crane<6, 1, 3> for Description {
     /// The flatness-based solution of [`reference`](super::reference).
     fn reference(model: &Gantry3d, path: &Path<3>, t: f64) -> Option<State<6, 1, 3>> {
         let r = reference_at(model, path, t);
-        finite_state(State { t, q: r.q, v: r.v, u: r.u, lambda: r.lambda })
+        finite_state(State {
+            t,
+            q: r.q,
+            v: r.v,
+            u: r.u,
+            lambda: r.lambda,
+        })
     }
 
     fn simulate_minimal(
@@ -54,7 +66,9 @@ impl Crane<6, 1, 3> for Description {
         progress: &mut dyn FnMut(usize, usize),
     ) -> Option<Result<Solution<6, 1, 3>, Error>> {
         let guess = minimal_guess(start);
-        Some(simulate_minimal_with_progress(model, path, start, &guess, options, progress))
+        Some(simulate_minimal_with_progress(
+            model, path, start, &guess, options, progress,
+        ))
     }
 
     /// `q = [X, Y, L | x, y, z]`: the bridge at `X` spanning `y` from -10 to
@@ -66,7 +80,12 @@ impl Crane<6, 1, 3> for Description {
             pose: Box::new(|q| {
                 let trolley = [q[0], q[1], 0.0];
                 let load = [q[3], q[4], q[5]];
-                Pose { boom: vec![[q[0], -10.0, 0.0], [q[0], 10.0, 0.0]], ropes: vec![[trolley, load]], pulley: trolley, load }
+                Pose {
+                    boom: vec![[q[0], -10.0, 0.0], [q[0], 10.0, 0.0]],
+                    ropes: vec![[trolley, load]],
+                    pulley: trolley,
+                    load,
+                }
             }),
             ropes: "bridge at X, trolley B, rope B-C (L)",
         })

@@ -62,7 +62,13 @@ pub fn reference(p: &Gantry3d, derivs: &[SVector<f64, 3>; 5]) -> ReferenceState 
         p.m_t * a[1] - lambda * (q[4] - q[1]),
         p.r * (p.J / (p.r * p.r) * a[2] - lambda * q[2]),
     ]);
-    ReferenceState { q, v, a, u, lambda: SVector::from([lambda]) }
+    ReferenceState {
+        q,
+        v,
+        a,
+        u,
+        lambda: SVector::from([lambda]),
+    }
 }
 
 /// [`reference()`] at time `t` of a load path.

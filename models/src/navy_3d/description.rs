@@ -73,7 +73,13 @@ impl Crane<11, 4, 3> for Description {
     /// The flatness-based solution of [`reference`](super::reference).
     fn reference(model: &Navy3d, path: &Path<3>, t: f64) -> Option<State<11, 4, 3>> {
         let r = reference_at(model, path, t)?;
-        finite_state(State { t, q: r.q, v: r.v, u: r.u, lambda: r.lambda })
+        finite_state(State {
+            t,
+            q: r.q,
+            v: r.v,
+            u: r.u,
+            lambda: r.lambda,
+        })
     }
 
     fn derived_outputs() -> &'static [&'static str] {
@@ -99,7 +105,12 @@ impl Crane<11, 4, 3> for Description {
                 let a = scale(p, beta1);
                 let b = [q[3], q[4], q[5]];
                 let c = [q[8], q[9], q[10]];
-                Pose { boom: vec![[0.0; 3], p], ropes: vec![[a, b], [p, b], [b, c]], pulley: b, load: c }
+                Pose {
+                    boom: vec![[0.0; 3], p],
+                    ropes: vec![[a, b], [p, b], [b, c]],
+                    pulley: b,
+                    load: c,
+                }
             }),
             ropes: "ropes A-B (L1), P-B-C (L2)",
         })

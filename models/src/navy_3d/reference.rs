@@ -103,11 +103,7 @@ pub struct FlatConfiguration<T: Scalar> {
 /// `xdd` (see the module docs). `None` where the load rope does not meet
 /// the boom's cone (`z'' + g <= 0` or a rope tilted so far that the cone
 /// intersection does not exist).
-pub fn flat_configuration<T: Scalar>(
-    params: &Navy3d,
-    x: V3<T>,
-    xdd: V3<T>,
-) -> Option<FlatConfiguration<T>> {
+pub fn flat_configuration<T: Scalar>(params: &Navy3d, x: V3<T>, xdd: V3<T>) -> Option<FlatConfiguration<T>> {
     let Navy3d {
         m_l,
         alpha,
@@ -221,12 +217,7 @@ pub fn reference(params: &Navy3d, derivs: &[SVector<f64, 3>; 5]) -> Option<Refer
 
     // boom rows (x2, y2): M P'' = u3/r^2 (-y2, x2) - lambda1 (x2, y2) + F
     let Navy3d {
-        J_b,
-        J1,
-        J2,
-        r1,
-        r2,
-        ..
+        J_b, J1, J2, r1, r2, ..
     } = *params;
     let r = boom_radius(params);
     let mass = J_b / (r * r);
@@ -239,11 +230,7 @@ pub fn reference(params: &Navy3d, derivs: &[SVector<f64, 3>; 5]) -> Option<Refer
     let (cos_p, sin_p) = (x2 / r, y2 / r);
     let tangential = (mass * a[6] - force[0]) * -sin_p + (mass * a[7] - force[1]) * cos_p;
     let radial = (force[0] - mass * a[6]) * cos_p + (force[1] - mass * a[7]) * sin_p;
-    let u = SVector::<f64, 3>::new(
-        J1 / r1 * a[0] - r1 * n1,
-        J2 / r2 * a[1] - r2 * n2,
-        r * tangential,
-    );
+    let u = SVector::<f64, 3>::new(J1 / r1 * a[0] - r1 * n1, J2 / r2 * a[1] - r2 * n2, r * tangential);
     let lambda = SVector::<f64, 4>::new(radial / r, lambda2, lambda3, lambda4);
     Some(ReferenceState {
         q,
@@ -257,11 +244,7 @@ pub fn reference(params: &Navy3d, derivs: &[SVector<f64, 3>; 5]) -> Option<Refer
 }
 
 /// [`reference()`] at time `t` of a load path.
-pub fn reference_at(
-    params: &Navy3d,
-    path: &impl Trajectory<3>,
-    t: f64,
-) -> Option<ReferenceState> {
+pub fn reference_at(params: &Navy3d, path: &impl Trajectory<3>, t: f64) -> Option<ReferenceState> {
     let derivs = std::array::from_fn(|k| path.derivative(t, k));
     reference(params, &derivs)
 }

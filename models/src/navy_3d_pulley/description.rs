@@ -69,7 +69,10 @@ impl PaperCase {
     /// the slewing torque `u4` stays bounded at the phase switches.
     pub fn smooth(tf: f64) -> Result<Self, TrajectoryError> {
         let mut case = Self::new(tf)?;
-        case.path = Path::new(PathSpec { profile: Profile::SmoothThreePhase { tau0: TAU0 }, ..*case.path.spec() })?;
+        case.path = Path::new(PathSpec {
+            profile: Profile::SmoothThreePhase { tau0: TAU0 },
+            ..*case.path.spec()
+        })?;
         Ok(case)
     }
 }
@@ -84,7 +87,13 @@ impl Crane<12, 5, 4> for Description {
     /// [`TAU0`]; `tf >= 10 s`).
     fn maneuver() -> Maneuver<4> {
         Maneuver {
-            path: PathSpec { profile: Profile::ThreePhase { tau0: TAU0 }, t0: 0.0, t1: TF, start: gamma0(), end: gammaf() },
+            path: PathSpec {
+                profile: Profile::ThreePhase { tau0: TAU0 },
+                t0: 0.0,
+                t1: TF,
+                start: gamma0(),
+                end: gammaf(),
+            },
             p0: paper_p0().to_vec(),
         }
     }

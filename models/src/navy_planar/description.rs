@@ -39,14 +39,26 @@ impl Crane<7, 3, 2> for Description {
     /// (Figs. 5-8; 15 s in Fig. 9), from `p0` of eq. (46).
     fn maneuver() -> Maneuver<2> {
         Maneuver {
-            path: PathSpec { profile: Profile::Poly9, t0: 0.0, t1: 4.0, start: vector![0.0, -10.0], end: vector![-3.0, -14.0] },
+            path: PathSpec {
+                profile: Profile::Poly9,
+                t0: 0.0,
+                t1: 4.0,
+                start: vector![0.0, -10.0],
+                end: vector![-3.0, -14.0],
+            },
             p0: paper_p0().to_vec(),
         }
     }
 
     fn reference(model: &NavyPlanar, path: &Path<2>, t: f64) -> Option<State<7, 3, 2>> {
         let r = reference_at(model, path, t);
-        finite_state(State { t, q: r.q, v: r.v, u: r.u, lambda: r.lambda })
+        finite_state(State {
+            t,
+            q: r.q,
+            v: r.v,
+            u: r.u,
+            lambda: r.lambda,
+        })
     }
 
     fn simulate_minimal(
@@ -57,7 +69,9 @@ impl Crane<7, 3, 2> for Description {
         progress: &mut dyn FnMut(usize, usize),
     ) -> Option<Result<Solution<7, 3, 2>, Error>> {
         let guess = minimal_guess(model, start);
-        Some(simulate_minimal_with_progress(model, path, start, &guess, options, progress))
+        Some(simulate_minimal_with_progress(
+            model, path, start, &guess, options, progress,
+        ))
     }
 
     /// `q = [L1, L2, L0, x0, z0 | x, z]`; tip P at the origin, winch 1 at
@@ -72,7 +86,12 @@ impl Crane<7, 3, 2> for Description {
             pose: Box::new(move |q| {
                 let b = [q[3], 0.0, q[4]];
                 let c = [q[5], 0.0, q[6]];
-                Pose { boom: vec![a, p], ropes: vec![[a, b], [p, b], [b, c]], pulley: b, load: c }
+                Pose {
+                    boom: vec![a, p],
+                    ropes: vec![[a, b], [p, b], [b, c]],
+                    pulley: b,
+                    load: c,
+                }
             }),
             ropes: "ropes A-B (L1), P-B-C (L2)",
         })

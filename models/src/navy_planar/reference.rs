@@ -36,7 +36,6 @@ use nalgebra::SVector;
 use num_dual::Dual2;
 use std::f64::consts::PI;
 
-
 /// The algebraic part of the flatness solution, eqs. (101)-(109), for one
 /// scalar type.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,16 +63,10 @@ pub struct FlatConfiguration<T: Scalar> {
 /// Generic so that dual numbers can carry time derivatives through it (see
 /// [`reference()`]). Requires `z'' + g > 0` (the hoist rope can only pull the
 /// load upwards).
-pub fn flat_configuration<T: Scalar>(
-    params: &NavyPlanar,
-    x: [T; 2],
-    xdd: [T; 2],
-) -> FlatConfiguration<T> {
+pub fn flat_configuration<T: Scalar>(params: &NavyPlanar, x: [T; 2], xdd: [T; 2]) -> FlatConfiguration<T> {
     let [x, z] = x;
     let [xdd, zdd] = xdd;
-    let NavyPlanar {
-        m_l, alpha, l, g, ..
-    } = *params;
+    let NavyPlanar { m_l, alpha, l, g, .. } = *params;
     let zg = zdd + g;
 
     // (102): tan(theta) = -x'' / (z'' + g), from Newton's law (101) for the load.
@@ -143,11 +136,7 @@ pub struct ReferenceState {
 pub fn reference(params: &NavyPlanar, derivs: &[SVector<f64, 2>; 5]) -> ReferenceState {
     // Second-order Taylor expansions in time of the position and of the acceleration.
     let taylor = |k: usize, i: usize| Dual2::new(derivs[k][i], derivs[k + 1][i], derivs[k + 2][i]);
-    let flat = flat_configuration(
-        params,
-        [taylor(0, 0), taylor(0, 1)],
-        [taylor(2, 0), taylor(2, 1)],
-    );
+    let flat = flat_configuration(params, [taylor(0, 0), taylor(0, 1)], [taylor(2, 0), taylor(2, 1)]);
 
     let q = flat.q.map(|c| c.re);
     let v = flat.q.map(|c| c.v1);
@@ -221,10 +210,7 @@ mod tests {
     /// `g(q)` and `G(q)` of eqs. (33), (35), written out here so that these
     /// unit tests need no model (`crane-tests` repeats the check with the
     /// hand-written model).
-    fn constraints_and_jacobian(
-        p: &NavyPlanar,
-        q: &SVector<f64, 7>,
-    ) -> (SVector<f64, 3>, SMatrix<f64, 3, 7>) {
+    fn constraints_and_jacobian(p: &NavyPlanar, q: &SVector<f64, 7>) -> (SVector<f64, 3>, SMatrix<f64, 3, 7>) {
         let [l1, l2, l0, x0, z0, x, z] = [q[0], q[1], q[2], q[3], q[4], q[5], q[6]];
         let (ax, az) = (x0 + p.l * p.alpha.sin(), z0 + p.l * p.alpha.cos());
         let g = SVector::<f64, 3>::new(
@@ -269,26 +255,14 @@ mod tests {
         for (i, e) in expected.iter().enumerate() {
             assert!((s.q[i] - e).abs() < 1e-10, "q[{i}] = {} != {e}", s.q[i]);
         }
-        let all =
-            s.q.iter()
-                .chain(&s.v)
-                .chain(&s.a)
-                .chain(&s.u)
-                .chain(&s.lambda);
+        let all = s.q.iter().chain(&s.v).chain(&s.a).chain(&s.u).chain(&s.lambda);
         assert!(all.copied().all(f64::is_finite));
-        assert!(
-            s.v.amax() == 0.0 && s.a.amax() == 0.0,
-            "at rest: {:?} {:?}",
-            s.v,
-            s.a
-        );
+        assert!(s.v.amax() == 0.0 && s.a.amax() == 0.0, "at rest: {:?} {:?}", s.v, s.a);
         // N1 = 2 N2 cos(pi/2): zero up to round-off (2 * 981 * 6e-17).
         assert!(s.lambda[0].abs() < 1e-12, "lambda1 = {}", s.lambda[0]);
         assert!(s.tensions[0].abs() < 1e-12);
         assert!((s.tensions[1] - 981.0).abs() < 1e-10);
-        assert!(
-            (s.lambda[1] - 981.0 / 5.0).abs() < 1e-10 && (s.lambda[2] - 981.0 / 5.0).abs() < 1e-10
-        );
+        assert!((s.lambda[1] - 981.0 / 5.0).abs() < 1e-10 && (s.lambda[2] - 981.0 / 5.0).abs() < 1e-10);
         // Static torques: u1 = 0 (slack rope), u2 = -N0 r2 = -98.1.
         assert!(s.u[0].abs() < 1e-12);
         assert!((s.u[1] + 98.1).abs() < 1e-12);
@@ -312,11 +286,7 @@ mod tests {
         assert_eq!((s.q[5], s.q[6]), (-3.0, -14.0));
         assert!(s.v.amax() < 1e-12 && s.a.amax() < 1e-12);
         assert!(residual(&p, &s).amax() < 1e-10);
-        assert!(
-            s.tensions[0] > 1.0,
-            "rope 1 is taut at the end: {:?}",
-            s.tensions
-        );
+        assert!(s.tensions[0] > 1.0, "rope 1 is taut at the end: {:?}", s.tensions);
     }
 
     /// `g(q) = 0`, `G q' = 0` and the equations of motion along the path, with
@@ -365,10 +335,7 @@ mod tests {
         };
         let (ev, ea) = worst_errors(1e-3);
         let (ev2, ea2) = worst_errors(2e-3);
-        assert!(
-            ev < 5e-5 && ea < 5e-5,
-            "|q' - fd| = {ev:e}, |q'' - fd| = {ea:e}"
-        );
+        assert!(ev < 5e-5 && ea < 5e-5, "|q' - fd| = {ev:e}, |q'' - fd| = {ea:e}");
         for ratio in [ev2 / ev, ea2 / ea] {
             assert!(
                 (3.5..4.5).contains(&ratio),
@@ -376,5 +343,4 @@ mod tests {
             );
         }
     }
-
 }

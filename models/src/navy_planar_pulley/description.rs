@@ -54,7 +54,13 @@ impl Crane<8, 4, 3> for Description {
 
     fn reference(model: &NavyPlanarPulley, path: &Path<3>, t: f64) -> Option<State<8, 4, 3>> {
         let r = reference_at(model, path, t);
-        finite_state(State { t, q: r.q, v: r.v, u: r.u, lambda: r.lambda })
+        finite_state(State {
+            t,
+            q: r.q,
+            v: r.v,
+            u: r.u,
+            lambda: r.lambda,
+        })
     }
 
     fn simulate_minimal(
@@ -65,7 +71,9 @@ impl Crane<8, 4, 3> for Description {
         progress: &mut dyn FnMut(usize, usize),
     ) -> Option<Result<Solution<8, 4, 3>, Error>> {
         let guess = minimal_guess(model, start);
-        Some(simulate_minimal_with_progress(model, path, start, &guess, options, progress))
+        Some(simulate_minimal_with_progress(
+            model, path, start, &guess, options, progress,
+        ))
     }
 
     /// `q = [L1, L2, L3, L0, x0 | x, z, z0]`; tip S at the origin, winch 3 at
@@ -80,7 +88,12 @@ impl Crane<8, 4, 3> for Description {
             pose: Box::new(move |q| {
                 let b = [q[4], 0.0, q[7]];
                 let c = [q[5], 0.0, q[6]];
-                Pose { boom: vec![a, tip], ropes: vec![[a, b], [tip, b], [p, b], [b, c]], pulley: b, load: c }
+                Pose {
+                    boom: vec![a, tip],
+                    ropes: vec![[a, b], [tip, b], [p, b], [b, c]],
+                    pulley: b,
+                    load: c,
+                }
             }),
             ropes: "ropes A-B (L1), S-B (L2), P-B-C (L3)",
         })

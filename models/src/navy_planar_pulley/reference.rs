@@ -39,7 +39,6 @@ use crane_runtime::{Scalar, Trajectory};
 use nalgebra::SVector;
 use num_dual::Dual2;
 
-
 /// The algebraic part of the flatness solution (steps 1-3 of the module
 /// docs) for one scalar type.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,20 +63,11 @@ pub struct FlatConfiguration<T: Scalar> {
 /// Generic so that dual numbers can carry time derivatives through it (see
 /// [`reference()`]). Requires `z'' + g > 0` and `z0 > z` (the load hangs
 /// below the pulley on a rope that pulls).
-pub fn flat_configuration<T: Scalar>(
-    params: &NavyPlanarPulley,
-    y: [T; 3],
-    ydd: [T; 2],
-) -> FlatConfiguration<T> {
+pub fn flat_configuration<T: Scalar>(params: &NavyPlanarPulley, y: [T; 3], ydd: [T; 2]) -> FlatConfiguration<T> {
     let [x, z, z0] = y;
     let [xdd, zdd] = ydd;
     let NavyPlanarPulley {
-        m_l,
-        alpha,
-        l,
-        s,
-        g,
-        ..
+        m_l, alpha, l, s, g, ..
     } = *params;
     let zg = zdd + g;
     let (sin_a, cos_a) = alpha.sin_cos();
@@ -121,9 +111,7 @@ pub fn pulley_multipliers<T: Scalar>(
     x0dd: T,
     z0dd: T,
 ) -> [T; 2] {
-    let NavyPlanarPulley {
-        m0, alpha, l, s, g, ..
-    } = *params;
+    let NavyPlanarPulley { m0, alpha, l, s, g, .. } = *params;
     let (sin_a, cos_a) = alpha.sin_cos();
     let q = &flat.q;
     let (x0, x, z, z0) = (q[4], q[5], q[6], q[7]);
@@ -185,13 +173,7 @@ pub fn reference(params: &NavyPlanarPulley, derivs: &[SVector<f64, 3>; 5]) -> Re
 
     // (124a)-(124c): J_i/r_i^2 L_i'' = (tension term) + u_i/r_i.
     let NavyPlanarPulley {
-        J1,
-        J2,
-        J3,
-        r1,
-        r2,
-        r3,
-        ..
+        J1, J2, J3, r1, r2, r3, ..
     } = *params;
     let (n1, n2, n3) = (lambda1 * q[0], lambda3 * q[1], re.lambda4 * re.load_rope);
     let u = SVector::<f64, 3>::new(
@@ -258,10 +240,7 @@ mod tests {
     /// `g(q)` and `G(q)` of eqs. (55), (57), (58), written out here so that
     /// these unit tests need no model (`crane-tests` repeats the checks with
     /// the generated model).
-    fn constraints_and_jacobian(
-        p: &NavyPlanarPulley,
-        q: &SVector<f64, 8>,
-    ) -> (SVector<f64, 4>, SMatrix<f64, 4, 8>) {
+    fn constraints_and_jacobian(p: &NavyPlanarPulley, q: &SVector<f64, 8>) -> (SVector<f64, 4>, SMatrix<f64, 4, 8>) {
         let [l1, l2, l3, l0, x0, x, z, z0] = [q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7]];
         let (sa, ca) = p.alpha.sin_cos();
         let (ax, az) = (x0 + (p.l + p.s) * sa, z0 + (p.l + p.s) * ca);
@@ -314,40 +293,18 @@ mod tests {
         let p = NavyPlanarPulley::default();
         let s = reference_at(&p, &PaperPath { tf: 4.0 }, 0.0);
         let s3 = 3f64.sqrt();
-        let expected = [
-            10.0,
-            175f64.sqrt(),
-            15.0,
-            10.0,
-            -2.5 * s3,
-            -2.5 * s3,
-            -17.5,
-            -12.5,
-        ];
+        let expected = [10.0, 175f64.sqrt(), 15.0, 10.0, -2.5 * s3, -2.5 * s3, -17.5, -12.5];
         for (i, e) in expected.iter().enumerate() {
             assert!((s.q[i] - e).abs() < 1e-12, "q[{i}] = {} != {e}", s.q[i]);
         }
-        assert!(
-            s.v.amax() == 0.0 && s.a.amax() == 0.0,
-            "at rest: {:?} {:?}",
-            s.v,
-            s.a
-        );
+        assert!(s.v.amax() == 0.0 && s.a.amax() == 0.0, "at rest: {:?} {:?}", s.v, s.a);
         let lambda = [49.05, 98.1, 98.1, 196.2];
         for (i, e) in lambda.iter().enumerate() {
-            assert!(
-                (s.lambda[i] - e).abs() < 1e-10,
-                "lambda[{i}] = {} != {e}",
-                s.lambda[i]
-            );
+            assert!((s.lambda[i] - e).abs() < 1e-10, "lambda[{i}] = {} != {e}", s.lambda[i]);
         }
         let tensions = [490.5, 98.1 * 175f64.sqrt(), 981.0];
         for (i, e) in tensions.iter().enumerate() {
-            assert!(
-                (s.tensions[i] - e).abs() < 1e-9,
-                "N[{i}] = {} != {e}",
-                s.tensions[i]
-            );
+            assert!((s.tensions[i] - e).abs() < 1e-9, "N[{i}] = {} != {e}", s.tensions[i]);
         }
         // static torques u_i = -N_i r_i
         for (i, n) in tensions.iter().enumerate() {
@@ -411,9 +368,7 @@ mod tests {
         for t in std::iter::once(0.0).chain(times(4.0, 20)) {
             let s = reference_at(&p, &path, t);
             let d: [SVector<f64, 3>; 5] = std::array::from_fn(|k| path.derivative(t, k));
-            let [l1, l2, l3, l0, x0, x, z, z0] = [
-                s.q[0], s.q[1], s.q[2], s.q[3], s.q[4], s.q[5], s.q[6], s.q[7],
-            ];
+            let [l1, l2, l3, l0, x0, x, z, z0] = [s.q[0], s.q[1], s.q[2], s.q[3], s.q[4], s.q[5], s.q[6], s.q[7]];
             let (xdd, zdd) = (d[2][0], d[2][1]);
             // (114), (102)
             let theta = (-xdd).atan2(zdd + p.g);
@@ -421,10 +376,7 @@ mod tests {
             // (117), (116a)
             let big_l = n3 * (z0 - z) / (p.m_l * (zdd + p.g));
             assert!((big_l - (l3 - l0)).abs() < 1e-12, "(117) at t = {t}");
-            assert!(
-                (x + p.m_l * big_l / n3 * xdd - x0).abs() < 1e-12,
-                "(116a) at t = {t}"
-            );
+            assert!((x + p.m_l * big_l / n3 * xdd - x0).abs() < 1e-12, "(116a) at t = {t}");
             // (119)-(121)
             let beta = ((p.l * p.l + l0 * l0 - l1 * l1) / (2.0 * l0 * p.l)).acos();
             let ls = p.l + p.s;
@@ -457,11 +409,7 @@ mod tests {
                 p.J3 / p.r3 * s.a[2] - n0 * p.r3,
             ];
             for (i, (ui, expected)) in u.iter().zip(&s.u).enumerate() {
-                assert!(
-                    (ui - expected).abs() < 1e-9 * s.u.amax(),
-                    "u{} at t = {t}",
-                    i + 1
-                );
+                assert!((ui - expected).abs() < 1e-9 * s.u.amax(), "u{} at t = {t}", i + 1);
             }
         }
     }
@@ -487,10 +435,7 @@ mod tests {
         };
         let (ev, ea) = worst_errors(1e-3);
         let (ev2, ea2) = worst_errors(2e-3);
-        assert!(
-            ev < 5e-5 && ea < 5e-5,
-            "|q' - fd| = {ev:e}, |q'' - fd| = {ea:e}"
-        );
+        assert!(ev < 5e-5 && ea < 5e-5, "|q' - fd| = {ev:e}, |q'' - fd| = {ea:e}");
         for ratio in [ev2 / ev, ea2 / ea] {
             assert!(
                 (3.5..4.5).contains(&ratio),
@@ -498,5 +443,4 @@ mod tests {
             );
         }
     }
-
 }

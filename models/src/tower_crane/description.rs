@@ -39,7 +39,13 @@ impl Crane<8, 3, 3> for Description {
     /// `X`, the trolley at 10 m, the load 15 m below it.
     fn maneuver() -> Maneuver<3> {
         Maneuver {
-            path: PathSpec { profile: Profile::Poly9, t0: 0.0, t1: TF, start: vector![10.0, 0.0, 5.0], end: vector![6.0, 12.0, 10.0] },
+            path: PathSpec {
+                profile: Profile::Poly9,
+                t0: 0.0,
+                t1: TF,
+                start: vector![10.0, 0.0, 5.0],
+                end: vector![6.0, 12.0, 10.0],
+            },
             p0: vec![30.0, 0.0, 10.0, 0.0, 15.0],
         }
     }
@@ -52,7 +58,9 @@ impl Crane<8, 3, 3> for Description {
         progress: &mut dyn FnMut(usize, usize),
     ) -> Option<Result<Solution<8, 3, 3>, Error>> {
         let guess = minimal_guess(start);
-        Some(simulate_minimal_with_progress(model, path, start, &guess, options, progress))
+        Some(simulate_minimal_with_progress(
+            model, path, start, &guess, options, progress,
+        ))
     }
 
     fn derived_outputs() -> &'static [&'static str] {
