@@ -47,7 +47,7 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     println!("{:>8}  {:>12}  {:>8}", "dt [s]", "e_u", "order");
     for dt in DTS {
         // the state at 1.5 s does not depend on later steps: stop there
-        let options = Options::new(dt, T_ERROR).with_scheme(scheme);
+        let options = Options::new(dt, T_ERROR)?.with_scheme(scheme);
         let solution = formulation.simulate(case, &start, &options, &mut |_, _| {})?;
         let state = solution
             .states

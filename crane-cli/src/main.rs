@@ -726,7 +726,7 @@ fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let RunSettings { name, out, quiet, .. } = *settings;
     let (dt, formulation) = (scenario.dt, scenario.formulation);
     let start = case.start()?;
-    let options = Options::new(dt, case.tf()).with_scheme(scenario.scheme);
+    let options = Options::new(dt, case.tf())?.with_scheme(scenario.scheme);
     let clock = Instant::now();
     let mut progress = progress::Progress::new(name, quiet);
     let solution = formulation.simulate(case, &start, &options, &mut |step, steps| progress.tick(step, steps));
@@ -842,7 +842,7 @@ fn bench<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     }
     let name = C::NAME;
     let start = case.start()?;
-    let options = Options::new(dt, case.tf()).with_scheme(scheme);
+    let options = Options::new(dt, case.tf())?.with_scheme(scheme);
     let mut times = Vec::with_capacity(repeat);
     let mut steps = 0;
     let mut iterations = 0.0;

@@ -168,7 +168,7 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         residual_sway: result.residual_sway,
         settle_time: settle,
         dt: result.solution.dt,
-        scheme: result.solution.scheme.name().to_string(),
+        scheme: result.solution.scheme.to_string(),
         plant: changed,
         feedback: gains.map(|(_, label)| label),
         open_loop_max_load_deviation: open.max_load_deviation,

@@ -315,7 +315,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         model: model.to_string(),
         description: info.description.to_string(),
         formulation: formulation.to_string(),
-        scheme: solution.scheme.name().to_string(),
+        scheme: solution.scheme.to_string(),
         dt: solution.dt,
         t0: states.first().map_or(f64::NAN, |s| s.t),
         tf: states.last().map_or(f64::NAN, |s| s.t),

@@ -7,12 +7,11 @@
 //! here); `do_step(t, h)` advances `h / dt` internal steps and writes the
 //! outputs, without allocating.
 
-use std::mem::ManuallyDrop;
-
 use crane_models::{Crane, Path, PathSpec, Profile};
-use crane_runtime::driver::ServoTarget;
-use crane_runtime::newton::NewtonOptions;
-use crane_runtime::{CraneModel, RedundantStepper, Scheme, State, Trajectory, init};
+use crane_runtime::driver::steps_in;
+use crane_runtime::problem::ServoTarget;
+use crane_runtime::redundant::{self, RedundantStepper};
+use crane_runtime::{Advance, CraneModel, Options, Scheme, State, Trajectory, init};
 use nalgebra::SVector;
 
 use crate::variables::{Causality, NameClash, PathKind, Role, Variable, variables};
@@ -103,60 +102,25 @@ fn hermite<const A: usize>(ta: f64, a: &ServoTarget<A>, tb: f64, b: &ServoTarget
     out
 }
 
-/// A running crane: the stepper on a model it borrows from this struct.
-struct Run<Mdl: CraneModel<N, M, A> + 'static, const N: usize, const M: usize, const A: usize> {
-    /// Owned by this struct (from `Box::into_raw`), freed after the stepper.
-    model: *mut Mdl,
-    stepper: ManuallyDrop<RedundantStepper<'static, Mdl, FmuPath<A>, N, M, A>>,
+/// A running crane: the stepper, which owns its model.
+struct Run<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> {
+    stepper: RedundantStepper<Box<Mdl>, FmuPath<A>, N, M, A>,
     /// The external target at the last state, if the path is external.
     external: Option<ServoTarget<A>>,
     /// Rope lengths (one per rope).
     lengths: Vec<f64>,
-    t0: f64,
-    dt: f64,
-    steps: usize,
 }
 
-impl<Mdl: CraneModel<N, M, A> + 'static, const N: usize, const M: usize, const A: usize> Drop for Run<Mdl, N, M, A> {
-    fn drop(&mut self) {
-        // SAFETY: the stepper borrows `*self.model`; it is dropped first and
-        // never used again, then the box made in `Run::new` is freed once.
-        unsafe {
-            ManuallyDrop::drop(&mut self.stepper);
-            drop(Box::from_raw(self.model));
-        }
-    }
-}
-
-impl<Mdl: CraneModel<N, M, A> + 'static, const N: usize, const M: usize, const A: usize> Run<Mdl, N, M, A> {
+impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> Run<Mdl, N, M, A> {
     fn new(
         model: Mdl,
         path: FmuPath<A>,
         start: &State<N, M, A>,
-        dt: f64,
-        scheme: Scheme,
+        options: &Options,
         external: Option<ServoTarget<A>>,
     ) -> Result<Self, String> {
-        let model = Box::into_raw(Box::new(model));
-        // SAFETY: `model` stays valid until `drop`, which frees it after the
-        // stepper; on error it is freed here.
-        let borrowed: &'static Mdl = unsafe { &*model };
-        match RedundantStepper::with_scheme(borrowed, path, start, dt, scheme, NewtonOptions::default()) {
-            Ok(stepper) => Ok(Self {
-                model,
-                stepper: ManuallyDrop::new(stepper),
-                external,
-                lengths: vec![0.0; Mdl::INFO.ropes.len()],
-                t0: start.t,
-                dt,
-                steps: 0,
-            }),
-            Err(e) => {
-                // SAFETY: nothing borrows the model any more
-                unsafe { drop(Box::from_raw(model)) };
-                Err(e.to_string())
-            }
-        }
+        let stepper = redundant::stepper(Box::new(model), path, start, options).map_err(|e| e.to_string())?;
+        Ok(Self { stepper, external, lengths: vec![0.0; Mdl::INFO.ropes.len()] })
     }
 }
 
@@ -250,17 +214,10 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         }
         crane_runtime::driver::check_parameters(&model).map_err(|e| e.to_string())?;
         let dt = self.value(Role::Dt);
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(format!("dt = {dt}: the internal step must be positive"));
-        }
-        let scheme = match self.integers[0] {
-            1 => Scheme::BackwardEuler,
-            2 => Scheme::Bdf2,
-            3 => Scheme::Bdf3,
-            4 => Scheme::Bdf4,
-            5 => Scheme::Bdf5,
-            other => return Err(format!("scheme = {other}: expected 1 (backward Euler) or 2..5 (BDF-k)")),
-        };
+        let code = self.integers[0];
+        let scheme = Scheme::from_code(code)
+            .ok_or_else(|| format!("scheme = {code}: expected {}", Scheme::code_help()))?;
+        let options = Options::stepping(dt).map_err(|e| format!("`dt`: {e}"))?.with_scheme(scheme);
         let kind = PathKind::from_value(self.integers[1]).ok_or_else(|| {
             format!(
                 "path = {}: expected 0 (poly9), 1 (three-phase), 2 (smooth three-phase) or 3 (external)",
@@ -303,16 +260,14 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         let start = init::check_start(&model, &path, self.start_time, &p0, None)
             .or_else(|_| init::static_equilibrium(&model, &path, self.start_time, &p0))
             .map_err(|e| format!("no consistent start at t = {}: {e}", self.start_time))?;
-        Run::new(model, path, &start, dt, scheme, external)
+        Run::new(model, path, &start, &options, external)
     }
 
     /// Copy the last state into the outputs.
     fn write_outputs(&mut self) {
         let Some(run) = self.run.as_mut() else { return };
         let state = *run.stepper.state();
-        // SAFETY: see `Run::drop`
-        let model = unsafe { &*run.model };
-        model.rope_lengths(&state.q, &mut run.lengths);
+        run.stepper.model().rope_lengths(&state.q, &mut run.lengths);
         let ropes = <C::Model as CraneModel<N, M, A>>::INFO.ropes;
         for v in &self.table {
             let value = match v.role {
@@ -339,30 +294,22 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         if (t - now).abs() > 1e-9 * scale {
             return Err(format!("fmi2DoStep at t = {t}, but the instance is at t = {now}"));
         }
-        let k = (h / run.dt).round();
-        if !(k >= 1.0 && (k * run.dt - h).abs() <= 1e-9 * h) {
-            return Err(format!(
-                "communication step h = {h} s is not a whole multiple of dt = {} s",
-                run.dt
-            ));
-        }
-        let k = k as usize;
+        let dt = run.stepper.dt();
+        let k = match steps_in(h, dt) {
+            Ok(k) => k,
+            Err(_) => return Err(format!("communication step h = {h} s is not a whole multiple of dt = {dt} s")),
+        };
         let tb = t + h;
         for i in 1..=k {
-            let ti = run.t0 + (run.steps + 1) as f64 * run.dt;
             let result = match run.external {
                 None => run.stepper.step(),
                 Some(ref target_a) => {
-                    let target = if i == k {
-                        target_b
-                    } else {
-                        hermite(t, target_a, tb, &target_b, ti)
-                    };
+                    let ti = run.stepper.next_time();
+                    let target = if i == k { target_b } else { hermite(t, target_a, tb, &target_b, ti) };
                     run.stepper.step_to(ti, &target)
                 }
             };
             result.map_err(|e| e.to_string())?;
-            run.steps += 1;
         }
         if run.external.is_some() {
             run.external = Some(target_b);

@@ -39,6 +39,15 @@ pub enum Error {
         /// The rejected value.
         dt: f64,
     },
+    /// The end time of a run is not a number.
+    #[error("invalid end time tf = {tf}: it must be a finite number of seconds")]
+    InvalidEndTime {
+        /// The rejected value.
+        tf: f64,
+    },
+    /// Newton tolerances that cannot be met or make no sense.
+    #[error("invalid Newton options: {0}")]
+    InvalidNewtonOptions(&'static str),
     /// The end time is not after the start time.
     #[error("invalid time span: tf = {tf} must be finite and greater than t0 = {t0}")]
     InvalidTimeSpan {

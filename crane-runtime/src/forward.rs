@@ -1,4 +1,4 @@
-//! The forward problem on any [`Scheme`]: given the inputs `u(t)`, integrate
+//! The forward problem on any scheme: given the inputs `u(t)`, integrate
 //! the crane's index-3 equations of motion
 //! ```text
 //! M q'' = f(q, q') + B^T(q) u - G^T(q) lambda,   g(q) = 0
@@ -6,26 +6,27 @@
 //! for `q`, `q'` and `lambda` (paper eq. 1a-1b without the servo
 //! constraints). The scheme eliminates `v` and `a` of all `n` coordinates as
 //! affine functions of `q_{n+1}` exactly as in the servo problems; the
-//! dynamic rows are multiplied by `dt^2` and solved for `dt^2 lambda`:
+//! dynamic rows are the servo problem's ([`dynamic_rows`]), multiplied by
+//! `dt^2` and solved for `dt^2 lambda`:
 //! ```text
-//! r_dyn = M (dt^2 a) - dt^2 f(q, v) - dt^2 B^T(q) u + G^T(q) (dt^2 lambda) = 0
+//! r_dyn = M (dt^2 a) - dt^2 f(q, v) - B^T(q) (dt^2 u) + G^T(q) (dt^2 lambda) = 0
 //! r_g   = g(q) = 0,         unknowns z = [q; dt^2 lambda]
 //! ```
 //! `M` may be singular (a massless pulley): the full iteration matrix
-//! `[c^2 M + ...; G]` is regular where the ropes fix the pulley. This is the
-//! third problem on the seam of [`crate::scheme`]; nothing of it is specific
-//! to a scheme.
+//! `[c^2 M + ...; G]` is regular where the ropes fix the pulley.
 
-use std::ops::Range;
+use std::ops::{Deref, Range};
 
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-use crate::driver::{Options, StepReport, Stepper, check_parameters, check_step_size, record, step_count, step_error};
+use crate::driver::{Options, record};
 use crate::error::Error;
 use crate::model::CraneModel;
-use crate::newton::{Newton, NewtonOptions, NonlinearSystem, normalised_residual};
-use crate::scheme::{History, Scheme, StepFormula};
+use crate::newton::{NonlinearSystem, normalised_residual};
+use crate::problem::{Accepted, Predictor, Problem, Start, dynamic_rows};
+use crate::scheme::{Method, StepFormula};
 use crate::solution::{Solution, State};
+use crate::stepper::Stepper;
 
 /// Inputs `u(t)` for the forward problem: a closure `|t| -> SVector`.
 pub trait Inputs<const A: usize> {
@@ -39,10 +40,12 @@ impl<const A: usize, F: Fn(f64) -> SVector<f64, A>> Inputs<A> for F {
     }
 }
 
-/// The residual of one forward step in `z = [q; dt^2 lambda]`.
+/// One forward step as a [`Problem`] in the unknowns `z = [q; dt^2 lambda]`,
+/// for the crane behind the handle `H` driven by the inputs `In`.
 #[derive(Clone)]
-struct ForwardEquations<'m, Mdl, const N: usize, const M: usize, const A: usize> {
-    model: &'m Mdl,
+pub struct Forward<H, In, const N: usize, const M: usize, const A: usize> {
+    model: H,
+    inputs: In,
     mass: SMatrix<f64, N, N>,
     dt: f64,
     /// `u` at the new time.
@@ -51,67 +54,64 @@ struct ForwardEquations<'m, Mdl, const N: usize, const M: usize, const A: usize>
     blocks: [Range<usize>; 2],
 }
 
-impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> ForwardEquations<'_, Mdl, N, M, A> {
-    /// `q`, `v` and `dt^2 a` from the unknowns.
+impl<H, In, const N: usize, const M: usize, const A: usize> Forward<H, In, N, M, A>
+where
+    H: Deref<Target: CraneModel<N, M, A> + Sized>,
+    In: Inputs<A>,
+{
+    /// The crane behind `model` driven by `inputs`.
+    pub fn new(model: H, inputs: In) -> Self {
+        let mass = model.mass_matrix();
+        Self {
+            model,
+            inputs,
+            mass,
+            dt: f64::NAN,
+            input: SVector::zeros(),
+            formula: StepFormula { rate: f64::NAN, dt: f64::NAN, value_offset: SVector::zeros(), rate_offset: SVector::zeros() },
+            blocks: [0..N, N..N + M],
+        }
+    }
+
+    /// The input law.
+    pub fn inputs(&self) -> &In {
+        &self.inputs
+    }
+
+    /// `q`, `v` and `a` from the unknowns.
     fn kinematics(&self, z: &DVector<f64>) -> [SVector<f64, N>; 3] {
         let q = SVector::<f64, N>::from_fn(|i, _| z[i]);
         let mut v = SVector::<f64, N>::zeros();
-        let mut a_dt2 = SVector::<f64, N>::zeros();
+        let mut a = SVector::<f64, N>::zeros();
         for i in 0..N {
-            (v[i], a_dt2[i]) = self.formula.kinematics(i, z[i], self.dt);
+            let (v_i, a_dt2) = self.formula.kinematics(i, z[i], self.dt);
+            v[i] = v_i;
+            a[i] = a_dt2 / (self.dt * self.dt);
         }
-        [q, v, a_dt2]
+        [q, v, a]
     }
 }
 
-impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> NonlinearSystem
-    for ForwardEquations<'_, Mdl, N, M, A>
+impl<H, In, const N: usize, const M: usize, const A: usize> NonlinearSystem for Forward<H, In, N, M, A>
+where
+    H: Deref<Target: CraneModel<N, M, A> + Sized>,
+    In: Inputs<A>,
 {
     fn dim(&self) -> usize {
         N + M
     }
 
     fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
-        let dt = self.dt;
-        let dt2 = dt * dt;
-        let [q, v, a_dt2] = self.kinematics(z);
+        let kinematics = self.kinematics(z);
         let lambda_scaled = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
-        let model = self.model;
-        let u_scaled = self.input * dt2;
-        let (df_dq, df_dv) = model.force_jacobians(&q, &v);
-        let jac_g = model.constraint_jacobian(&q);
-        let inertia = self.mass * a_dt2;
-        let applied = model.forces(&q, &v) * dt2 + model.input_matrix(&q) * u_scaled;
-        let dynamic = inertia - applied + jac_g.tr_mul(&lambda_scaled);
-        r.rows_mut(0, N).copy_from(&dynamic);
-        r.rows_mut(N, M).copy_from(&model.constraints(&q));
-        let c_dt = self.formula.rate * dt;
-        let (da, dv) = (c_dt * c_dt, c_dt * dt);
-        let dbu_dq = model.input_jacobian(&q, &u_scaled);
-        let dgl_dq = model.constraint_hessian(&q, &lambda_scaled);
-        for j in 0..N {
-            for i in 0..N {
-                jac[(i, j)] =
-                    da * self.mass[(i, j)] - dt2 * df_dq[(i, j)] - dv * df_dv[(i, j)] - dbu_dq[(i, j)] + dgl_dq[(i, j)];
-            }
-            for i in 0..M {
-                jac[(N + i, j)] = jac_g[(i, j)];
-            }
-        }
-        for l in 0..M {
-            for i in 0..N {
-                jac[(i, N + l)] = jac_g[(l, i)];
-            }
-            for i in 0..M {
-                jac[(N + i, N + l)] = 0.0;
-            }
-        }
+        let u_scaled = self.input * (self.dt * self.dt);
+        let model = &*self.model;
+        let rows = dynamic_rows(model, &self.mass, self.dt, self.formula.slopes(), &kinematics, &u_scaled, &lambda_scaled);
+        jac.fill(0.0);
+        rows.write(&model.constraints(&kinematics[0]), N, r, jac);
+        // the given inputs are applied forces: a row's scale includes them
         normalised_residual(r, jac, z, |i| {
-            if i < N {
-                inertia[i].abs().max(applied[i].abs())
-            } else {
-                0.0
-            }
+            if i < N { rows.inertia[i].abs().max(rows.applied[i].abs()).max(rows.inputs[i].abs()) } else { 0.0 }
         })
     }
 
@@ -120,143 +120,95 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
     }
 }
 
-/// The forward problem on a [`Scheme`], one step at a time; after
-/// construction [`step`](Self::step) does not allocate.
-pub struct ForwardStepper<'m, Mdl, In, const N: usize, const M: usize, const A: usize> {
-    equations: ForwardEquations<'m, Mdl, N, M, A>,
-    inputs: In,
-    newton: Newton,
-    z: DVector<f64>,
-    scheme: Scheme,
-    history: History<N>,
-    state: State<N, M, A>,
-    t0: f64,
-    steps: usize,
-}
-
-impl<'m, Mdl, In, const N: usize, const M: usize, const A: usize> ForwardStepper<'m, Mdl, In, N, M, A>
+impl<H, In, const N: usize, const M: usize, const A: usize> Problem<N, M, A, N> for Forward<H, In, N, M, A>
 where
-    Mdl: CraneModel<N, M, A>,
+    H: Deref<Target: CraneModel<N, M, A> + Sized>,
     In: Inputs<A>,
 {
-    /// A stepper from the consistent `start` (its `q`, `v`, `lambda`). The
-    /// history before the start: at rest (`v = 0`) the crane rested before
-    /// `t0` (exact); otherwise the order ramps up (BDF-j on step j).
-    pub fn new(
-        model: &'m Mdl,
-        inputs: In,
-        start: &State<N, M, A>,
-        dt: f64,
-        scheme: Scheme,
-        newton: NewtonOptions,
-    ) -> Result<Self, Error> {
-        check_step_size(dt)?;
-        check_parameters(model)?;
-        let history = if start.v.amax() == 0.0 {
-            History::at_rest(start.q)
-        } else {
-            History::start(start.q, start.v)
-        };
-        let mut z = DVector::zeros(N + M);
+    type Model = H::Target;
+    type Drive = SVector<f64, A>;
+
+    fn model(&self) -> &H::Target {
+        &self.model
+    }
+
+    /// The scheme's extrapolation for `q`, the last step's scaled `lambda`.
+    fn predictor(&self) -> Predictor {
+        Predictor::Scheme { leading: N }
+    }
+
+    fn drive(&self, t: f64) -> SVector<f64, A> {
+        self.inputs.at(t)
+    }
+
+    fn check_drive(&self, input: &SVector<f64, A>, t: f64) -> Result<(), Error> {
+        if input.iter().all(|x| x.is_finite()) { Ok(()) } else { Err(Error::NonFinite { quantity: "input u(t)", t }) }
+    }
+
+    /// From the consistent `start` (its `q`, `v`, `lambda`); at rest
+    /// (`v = 0`) the crane rested before `t0`.
+    fn start(&mut self, start: &State<N, M, A>, dt: f64, z: &mut DVector<f64>) -> Result<Start<N>, Error> {
+        self.dt = dt;
+        self.input = start.u;
         z.rows_mut(0, N).copy_from(&start.q);
         z.rows_mut(N, M).copy_from(&(start.lambda * (dt * dt)));
-        let equations = ForwardEquations {
-            model,
-            mass: model.mass_matrix(),
-            dt,
-            input: start.u,
-            formula: history.formula(scheme, dt),
-            blocks: [0..N, N..N + M],
-        };
-        Ok(Self {
-            equations,
-            inputs,
-            newton: Newton::new(N + M, newton),
-            z,
-            scheme,
-            history,
-            state: *start,
-            t0: start.t,
-            steps: 0,
-        })
+        Ok(Start { y0: start.q, v0: start.v, at_rest: start.v.amax() == 0.0 })
     }
 
-    /// The state after the last step (the start before the first).
-    pub fn state(&self) -> &State<N, M, A> {
-        &self.state
+    fn prepare(&mut self, _t: f64, input: &SVector<f64, A>, formula: StepFormula<N>) {
+        self.input = *input;
+        self.formula = formula;
     }
 
-    /// Advance one step with the inputs at the new time.
-    pub fn step(&mut self) -> Result<StepReport, Error> {
-        let dt = self.equations.dt;
-        let t = self.t0 + (self.steps + 1) as f64 * dt;
-        let input = self.inputs.at(t);
-        if !input.iter().all(|x| x.is_finite()) {
-            return Err(Error::NonFinite {
-                quantity: "input u(t)",
-                t,
-            });
-        }
-        let eq = &mut self.equations;
-        eq.input = input;
-        eq.formula = self.history.formula(self.scheme, dt);
-        let predicted = self.history.predict(self.scheme, dt);
-        self.z.rows_mut(0, N).copy_from(&predicted);
-        let converged = self
-            .newton
-            .solve(eq, &mut self.z)
-            .map_err(|failure| step_error(failure, t))?;
-        let [q, v, _] = eq.kinematics(&self.z);
-        self.state = State {
-            t,
-            q,
-            v,
-            u: input,
-            lambda: SVector::from_fn(|i, _| self.z[N + i] / (dt * dt)),
-        };
-        self.history.push(q, v);
-        self.steps += 1;
-        Ok(StepReport {
-            iterations: converged.iterations,
-            min_norm_steps: converged.min_norm_steps,
-        })
+    fn accept(&mut self, t: f64, z: &DVector<f64>) -> Result<Accepted<N, M, A, N>, Error> {
+        let [q, v, _] = self.kinematics(z);
+        let lambda = SVector::from_fn(|i, _| z[N + i] / (self.dt * self.dt));
+        Ok(Accepted { state: State { t, q, v, u: self.input, lambda }, y: q, v })
     }
 }
 
-impl<Mdl, In, const N: usize, const M: usize, const A: usize> Stepper<N, M, A> for ForwardStepper<'_, Mdl, In, N, M, A>
+/// The forward problem one step at a time: the [`Stepper`] of [`Forward`].
+pub type ForwardStepper<H, In, const N: usize, const M: usize, const A: usize, S = crate::Scheme> =
+    Stepper<Forward<H, In, N, M, A>, S, N, M, A, N>;
+
+/// A forward stepper of the crane behind `model` with `inputs` from the
+/// consistent `start` (its `q`, `v`, `lambda`), with the step, scheme and
+/// tolerances of `options`; after construction a step does not allocate.
+pub fn stepper<H, In, S, const N: usize, const M: usize, const A: usize>(
+    model: H,
+    inputs: In,
+    start: &State<N, M, A>,
+    options: &Options<S>,
+) -> Result<ForwardStepper<H, In, N, M, A, S>, Error>
 where
-    Mdl: CraneModel<N, M, A>,
+    H: Deref<Target: CraneModel<N, M, A> + Sized>,
     In: Inputs<A>,
+    S: Method,
 {
-    fn step(&mut self) -> Result<StepReport, Error> {
-        ForwardStepper::step(self)
-    }
-    fn state(&self) -> &State<N, M, A> {
-        ForwardStepper::state(self)
-    }
+    Stepper::new(Forward::new(model, inputs), start, options)
 }
 
-/// Integrate the forward problem from `start` to `options.tf` with the
-/// inputs `inputs(t)` on `options.scheme`.
-pub fn simulate_forward<Mdl, In, const N: usize, const M: usize, const A: usize>(
+/// Integrate the forward problem from `start` to `options.tf()` with the
+/// inputs `inputs(t)` on its scheme.
+pub fn simulate_forward<Mdl, In, S, const N: usize, const M: usize, const A: usize>(
     model: &Mdl,
     inputs: In,
     start: &State<N, M, A>,
-    options: &Options,
+    options: &Options<S>,
 ) -> Result<Solution<N, M, A>, Error>
 where
     Mdl: CraneModel<N, M, A>,
     In: Inputs<A>,
+    S: Method,
 {
-    let steps = step_count(start.t, options.tf, options.dt)?;
-    let mut stepper = ForwardStepper::new(model, inputs, start, options.dt, options.scheme, options.newton)?;
-    record(model, start, &mut stepper, steps, options, &mut |_, _| {})
+    record(&mut stepper(model, inputs, start, options)?, options.tf(), &mut |_, _| {})
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::model::{ModelInfo, Rope, Scalar, UnknownParameter};
+    use crate::scheme::{History, Scheme};
 
     /// A planar gantry written by hand: trolley `s`, rope `L`, load `(x, z)`.
     struct Gantry;
@@ -351,16 +303,14 @@ mod tests {
             for _ in 0..20 {
                 let past: Vec<SVector<f64, 4>> = (0..5).map(|_| SVector::from_fn(|_, _| 3.0 + rnd())).collect();
                 let rates: Vec<SVector<f64, 4>> = (0..5).map(|_| SVector::from_fn(|_, _| rnd())).collect();
-                let history = History::from_past(&past, &rates);
+                let history = History::from_past(scheme, &past, &rates);
                 let dt = 0.01;
-                let mut equations = ForwardEquations {
-                    model: &Gantry,
-                    mass: Gantry.mass_matrix(),
-                    dt,
-                    input: SVector::from([rnd() * 100.0, rnd() * 1000.0]),
-                    formula: history.formula(scheme, dt),
-                    blocks: [0..4, 4..5],
-                };
+                let mut equations = Forward::new(&Gantry, |_t: f64| SVector::<f64, 2>::zeros());
+                let mut z0 = DVector::zeros(5);
+                let start = State { t: 0.0, q: past[0], v: rates[0], u: SVector::zeros(), lambda: SVector::zeros() };
+                equations.start(&start, dt, &mut z0).unwrap();
+                let input = SVector::from([rnd() * 100.0, rnd() * 1000.0]);
+                equations.prepare(dt, &input, history.formula(dt));
                 let z = DVector::from_fn(5, |i, _| if i < 4 { 3.0 + rnd() } else { rnd() * 0.1 });
                 let (mut r, mut jac) = (DVector::zeros(5), DMatrix::zeros(5, 5));
                 equations.evaluate(&z, &mut r, &mut jac);

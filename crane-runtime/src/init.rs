@@ -14,7 +14,6 @@ use crate::driver::check_parameters;
 use crate::error::Error;
 use crate::model::CraneModel;
 use crate::newton::normalised_residual;
-use crate::scheme::History;
 use crate::solution::State;
 use crate::trajectory::Trajectory;
 
@@ -394,34 +393,4 @@ where
     start.v.amax() <= 1e-14 * scale
         && resting(&trajectory.derivative(start.t, 1))
         && resting(&trajectory.derivative(start.t, 2))
-}
-
-/// The history a multistep scheme starts from, for the discretised
-/// unknowns `y0` (`q` or `mu`) with rates `v0` at `start`.
-///
-/// - At rest ([`at_rest`]): the crane rested before `t0`, so every past
-///   value is `y0` and every past rate zero. This history is exact, and a
-///   BDF-k run from it keeps order k from the first step.
-/// - Otherwise only the present is known, and the scheme starts itself: the
-///   j-th step uses BDF-j until the history holds k steps (an order ramp).
-///   The lower-order first steps leave an error in the inputs near `t0`
-///   (backward Euler's first step from a moving start is off by O(1) in
-///   the accelerations, so in `u`); for a crane whose coordinates the
-///   servo and holonomic constraints fix (all built-in models) it is gone
-///   after 2k steps, and order k holds at every time from there on
-///   (measured in the tests on a start in the middle of a move).
-pub fn history<Tr, const K: usize, const N: usize, const M: usize, const A: usize>(
-    trajectory: &Tr,
-    start: &State<N, M, A>,
-    y0: SVector<f64, K>,
-    v0: SVector<f64, K>,
-) -> History<K>
-where
-    Tr: Trajectory<A>,
-{
-    if at_rest(trajectory, start) {
-        History::at_rest(y0)
-    } else {
-        History::start(y0, v0)
-    }
 }

@@ -8,15 +8,17 @@
 //! tensions of every step ([`Solution`]); [`minimal::simulate_minimal`] does
 //! the same in minimal coordinates (eqs. 24a-e).
 //!
-//! Problems and schemes sit on separate axes: a problem ([`redundant`],
-//! [`minimal`]) says which equations and unknowns a step has; a [`Scheme`]
-//! ([`scheme`]: backward Euler, the paper's and the default, or BDF-2..5)
-//! says how the rates at the new time follow from the new value and the
-//! history; [`driver`] holds what both share (the [`Options`], the
-//! [`Stepper`] interface, the run loop with its observers). A new scheme
-//! touches no problem and a new problem no scheme. [`forward`] is the third
-//! problem: the crane driven by given inputs, and [`replay`] drives it with
-//! the torques an inverse run computed (on the planned or another plant).
+//! Problems and schemes sit on separate axes. A [`Problem`](problem::Problem)
+//! ([`redundant`], [`minimal`], [`forward`]) says which unknowns, residual
+//! and iteration matrix a step has; a [`Method`] ([`scheme`]: backward Euler,
+//! the paper's and the default, or BDF-2..5, or one's own) says how the
+//! rates at the new time follow from the new value and the history; one
+//! [`Stepper`] ([`stepper`]) runs any problem on any method, and
+//! [`driver`] holds what a run is ([`Options`], the run loop with its
+//! observers). A new scheme touches no problem and a new problem no scheme.
+//! [`forward`] is the crane driven by given inputs, and [`replay`] drives
+//! it with the torques an inverse run computed (on the planned or another
+//! plant).
 //!
 //! # Worked example: a planar gantry crane
 //!
@@ -56,7 +58,7 @@
 //! let start = init::static_equilibrium(&crane, &path, 0.0, &[0.3, 4.5])?;
 //! assert!((start.q[0] - 0.0).abs() < 1e-9 && (start.q[1] - 5.0).abs() < 1e-9);
 //!
-//! let run = simulate(&crane, &path, &start, &Options::new(0.01, 5.0))?;
+//! let run = simulate(&crane, &path, &start, &Options::new(0.01, 5.0)?)?;
 //! let mid = run.state_near(2.5).unwrap();
 //! println!("u(2.5 s) = {} (trolley force N, winch torque N m)", mid.u);
 //! // the rope holds the load: tension N = lambda L stays positive
@@ -79,18 +81,22 @@ pub mod linsolve;
 pub mod minimal;
 pub mod model;
 pub mod newton;
+pub mod problem;
 pub mod redundant;
 pub mod replay;
 pub mod scheme;
 pub mod solution;
+pub mod stepper;
 pub mod trajectory;
 
-pub use driver::{Options, StepReport, Stepper};
+pub use driver::{Options, StepReport};
 pub use error::Error;
+pub use forward::ForwardStepper;
 pub use minimal::{MinimalStepper, simulate_minimal};
 pub use model::{CraneModel, MapDerivatives, MinimalMap, ModelInfo, Rope, Scalar, Structure, UnknownParameter};
 pub use redundant::{RedundantStepper, simulate};
-pub use scheme::Scheme;
+pub use scheme::{Method, Scheme};
+pub use stepper::{Advance, Stepper};
 pub use solution::{Solution, State};
 pub use trajectory::Trajectory;
 

@@ -1,5 +1,5 @@
 //! The servo problem in redundant coordinates, paper eqs. (22a-d), on any
-//! [`Scheme`].
+//! scheme.
 //!
 //! With the servo constraints `x = gamma(t)` substituted, the unknowns of a
 //! step are `p_{n+1}`, `u_{n+1}` and `lambda_{n+1}`; the scheme eliminates
@@ -18,30 +18,31 @@
 //! ```
 //! (backward Euler: `c = 1`, `pbar = p_n`, `vbar = v_n`), which for
 //! `M = diag(M1, M2)`, `B^T = [B1^T; 0]`, `f = [f1(p, p'); f2(x, x')]` is
-//! exactly (22b) and (22c). In the iteration matrix the scheme's `c`
-//! replaces 1: `d(dt^2 a)/dp = c^2`, `d(dt^2 v)/dp = c dt`.
+//! exactly (22b) and (22c). In the iteration matrix the scheme's slopes
+//! replace 1: `d(dt^2 a)/dp = c^2`, `d(dt^2 v)/dp = c dt`.
 
-use std::ops::Range;
+use std::ops::{Deref, Range};
 
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-use crate::driver::{
-    Options, ServoTarget, StepReport, Stepper, check_parameters, check_step_size, check_step_time, check_target,
-    record, servo_target, step_count, step_error,
-};
+use crate::driver::{Options, record};
 use crate::error::Error;
 use crate::init;
 use crate::model::CraneModel;
-use crate::newton::{Newton, NewtonOptions, NonlinearSystem, normalised_residual};
-use crate::scheme::{History, Scheme, StepFormula};
+use crate::newton::{NonlinearSystem, normalised_residual};
+use crate::problem::{Accepted, Predictor, Problem, ServoTarget, Start, dynamic_rows};
+use crate::scheme::{Method, Scheme, StepFormula};
 use crate::solution::{Solution, State};
+use crate::stepper::Stepper;
 use crate::trajectory::Trajectory;
 
-/// The residual of eqs. (22b-d) at one step, as a [`NonlinearSystem`] in the
-/// unknowns `z = [p; dt^2 u; dt^2 lambda]`.
+/// Eqs. (22a-d) of one step, as a [`Problem`] in the unknowns
+/// `z = [p; dt^2 u; dt^2 lambda]`, for the crane behind the handle `H`
+/// (`&Mdl`, `Box<Mdl>`, `Arc<Mdl>`) on the path `Tr`.
 #[derive(Clone)]
-struct StepEquations<'m, Mdl, const N: usize, const M: usize, const A: usize> {
-    model: &'m Mdl,
+pub struct Redundant<H, Tr, const N: usize, const M: usize, const A: usize> {
+    model: H,
+    trajectory: Tr,
     mass: SMatrix<f64, N, N>,
     dt: f64,
     /// `gamma, gamma', gamma''` at `t_{n+1}`.
@@ -51,8 +52,31 @@ struct StepEquations<'m, Mdl, const N: usize, const M: usize, const A: usize> {
     blocks: [Range<usize>; 3],
 }
 
-impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> StepEquations<'_, Mdl, N, M, A> {
+impl<H, Tr, const N: usize, const M: usize, const A: usize> Redundant<H, Tr, N, M, A>
+where
+    H: Deref<Target: CraneModel<N, M, A> + Sized>,
+    Tr: Trajectory<A>,
+{
     const P: usize = N - A;
+
+    /// The servo problem of the crane behind `model` on `trajectory`.
+    pub fn new(model: H, trajectory: Tr) -> Self {
+        let mass = model.mass_matrix();
+        Self {
+            model,
+            trajectory,
+            mass,
+            dt: f64::NAN,
+            target: [SVector::zeros(); 3],
+            formula: StepFormula { rate: f64::NAN, dt: f64::NAN, value_offset: SVector::zeros(), rate_offset: SVector::zeros() },
+            blocks: [0..Self::P, Self::P..N, N..N + M],
+        }
+    }
+
+    /// The load path.
+    pub fn trajectory(&self) -> &Tr {
+        &self.trajectory
+    }
 
     /// `q`, `v`, `a` at the new time from the unknowns.
     fn kinematics(&self, z: &DVector<f64>) -> [SVector<f64, N>; 3] {
@@ -75,70 +99,48 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> S
     }
 }
 
-impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> NonlinearSystem
-    for StepEquations<'_, Mdl, N, M, A>
+/// The load target `gamma, gamma', gamma''` of the step to `t`.
+pub(crate) fn servo_target<const A: usize>(trajectory: &impl Trajectory<A>, t: f64) -> ServoTarget<A> {
+    [0, 1, 2].map(|k| trajectory.derivative(t, k))
+}
+
+/// Refuse a NaN or infinite load target.
+pub(crate) fn check_target<const A: usize>(target: &ServoTarget<A>, t: f64) -> Result<(), Error> {
+    if target.iter().all(|x| x.iter().all(|v| v.is_finite())) {
+        Ok(())
+    } else {
+        Err(Error::NonFinite { quantity: "load target gamma(t)", t })
+    }
+}
+
+impl<H, Tr, const N: usize, const M: usize, const A: usize> NonlinearSystem for Redundant<H, Tr, N, M, A>
+where
+    H: Deref<Target: CraneModel<N, M, A> + Sized>,
+    Tr: Trajectory<A>,
 {
     fn dim(&self) -> usize {
         N + M
     }
 
     fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
-        let (p, dt) = (Self::P, self.dt);
-        let dt2 = dt * dt;
-        let [q, v, a] = self.kinematics(z);
+        let p = Self::P;
+        let kinematics = self.kinematics(z);
         let u_scaled = SVector::<f64, A>::from_fn(|k, _| z[p + k]);
         let lambda_scaled = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
-
-        let model = self.model;
-        let f = model.forces(&q, &v);
-        let (df_dq, df_dv) = model.force_jacobians(&q, &v);
-        let bt = model.input_matrix(&q);
-        let dbu_dq = model.input_jacobian(&q, &u_scaled);
-        let jac_g = model.constraint_jacobian(&q);
-        let dgl_dq = model.constraint_hessian(&q, &lambda_scaled);
-        let g = model.constraints(&q);
-
-        // residual: dynamic rows (22b, 22c) scaled by dt^2, then (22d)
-        let inertia = self.mass * a * dt2;
-        let applied = f * dt2;
-        let inputs = bt * u_scaled;
-        let constraint_forces = jac_g.tr_mul(&lambda_scaled);
-        let dynamic = inertia - applied - inputs + constraint_forces;
-        r.rows_mut(0, N).copy_from(&dynamic);
-        r.rows_mut(N, M).copy_from(&g);
-        // iteration matrix, column by column of z
+        let model = &*self.model;
+        let rows = dynamic_rows(model, &self.mass, self.dt, self.formula.slopes(), &kinematics, &u_scaled, &lambda_scaled);
+        // residual: dynamic rows (22b, 22c) scaled by dt^2, then (22d); the
+        // iteration matrix column by column of z: p, then dt^2 u, dt^2 lambda
         jac.fill(0.0);
-        let c_dt = self.formula.rate * dt; // the scheme's c
-        let (da, dv) = (c_dt * c_dt, c_dt * dt);
-        for j in 0..p {
-            // d a_j/d p_j = c^2/dt^2, d v_j/d p_j = c/dt (scaled by dt^2)
-            for i in 0..N {
-                jac[(i, j)] =
-                    da * self.mass[(i, j)] - dt2 * df_dq[(i, j)] - dv * df_dv[(i, j)] - dbu_dq[(i, j)] + dgl_dq[(i, j)];
-            }
-            for i in 0..M {
-                jac[(N + i, j)] = jac_g[(i, j)];
-            }
-        }
+        rows.write(&model.constraints(&kinematics[0]), p, r, jac);
         for k in 0..A {
             for i in 0..N {
-                jac[(i, p + k)] = -bt[(i, k)];
-            }
-        }
-        for l in 0..M {
-            for i in 0..N {
-                jac[(i, N + l)] = jac_g[(l, i)];
+                jac[(i, p + k)] = -rows.input_matrix[(i, k)];
             }
         }
         // dynamic rows also by their largest term (the load row of x nearly
         // vanishes when the load hangs straight below the pulley)
-        normalised_residual(r, jac, z, |i| {
-            if i < N {
-                inertia[i].abs().max(applied[i].abs())
-            } else {
-                0.0
-            }
-        })
+        normalised_residual(r, jac, z, |i| if i < N { rows.inertia[i].abs().max(rows.applied[i].abs()) } else { 0.0 })
     }
 
     fn blocks(&self) -> &[Range<usize>] {
@@ -146,184 +148,109 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> N
     }
 }
 
-/// Eqs. (22a-d) on a [`Scheme`], one step at a time.
-///
-/// Built from a consistent start (see [`crate::init`]); after construction
-/// [`step`](Self::step) does not allocate. A clone continues independently
-/// from the same state and history.
-#[derive(Clone)]
-pub struct RedundantStepper<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize> {
-    equations: StepEquations<'m, Mdl, N, M, A>,
-    trajectory: Tr,
-    newton: Newton,
-    z: DVector<f64>,
-    scheme: Scheme,
-    /// Past `q` and `v` (only the `p` rows are used).
-    history: History<N>,
-    state: State<N, M, A>,
-    t0: f64,
-    steps: usize,
-}
-
-impl<'m, Mdl, Tr, const N: usize, const M: usize, const A: usize> RedundantStepper<'m, Mdl, Tr, N, M, A>
+impl<H, Tr, const N: usize, const M: usize, const A: usize> Problem<N, M, A, N> for Redundant<H, Tr, N, M, A>
 where
-    Mdl: CraneModel<N, M, A>,
+    H: Deref<Target: CraneModel<N, M, A> + Sized>,
     Tr: Trajectory<A>,
 {
-    /// A backward-Euler stepper from `start` with time step `dt`.
-    pub fn new(
-        model: &'m Mdl,
-        trajectory: Tr,
-        start: &State<N, M, A>,
-        dt: f64,
-        newton: NewtonOptions,
-    ) -> Result<Self, Error> {
-        Self::with_scheme(model, trajectory, start, dt, Scheme::BackwardEuler, newton)
+    type Model = H::Target;
+    type Drive = ServoTarget<A>;
+
+    fn model(&self) -> &H::Target {
+        &self.model
     }
 
-    /// A stepper on `scheme` from `start` with time step `dt`; the scheme's
-    /// history before the start comes from [`init::history`].
-    pub fn with_scheme(
-        model: &'m Mdl,
-        trajectory: Tr,
-        start: &State<N, M, A>,
-        dt: f64,
-        scheme: Scheme,
-        newton: NewtonOptions,
-    ) -> Result<Self, Error> {
-        check_step_size(dt)?;
-        check_parameters(model)?;
-        let history = init::history(&trajectory, start, start.q, start.v);
-        let p = N - A;
-        let dt2 = dt * dt;
-        let mut z = DVector::zeros(N + M);
+    /// The scheme's extrapolation for `p`, the last step's scaled `u` and `lambda`.
+    fn predictor(&self) -> Predictor {
+        Predictor::Scheme { leading: Self::P }
+    }
+
+    fn drive(&self, t: f64) -> ServoTarget<A> {
+        servo_target(&self.trajectory, t)
+    }
+
+    fn check_drive(&self, target: &ServoTarget<A>, t: f64) -> Result<(), Error> {
+        check_target(target, t)
+    }
+
+    fn start(&mut self, start: &State<N, M, A>, dt: f64, z: &mut DVector<f64>) -> Result<Start<N>, Error> {
+        self.dt = dt;
+        let (p, dt2) = (Self::P, dt * dt);
         z.rows_mut(0, p).copy_from(&start.q.rows(0, p));
         z.rows_mut(p, A).copy_from(&(start.u * dt2));
         z.rows_mut(N, M).copy_from(&(start.lambda * dt2));
-        let equations = StepEquations {
-            model,
-            mass: model.mass_matrix(),
-            dt,
-            target: [SVector::zeros(); 3],
-            formula: history.formula(scheme, dt),
-            blocks: [0..p, p..N, N..N + M],
-        };
-        Ok(Self {
-            equations,
-            trajectory,
-            newton: Newton::new(N + M, newton),
-            z,
-            scheme,
-            history,
-            state: *start,
-            t0: start.t,
-            steps: 0,
-        })
+        Ok(Start { y0: start.q, v0: start.v, at_rest: init::at_rest(&self.trajectory, start) })
     }
 
-    /// The state after the last step (the start before the first).
-    pub fn state(&self) -> &State<N, M, A> {
-        &self.state
+    fn prepare(&mut self, _t: f64, target: &ServoTarget<A>, formula: StepFormula<N>) {
+        self.target = *target;
+        self.formula = formula;
     }
 
-    /// The time step.
-    pub fn dt(&self) -> f64 {
-        self.equations.dt
-    }
-
-    /// The scheme.
-    pub fn scheme(&self) -> Scheme {
-        self.scheme
-    }
-
-    /// Advance one step along the stepper's trajectory.
-    pub fn step(&mut self) -> Result<StepReport, Error> {
-        let t = self.t0 + (self.steps + 1) as f64 * self.equations.dt;
-        self.step_to(t, &servo_target(&self.trajectory, t))
-    }
-
-    /// Advance one step to time `t`, which must be `t_n + dt`
-    /// ([`Error::WrongStepTime`] otherwise), with the load target
-    /// `gamma, gamma', gamma''` at `t`.
-    pub fn step_to(&mut self, t: f64, target: &ServoTarget<A>) -> Result<StepReport, Error> {
-        check_step_time(t, self.state.t, self.equations.dt)?;
-        check_target(target, t)?;
-        let (p, dt) = (N - A, self.equations.dt);
-        let dt2 = dt * dt;
-        let eq = &mut self.equations;
-        eq.target = *target;
-        eq.formula = self.history.formula(self.scheme, dt);
-        // predictor: the scheme's extrapolation for p, previous scaled u and lambda
-        let predicted = self.history.predict(self.scheme, dt);
-        self.z.rows_mut(0, p).copy_from(&predicted.rows(0, p));
-        let converged = self
-            .newton
-            .solve(eq, &mut self.z)
-            .map_err(|failure| step_error(failure, t))?;
-        let [q, v, _] = eq.kinematics(&self.z);
-        self.state = State {
-            t,
-            q,
-            v,
-            u: SVector::from_fn(|k, _| self.z[p + k] / dt2),
-            lambda: SVector::from_fn(|i, _| self.z[N + i] / dt2),
-        };
-        self.history.push(q, v);
-        self.steps += 1;
-        Ok(StepReport {
-            iterations: converged.iterations,
-            min_norm_steps: converged.min_norm_steps,
-        })
+    fn accept(&mut self, t: f64, z: &DVector<f64>) -> Result<Accepted<N, M, A, N>, Error> {
+        let (p, dt2) = (Self::P, self.dt * self.dt);
+        let [q, v, _] = self.kinematics(z);
+        let u = SVector::from_fn(|k, _| z[p + k] / dt2);
+        let lambda = SVector::from_fn(|i, _| z[N + i] / dt2);
+        Ok(Accepted { state: State { t, q, v, u, lambda }, y: q, v })
     }
 }
 
-/// Integrate eqs. (22a-d) from `start` to `options.tf` with `options.scheme`.
+/// Eqs. (22a-d) one step at a time: the [`Stepper`] of the [`Redundant`]
+/// problem on the scheme `S`.
+pub type RedundantStepper<H, Tr, const N: usize, const M: usize, const A: usize, S = Scheme> =
+    Stepper<Redundant<H, Tr, N, M, A>, S, N, M, A, N>;
+
+/// A stepper of eqs. (22a-d) for the crane behind `model` (`&crane`, or an
+/// owning `Box`/`Arc`) on `trajectory` from the consistent `start`, with the
+/// step, scheme and tolerances of `options`; after construction a step
+/// does not allocate.
+pub fn stepper<H, Tr, S, const N: usize, const M: usize, const A: usize>(
+    model: H,
+    trajectory: Tr,
+    start: &State<N, M, A>,
+    options: &Options<S>,
+) -> Result<RedundantStepper<H, Tr, N, M, A, S>, Error>
+where
+    H: Deref<Target: CraneModel<N, M, A> + Sized>,
+    Tr: Trajectory<A>,
+    S: Method,
+{
+    Stepper::new(Redundant::new(model, trajectory), start, options)
+}
+
+/// Integrate eqs. (22a-d) from `start` to `options.tf()` with its scheme.
 ///
 /// Storage for all steps is reserved up front; the step loop does not allocate.
 /// The result is what the causal inverse computes: for a crane that is not
 /// flat it can grow without bound, which
 /// [`internal::diagnose`](crate::internal::diagnose) tells.
-pub fn simulate<Mdl, Tr, const N: usize, const M: usize, const A: usize>(
+pub fn simulate<Mdl, Tr, S, const N: usize, const M: usize, const A: usize>(
     model: &Mdl,
     trajectory: Tr,
     start: &State<N, M, A>,
-    options: &Options,
+    options: &Options<S>,
 ) -> Result<Solution<N, M, A>, Error>
 where
     Mdl: CraneModel<N, M, A>,
     Tr: Trajectory<A>,
+    S: Method,
 {
-    simulate_with_progress(model, trajectory, start, options, |_, _| {})
+    simulate_with_progress(model, trajectory, start, options, &mut |_, _| {})
 }
 
 /// [`simulate`], calling `progress(step, steps)` after every step.
-pub fn simulate_with_progress<Mdl, Tr, const N: usize, const M: usize, const A: usize>(
+pub fn simulate_with_progress<Mdl, Tr, S, const N: usize, const M: usize, const A: usize>(
     model: &Mdl,
     trajectory: Tr,
     start: &State<N, M, A>,
-    options: &Options,
-    mut progress: impl FnMut(usize, usize),
+    options: &Options<S>,
+    progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Solution<N, M, A>, Error>
 where
     Mdl: CraneModel<N, M, A>,
     Tr: Trajectory<A>,
+    S: Method,
 {
-    let steps = step_count(start.t, options.tf, options.dt)?;
-    let mut stepper =
-        RedundantStepper::with_scheme(model, trajectory, start, options.dt, options.scheme, options.newton)?;
-    record(model, start, &mut stepper, steps, options, &mut progress)
-}
-
-impl<Mdl, Tr, const N: usize, const M: usize, const A: usize> Stepper<N, M, A>
-    for RedundantStepper<'_, Mdl, Tr, N, M, A>
-where
-    Mdl: CraneModel<N, M, A>,
-    Tr: Trajectory<A>,
-{
-    fn step(&mut self) -> Result<StepReport, Error> {
-        RedundantStepper::step(self)
-    }
-    fn state(&self) -> &State<N, M, A> {
-        RedundantStepper::state(self)
-    }
+    record(&mut stepper(model, trajectory, start, options)?, options.tf(), progress)
 }

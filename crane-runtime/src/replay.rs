@@ -9,9 +9,9 @@ use std::cell::Cell;
 
 use nalgebra::SVector;
 
-use crate::driver::{Options, step_count};
+use crate::driver::{Options, run, step_count};
 use crate::error::Error;
-use crate::forward::{ForwardStepper, Inputs};
+use crate::forward::{self, Inputs};
 use crate::model::CraneModel;
 use crate::newton::NewtonOptions;
 use crate::scheme::Scheme;
@@ -316,34 +316,20 @@ where
     let settle_steps = (options.settle.max(0.0) / dt).round();
     let tf = end.t + settle_steps * dt;
     let plan = InterpolatedInputs::new(inverse, options.scheme.order() + 1);
-    let forward = Options {
-        dt,
-        tf,
-        scheme: options.scheme,
-        newton: options.newton,
-    };
+    let forward = Options::new(dt, tf)?.with_scheme(options.scheme).with_newton(options.newton)?;
     let steps = step_count(start.t, tf, dt)?;
     let last = Cell::new(*start);
-    let gains = feedback.copied().unwrap_or(Feedback {
-        kp: SVector::zeros(),
-        kd: SVector::zeros(),
-    });
-    let inputs = ClosedLoop {
-        plan,
-        plant,
-        feedback: gains,
-        last: &last,
-    };
-    let mut stepper = ForwardStepper::new(plant, inputs, start, dt, forward.scheme, forward.newton)?;
-    let mut solution = Solution::with_capacity(Mdl::INFO, dt, forward.scheme, steps + 1)?;
+    let gains = feedback.copied().unwrap_or(Feedback { kp: SVector::zeros(), kd: SVector::zeros() });
+    let inputs = ClosedLoop { plan, plant, feedback: gains, last: &last };
+    let mut stepper = forward::stepper(plant, inputs, start, &forward)?;
+    let mut solution = Solution::with_capacity(Mdl::INFO, dt, options.scheme.name(), steps + 1)?;
     let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
     solution.push(plant, start, 0, 0, &mut lengths);
-    for _ in 0..steps {
-        let report = stepper.step()?;
-        let state = *stepper.state();
-        last.set(state);
-        solution.push(plant, &state, report.iterations, report.min_norm_steps, &mut lengths);
-    }
+    run(&mut stepper, steps, |_, state, report| {
+        last.set(*state);
+        solution.push(plant, state, report.iterations, report.min_norm_steps, &mut lengths);
+        Ok(())
+    })?;
     let (mut max_load_deviation, mut deviation_at_tf, mut residual_sway) = (0.0f64, 0.0f64, 0.0f64);
     for state in &solution.states {
         let deviation = load_deviation(path, end.t, state);
@@ -400,7 +386,7 @@ mod tests {
         let run = Solution {
             info: INFO,
             dt: 0.1,
-            scheme: Scheme::Bdf3,
+            scheme: "bdf3",
             states,
             newton_iterations: vec![0; 21],
             tensions: vec![],

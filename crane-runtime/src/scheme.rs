@@ -2,20 +2,24 @@
 //! new value and the history.
 //!
 //! The problems (servo constraints in redundant coordinates, eqs. 22; in
-//! minimal coordinates, eqs. 24) discretise second-order kinematics
-//! `y' = v`, `v' = a` of some of their unknowns (`p`, or `mu1`). Every
-//! scheme here is a constant-step linear multistep formula in which the new
-//! rate is an affine function of the new value,
+//! minimal coordinates, eqs. 24; the forward dynamics) discretise
+//! second-order kinematics `y' = v`, `v' = a` of some of their unknowns
+//! (`p`, `q` or `mu1`). Every scheme here is a constant-step linear
+//! multistep formula in which the new rate is an affine function of the new
+//! value,
 //! ```text
 //! dt y'_{n+1} = c (y_{n+1} - ybar),   ybar = -sum_{j=1..k} alpha_j y_{n+1-j}
 //! ```
 //! applied to both `y' = v` and `v' = a` (so `a` is affine in `y_{n+1}` too,
-//! with slope `(c/dt)^2`). A problem sees only that [`Formula`] and a
-//! [`History`]; it never names a scheme, so a new scheme is a new variant
-//! here and touches no problem.
+//! with slope `(c/dt)^2`). A [`Method`] says which `c` and `alpha` a step
+//! uses; a [`History`] is the method at work (its past values, rates, the
+//! predictor and the start-up rule) and hands a problem the affine maps of
+//! one step and their slopes ([`StepFormula`], [`Slopes`]). A problem never
+//! names a scheme, so a new scheme is one `impl Method` and touches no
+//! problem.
 //!
 //! BDF-k in normalised form, `sum_j alpha_j y_{n+1-j} = beta dt y'_{n+1}`
-//! (`alpha_0 = 1`, `c = 1/beta`):
+//! (`alpha_0 = 1`, `c = 1/beta`), the built-in [`Scheme`]s:
 //!
 //! | k | alpha_1 .. alpha_k | beta |
 //! |---|---|---|
@@ -31,15 +35,16 @@
 //! Petzold, *Numerical Solution of Initial-Value Problems in DAEs*, ch. 3).
 //!
 //! ```
-//! use crane_runtime::scheme::Scheme;
+//! use crane_runtime::scheme::{History, Method, Scheme};
+//! use crane_runtime::nalgebra::vector;
 //! let bdf3: Scheme = "bdf3".parse().unwrap();
 //! assert_eq!(bdf3.order(), 3);
 //! // the formula differentiates a polynomial of degree k exactly:
 //! // y = t^3 at t = -2, -1, 0 (history) and 1 (new), dt = 1
-//! let f = bdf3.formula();
-//! let past = [0.0, -1.0, -8.0]; // y_n, y_{n-1}, y_{n-2}
-//! let ybar: f64 = -(0..3).map(|j| f.alpha[j] * past[j]).sum::<f64>();
-//! assert!((f.c * (1.0 - ybar) - 3.0).abs() < 1e-12); // y'(1) = 3
+//! let past = [vector![0.0], vector![-1.0], vector![-8.0]]; // y_n, y_{n-1}, y_{n-2}
+//! let history = History::from_past(bdf3, &past, &past);
+//! let (rate, _) = history.formula(1.0).kinematics(0, 1.0, 1.0);
+//! assert!((rate - 3.0).abs() < 1e-12); // y'(1) = 3
 //! ```
 
 use std::fmt;
@@ -50,7 +55,83 @@ use nalgebra::SVector;
 /// Largest history length of a scheme here (BDF-5).
 pub const MAX_STEPS: usize = 5;
 
-/// A time-discretisation scheme of the steppers.
+/// The coefficients of one step: `dt y'_{n+1} = c (y_{n+1} + sum_j alpha_j y_{n+1-j})`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Formula {
+    /// Number of past values the formula uses (at most [`MAX_STEPS`]).
+    pub steps: usize,
+    /// `c = 1/beta`: `d y'_{n+1} / d y_{n+1} = c/dt`.
+    pub c: f64,
+    /// `alpha_1 .. alpha_k` (the first `steps` entries; the rest are 0).
+    pub alpha: [f64; MAX_STEPS],
+}
+
+impl Formula {
+    /// The formula with `c` and the past coefficients `alpha` (at most
+    /// [`MAX_STEPS`] of them; more are ignored).
+    pub fn new(c: f64, alpha: &[f64]) -> Self {
+        let steps = alpha.len().min(MAX_STEPS);
+        let mut padded = [0.0; MAX_STEPS];
+        padded[..steps].copy_from_slice(&alpha[..steps]);
+        Self { steps, c, alpha: padded }
+    }
+}
+
+/// A constant-step linear multistep method for `y' = v`, `v' = a`: the
+/// formula of each step and how many past values its predictor uses.
+///
+/// The built-in methods are the [`Scheme`]s; a method of one's own needs
+/// only these few lines and runs on every problem. Here is the second-order
+/// numerical differentiation formula of Klopfenstein and Shampine (NDF-2,
+/// the default of MATLAB's `ode15s`): BDF-2 plus `-kappa gamma_2 nabla^3
+/// y_{n+1}` with `kappa = -1/9`, `gamma_2 = 3/2`, which puts a third past
+/// value into the formula,
+/// `5/3 y_{n+1} - 5/2 y_n + y_{n-1} - 1/6 y_{n-2} = dt y'_{n+1}`:
+///
+/// ```
+/// use crane_runtime::scheme::{Formula, Method};
+///
+/// #[derive(Debug, Clone, Copy)]
+/// struct Ndf2;
+///
+/// impl Method for Ndf2 {
+///     fn name(&self) -> &'static str { "ndf2" }
+///     fn order(&self) -> usize { 2 }
+///     fn formula(&self, known: usize) -> Formula {
+///         match known {
+///             1 => Formula::new(1.0, &[-1.0]),                      // backward Euler
+///             2 => Formula::new(1.5, &[-4.0 / 3.0, 1.0 / 3.0]),     // BDF-2
+///             _ => Formula::new(5.0 / 3.0, &[-1.5, 0.6, -0.1]),     // NDF-2
+///         }
+///     }
+/// }
+/// let f = Ndf2.formula(3);
+/// // consistency: constants and linear functions are differentiated exactly
+/// assert!((1.0 + f.alpha.iter().sum::<f64>()).abs() < 1e-15);
+/// let t = [1.0, 0.0, -1.0, -2.0]; // y = t at t_{n+1}, t_n, t_{n-1}, t_{n-2}, dt = 1
+/// let slope = f.c * (t[0] + (0..3).map(|j| f.alpha[j] * t[j + 1]).sum::<f64>());
+/// assert!((slope - 1.0).abs() < 1e-15);
+/// ```
+pub trait Method: Copy + fmt::Debug + Send + Sync + 'static {
+    /// The name in results and plot titles.
+    fn name(&self) -> &'static str;
+
+    /// The order of convergence once the history is long enough.
+    fn order(&self) -> usize;
+
+    /// The formula of a step after which `known` (`1..=MAX_STEPS`) past
+    /// values are in the history: the method's own once it has enough, a
+    /// lower-order one before (the start-up of a moving start).
+    fn formula(&self, known: usize) -> Formula;
+
+    /// Past values the predictor extrapolates through, of `known`: the
+    /// polynomial of degree `order` (at most what is known).
+    fn predictor_points(&self, known: usize) -> usize {
+        (self.order() + 1).min(known)
+    }
+}
+
+/// The built-in schemes: BDF of orders 1 (backward Euler) to 5.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Scheme {
     /// Backward Euler (BDF-1), the paper's scheme: first order.
@@ -66,26 +147,10 @@ pub enum Scheme {
     Bdf5,
 }
 
-/// The coefficients of a scheme: `dt y'_{n+1} = c (y_{n+1} + sum_j alpha_j y_{n+1-j})`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Formula {
-    /// Number of past values the formula uses.
-    pub steps: usize,
-    /// `c = 1/beta`: `d y'_{n+1} / d y_{n+1} = c/dt`.
-    pub c: f64,
-    /// `alpha_1 .. alpha_k` (the first `steps` entries; the rest are 0).
-    pub alpha: [f64; MAX_STEPS],
-}
-
 impl Scheme {
-    /// All schemes, in order.
-    pub const ALL: [Scheme; 5] = [
-        Scheme::BackwardEuler,
-        Scheme::Bdf2,
-        Scheme::Bdf3,
-        Scheme::Bdf4,
-        Scheme::Bdf5,
-    ];
+    /// All schemes, in order: the one list the command line, scenario files
+    /// and the FMU's `scheme` variable are made from.
+    pub const ALL: [Scheme; 5] = [Scheme::BackwardEuler, Scheme::Bdf2, Scheme::Bdf3, Scheme::Bdf4, Scheme::Bdf5];
 
     /// BDF of order `k` (1 = backward Euler), if `1 <= k <= 5`.
     pub fn bdf(k: usize) -> Option<Scheme> {
@@ -115,9 +180,63 @@ impl Scheme {
         }
     }
 
-    /// The scheme's formula.
+    /// The integer code of the FMU's `scheme` variable: the order.
+    pub fn code(self) -> i32 {
+        self.order() as i32
+    }
+
+    /// The scheme of an FMU `scheme` code, if it is one.
+    pub fn from_code(code: i32) -> Option<Scheme> {
+        Self::ALL.into_iter().find(|s| s.code() == code)
+    }
+
+    /// What it is, in a few words.
+    pub fn description(self) -> &'static str {
+        match self {
+            Scheme::BackwardEuler => "backward Euler, the paper's (order 1)",
+            Scheme::Bdf2 => "BDF-2 (order 2)",
+            Scheme::Bdf3 => "BDF-3 (order 3)",
+            Scheme::Bdf4 => "BDF-4 (order 4)",
+            Scheme::Bdf5 => "BDF-5 (order 5)",
+        }
+    }
+
+    /// The choices as one line of help, e.g. for a command-line flag:
+    /// "backward-euler (backward Euler, the paper's (order 1); default), bdf2 (BDF-2 (order 2)), ...".
+    pub fn help() -> String {
+        Self::ALL
+            .iter()
+            .map(|s| {
+                let default = if *s == Scheme::default() { "; default" } else { "" };
+                format!("{} ({}{default})", s.name(), s.description())
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    /// The choices by FMU code, e.g. "1 backward Euler, the paper's (order 1), 2 BDF-2 (order 2), ...".
+    pub fn code_help() -> String {
+        Self::ALL.iter().map(|s| format!("{} {}", s.code(), s.description())).collect::<Vec<_>>().join(", ")
+    }
+
+    /// The scheme's formula with a full history.
     pub fn formula(self) -> Formula {
         bdf_formula(self.order())
+    }
+}
+
+impl Method for Scheme {
+    fn name(&self) -> &'static str {
+        Scheme::name(*self)
+    }
+
+    fn order(&self) -> usize {
+        Scheme::order(*self)
+    }
+
+    /// BDF-k, or BDF-`known` while fewer than `k` past values are known.
+    fn formula(&self, known: usize) -> Formula {
+        bdf_formula(Scheme::order(*self).min(known))
     }
 }
 
@@ -128,24 +247,9 @@ fn bdf_formula(k: usize) -> Formula {
         2 => (2.0 / 3.0, &[-4.0 / 3.0, 1.0 / 3.0]),
         3 => (6.0 / 11.0, &[-18.0 / 11.0, 9.0 / 11.0, -2.0 / 11.0]),
         4 => (12.0 / 25.0, &[-48.0 / 25.0, 36.0 / 25.0, -16.0 / 25.0, 3.0 / 25.0]),
-        _ => (
-            60.0 / 137.0,
-            &[
-                -300.0 / 137.0,
-                300.0 / 137.0,
-                -200.0 / 137.0,
-                75.0 / 137.0,
-                -12.0 / 137.0,
-            ],
-        ),
+        _ => (60.0 / 137.0, &[-300.0 / 137.0, 300.0 / 137.0, -200.0 / 137.0, 75.0 / 137.0, -12.0 / 137.0]),
     };
-    let mut padded = [0.0; MAX_STEPS];
-    padded[..alpha.len()].copy_from_slice(alpha);
-    Formula {
-        steps: alpha.len(),
-        c: 1.0 / beta,
-        alpha: padded,
-    }
+    Formula::new(1.0 / beta, alpha)
 }
 
 impl fmt::Display for Scheme {
@@ -163,22 +267,20 @@ impl FromStr for Scheme {
     type Err = UnknownScheme;
     /// `backward-euler` (or `bdf1`), `bdf2` .. `bdf5`.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s {
-            "backward-euler" | "bdf1" => Ok(Scheme::BackwardEuler),
-            "bdf2" => Ok(Scheme::Bdf2),
-            "bdf3" => Ok(Scheme::Bdf3),
-            "bdf4" => Ok(Scheme::Bdf4),
-            "bdf5" => Ok(Scheme::Bdf5),
-            other => Err(UnknownScheme(other.to_string())),
+        if s == "bdf1" {
+            return Ok(Scheme::BackwardEuler);
         }
+        Self::ALL.into_iter().find(|scheme| scheme.name() == s).ok_or_else(|| UnknownScheme(s.to_string()))
     }
 }
 
-/// Past values `y_n, y_{n-1}, ...` and rates `y'_n, y'_{n-1}, ...` of the
-/// discretised unknowns, newest first; fixed size, so pushing a step does
-/// not allocate.
+/// A method at work: past values `y_n, y_{n-1}, ...` and rates
+/// `y'_n, y'_{n-1}, ...` of the discretised unknowns, newest first, the
+/// predictor and the start-up rule; fixed size, so pushing a step does not
+/// allocate.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct History<const K: usize> {
+pub struct History<const K: usize, S: Method = Scheme> {
+    method: S,
     values: [SVector<f64, K>; MAX_STEPS],
     rates: [SVector<f64, K>; MAX_STEPS],
     /// How many entries are valid (oldest ones may be missing early on).
@@ -191,10 +293,24 @@ pub struct History<const K: usize> {
 pub struct StepFormula<const K: usize> {
     /// `c/dt`: the slope of `v` in `y` (and of `a` in `v`).
     pub rate: f64,
+    /// The time step.
+    pub dt: f64,
     /// `ybar` from the past values.
     pub value_offset: SVector<f64, K>,
     /// `vbar` from the past rates.
     pub rate_offset: SVector<f64, K>,
+}
+
+/// The slopes of one step's affine maps in the new value `y`, as the
+/// iteration matrices use them (rows scaled by `dt^2`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Slopes {
+    /// `dv/dy = c/dt`.
+    pub velocity: f64,
+    /// `d(dt^2 v)/dy = c dt`.
+    pub velocity_dt2: f64,
+    /// `d(dt^2 a)/dy = c^2`.
+    pub acceleration_dt2: f64,
 }
 
 impl<const K: usize> StepFormula<K> {
@@ -211,37 +327,61 @@ impl<const K: usize> StepFormula<K> {
         let accel_dt2 = (y - self.value_offset[i]) * (c_dt * c_dt) - self.rate_offset[i] * (c_dt * dt);
         (v, accel_dt2)
     }
+
+    /// The slopes of `v`, `dt^2 v` and `dt^2 a` in `y` (the same products
+    /// as [`kinematics`](Self::kinematics)).
+    pub fn slopes(&self) -> Slopes {
+        let c_dt = self.rate * self.dt;
+        Slopes { velocity: self.rate, velocity_dt2: c_dt * self.dt, acceleration_dt2: c_dt * c_dt }
+    }
 }
 
-impl<const K: usize> History<K> {
-    /// A history at rest: every past value `y0`, every past rate zero (the
-    /// exact past of a crane that rests before `t0`).
-    pub fn at_rest(y0: SVector<f64, K>) -> Self {
-        Self {
-            values: [y0; MAX_STEPS],
-            rates: [SVector::zeros(); MAX_STEPS],
-            known: MAX_STEPS,
-        }
+impl<const K: usize, S: Method> History<K, S> {
+    /// The start-up rule, for the discretised unknowns `y0` (`q` or `mu`)
+    /// with rates `v0`:
+    ///
+    /// - At rest (`at_rest`, see [`init::at_rest`](crate::init::at_rest)):
+    ///   the crane rested before `t0`, so every past value is `y0` and every
+    ///   past rate zero. This history is exact, and a BDF-k run from it
+    ///   keeps order k from the first step.
+    /// - Otherwise only the present is known, and the method starts itself:
+    ///   the j-th step uses the formula for j known values
+    ///   ([`Method::formula`]; BDF-j) until the history holds k steps (an
+    ///   order ramp). The lower-order first steps leave an error in the
+    ///   inputs near `t0` (backward Euler's first step from a moving start
+    ///   is off by O(1) in the accelerations, so in `u`); for a crane whose
+    ///   coordinates the servo and holonomic constraints fix (all built-in
+    ///   models) it is gone after 2k steps, and order k holds at every time
+    ///   from there on (measured in the tests on a start in the middle of a
+    ///   move).
+    pub fn new(method: S, y0: SVector<f64, K>, v0: SVector<f64, K>, at_rest: bool) -> Self {
+        if at_rest { Self::at_rest(method, y0) } else { Self::start(method, y0, v0) }
     }
 
-    /// A history that knows only the start `(y0, v0)`; the first steps then
-    /// use lower orders (see [`History::formula`]).
-    pub fn start(y0: SVector<f64, K>, v0: SVector<f64, K>) -> Self {
-        Self {
-            values: [y0; MAX_STEPS],
-            rates: [v0; MAX_STEPS],
-            known: 1,
-        }
+    /// A history at rest: every past value `y0`, every past rate zero.
+    pub fn at_rest(method: S, y0: SVector<f64, K>) -> Self {
+        Self { method, values: [y0; MAX_STEPS], rates: [SVector::zeros(); MAX_STEPS], known: MAX_STEPS }
     }
 
-    /// A history from past values and rates, newest (`t0`) first.
-    pub fn from_past(values: &[SVector<f64, K>], rates: &[SVector<f64, K>]) -> Self {
+    /// A history that knows only the start `(y0, v0)`.
+    pub fn start(method: S, y0: SVector<f64, K>, v0: SVector<f64, K>) -> Self {
+        Self { method, values: [y0; MAX_STEPS], rates: [v0; MAX_STEPS], known: 1 }
+    }
+
+    /// A history from past values and rates, newest (`t0`) first (at least
+    /// one of each).
+    pub fn from_past(method: S, values: &[SVector<f64, K>], rates: &[SVector<f64, K>]) -> Self {
         let known = values.len().min(rates.len()).clamp(1, MAX_STEPS);
-        let mut history = Self::start(values[0], rates[0]);
+        let mut history = Self::start(method, values[0], rates[0]);
         history.values[..known].copy_from_slice(&values[..known]);
         history.rates[..known].copy_from_slice(&rates[..known]);
         history.known = known;
         history
+    }
+
+    /// The method.
+    pub fn method(&self) -> &S {
+        &self.method
     }
 
     /// Record an accepted step: `y_{n+1}, y'_{n+1}` become the newest entry.
@@ -263,41 +403,35 @@ impl<const K: usize> History<K> {
         &self.rates[0]
     }
 
-    /// Order actually available for `scheme`: its own, or lower while the
-    /// history is shorter than the scheme needs (a start of which only the
-    /// present is known).
-    pub fn order(&self, scheme: Scheme) -> usize {
-        scheme.order().min(self.known)
+    /// Order of the next step: the method's, or lower while the history is
+    /// shorter than the method needs.
+    pub fn order(&self) -> usize {
+        self.method.order().min(self.known)
     }
 
-    /// The scheme's affine maps for the step after the newest entry, with
+    /// The method's affine maps for the step after the newest entry, with
     /// time step `dt`.
-    pub fn formula(&self, scheme: Scheme, dt: f64) -> StepFormula<K> {
-        let formula = bdf_formula(self.order(scheme));
+    pub fn formula(&self, dt: f64) -> StepFormula<K> {
+        let formula = self.method.formula(self.known);
         let mut value_offset = SVector::zeros();
         let mut rate_offset = SVector::zeros();
         for j in 0..formula.steps {
             value_offset -= self.values[j] * formula.alpha[j];
             rate_offset -= self.rates[j] * formula.alpha[j];
         }
-        StepFormula {
-            rate: formula.c / dt,
-            value_offset,
-            rate_offset,
-        }
+        StepFormula { rate: formula.c / dt, dt, value_offset, rate_offset }
     }
 
     /// Predictor for the next value: the polynomial through the last
-    /// `order + 1` values (at most the five held) (or `y_n + dt y'_n` while only the start is known),
-    /// extrapolated one step.
-    pub fn predict(&self, scheme: Scheme, dt: f64) -> SVector<f64, K> {
-        let order = self.order(scheme);
+    /// [`Method::predictor_points`] values, extrapolated one step (or
+    /// `y_n + dt y'_n` while only the start is known).
+    pub fn predict(&self, dt: f64) -> SVector<f64, K> {
         if self.known < 2 {
             return self.values[0] + self.rates[0] * dt;
         }
         // extrapolation through `points` equally spaced values:
         // y_{n+1} = sum_j (-1)^j C(points, j+1) y_{n-j}
-        let points = (order + 1).min(self.known);
+        let points = self.method.predictor_points(self.known);
         let mut prediction = SVector::zeros();
         let mut binomial = 1.0;
         for j in 0..points {
@@ -324,25 +458,15 @@ mod tests {
             assert_eq!(f.steps, k);
             for degree in 0..=k {
                 let y = |t: f64| t.powi(degree as i32);
-                let dy = |t: f64| {
-                    if degree == 0 {
-                        0.0
-                    } else {
-                        degree as f64 * t.powi(degree as i32 - 1)
-                    }
-                };
+                let dy = |t: f64| if degree == 0 { 0.0 } else { degree as f64 * t.powi(degree as i32 - 1) };
                 let dt = 0.5;
                 let t_new = 1.0;
                 let past: Vec<_> = (1..=k).map(|j| vector![y(t_new - j as f64 * dt)]).collect();
-                let history = History::<1>::from_past(&past, &past);
-                assert_eq!(history.order(scheme), k);
-                let step = history.formula(scheme, dt);
+                let history = History::<1>::from_past(scheme, &past, &past);
+                assert_eq!(history.order(), k);
+                let step = history.formula(dt);
                 let (v, _) = step.kinematics(0, y(t_new), dt);
-                assert!(
-                    (v - dy(t_new)).abs() < 1e-12,
-                    "{scheme} degree {degree}: {v} vs {}",
-                    dy(t_new)
-                );
+                assert!((v - dy(t_new)).abs() < 1e-12, "{scheme} degree {degree}: {v} vs {}", dy(t_new));
             }
         }
     }
@@ -350,11 +474,29 @@ mod tests {
     /// Backward Euler's affine maps are eq. (22a) and the difference quotient of v.
     #[test]
     fn backward_euler_is_eq_22a() {
-        let history = History::<1>::start(vector![2.0], vector![3.0]);
-        let step = history.formula(Scheme::BackwardEuler, 0.1);
+        let history = History::<1>::start(Scheme::BackwardEuler, vector![2.0], vector![3.0]);
+        let step = history.formula(0.1);
         let (v, a_dt2) = step.kinematics(0, 2.5, 0.1);
         assert!((v - (2.5 - 2.0) / 0.1).abs() < 1e-12);
         assert!((a_dt2 - (2.5 - 2.0 - 0.1 * 3.0)).abs() < 1e-12);
+    }
+
+    /// The slopes are the derivatives of the affine maps (exact: the maps
+    /// are affine, so a difference over any step is the slope to round-off).
+    #[test]
+    fn slopes_are_the_derivatives_of_the_maps() {
+        for scheme in Scheme::ALL {
+            let past: Vec<_> = (0..MAX_STEPS).map(|j| vector![1.0 + 0.3 * j as f64]).collect();
+            let rates: Vec<_> = (0..MAX_STEPS).map(|j| vector![0.5 - 0.2 * j as f64]).collect();
+            let dt = 0.05;
+            let step = History::<1>::from_past(scheme, &past, &rates).formula(dt);
+            let slopes = step.slopes();
+            let (v0, a0) = step.kinematics(0, 2.0, dt);
+            let (v1, a1) = step.kinematics(0, 3.0, dt);
+            assert!((v1 - v0 - slopes.velocity).abs() < 1e-9 * slopes.velocity, "{scheme}");
+            assert!((a1 - a0 - slopes.acceleration_dt2).abs() < 1e-12 * slopes.acceleration_dt2, "{scheme}");
+            assert!(((v1 - v0) * dt * dt - slopes.velocity_dt2).abs() < 1e-12, "{scheme}");
+        }
     }
 
     /// The predictor of order k extrapolates polynomials of degree k exactly
@@ -365,21 +507,26 @@ mod tests {
             let k = scheme.order().min(MAX_STEPS - 1);
             let y = |t: f64| (0..=k).map(|i| t.powi(i as i32) / (i + 1) as f64).sum::<f64>();
             let past: Vec<_> = (0..MAX_STEPS).map(|j| vector![y(-(j as f64))]).collect();
-            let history = History::<1>::from_past(&past, &past);
-            let p = history.predict(scheme, 1.0)[0];
+            let history = History::<1>::from_past(scheme, &past, &past);
+            let p = history.predict(1.0)[0];
             assert!((p - y(1.0)).abs() < 1e-9, "{scheme}: {p} vs {}", y(1.0));
         }
     }
 
     #[test]
-    fn names_round_trip() {
+    fn names_and_codes_round_trip() {
         for scheme in Scheme::ALL {
             assert_eq!(scheme.name().parse::<Scheme>(), Ok(scheme));
             assert_eq!(Scheme::bdf(scheme.order()), Some(scheme));
+            assert_eq!(Scheme::from_code(scheme.code()), Some(scheme));
+            assert!(Scheme::help().contains(scheme.name()));
+            assert!(Scheme::code_help().contains(&format!("{} {}", scheme.code(), scheme.description())));
         }
         assert_eq!("bdf1".parse::<Scheme>(), Ok(Scheme::BackwardEuler));
         assert!("bdf6".parse::<Scheme>().is_err());
         assert_eq!(Scheme::bdf(0), None);
         assert_eq!(Scheme::bdf(6), None);
+        assert_eq!(Scheme::from_code(0), None);
+        assert_eq!(Scheme::from_code(6), None);
     }
 }

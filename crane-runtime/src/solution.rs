@@ -5,7 +5,6 @@ use nalgebra::SVector;
 
 use crate::error::Error;
 use crate::model::{CraneModel, ModelInfo};
-use crate::scheme::Scheme;
 
 /// The crane's state at one time: what the scheme of eqs. (22a-d) computes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -29,8 +28,8 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     pub info: ModelInfo,
     /// Time step.
     pub dt: f64,
-    /// The scheme that computed it.
-    pub scheme: Scheme,
+    /// The name of the scheme that computed it (`backward-euler`, `bdf4`, ...).
+    pub scheme: &'static str,
     /// States at `t0, t0 + dt, ..., tf`; the first is the consistent start.
     pub states: Vec<State<N, M, A>>,
     /// Newton iterations of each step (0 for the start).
@@ -49,7 +48,7 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
 impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
     /// An empty solution with room for `states` states, or
     /// [`Error::TooManySteps`] if that much cannot be reserved.
-    pub fn with_capacity(info: ModelInfo, dt: f64, scheme: Scheme, states: usize) -> Result<Self, Error> {
+    pub fn with_capacity(info: ModelInfo, dt: f64, scheme: &'static str, states: usize) -> Result<Self, Error> {
         let ropes = info.ropes.len();
         let per_state = std::mem::size_of::<State<N, M, A>>() + std::mem::size_of::<usize>() + ropes * 8;
         let too_many = || Error::TooManySteps {

@@ -225,8 +225,8 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         .start()
         .or_else(|_| init::static_equilibrium(case.model(), case.path(), t0, &case.p0))
         .map_err(|e| e.to_string())?;
-    case.simulate(&start, &Options::new(dt, tf).with_scheme(settings.scheme))
-        .map_err(|e| e.to_string())
+    let options = Options::new(dt, tf).map_err(|e| e.to_string())?.with_scheme(settings.scheme);
+    case.simulate(&start, &options).map_err(|e| e.to_string())
 }
 
 /// The extremum of the parabola through three equally spaced samples

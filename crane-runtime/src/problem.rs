@@ -1,0 +1,208 @@
+//! What a problem supplies to the [`Stepper`](crate::stepper::Stepper): its
+//! unknowns' layout, its residual and iteration matrix given the step
+//! formula of a [`Method`](crate::scheme::Method), and what a state is made
+//! of after a step; and the dynamic block every problem on redundant
+//! coordinates shares ([`dynamic_rows`]).
+//!
+//! The problems of this crate: the servo problem in redundant coordinates
+//! ([`crate::redundant`], eqs. 22a-d), in minimal coordinates
+//! ([`crate::minimal`], eqs. 24a-e) and the forward dynamics
+//! ([`crate::forward`], eq. 1). A problem never names a scheme; a scheme
+//! never names a problem.
+
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+
+use crate::error::Error;
+use crate::model::CraneModel;
+use crate::newton::NonlinearSystem;
+use crate::scheme::{Slopes, StepFormula};
+use crate::solution::State;
+
+/// The load target of one step: `gamma, gamma', gamma''` at the new time.
+pub type ServoTarget<const A: usize> = [SVector<f64, A>; 3];
+
+/// How the stepper predicts a step's unknowns before Newton.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Predictor {
+    /// The scheme's extrapolation of the discretised coordinates
+    /// ([`History::predict`](crate::scheme::History::predict)) for the first
+    /// `leading` unknowns (which are the first `leading` coordinates); the
+    /// other unknowns keep the last step's values.
+    Scheme {
+        /// How many leading unknowns are discretised coordinates.
+        leading: usize,
+    },
+    /// The quadratic through the last three steps' unknowns (the last step's
+    /// before that); if Newton fails from it, a second solve from the last
+    /// step's unknowns.
+    Extrapolation,
+}
+
+/// What a problem makes of the start state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Start<const K: usize> {
+    /// The discretised coordinates at the start.
+    pub y0: SVector<f64, K>,
+    /// Their rates.
+    pub v0: SVector<f64, K>,
+    /// Whether the crane rests at the start (then the scheme's history is
+    /// the exact past of a crane at rest).
+    pub at_rest: bool,
+}
+
+/// An accepted step: the crane's state and the new discretised coordinates
+/// and rates for the scheme's history.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Accepted<const N: usize, const M: usize, const A: usize, const K: usize> {
+    /// The state at the new time, in redundant terms.
+    pub state: State<N, M, A>,
+    /// The discretised coordinates `y_{n+1}`.
+    pub y: SVector<f64, K>,
+    /// Their rates `y'_{n+1}`.
+    pub v: SVector<f64, K>,
+}
+
+/// One problem of crane dynamics on the seam of the schemes: `K`
+/// discretised coordinates (`y' = v`, `v' = a` by the scheme), unknowns `z`
+/// of [`NonlinearSystem::dim`] entries, and a residual in them that the
+/// step's [`StepFormula`] closes.
+///
+/// The [`Stepper`](crate::stepper::Stepper) does everything around it: the
+/// checks before a run, the times of the steps, the history, the
+/// predictor, Newton and its errors, the step reports.
+pub trait Problem<const N: usize, const M: usize, const A: usize, const K: usize>: NonlinearSystem {
+    /// The crane.
+    type Model: CraneModel<N, M, A>;
+
+    /// What each step is given besides its time: the load target
+    /// ([`ServoTarget`], servo problems) or the inputs (forward dynamics).
+    type Drive: Copy;
+
+    /// Whether Newton equilibrates the iteration matrix before each solve.
+    const EQUILIBRATED: bool = false;
+
+    /// The crane.
+    fn model(&self) -> &Self::Model;
+
+    /// How the unknowns of a step are predicted.
+    fn predictor(&self) -> Predictor;
+
+    /// The drive at `t` from the problem's own source (its path or input law).
+    fn drive(&self, t: f64) -> Self::Drive;
+
+    /// Refuse a drive that is not finite.
+    fn check_drive(&self, drive: &Self::Drive, t: f64) -> Result<(), Error>;
+
+    /// The discretised coordinates at `start` and, written into `z`, the
+    /// unknowns there (Newton's first iterate of the first step is predicted
+    /// from them). `dt` is the step of the run.
+    fn start(&mut self, start: &State<N, M, A>, dt: f64, z: &mut DVector<f64>) -> Result<Start<K>, Error>;
+
+    /// Set the drive of the step to `t` and the scheme's affine maps of
+    /// that step.
+    fn prepare(&mut self, t: f64, drive: &Self::Drive, formula: StepFormula<K>);
+
+    /// The state at `t` from the converged unknowns `z` (which the problem
+    /// may not change), or why it is not one (an ill-conditioned map, say).
+    fn accept(&mut self, t: f64, z: &DVector<f64>) -> Result<Accepted<N, M, A, K>, Error>;
+}
+
+/// A problem that can follow a state another problem computed, so that it
+/// takes over with its own history in step ([`Handover`](crate::stepper::Handover)).
+pub trait Follow<const N: usize, const M: usize, const A: usize, const K: usize>: Problem<N, M, A, K> {
+    /// Whether the problem can take the steps from `state` on.
+    fn can_take_over(&self, state: &State<N, M, A>) -> bool;
+
+    /// The discretised coordinates and rates of `state` as this problem has
+    /// them after a step with `formula` from its history whose newest value
+    /// is `last`, and its unknowns there written into `z`.
+    fn follow(
+        &mut self,
+        state: &State<N, M, A>,
+        last: &SVector<f64, K>,
+        formula: StepFormula<K>,
+        z: &mut DVector<f64>,
+    ) -> Result<(SVector<f64, K>, SVector<f64, K>), Error>;
+}
+
+/// The parts of the dynamic rows of eq. (1a) on redundant coordinates at one
+/// iterate, multiplied by `dt^2`,
+/// ```text
+/// r_dyn = M (dt^2 a) - dt^2 f(q, v) - B^T(q) (dt^2 u) + G^T(q) (dt^2 lambda)
+/// ```
+/// with the model's Jacobians at `(q, v)` for the iteration matrix.
+pub struct DynamicRows<const N: usize, const M: usize, const A: usize> {
+    /// `M a dt^2`.
+    pub inertia: SVector<f64, N>,
+    /// `f dt^2`.
+    pub applied: SVector<f64, N>,
+    /// `B^T (dt^2 u)`.
+    pub inputs: SVector<f64, N>,
+    /// The residual `inertia - applied - inputs + G^T (dt^2 lambda)`.
+    pub residual: SVector<f64, N>,
+    /// `B^T(q)`.
+    pub input_matrix: SMatrix<f64, N, A>,
+    /// `G(q)`.
+    pub constraint_jacobian: SMatrix<f64, M, N>,
+    /// `d r_dyn / dq` for `q` moved with its scheme's slopes: `c^2 M - dt^2
+    /// df/dq - c dt df/dv - d(B^T dt^2 u)/dq + d(G^T dt^2 lambda)/dq`.
+    pub coordinate_jacobian: SMatrix<f64, N, N>,
+}
+
+/// The dynamic rows (22b, 22c; eq. 1a for the forward problem) of `model`
+/// at `q, v, a` with the scaled inputs `dt^2 u` and multipliers
+/// `dt^2 lambda`, and their Jacobian in `q` with the scheme's `slopes`:
+/// written once for every problem on redundant coordinates.
+#[allow(clippy::too_many_arguments)]
+pub fn dynamic_rows<Mdl, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    mass: &SMatrix<f64, N, N>,
+    dt: f64,
+    slopes: Slopes,
+    [q, v, a]: &[SVector<f64, N>; 3],
+    u_scaled: &SVector<f64, A>,
+    lambda_scaled: &SVector<f64, M>,
+) -> DynamicRows<N, M, A>
+where
+    Mdl: CraneModel<N, M, A>,
+{
+    let dt2 = dt * dt;
+    let f = model.forces(q, v);
+    let (df_dq, df_dv) = model.force_jacobians(q, v);
+    let bt = model.input_matrix(q);
+    let dbu_dq = model.input_jacobian(q, u_scaled);
+    let jac_g = model.constraint_jacobian(q);
+    let dgl_dq = model.constraint_hessian(q, lambda_scaled);
+    let inertia = mass * a * dt2;
+    let applied = f * dt2;
+    let inputs = bt * u_scaled;
+    let residual = inertia - applied - inputs + jac_g.tr_mul(lambda_scaled);
+    let (da, dv) = (slopes.acceleration_dt2, slopes.velocity_dt2);
+    let coordinate_jacobian =
+        SMatrix::from_fn(|i, j| da * mass[(i, j)] - dt2 * df_dq[(i, j)] - dv * df_dv[(i, j)] - dbu_dq[(i, j)] + dgl_dq[(i, j)]);
+    DynamicRows { inertia, applied, inputs, residual, input_matrix: bt, constraint_jacobian: jac_g, coordinate_jacobian }
+}
+
+impl<const N: usize, const M: usize, const A: usize> DynamicRows<N, M, A> {
+    /// Write the residual `[r_dyn; g]` and, for unknowns `z = [q_0..q_cols;
+    /// ...; dt^2 lambda]` (the multipliers last), the dynamic and constraint
+    /// rows' columns of the first `cols` coordinates and of the multipliers.
+    pub fn write(&self, g: &SVector<f64, M>, cols: usize, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) {
+        r.rows_mut(0, N).copy_from(&self.residual);
+        r.rows_mut(N, M).copy_from(g);
+        let lambda = jac.ncols() - M;
+        for j in 0..cols {
+            for i in 0..N {
+                jac[(i, j)] = self.coordinate_jacobian[(i, j)];
+            }
+            for i in 0..M {
+                jac[(N + i, j)] = self.constraint_jacobian[(i, j)];
+            }
+        }
+        for l in 0..M {
+            for i in 0..N {
+                jac[(i, lambda + l)] = self.constraint_jacobian[(l, i)];
+            }
+        }
+    }
+}

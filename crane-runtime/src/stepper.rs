@@ -1,0 +1,373 @@
+//! One stepper for every problem and scheme: [`Stepper`] owns the start
+//! time, the step count, the unknowns, the scheme's [`History`], the
+//! predictor, Newton and the mapping of its failures; a [`Problem`] supplies
+//! only its unknowns, residual and iteration matrix and what a state is made
+//! of. [`Handover`] puts two problems in sequence (the minimal formulation's
+//! degenerate start, whose first steps are the redundant problem's), and
+//! [`Advance`] is what the run loop of [`crate::driver`] drives.
+//!
+//! ```
+//! use crane_runtime::{Options, redundant};
+//! use crane_runtime::stepper::Advance;
+//! # use crane_runtime::{init, trajectory::Poly9, nalgebra::vector};
+//! # crane_macros::crane_model! {
+//! #     #[crane(runtime = crane_runtime)]
+//! #     #[crane(no_self_test)]
+//! #     pub struct Gantry {
+//! #         params { m_t = 50.0, m_l = 200.0, J = 0.05, r = 0.1, g = 9.81 }
+//! #         robot [s, L] load [x, z] inputs [u1, u2]
+//! #         kinetic = 0.5*m_t*dot(s)^2 + 0.5*J/r^2*dot(L)^2 + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+//! #         forces { s: u1, L: u2/r, z: -m_l*g }
+//! #         constraints { #[rope(N = L)] rope: 0.5*((x - s)^2 + z^2 - L^2), }
+//! #     }
+//! # }
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let crane = Gantry::default();
+//! let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0])?;
+//! let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0])?;
+//! // the servo problem in redundant coordinates on BDF-2, one step at a time
+//! let options = Options::stepping(0.01)?.with_scheme(crane_runtime::Scheme::Bdf2);
+//! let mut stepper = redundant::stepper(&crane, &path, &start, &options)?;
+//! for _ in 0..100 {
+//!     stepper.step()?;
+//! }
+//! assert!((stepper.state().t - 1.0).abs() < 1e-12);
+//! # Ok(())
+//! # }
+//! ```
+
+use nalgebra::{DVector, SVector};
+
+use crate::driver::{Options, StepReport, check_parameters};
+use crate::error::Error;
+use crate::model::CraneModel;
+use crate::newton::{Newton, NewtonFailure};
+use crate::problem::{Accepted, Follow, Predictor, Problem};
+use crate::scheme::{History, Method};
+use crate::solution::State;
+
+/// Anything that advances a crane one step at a time: a [`Stepper`], or
+/// problems in sequence ([`Handover`]). The run loop of [`crate::driver`]
+/// takes one.
+pub trait Advance<const N: usize, const M: usize, const A: usize> {
+    /// The crane.
+    type Model: CraneModel<N, M, A>;
+    /// The crane.
+    fn model(&self) -> &Self::Model;
+    /// Advance one step.
+    fn step(&mut self) -> Result<StepReport, Error>;
+    /// The state after the last step (the start before the first).
+    fn state(&self) -> &State<N, M, A>;
+    /// The time step.
+    fn dt(&self) -> f64;
+    /// The scheme's name.
+    fn scheme_name(&self) -> &'static str;
+}
+
+/// The generic one-step integrator of a [`Problem`] `P` on a [`Method`] `S`
+/// (`K` discretised coordinates). After construction a step does not
+/// allocate; a clone continues independently from the same state.
+#[derive(Clone)]
+pub struct Stepper<P, S: Method, const N: usize, const M: usize, const A: usize, const K: usize> {
+    problem: P,
+    history: History<K, S>,
+    newton: Newton,
+    /// The unknowns: the last step's solution between steps.
+    z: DVector<f64>,
+    /// The last three steps' unknowns, newest first ([`Predictor::Extrapolation`]).
+    past: [DVector<f64>; 3],
+    /// How many of `past` are known (1 ..= 3).
+    known: usize,
+    state: State<N, M, A>,
+    t0: f64,
+    dt: f64,
+    steps: usize,
+}
+
+/// The runtime error for a failed Newton solve of the step to `t`.
+fn step_error(failure: NewtonFailure, t: f64) -> Error {
+    match failure {
+        NewtonFailure::NotConverged { iterations, residual } => Error::NewtonNotConverged { t, iterations, residual },
+        NewtonFailure::Singular { pivot_ratio } => Error::SingularIterationMatrix { t, pivot_ratio },
+        NewtonFailure::NonFinite => Error::NonFinite { quantity: "Newton iterate", t },
+    }
+}
+
+impl<P, S, const N: usize, const M: usize, const A: usize, const K: usize> Stepper<P, S, N, M, A, K>
+where
+    P: Problem<N, M, A, K>,
+    S: Method,
+{
+    /// A stepper of `problem` from the consistent `start` with the step,
+    /// scheme and Newton tolerances of `options` (its end time is not
+    /// used). The crane's parameters are checked first
+    /// ([`check_parameters`]); the scheme's history before the start
+    /// follows its start-up rule ([`History::new`]).
+    pub fn new(mut problem: P, start: &State<N, M, A>, options: &Options<S>) -> Result<Self, Error> {
+        check_parameters(problem.model())?;
+        let dt = options.dt();
+        let dim = problem.dim();
+        let mut z = DVector::zeros(dim);
+        let at = problem.start(start, dt, &mut z)?;
+        let history = History::new(*options.scheme(), at.y0, at.v0, at.at_rest);
+        let newton = if P::EQUILIBRATED {
+            Newton::equilibrated(dim, *options.newton())
+        } else {
+            Newton::new(dim, *options.newton())
+        };
+        Ok(Self {
+            problem,
+            history,
+            newton,
+            past: [z.clone(), z.clone(), z.clone()],
+            z,
+            known: 1,
+            state: *start,
+            t0: start.t,
+            dt,
+            steps: 0,
+        })
+    }
+
+    /// The state after the last step (the start before the first).
+    pub fn state(&self) -> &State<N, M, A> {
+        &self.state
+    }
+
+    /// The discretised coordinates and their rates after the last step
+    /// (`q, q'` in redundant coordinates, `mu, mu'` in minimal ones).
+    pub fn coordinates(&self) -> (SVector<f64, K>, SVector<f64, K>) {
+        (*self.history.value(), *self.history.rate())
+    }
+
+    /// The problem.
+    pub fn problem(&self) -> &P {
+        &self.problem
+    }
+
+    /// The time step.
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// The scheme.
+    pub fn scheme(&self) -> &S {
+        self.history.method()
+    }
+
+    /// Steps taken.
+    pub fn steps(&self) -> usize {
+        self.steps
+    }
+
+    /// The time of the next step, `t0 + (steps + 1) dt`.
+    pub fn next_time(&self) -> f64 {
+        self.t0 + (self.steps + 1) as f64 * self.dt
+    }
+
+    /// Advance one step, to [`next_time`](Self::next_time), with the drive
+    /// from the problem's own source.
+    pub fn step(&mut self) -> Result<StepReport, Error> {
+        let t = self.next_time();
+        let drive = self.problem.drive(t);
+        self.advance(t, &drive)
+    }
+
+    /// Advance one step to time `t`, which must be `t_n + dt`
+    /// ([`Error::WrongStepTime`] otherwise), with the given drive (the load
+    /// target `gamma, gamma', gamma''` at `t` for the servo problems).
+    pub fn step_to(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
+        check_step_time(t, self.state.t, self.dt)?;
+        self.advance(t, drive)
+    }
+
+    /// One step: the scheme's formula, the prediction, Newton, the state.
+    fn advance(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
+        self.problem.check_drive(drive, t)?;
+        self.problem.prepare(t, drive, self.history.formula(self.dt));
+        let predictor = self.problem.predictor();
+        self.predict(predictor);
+        let converged = match self.newton.solve(&mut self.problem, &mut self.z) {
+            Ok(converged) => converged,
+            // the extrapolation can overshoot where the solution turns along
+            // a weakly determined direction: retry from the last step
+            Err(first) if predictor == Predictor::Extrapolation && self.known >= 3 => {
+                self.z.copy_from(&self.past[0]);
+                let mut retried =
+                    self.newton.solve(&mut self.problem, &mut self.z).map_err(|failure| step_error(failure, t))?;
+                if let NewtonFailure::NotConverged { iterations, .. } = first {
+                    retried.iterations += iterations;
+                }
+                retried
+            }
+            Err(failure) => return Err(step_error(failure, t)),
+        };
+        let accepted = self.problem.accept(t, &self.z)?;
+        self.record(accepted, predictor);
+        Ok(StepReport { iterations: converged.iterations, min_norm_steps: converged.min_norm_steps })
+    }
+
+    /// Newton's first iterate of the step (see [`Predictor`]).
+    fn predict(&mut self, predictor: Predictor) {
+        match predictor {
+            Predictor::Scheme { leading } => {
+                let predicted = self.history.predict(self.dt);
+                self.z.rows_mut(0, leading).copy_from(&predicted.rows(0, leading));
+            }
+            // the quadratic through the last three steps; before that, the
+            // last step (measured on navy-planar in minimal coordinates,
+            // tf = 4 s: from the last step alone Newton fails by t = 0.8 s
+            // at dt = 0.1; a linear extrapolation from the first step off the
+            // degenerate start diverges at dt = 0.1 and 0.05; this choice
+            // converges at every dt from 0.1 to 0.001)
+            Predictor::Extrapolation => {
+                let [h0, h1, h2] = &self.past;
+                for i in 0..self.z.len() {
+                    self.z[i] = if self.known >= 3 { 3.0 * h0[i] - 3.0 * h1[i] + h2[i] } else { h0[i] };
+                }
+            }
+        }
+    }
+
+    /// Keep an accepted step: the state, the history, the unknowns for the
+    /// predictor.
+    fn record(&mut self, accepted: Accepted<N, M, A, K>, predictor: Predictor) {
+        self.state = accepted.state;
+        self.history.push(accepted.y, accepted.v);
+        if predictor == Predictor::Extrapolation {
+            let [h0, h1, h2] = &mut self.past;
+            std::mem::swap(h1, h2);
+            std::mem::swap(h0, h1);
+            h0.copy_from(&self.z);
+            self.known = (self.known + 1).min(3);
+        }
+        self.steps += 1;
+    }
+
+    /// Take `state`, computed by another problem for the step to
+    /// [`next_time`](Self::next_time), as this stepper's step: the problem
+    /// finds its coordinates and unknowns there ([`Follow`]), so that its
+    /// history and predictor are in step when it takes over.
+    pub fn follow(&mut self, state: &State<N, M, A>) -> Result<(), Error>
+    where
+        P: Follow<N, M, A, K>,
+    {
+        let formula = self.history.formula(self.dt);
+        let (y, v) = self.problem.follow(state, self.history.value(), formula, &mut self.z)?;
+        self.record(Accepted { state: *state, y, v }, self.problem.predictor());
+        Ok(())
+    }
+}
+
+/// Refuse a step to `t` that is not `t_n + dt` (to 1e-9 of the step).
+fn check_step_time(t: f64, t_prev: f64, dt: f64) -> Result<(), Error> {
+    if (t - (t_prev + dt)).abs() <= 1e-9 * dt { Ok(()) } else { Err(Error::WrongStepTime { t, expected: t_prev + dt }) }
+}
+
+impl<P, S, const N: usize, const M: usize, const A: usize, const K: usize> Advance<N, M, A> for Stepper<P, S, N, M, A, K>
+where
+    P: Problem<N, M, A, K>,
+    S: Method,
+{
+    type Model = P::Model;
+    fn model(&self) -> &P::Model {
+        self.problem.model()
+    }
+    fn step(&mut self) -> Result<StepReport, Error> {
+        Stepper::step(self)
+    }
+    fn state(&self) -> &State<N, M, A> {
+        &self.state
+    }
+    fn dt(&self) -> f64 {
+        self.dt
+    }
+    fn scheme_name(&self) -> &'static str {
+        self.history.method().name()
+    }
+}
+
+/// Two problems in sequence: `first` takes the steps until `second` can
+/// take over from its state ([`Follow::can_take_over`]); meanwhile
+/// `second` follows each of those states ([`Stepper::follow`]), so its
+/// history is its own when it takes over.
+#[derive(Clone)]
+pub struct Handover<P1, P2, S: Method, const N: usize, const M: usize, const A: usize, const K1: usize, const K2: usize> {
+    first: Option<Stepper<P1, S, N, M, A, K1>>,
+    second: Stepper<P2, S, N, M, A, K2>,
+    first_steps: usize,
+}
+
+impl<P1, P2, S, const N: usize, const M: usize, const A: usize, const K1: usize, const K2: usize>
+    Handover<P1, P2, S, N, M, A, K1, K2>
+where
+    P1: Problem<N, M, A, K1, Drive = P2::Drive>,
+    P2: Follow<N, M, A, K2>,
+    S: Method,
+{
+    /// `second` from its start, with the first steps by the stepper
+    /// `first()` builds if `second` cannot take the start.
+    pub fn new(
+        second: Stepper<P2, S, N, M, A, K2>,
+        first: impl FnOnce() -> Result<Stepper<P1, S, N, M, A, K1>, Error>,
+    ) -> Result<Self, Error> {
+        let first = if second.problem.can_take_over(&second.state) { None } else { Some(first()?) };
+        Ok(Self { first, second, first_steps: 0 })
+    }
+
+    /// How many steps the first problem took.
+    pub fn first_steps(&self) -> usize {
+        self.first_steps
+    }
+
+    /// The stepper of the second problem.
+    pub fn second(&self) -> &Stepper<P2, S, N, M, A, K2> {
+        &self.second
+    }
+
+    /// Advance one step with the second problem's drive.
+    pub fn step(&mut self) -> Result<StepReport, Error> {
+        let t = self.second.next_time();
+        let drive = self.second.problem.drive(t);
+        self.step_to(t, &drive)
+    }
+
+    /// Advance one step to `t` (`t_n + dt`) with the given drive.
+    pub fn step_to(&mut self, t: f64, drive: &P2::Drive) -> Result<StepReport, Error> {
+        let Some(first) = self.first.as_mut() else { return self.second.step_to(t, drive) };
+        check_step_time(t, self.second.state.t, self.second.dt)?;
+        let report = first.step_to(t, drive)?;
+        let state = first.state;
+        self.second.follow(&state)?;
+        self.first_steps += 1;
+        if self.second.problem.can_take_over(&state) {
+            self.first = None;
+        }
+        Ok(report)
+    }
+}
+
+impl<P1, P2, S, const N: usize, const M: usize, const A: usize, const K1: usize, const K2: usize> Advance<N, M, A>
+    for Handover<P1, P2, S, N, M, A, K1, K2>
+where
+    P1: Problem<N, M, A, K1, Drive = P2::Drive>,
+    P2: Follow<N, M, A, K2>,
+    S: Method,
+{
+    type Model = P2::Model;
+    fn model(&self) -> &P2::Model {
+        self.second.problem.model()
+    }
+    fn step(&mut self) -> Result<StepReport, Error> {
+        Handover::step(self)
+    }
+    fn state(&self) -> &State<N, M, A> {
+        &self.second.state
+    }
+    fn dt(&self) -> f64 {
+        self.second.dt
+    }
+    fn scheme_name(&self) -> &'static str {
+        self.second.history.method().name()
+    }
+}
