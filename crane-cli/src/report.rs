@@ -439,7 +439,7 @@ mod tests {
         };
         let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
         let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0]).unwrap();
-        simulate(&crane, &path, &start, &Options::new(0.01, 5.0)).unwrap()
+        simulate(&crane, &path, &start, &Options::new(0.01, 5.0).unwrap()).unwrap()
     }
 
     /// The coupled crane: the run "succeeds", the summary says

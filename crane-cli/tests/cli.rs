@@ -329,7 +329,7 @@ fn the_scheme_takes_effect_from_the_flag_and_the_file() {
             case.model(),
             case.path(),
             &case.start().unwrap(),
-            &Options::new(0.02, 4.0).with_scheme(scheme),
+            &Options::new(0.02, 4.0).unwrap().with_scheme(scheme),
         )
         .unwrap();
         let state = run.state_near(1.5).unwrap();
@@ -464,7 +464,7 @@ fn results_csv_columns_are_the_api_s_values() {
     let run = case
         .simulate(
             &case.start().unwrap(),
-            &Options::new(0.02, 4.0).with_scheme(Scheme::Bdf2),
+            &Options::new(0.02, 4.0).unwrap().with_scheme(Scheme::Bdf2),
         )
         .unwrap();
     assert_column(&header, &rows, "t", &run, |s, _| s.t);
@@ -509,7 +509,7 @@ fn scenario_keys_take_effect() {
     );
     let mut case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
     case.model.set_parameter("m_l", 120.0).unwrap();
-    let api = case.simulate(&case.start().unwrap(), &Options::new(0.02, 4.0)).unwrap();
+    let api = case.simulate(&case.start().unwrap(), &Options::new(0.02, 4.0).unwrap()).unwrap();
     assert_eq!(
         u_column(&heavy, "u2"),
         api.states.iter().map(|s| s.u[1]).collect::<Vec<_>>()
@@ -525,7 +525,7 @@ fn scenario_keys_take_effect() {
     );
     let case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
     let api = case
-        .simulate_minimal(&case.start().unwrap(), &Options::new(0.02, 4.0))
+        .simulate_minimal(&case.start().unwrap(), &Options::new(0.02, 4.0).unwrap())
         .unwrap()
         .unwrap();
     assert_eq!(
@@ -544,7 +544,7 @@ fn scenario_keys_take_effect() {
     let paper = run_ok("navy-3d-pulley", &["--dt", "0.1"], dir.path(), "paper");
     let case = navy_3d_pulley::PaperCase::smooth(navy_3d_pulley::TF).unwrap();
     let api = case
-        .simulate(&case.start().unwrap(), &Options::new(0.1, case.tf()))
+        .simulate(&case.start().unwrap(), &Options::new(0.1, case.tf()).unwrap())
         .unwrap();
     assert_eq!(
         u_column(&smooth, "u4"),

@@ -50,7 +50,7 @@ fn every_built_in_fmu_reproduces_the_api_run() {
         fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> usize {
             let case = Case::<C, N, M, A>::maneuver().unwrap();
             let run = case
-                .simulate(&case.start().unwrap(), &Options::new(0.01, case.tf()))
+                .simulate(&case.start().unwrap(), &Options::new(0.01, case.tf()).unwrap())
                 .unwrap();
             let mut fmu = started::<C, N, M, A>();
             for (i, state) in run.states.iter().enumerate() {

@@ -69,7 +69,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let crane = Gantry3d::default();
     let path = path();
     let start = init::check_start(&crane, &path, 0.0, &P0, None)?;
-    let run = simulate(&crane, &path, &start, &Options::new(0.01, TF))?;
+    let run = simulate(&crane, &path, &start, &Options::new(0.01, TF)?)?;
     println!("   t [s]   bridge u1 [N]   trolley u2 [N]   winch u3 [N m]   tension N [N]");
     for (i, state) in run.states.iter().enumerate().step_by(50) {
         let [u1, u2, u3] = [state.u[0], state.u[1], state.u[2]];

@@ -83,7 +83,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let crane = TowerCrane::default();
     let path = path();
     let start = init::check_start(&crane, &path, 0.0, &P0, None)?;
-    let run = simulate(&crane, &path, &start, &Options::new(0.01, TF))?;
+    let run = simulate(&crane, &path, &start, &Options::new(0.01, TF)?)?;
     println!("   t [s]  slew [deg]  slewing u1 [N m]  trolley u2 [N]  winch u3 [N m]  tension N [N]");
     for (i, state) in run.states.iter().enumerate().step_by(50) {
         let phi = state.q[1].atan2(state.q[0]).to_degrees();

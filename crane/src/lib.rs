@@ -41,7 +41,7 @@
 //! let path = Poly9::new(0.0, 5.0, SVector::from([0.0, -5.0]), SVector::from([4.0, -3.0]))?;
 //! // a consistent start from a rough guess of the robot coordinates [s, L]
 //! let start = init::static_equilibrium(&crane, &path, 0.0, &[0.3, 4.5])?;
-//! let run = simulate(&crane, &path, &start, &Options::new(0.01, 5.0))?;
+//! let run = simulate(&crane, &path, &start, &Options::new(0.01, 5.0)?)?;
 //!
 //! let mid = run.state_near(2.5).unwrap();
 //! println!("u(2.5 s) = [{:.1} N, {:.1} N m]", mid.u[0], mid.u[1]);
@@ -51,7 +51,7 @@
 //!
 //! // the same move with BDF-4: order 4 instead of 1, at the cost per step of
 //! // backward Euler; the two agree to backward Euler's O(dt) error
-//! let bdf4 = simulate(&crane, &path, &start, &Options::new(0.01, 5.0).with_scheme(Scheme::Bdf4))?;
+//! let bdf4 = simulate(&crane, &path, &start, &Options::new(0.01, 5.0)?.with_scheme(Scheme::Bdf4))?;
 //! let (a, b) = (run.state_near(2.5).unwrap(), bdf4.state_near(2.5).unwrap());
 //! assert!((a.u - b.u).norm() < 0.05 * b.u.norm());
 //!

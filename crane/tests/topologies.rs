@@ -60,7 +60,7 @@ fn the_gantry_example_is_the_built_in_gantry() {
     );
     let crane = gantry::Gantry3d::default();
     let start = init::check_start(&crane, &gantry::path(), 0.0, &gantry::P0, None).unwrap();
-    let run = simulate(&crane, gantry::path(), &start, &Options::new(0.02, gantry::TF)).unwrap();
+    let run = simulate(&crane, gantry::path(), &start, &Options::new(0.02, gantry::TF).unwrap()).unwrap();
     assert!(run.tensions.iter().all(|&n| n > 0.0));
 }
 
@@ -73,6 +73,6 @@ fn the_tower_crane_example_is_the_built_in_tower_crane() {
     );
     let crane = tower::TowerCrane::default();
     let start = init::check_start(&crane, &tower::path(), 0.0, &tower::P0, None).unwrap();
-    let run = simulate(&crane, tower::path(), &start, &Options::new(0.02, tower::TF)).unwrap();
+    let run = simulate(&crane, tower::path(), &start, &Options::new(0.02, tower::TF).unwrap()).unwrap();
     assert!(run.tensions.iter().all(|&n| n > 0.0));
 }

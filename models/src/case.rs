@@ -19,7 +19,7 @@ use crate::path::Path;
 ///
 /// let case = PaperCase::new(4.0).unwrap();         // sect. 5.1.3, tf = 4 s
 /// let start = case.start().unwrap();               // eq. (46), checked
-/// let run = case.simulate(&start, &Options::new(0.01, case.tf())).unwrap();
+/// let run = case.simulate(&start, &Options::new(0.01, case.tf()).unwrap()).unwrap();
 /// let e_u = case.relative_input_error(run.state_near(1.5).unwrap()).unwrap(); // eq. (48)
 /// assert!(e_u < 2e-3);
 /// ```

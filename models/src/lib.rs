@@ -16,7 +16,7 @@
 //!
 //! let case = navy_planar::PaperCase::new(4.0).unwrap();       // sect. 5.1.3, tf = 4 s
 //! let start = case.start().unwrap();                            // eq. (46), checked
-//! let solution = case.simulate(&start, &Options::new(0.01, case.tf())).unwrap();
+//! let solution = case.simulate(&start, &Options::new(0.01, case.tf()).unwrap()).unwrap();
 //! let at = solution.state_near(1.5).unwrap();
 //! let e_u = case.relative_input_error(at).unwrap();             // eq. (48), Appendix A
 //! assert!(e_u < 1e-2);

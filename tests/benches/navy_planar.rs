@@ -13,8 +13,7 @@ use std::hint::black_box;
 
 use crane_models::{Case, Crane, navy_planar, navy_planar_pulley};
 use crane_runtime::nalgebra::SVector;
-use crane_runtime::newton::NewtonOptions;
-use crane_runtime::{CraneModel, MinimalMap, MinimalStepper, Options, RedundantStepper, Scheme, State, simulate};
+use crane_runtime::{CraneModel, MinimalMap, Options, Scheme, State, minimal, redundant, simulate};
 use crane_tests::handwritten::HandNavyPlanar;
 
 /// Redundant runs and one step with `model` on the navy-planar maneuver.
@@ -22,17 +21,17 @@ fn redundant_runs<Mdl: CraneModel<7, 3, 2>>(c: &mut Criterion, label: &str, mode
     let case = navy_planar::PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
     for dt in [0.01, 0.001] {
-        let options = Options::new(dt, 4.0);
+        let options = Options::new(dt, 4.0).unwrap();
         c.bench_function(&format!("navy-planar/{label}/run dt={dt}"), |b| {
             b.iter(|| simulate(black_box(model), case.path(), &start, &options).unwrap())
         });
     }
     // one step at t = 1.5 s, dt = 0.01, from the state a run reaches there
-    let solution = simulate(model, case.path(), &start, &Options::new(0.01, 4.0)).unwrap();
+    let solution = simulate(model, case.path(), &start, &Options::new(0.01, 4.0).unwrap()).unwrap();
     let state: State<7, 3, 2> = solution.states[150];
     c.bench_function(&format!("navy-planar/{label}/one step dt=0.01"), |b| {
         b.iter_batched_ref(
-            || RedundantStepper::new(model, case.path(), &state, 0.01, NewtonOptions::default()).unwrap(),
+            || redundant::stepper(model, case.path(), &state, &Options::stepping(0.01).unwrap()).unwrap(),
             |stepper| stepper.step().unwrap(),
             BatchSize::SmallInput,
         )
@@ -46,7 +45,7 @@ fn formulations<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
     case: &Case<C, N, M, A>,
 ) {
     let start = case.start().unwrap();
-    let options = Options::new(0.01, case.tf());
+    let options = Options::new(0.01, case.tf()).unwrap();
     c.bench_function(&format!("{name}/redundant/run dt=0.01"), |b| {
         b.iter(|| simulate(black_box(case.model()), case.path(), &start, &options).unwrap())
     });
@@ -58,8 +57,8 @@ fn formulations<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
 }
 
 /// One step at t = 1.5 s, dt = 0.01, in both formulations, from steppers
-/// that got there themselves (the measure: a minimal step costs at
-/// most 2x a redundant one).
+/// that got there themselves (the target: a minimal step costs at most 2x a
+/// redundant one).
 fn one_step_each<const N: usize, const M: usize, const A: usize, const F: usize, Mdl>(
     c: &mut Criterion,
     name: &str,
@@ -70,9 +69,9 @@ fn one_step_each<const N: usize, const M: usize, const A: usize, const F: usize,
 ) where
     Mdl: MinimalMap<N, M, A, F> + Clone,
 {
-    let newton = NewtonOptions::default();
-    let mut redundant = RedundantStepper::new(model, path, start, 0.01, newton).unwrap();
-    let mut minimal = MinimalStepper::new(model, path, start, mu_guess, 0.01, newton).unwrap();
+    let options = Options::stepping(0.01).unwrap();
+    let mut redundant = redundant::stepper(model, path, start, &options).unwrap();
+    let mut minimal = minimal::stepper(model, path, start, mu_guess, &options).unwrap();
     for _ in 0..150 {
         redundant.step().unwrap();
         minimal.step().unwrap();
@@ -104,19 +103,11 @@ fn schemes(c: &mut Criterion) {
     let case = navy_planar::PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
     for scheme in Scheme::ALL {
-        let options = Options::new(0.01, 4.0).with_scheme(scheme);
+        let options = Options::new(0.01, 4.0).unwrap().with_scheme(scheme);
         c.bench_function(&format!("schemes/navy-planar/{scheme}/run dt=0.01"), |b| {
             b.iter(|| simulate(black_box(case.model()), case.path(), &start, &options).unwrap())
         });
-        let mut at_1_5 = RedundantStepper::with_scheme(
-            case.model(),
-            case.path(),
-            &start,
-            0.01,
-            scheme,
-            NewtonOptions::default(),
-        )
-        .unwrap();
+        let mut at_1_5 = redundant::stepper(case.model(), case.path(), &start, &options).unwrap();
         for _ in 0..150 {
             at_1_5.step().unwrap();
         }
@@ -134,7 +125,7 @@ fn schemes(c: &mut Criterion) {
         (Scheme::Bdf4, 0.02),
         (Scheme::Bdf5, 0.02),
     ] {
-        let options = Options::new(dt, 4.0).with_scheme(scheme);
+        let options = Options::new(dt, 4.0).unwrap().with_scheme(scheme);
         c.bench_function(&format!("schemes/navy-planar/{scheme}/run dt={dt}"), |b| {
             b.iter(|| simulate(black_box(case.model()), case.path(), &start, &options).unwrap())
         });

@@ -34,7 +34,7 @@ fn replaying_the_analytical_inputs_keeps_the_load_on_the_path() {
             .iter()
             .map(|&dt| {
                 let inputs = |t: f64| reference_at(&model, &path, t).u;
-                let run = simulate_forward(case.model(), inputs, &start, &Options::new(dt, 4.0).with_scheme(scheme))
+                let run = simulate_forward(case.model(), inputs, &start, &Options::new(dt, 4.0).unwrap().with_scheme(scheme))
                     .unwrap_or_else(|e| panic!("{scheme} dt = {dt}: {e}"));
                 largest_deviation(&case, &run)
             })
@@ -78,7 +78,7 @@ fn on_a_smooth_path_the_replay_has_order_k() {
             .map(|&dt| {
                 let inputs = |t: f64| gantry_reference(&model, &path, t).u;
                 let run =
-                    simulate_forward(case.model(), inputs, &start, &Options::new(dt, 8.0).with_scheme(scheme)).unwrap();
+                    simulate_forward(case.model(), inputs, &start, &Options::new(dt, 8.0).unwrap().with_scheme(scheme)).unwrap();
                 run.states
                     .iter()
                     .map(|s| (s.q.fixed_rows::<3>(3) - path.derivative(s.t, 0)).amax())
@@ -113,7 +113,7 @@ fn replaying_the_inverse_runs_torques() {
     let case = PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
     let inverse = |scheme: Scheme| {
-        case.simulate(&start, &Options::new(0.01, 4.0).with_scheme(scheme))
+        case.simulate(&start, &Options::new(0.01, 4.0).unwrap().with_scheme(scheme))
             .unwrap()
     };
     let options = ReplayOptions::new(9.0, Scheme::Bdf2);
@@ -159,7 +159,7 @@ fn feedback_takes_away_the_mismatch() {
     let case = PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
     let inverse = case
-        .simulate(&start, &Options::new(0.01, 4.0).with_scheme(Scheme::Bdf4))
+        .simulate(&start, &Options::new(0.01, 4.0).unwrap().with_scheme(Scheme::Bdf4))
         .unwrap();
     let options = ReplayOptions::new(9.0, Scheme::Bdf2);
     let gains = Feedback::from_model(case.model(), &start);
@@ -208,7 +208,7 @@ fn the_free_crane_keeps_its_energy_to_the_scheme_s_order() {
                     model,
                     |_t: f64| nalgebra::SVector::zeros(),
                     &start,
-                    &Options::new(dt, 2.0).with_scheme(scheme),
+                    &Options::new(dt, 2.0).unwrap().with_scheme(scheme),
                 )
                 .unwrap();
                 let e0 = energy(&run.states[0]);
@@ -242,7 +242,7 @@ fn replay_deviation_falls_with_the_inverse_scheme_s_order() {
                 .iter()
                 .map(|&dt| {
                     let inverse = case
-                        .simulate(&start, &Options::new(dt, case.tf()).with_scheme(scheme))
+                        .simulate(&start, &Options::new(dt, case.tf()).unwrap().with_scheme(scheme))
                         .unwrap();
                     replay(
                         case.model(),

@@ -77,7 +77,7 @@ fn the_built_in_cranes_are_flat_along_their_manoeuvres() {
     ) {
         let start = case.start().unwrap();
         let run = case
-            .simulate(&start, &crane_runtime::Options::new(0.01, case.tf()))
+            .simulate(&start, &crane_runtime::Options::new(0.01, case.tf()).unwrap())
             .unwrap();
         let mut checked = 0;
         for state in run.states.iter().step_by(50) {
@@ -105,7 +105,7 @@ fn the_unstable_inverse_explodes() {
     let crane = Coupled::default();
     let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
     let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0]).unwrap();
-    let run = crane_runtime::simulate(&crane, &path, &start, &crane_runtime::Options::new(0.01, 5.0)).unwrap();
+    let run = crane_runtime::simulate(&crane, &path, &start, &crane_runtime::Options::new(0.01, 5.0).unwrap()).unwrap();
     let mid = run.state_near(2.5).unwrap();
     let scale = start.u.amax();
     println!(
@@ -216,7 +216,7 @@ fn a_path_too_rough_for_the_crane_gives_impulses() {
     use crane_models::navy_3d_pulley::PaperCase;
     let peak = |case: &PaperCase, dt: f64| {
         let run = case
-            .simulate(&case.start().unwrap(), &crane_runtime::Options::new(dt, 0.01))
+            .simulate(&case.start().unwrap(), &crane_runtime::Options::new(dt, 0.01).unwrap())
             .unwrap();
         run.states.iter().map(|s| s.u[3].abs()).fold(0.0, f64::max)
     };

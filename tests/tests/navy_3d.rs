@@ -27,7 +27,7 @@ fn case() -> PaperCase {
 fn run(case: &PaperCase, dt: f64) -> (Run, f64) {
     let start = case.start().expect("the paper's start is consistent");
     let clock = Instant::now();
-    let solution = simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf()))
+    let solution = simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf()).unwrap())
         .unwrap_or_else(|e| panic!("the run at dt = {dt} converges: {e}"));
     (solution, clock.elapsed().as_secs_f64())
 }

@@ -22,7 +22,7 @@ const SWITCHES: [f64; 4] = [0.0, 5.0, 15.0, 20.0];
 fn run(case: &PaperCase, dt: f64) -> (Run, f64) {
     let start = case.start().expect("the paper's start is consistent");
     let clock = Instant::now();
-    let solution = simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf()))
+    let solution = simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf()).unwrap())
         .unwrap_or_else(|e| panic!("the run at dt = {dt} converges: {e}"));
     (solution, clock.elapsed().as_secs_f64())
 }
@@ -509,7 +509,7 @@ fn in_the_vertical_plane_it_is_the_planar_pulley_crane_of_appendix_b() {
             .iter()
             .map(|&dt| {
                 let run = case
-                    .simulate(&case.start().unwrap(), &Options::new(dt, 1.5).with_scheme(scheme))
+                    .simulate(&case.start().unwrap(), &Options::new(dt, 1.5).unwrap().with_scheme(scheme))
                     .unwrap();
                 let off_plane = run
                     .states

@@ -11,14 +11,14 @@ const DTS: [f64; 6] = [0.1, 0.05, 0.02, 0.01, 0.005, 0.001];
 
 fn run_minimal(case: &PaperCase, dt: f64) -> Solution<7, 3, 2> {
     let start = case.start().unwrap();
-    case.simulate_minimal(&start, &Options::new(dt, case.tf()))
+    case.simulate_minimal(&start, &Options::new(dt, case.tf()).unwrap())
         .unwrap()
         .expect("the minimal run converges")
 }
 
 fn run_redundant(case: &PaperCase, dt: f64) -> Solution<7, 3, 2> {
     let start = case.start().unwrap();
-    crane_runtime::simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf())).unwrap()
+    crane_runtime::simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf()).unwrap()).unwrap()
 }
 
 #[test]
@@ -149,7 +149,7 @@ fn a_singular_split_is_a_typed_error_not_a_nan() {
     let crane = BadSplitGantry::default();
     let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
     let start = init::static_equilibrium(&crane, &path, 0.0, &[0.3, 4.5]).unwrap();
-    let result = simulate_minimal(&crane, &path, &start, &vector![5.0, 0.0, 0.0], &Options::new(0.01, 5.0));
+    let result = simulate_minimal(&crane, &path, &start, &vector![5.0, 0.0, 0.0], &Options::new(0.01, 5.0).unwrap());
     match result {
         Err(Error::SingularOutputJacobian { t, condition }) => {
             assert_eq!(t, 0.0);

@@ -10,7 +10,7 @@ const DTS: [f64; 6] = [0.1, 0.05, 0.02, 0.01, 0.005, 0.001];
 
 fn run(case: &PaperCase, dt: f64) -> Solution<7, 3, 2> {
     let start = case.start().expect("the paper's start is consistent");
-    simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf())).expect("the run converges")
+    simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf()).unwrap()).expect("the run converges")
 }
 
 #[test]
@@ -177,26 +177,33 @@ fn invalid_settings_are_typed_errors() {
     let case = PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
     let model = case.model();
+    // the settings are checked once, when they are made
+    assert!(matches!(Options::new(-0.1, 4.0), Err(Error::InvalidTimeStep { .. })));
+    assert!(matches!(Options::new(f64::NAN, 4.0), Err(Error::InvalidTimeStep { .. })));
+    assert!(matches!(Options::new(0.1, f64::INFINITY), Err(Error::InvalidEndTime { .. })));
+    assert!(matches!(Options::stepping(0.0), Err(Error::InvalidTimeStep { .. })));
+    let no_iterations = crane_runtime::newton::NewtonOptions { max_iterations: 0, ..Default::default() };
     assert!(matches!(
-        simulate(model, case.path(), &start, &Options::new(-0.1, 4.0)),
-        Err(Error::InvalidTimeStep { .. })
+        Options::new(0.1, 4.0).unwrap().with_newton(no_iterations),
+        Err(Error::InvalidNewtonOptions(_))
     ));
+    // a run to the start or before it, and steps that do not fit the span
     assert!(matches!(
-        simulate(model, case.path(), &start, &Options::new(f64::NAN, 4.0)),
-        Err(Error::InvalidTimeStep { .. })
-    ));
-    assert!(matches!(
-        simulate(model, case.path(), &start, &Options::new(0.1, 0.0)),
+        simulate(model, case.path(), &start, &Options::stepping(0.1).unwrap()),
         Err(Error::InvalidTimeSpan { .. })
     ));
     assert!(matches!(
-        simulate(model, case.path(), &start, &Options::new(0.3, 4.0)),
+        simulate(model, case.path(), &start, &Options::new(0.1, 0.0).unwrap()),
+        Err(Error::InvalidTimeSpan { .. })
+    ));
+    assert!(matches!(
+        simulate(model, case.path(), &start, &Options::new(0.3, 4.0).unwrap()),
         Err(Error::StepsDoNotFit { .. })
     ));
     let mut broken = NavyPlanar::default();
     broken.m_l = f64::NAN;
     assert!(matches!(
-        simulate(&broken, case.path(), &start, &Options::new(0.1, 4.0)),
+        simulate(&broken, case.path(), &start, &Options::new(0.1, 4.0).unwrap()),
         Err(Error::NonFiniteParameter { name: "m_l", .. })
     ));
 }

@@ -214,7 +214,7 @@ fn generated_model_matches_the_paper_equations() {
 
 fn run(case: &PaperCase, dt: f64) -> Solution<8, 4, 3> {
     let start = case.start().expect("the paper's start is consistent");
-    simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf())).expect("the run converges")
+    simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf()).unwrap()).expect("the run converges")
 }
 
 /// Eq. (66) with docs/errata.md is the flatness solution at t0; `u` and `lambda` of

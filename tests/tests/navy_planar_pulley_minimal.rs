@@ -12,14 +12,14 @@ const DTS: [f64; 6] = [0.1, 0.05, 0.02, 0.01, 0.005, 0.001];
 
 fn run_minimal(case: &PaperCase, dt: f64) -> Solution<8, 4, 3> {
     let start = case.start().unwrap();
-    case.simulate_minimal(&start, &Options::new(dt, case.tf()))
+    case.simulate_minimal(&start, &Options::new(dt, case.tf()).unwrap())
         .expect("the crane declares a minimal map")
         .expect("the minimal run converges")
 }
 
 fn run_redundant(case: &PaperCase, dt: f64) -> Solution<8, 4, 3> {
     let start = case.start().unwrap();
-    simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf())).unwrap()
+    simulate(case.model(), case.path(), &start, &Options::new(dt, case.tf()).unwrap()).unwrap()
 }
 
 // ---------------------------------------------------------------------------
@@ -253,10 +253,7 @@ fn minimal_coordinates_are_exact_when_newton_iterates_to_round_off() {
         let minimal = case
             .simulate_minimal(
                 &start,
-                &Options {
-                    newton,
-                    ..Options::new(*dt, case.tf())
-                },
+                &Options::new(*dt, case.tf()).unwrap().with_newton(newton).unwrap(),
             )
             .unwrap()
             .expect("the minimal run converges on the update test");

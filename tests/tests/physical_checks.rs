@@ -110,7 +110,7 @@ fn a_non_positive_declared_parameter_is_refused() {
     let start = case.start().unwrap();
     let mut crane = case.model().clone();
     crane.set_parameter("m_l", -100.0).unwrap();
-    let error = simulate(&crane, case.path(), &start, &Options::new(0.01, 4.0)).unwrap_err();
+    let error = simulate(&crane, case.path(), &start, &Options::new(0.01, 4.0).unwrap()).unwrap_err();
     assert_eq!(
         error,
         Error::NonPositiveParameter {
@@ -176,7 +176,7 @@ fn the_overhead_crane_runs_in_both_formulations() {
         let differences: Vec<f64> = [0.02, 0.01]
             .iter()
             .map(|&dt| {
-                let options = Options::new(dt, 5.0).with_scheme(scheme);
+                let options = Options::new(dt, 5.0).unwrap().with_scheme(scheme);
                 let redundant = simulate(&crane, &path, &start, &options).unwrap();
                 let minimal = simulate_minimal(&crane, &path, &start, &guess, &options).unwrap();
                 kit::redundant_minimal_difference(&redundant, &minimal).0

@@ -80,6 +80,8 @@ fn assert_descriptive(error: &Error) {
         Error::NonUniqueEquilibrium { free, .. } => !free.is_empty() && message.contains(free.as_str()),
         Error::InvalidTimeStep { .. } | Error::StepsDoNotFit { .. } => message.contains("dt = "),
         Error::InvalidTimeSpan { .. } => message.contains("t0 = "),
+        Error::InvalidEndTime { .. } => message.contains("tf = "),
+        Error::InvalidNewtonOptions(what) => message.contains(what),
         Error::WrongStepTime { .. } => message.contains("t_n + dt = "),
         Error::IndefiniteMassMatrix { .. } => message.contains("smallest eigenvalue"),
         Error::NonPositiveParameter { name, .. } => message.contains(&format!("`{name}`")),
@@ -117,7 +119,7 @@ proptest! {
         let end = SVector::from([-3.0, -14.0]) + (end - SVector::from([-3.0, -14.0])) / 3.0;
         let path = Poly9::new(0.0, tf, SVector::from([0.0, -10.0]), end).unwrap();
         let start = init::check_start(&model, &path, 0.0, &start_p0(&model), None).unwrap();
-        let run = simulate(&model, &path, &start, &Options::new(DT, tf));
+        let run = simulate(&model, &path, &start, &Options::new(DT, tf).unwrap());
         prop_assert!(run.is_ok(), "{:?}", run.as_ref().err());
         let run = run.unwrap();
         let lowest: Vec<f64> = (0..2).map(|k| (1..=run.steps()).map(|i| run.tensions_at(i)[k]).fold(f64::INFINITY, f64::min)).collect();
@@ -141,7 +143,7 @@ proptest! {
                 println!("start check: {error}");
                 assert_descriptive(&error);
             }
-            Ok(start) => match simulate(&model, &path, &start, &Options::new(DT, tf)) {
+            Ok(start) => match simulate(&model, &path, &start, &Options::new(DT, tf).unwrap()) {
                 Err(error) => {
                     println!("run: {error}");
                     assert_descriptive(&error);
@@ -202,7 +204,7 @@ proptest! {
         let results = [
             init::check_start(&model, &case.path, 0.0, &paper_p0(), None).map(|_| ()),
             init::static_equilibrium(&model, &case.path, 0.0, &paper_p0()).map(|_| ()),
-            simulate(&model, &case.path, &start, &Options::new(DT, 4.0)).map(|_| ()),
+            simulate(&model, &case.path, &start, &Options::new(DT, 4.0).unwrap()).map(|_| ()),
         ];
         for result in results {
             match result {
@@ -230,7 +232,7 @@ proptest! {
             }
             value
         });
-        match simulate(&case.model, &path, &start, &Options::new(DT, 4.0)) {
+        match simulate(&case.model, &path, &start, &Options::new(DT, 4.0).unwrap()) {
             Ok(_) => prop_assert!(false, "a NaN in the path at t = {} went through", t_bad),
             Err(error) => {
                 assert_descriptive(&error);
@@ -298,10 +300,7 @@ fn newton_not_converged_names_the_step() {
         case.model(),
         case.path(),
         &start,
-        &Options {
-            newton,
-            ..Options::new(0.01, 4.0)
-        },
+        &Options::new(0.01, 4.0).unwrap().with_newton(newton).unwrap(),
     )
     .unwrap_err();
     assert!(
@@ -328,7 +327,7 @@ fn a_nan_in_the_path_is_reported_at_its_time() {
             paper.derivative(t, k)
         }
     });
-    let error = simulate(case.model(), path, &start, &Options::new(0.01, 4.0)).unwrap_err();
+    let error = simulate(case.model(), path, &start, &Options::new(0.01, 4.0).unwrap()).unwrap_err();
     assert!(
         matches!(error, Error::NonFinite { quantity: "load target gamma(t)", t } if (t - 0.5).abs() < 1e-9),
         "{error:?}"

@@ -132,7 +132,7 @@ fn navy_planar_pulley_converges_with_order_k_in_both_formulations() {
 /// dt = 0.01 is the one of Fig. 7 (about 1.5e-3), whatever the seam.
 #[test]
 fn the_default_scheme_is_backward_euler() {
-    assert_eq!(Options::new(0.01, 1.0).scheme, Scheme::BackwardEuler);
+    assert_eq!(*Options::new(0.01, 1.0).unwrap().scheme(), Scheme::BackwardEuler);
     let case = navy_planar::PaperCase::new(4.0).unwrap();
     let e = e_u(&case, &run(&case, Formulation::Redundant, Scheme::default(), 0.01));
     assert!((1.4e-3..1.6e-3).contains(&e), "{e}");
@@ -201,7 +201,7 @@ fn a_start_in_mid_move_keeps_order_k() {
                 case.model(),
                 case.path(),
                 &start,
-                &Options::new(dt, T_ERROR).with_scheme(scheme),
+                &Options::new(dt, T_ERROR).unwrap().with_scheme(scheme),
             )
             .unwrap();
             let from_rest = e_u(&case, &run(&case, Formulation::Redundant, scheme, dt));
@@ -273,7 +273,7 @@ fn navy_3d_self_converges_with_order_k() {
                     case.model(),
                     case.path(),
                     &start,
-                    &Options::new(dt, case.tf()).with_scheme(scheme),
+                    &Options::new(dt, case.tf()).unwrap().with_scheme(scheme),
                 )
                 .unwrap()
             })
@@ -315,7 +315,7 @@ fn navy_3d_pulley_smooth_self_converges_with_order_k() {
                     case.model(),
                     case.path(),
                     &start,
-                    &Options::new(dt, case.tf()).with_scheme(scheme),
+                    &Options::new(dt, case.tf()).unwrap().with_scheme(scheme),
                 )
                 .unwrap()
             })
@@ -334,18 +334,11 @@ fn navy_3d_pulley_smooth_self_converges_with_order_k() {
 /// instead of stamping the wrong time on the result.
 #[test]
 fn a_step_to_the_wrong_time_is_refused() {
-    use crane_runtime::{Error, RedundantStepper, Trajectory, newton::NewtonOptions};
+    use crane_runtime::{Error, Trajectory, redundant};
     let case = navy_planar::PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
-    let mut stepper = RedundantStepper::with_scheme(
-        case.model(),
-        case.path(),
-        &start,
-        0.01,
-        Scheme::Bdf3,
-        NewtonOptions::default(),
-    )
-    .unwrap();
+    let options = Options::stepping(0.01).unwrap().with_scheme(Scheme::Bdf3);
+    let mut stepper = redundant::stepper(case.model(), case.path(), &start, &options).unwrap();
     let target = |t: f64| [0, 1, 2].map(|k| case.path().derivative(t, k));
     let error = stepper.step_to(0.02, &target(0.02)).unwrap_err();
     assert_eq!(
@@ -369,10 +362,10 @@ fn a_run_too_long_to_hold_is_a_typed_error() {
     let case = navy_planar::PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
     // 1e18 steps: not even countable in f64 step times
-    let error = simulate(case.model(), case.path(), &start, &Options::new(1e-9, 1e9)).unwrap_err();
+    let error = simulate(case.model(), case.path(), &start, &Options::new(1e-9, 1e9).unwrap()).unwrap_err();
     assert!(matches!(error, Error::TooManySteps { .. }), "{error:?}");
     // 1e12 steps: countable, but 190 TiB of states
-    let error = simulate(case.model(), case.path(), &start, &Options::new(1e-6, 1e6)).unwrap_err();
+    let error = simulate(case.model(), case.path(), &start, &Options::new(1e-6, 1e6).unwrap()).unwrap_err();
     let Error::TooManySteps { steps, bytes } = error else {
         panic!("{error:?}")
     };

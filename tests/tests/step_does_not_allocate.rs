@@ -7,16 +7,14 @@
 //! One test function, so that no other test allocates while one counts.
 
 use crane_models::navy_planar::{PaperCase, minimal_guess};
-use crane_runtime::forward::ForwardStepper;
-use crane_runtime::newton::NewtonOptions;
-use crane_runtime::{MinimalStepper, RedundantStepper, Scheme, Stepper};
+use crane_runtime::{Advance, Options, Scheme, forward, minimal, redundant};
 use crane_tests::counting::{Counting, allocations_during, assert_counter_works};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
 /// Allocations during `steps` steps of `stepper`.
-fn allocations_in(stepper: &mut impl Stepper<7, 3, 2>, steps: usize) -> (usize, usize) {
+fn allocations_in(stepper: &mut impl Advance<7, 3, 2>, steps: usize) -> (usize, usize) {
     let (allocations, min_norm) = allocations_during(|| {
         let mut min_norm = 0;
         for _ in 0..steps {
@@ -37,9 +35,8 @@ fn stepping_does_not_allocate() {
     for scheme in Scheme::ALL {
         for dt in [0.01f64, 0.001] {
             let steps = (4.0 / dt).round() as usize;
-            let newton = NewtonOptions::default();
-            let mut redundant =
-                RedundantStepper::with_scheme(case.model(), case.path(), &start, dt, scheme, newton).unwrap();
+            let options = Options::stepping(dt).unwrap().with_scheme(scheme);
+            let mut redundant = redundant::stepper(case.model(), case.path(), &start, &options).unwrap();
             let (allocations, min_norm) = allocations_in(&mut redundant, steps);
             assert_eq!(
                 allocations, 0,
@@ -49,8 +46,7 @@ fn stepping_does_not_allocate() {
             println!(
                 "redundant {scheme} dt = {dt}: {steps} steps, {min_norm} minimum-norm Newton steps, 0 allocations"
             );
-            let mut minimal =
-                MinimalStepper::with_scheme(case.model(), case.path(), &start, &guess, dt, scheme, newton).unwrap();
+            let mut minimal = minimal::stepper(case.model(), case.path(), &start, &guess, &options).unwrap();
             let (allocations, min_norm) = allocations_in(&mut minimal, steps);
             assert_eq!(
                 allocations, 0,
@@ -60,7 +56,7 @@ fn stepping_does_not_allocate() {
             // the forward problem, driven by the inputs of the inverse run's last state
             let u = redundant.state().u;
             let end = *redundant.state();
-            let mut forward = ForwardStepper::new(case.model(), move |_t: f64| u, &end, dt, scheme, newton).unwrap();
+            let mut forward = forward::stepper(case.model(), move |_t: f64| u, &end, &options).unwrap();
             let (allocations, _) = allocations_in(&mut forward, steps.min(400));
             assert_eq!(allocations, 0, "forward {scheme} dt = {dt}: {allocations} allocations");
         }

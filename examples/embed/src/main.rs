@@ -27,7 +27,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut crane = Gantry::default();
         crane.set_parameter("m_l", load)?;
         let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0])?;
-        let run = simulate(&crane, &path, &start, &Options::new(0.01, 5.0))?;
+        let run = simulate(&crane, &path, &start, &Options::new(0.01, 5.0)?)?;
         let peak = |k: usize| run.states.iter().map(|s| s.u[k].abs()).fold(0.0, f64::max);
         let min_tension = run.tensions.iter().copied().fold(f64::INFINITY, f64::min);
         if min_tension <= 0.0 {

@@ -18,7 +18,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let crane = Gantry::default();
     let path = Poly9::new(0.0, 5.0, SVector::from([0.0, -5.0]), SVector::from([4.0, -3.0]))?;
     let start = init::check_start(&crane, &path, 0.0, &[0.0, 5.0], None)?;
-    let run = simulate(&crane, &path, &start, &Options::new(0.01, 5.0))?;
+    let run = simulate(&crane, &path, &start, &Options::new(0.01, 5.0)?)?;
     let mut csv = std::fs::File::create(dir.join("planar-gantry-api.csv"))?;
     writeln!(csv, "t,u1,u2,s,L,x,z")?;
     for s in &run.states {
