@@ -207,84 +207,8 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{ModelInfo, Rope, Scalar, UnknownParameter};
     use crate::scheme::{History, Scheme};
-
-    /// A planar gantry written by hand: trolley `s`, rope `L`, load `(x, z)`.
-    struct Gantry;
-
-    impl CraneModel<4, 1, 2> for Gantry {
-        const INFO: ModelInfo = ModelInfo {
-            name: "Gantry",
-            description: "",
-            coordinates: &["s", "L", "x", "z"],
-            inputs: &["u1", "u2"],
-            constraints: &["rope"],
-            ropes: &[Rope {
-                tension: "N",
-                constraint: 0,
-            }],
-            parameters: &[],
-            positive: &[],
-        };
-        fn parameter_values(&self) -> Vec<f64> {
-            Vec::new()
-        }
-        fn set_parameter(&mut self, name: &str, _: f64) -> Result<(), UnknownParameter> {
-            Err(UnknownParameter {
-                name: name.into(),
-                known: String::new(),
-            })
-        }
-        fn constraints<T: Scalar>(&self, q: &SVector<T, 4>) -> SVector<T, 1> {
-            let d = q[2] - q[0];
-            SVector::from([(d * d + q[3] * q[3] - q[1] * q[1]) * 0.5])
-        }
-        fn constraint_jacobian<T: Scalar>(&self, q: &SVector<T, 4>) -> SMatrix<T, 1, 4> {
-            let d = q[2] - q[0];
-            SMatrix::from_row_slice(&[-d, -q[1], d, q[3]])
-        }
-        fn constraint_hessian<T: Scalar>(&self, _: &SVector<T, 4>, lambda: &SVector<T, 1>) -> SMatrix<T, 4, 4> {
-            let (l, z) = (lambda[0], T::from(0.0));
-            SMatrix::from_row_slice(&[l, z, -l, z, z, -l, z, z, -l, z, l, z, z, z, z, l])
-        }
-        fn mass_matrix<T: Scalar>(&self) -> SMatrix<T, 4, 4> {
-            SMatrix::from_diagonal(&SVector::from([
-                T::from(50.0),
-                T::from(5.0),
-                T::from(200.0),
-                T::from(200.0),
-            ]))
-        }
-        fn forces<T: Scalar>(&self, _: &SVector<T, 4>, v: &SVector<T, 4>) -> SVector<T, 4> {
-            // a little velocity-dependent friction on the trolley, so that df/dv counts
-            SVector::from([-v[0] * 3.0, T::from(0.0), T::from(0.0), T::from(-200.0 * 9.81)])
-        }
-        fn force_jacobians<T: Scalar>(
-            &self,
-            _: &SVector<T, 4>,
-            _: &SVector<T, 4>,
-        ) -> (SMatrix<T, 4, 4>, SMatrix<T, 4, 4>) {
-            let mut df_dv = SMatrix::zeros();
-            df_dv[(0, 0)] = T::from(-3.0);
-            (SMatrix::zeros(), df_dv)
-        }
-        fn input_matrix<T: Scalar>(&self, q: &SVector<T, 4>) -> SMatrix<T, 4, 2> {
-            // the winch force grows with the rope length, so d(B^T u)/dq counts
-            let mut b = SMatrix::zeros();
-            b[(0, 0)] = T::from(1.0);
-            b[(1, 1)] = q[1] * 0.1;
-            b
-        }
-        fn input_jacobian<T: Scalar>(&self, _: &SVector<T, 4>, u: &SVector<T, 2>) -> SMatrix<T, 4, 4> {
-            let mut j = SMatrix::zeros();
-            j[(1, 1)] = u[1] * 0.1;
-            j
-        }
-        fn rope_lengths(&self, q: &SVector<f64, 4>, out: &mut [f64]) {
-            out[0] = q[1];
-        }
-    }
+    use crate::test_support::{Gantry, central_difference_error, uniform};
 
     /// The forward iteration matrix is the Jacobian of the forward residual:
     /// against central differences at random points and histories, for
@@ -292,13 +216,7 @@ mod tests {
     /// differences of a smooth residual: ~1e-9).
     #[test]
     fn iteration_matrix_matches_central_differences() {
-        let mut seed = 7u64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rnd = uniform(7);
         for scheme in Scheme::ALL {
             for _ in 0..20 {
                 let past: Vec<SVector<f64, 4>> = (0..5).map(|_| SVector::from_fn(|_, _| 3.0 + rnd())).collect();
@@ -312,26 +230,8 @@ mod tests {
                 let input = SVector::from([rnd() * 100.0, rnd() * 1000.0]);
                 equations.prepare(dt, &input, history.formula(dt));
                 let z = DVector::from_fn(5, |i, _| if i < 4 { 3.0 + rnd() } else { rnd() * 0.1 });
-                let (mut r, mut jac) = (DVector::zeros(5), DMatrix::zeros(5, 5));
-                equations.evaluate(&z, &mut r, &mut jac);
-                let mut worst = 0.0f64;
-                for j in 0..5 {
-                    let h = 1e-6 * (1.0 + z[j].abs());
-                    let (mut plus, mut minus) = (z.clone(), z.clone());
-                    plus[j] += h;
-                    minus[j] -= h;
-                    let (mut rp, mut rm, mut scratch) = (DVector::zeros(5), DVector::zeros(5), DMatrix::zeros(5, 5));
-                    equations.evaluate(&plus, &mut rp, &mut scratch);
-                    equations.evaluate(&minus, &mut rm, &mut scratch);
-                    for i in 0..5 {
-                        worst = worst.max(((rp[i] - rm[i]) / (2.0 * h) - jac[(i, j)]).abs());
-                    }
-                }
-                assert!(
-                    worst <= 1e-6 * jac.amax(),
-                    "{scheme}: worst {worst:e} of {}",
-                    jac.amax()
-                );
+                let (worst, largest) = central_difference_error(&mut equations, &z);
+                assert!(worst <= 1e-6 * largest, "{scheme}: worst {worst:e} of {largest}");
             }
         }
     }

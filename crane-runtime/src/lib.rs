@@ -89,6 +89,9 @@ pub mod solution;
 pub mod stepper;
 pub mod trajectory;
 
+#[cfg(test)]
+mod test_support;
+
 pub use driver::{Options, StepReport};
 pub use error::Error;
 pub use forward::ForwardStepper;
