@@ -9,7 +9,7 @@ use crane_runtime::{Solution, State};
 
 use crate::CliError;
 use crate::plot;
-use crate::report::Summary;
+use crane_models::study::Summary;
 
 /// Column names of `results.csv` (docs/numerics.md): `t`, the coordinates, the
 /// inputs, `lambda1..lambdam`, the rope tensions.

@@ -509,7 +509,9 @@ fn scenario_keys_take_effect() {
     );
     let mut case = crane_models::navy_planar::PaperCase::new(4.0).unwrap();
     case.model.set_parameter("m_l", 120.0).unwrap();
-    let api = case.simulate(&case.start().unwrap(), &Options::new(0.02, 4.0).unwrap()).unwrap();
+    let api = case
+        .simulate(&case.start().unwrap(), &Options::new(0.02, 4.0).unwrap())
+        .unwrap();
     assert_eq!(
         u_column(&heavy, "u2"),
         api.states.iter().map(|s| s.u[1]).collect::<Vec<_>>()

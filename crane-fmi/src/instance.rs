@@ -7,14 +7,17 @@
 //! here); `do_step(t, h)` advances `h / dt` internal steps and writes the
 //! outputs, without allocating.
 
+use crane_models::study::{RunSpec, SpecError};
 use crane_models::{Crane, Path, PathSpec, Profile};
 use crane_runtime::driver::steps_in;
 use crane_runtime::problem::ServoTarget;
 use crane_runtime::redundant::{self, RedundantStepper};
-use crane_runtime::{Advance, CraneModel, Options, Scheme, State, Trajectory, init};
+use crane_runtime::{Advance, CraneModel, Options, Scheme, State};
 use nalgebra::SVector;
 
-use crate::variables::{Causality, NameClash, PathKind, Role, Variable, variables};
+use crate::variables::{
+    Causality, EXTERNAL_PATH, External, NameClash, Role, Variable, path_help, path_of_code, variables,
+};
 
 /// What an instance can be asked to do, whatever its crane: the object the
 /// C entry points hold.
@@ -56,26 +59,6 @@ enum Mode {
     Failed,
 }
 
-/// The load path of an instance.
-#[derive(Debug, Clone)]
-enum FmuPath<const A: usize> {
-    /// The built-in move.
-    BuiltIn(Path<A>),
-    /// The external target, at rest at the start (the steps take their
-    /// targets from the inputs).
-    Rest(SVector<f64, A>),
-}
-
-impl<const A: usize> Trajectory<A> for FmuPath<A> {
-    fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
-        match self {
-            FmuPath::BuiltIn(path) => path.derivative(t, k),
-            FmuPath::Rest(x) if k == 0 => *x,
-            FmuPath::Rest(_) => SVector::zeros(),
-        }
-    }
-}
-
 /// The quintic through `(gamma, gamma', gamma'')` at `ta` and at `tb`,
 /// evaluated at `t`: the targets of the internal steps of an external step.
 fn hermite<const A: usize>(ta: f64, a: &ServoTarget<A>, tb: f64, b: &ServoTarget<A>, t: f64) -> ServoTarget<A> {
@@ -104,7 +87,7 @@ fn hermite<const A: usize>(ta: f64, a: &ServoTarget<A>, tb: f64, b: &ServoTarget
 
 /// A running crane: the stepper, which owns its model.
 struct Run<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> {
-    stepper: RedundantStepper<Box<Mdl>, FmuPath<A>, N, M, A>,
+    stepper: RedundantStepper<Box<Mdl>, Path<A>, N, M, A>,
     /// The external target at the last state, if the path is external.
     external: Option<ServoTarget<A>>,
     /// Rope lengths (one per rope).
@@ -114,13 +97,17 @@ struct Run<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: us
 impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> Run<Mdl, N, M, A> {
     fn new(
         model: Mdl,
-        path: FmuPath<A>,
+        path: Path<A>,
         start: &State<N, M, A>,
         options: &Options,
         external: Option<ServoTarget<A>>,
     ) -> Result<Self, String> {
         let stepper = redundant::stepper(Box::new(model), path, start, options).map_err(|e| e.to_string())?;
-        Ok(Self { stepper, external, lengths: vec![0.0; Mdl::INFO.ropes.len()] })
+        Ok(Self {
+            stepper,
+            external,
+            lengths: vec![0.0; Mdl::INFO.ropes.len()],
+        })
     }
 }
 
@@ -203,64 +190,78 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         }
     }
 
-    /// The crane, path, start and stepper from the variables.
-    fn build(&self) -> Result<Run<C::Model, N, M, A>, String> {
+    /// The run the variables describe, checked: the crane's parameters, the
+    /// built-in move or (path = external) a path at rest at the external
+    /// target, the default start guess, `dt` and the scheme.
+    fn spec(&self) -> Result<(RunSpec<A>, Option<ServoTarget<A>>), String> {
         let info = <C::Model as CraneModel<N, M, A>>::INFO;
-        let mut model = C::Model::default();
-        for (k, name) in info.parameters.iter().enumerate() {
-            model
-                .set_parameter(name, self.value(Role::Parameter(k)))
-                .map_err(|e| e.to_string())?;
-        }
-        crane_runtime::driver::check_parameters(&model).map_err(|e| e.to_string())?;
-        let dt = self.value(Role::Dt);
+        let mut spec = RunSpec::default_for::<C, N, M>();
+        spec.parameters = info
+            .parameters
+            .iter()
+            .enumerate()
+            .map(|(k, name)| (name.to_string(), self.value(Role::Parameter(k))))
+            .collect();
+        spec.dt = self.value(Role::Dt);
         let code = self.integers[0];
-        let scheme = Scheme::from_code(code)
-            .ok_or_else(|| format!("scheme = {code}: expected {}", Scheme::code_help()))?;
-        let options = Options::stepping(dt).map_err(|e| format!("`dt`: {e}"))?.with_scheme(scheme);
-        let kind = PathKind::from_value(self.integers[1]).ok_or_else(|| {
-            format!(
-                "path = {}: expected 0 (poly9), 1 (three-phase), 2 (smooth three-phase) or 3 (external)",
-                self.integers[1]
-            )
-        })?;
+        spec.scheme =
+            Scheme::from_code(code).ok_or_else(|| format!("scheme = {code}: expected {}", Scheme::code_help()))?;
         let position = |role: fn(usize) -> Role| SVector::<f64, A>::from_fn(|k, _| self.value(role(k)));
-        let (path, external) = match kind {
-            PathKind::External => {
+        let t0 = self.value(Role::T0);
+        let external = match path_of_code(self.integers[1]) {
+            None => return Err(format!("path = {}: expected {}", self.integers[1], path_help())),
+            Some(Err(External)) => {
                 let target = self.target();
                 if target[1].amax() != 0.0 || target[2].amax() != 0.0 {
-                    return Err("path = 3 (external): the run starts at rest; set gamma_<x>_d and gamma_<x>_dd to 0 before fmi2ExitInitializationMode".into());
+                    return Err(format!(
+                        "path = {EXTERNAL_PATH} (external): the run starts at rest; set gamma_<x>_d and gamma_<x>_dd \
+                         to 0 before fmi2ExitInitializationMode"
+                    ));
                 }
-                (FmuPath::Rest(target[0]), Some(target))
-            }
-            _ => {
-                let tau0 = self.value(Role::Tau0);
-                let profile = match kind {
-                    PathKind::ThreePhase => Profile::ThreePhase { tau0 },
-                    PathKind::SmoothThreePhase => Profile::SmoothThreePhase { tau0 },
-                    _ => Profile::Poly9,
+                // at rest at the target: a move from it to itself
+                spec.path = PathSpec {
+                    profile: Profile::Poly9,
+                    t0,
+                    t1: t0 + 1.0,
+                    start: target[0],
+                    end: target[0],
                 };
-                let t0 = self.value(Role::T0);
-                let spec = PathSpec {
+                Some(target)
+            }
+            Some(Ok(kind)) => {
+                let profile = kind.profile(Some(self.value(Role::Tau0))).map_err(|e| e.to_string())?;
+                let t1 = t0 + self.value(Role::Duration);
+                spec.path = PathSpec {
                     profile,
                     t0,
-                    t1: t0 + self.value(Role::Duration),
+                    t1,
                     start: position(Role::Start),
                     end: position(Role::End),
                 };
-                (
-                    FmuPath::BuiltIn(Path::new(spec).map_err(|e| format!("the built-in move: {e}"))?),
-                    None,
-                )
+                None
             }
         };
-        // the start of `crane run` where it holds (the default move), else
-        // the static equilibrium from the same guess
-        let p0 = C::maneuver().p0;
-        let start = init::check_start(&model, &path, self.start_time, &p0, None)
-            .or_else(|_| init::static_equilibrium(&model, &path, self.start_time, &p0))
+        spec.tf = spec.path.t1;
+        Ok((spec, external))
+    }
+
+    /// The crane, path, start and stepper from the variables: the start of
+    /// `crane run` where it holds (the default move), else the static
+    /// equilibrium from the same guess.
+    fn build(&self) -> Result<Run<C::Model, N, M, A>, String> {
+        let (spec, external) = self.spec()?;
+        let (case, settings) = spec.build::<C, N, M>().map_err(|e| match e {
+            SpecError::Path(e) => format!("the built-in move: {e}"),
+            SpecError::Time(e) => format!("`dt`: {e}"),
+            other => other.to_string(),
+        })?;
+        let options = Options::stepping(settings.dt)
+            .map_err(|e| format!("`dt`: {e}"))?
+            .with_scheme(settings.scheme);
+        let start = case
+            .consistent_start(self.start_time)
             .map_err(|e| format!("no consistent start at t = {}: {e}", self.start_time))?;
-        Run::new(model, path, &start, &options, external)
+        Run::new(case.model, case.path, &start, &options, external)
     }
 
     /// Copy the last state into the outputs.
@@ -297,7 +298,11 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         let dt = run.stepper.dt();
         let k = match steps_in(h, dt) {
             Ok(k) => k,
-            Err(_) => return Err(format!("communication step h = {h} s is not a whole multiple of dt = {dt} s")),
+            Err(_) => {
+                return Err(format!(
+                    "communication step h = {h} s is not a whole multiple of dt = {dt} s"
+                ));
+            }
         };
         let tb = t + h;
         for i in 1..=k {
@@ -305,7 +310,11 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                 None => run.stepper.step(),
                 Some(ref target_a) => {
                     let ti = run.stepper.next_time();
-                    let target = if i == k { target_b } else { hermite(t, target_a, tb, &target_b, ti) };
+                    let target = if i == k {
+                        target_b
+                    } else {
+                        hermite(t, target_a, tb, &target_b, ti)
+                    };
                     run.stepper.step_to(ti, &target)
                 }
             };

@@ -10,8 +10,9 @@
 
 use std::collections::HashSet;
 
-use crane_models::{Crane, Profile};
+use crane_models::{Crane, ProfileKind};
 use crane_runtime::CraneModel;
+use crane_runtime::Scheme;
 
 /// Default internal step, s (that of `crane run`).
 pub const DEFAULT_DT: f64 = 0.01;
@@ -45,7 +46,7 @@ pub enum Role {
     Tension(usize),
     /// Integer: the scheme's order (1 backward Euler, 2..5 BDF-k).
     Scheme,
-    /// Integer: the path ([`PathKind`]).
+    /// Integer: the path ([`path_of_code`]).
     Path,
 }
 
@@ -79,35 +80,35 @@ pub struct Variable {
     pub role: Role,
 }
 
-/// The path of an FMU instance (`path` variable).
+/// The `path` code of the external target (the built-in profiles have the
+/// codes of [`ProfileKind::code`], 0 to 2).
+pub const EXTERNAL_PATH: i32 = ProfileKind::ALL.len() as i32;
+
+/// The external target as the `path` of an instance.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PathKind {
-    /// 0: rest-to-rest poly9 (eqs. 41-45).
-    Poly9 = 0,
-    /// 1: three-phase, ramps of `tau0`.
-    ThreePhase = 1,
-    /// 2: smooth three-phase, ramps of `tau0`.
-    SmoothThreePhase = 2,
-    /// 3: the external target `gamma_<x>`, `gamma_<x>_d`, `gamma_<x>_dd`.
-    External = 3,
+pub struct External;
+
+/// What a `path` code asks for: a built-in profile, the external target, or
+/// (`None`) nothing known.
+pub fn path_of_code(code: i32) -> Option<Result<ProfileKind, External>> {
+    if code == EXTERNAL_PATH {
+        Some(Err(External))
+    } else {
+        ProfileKind::from_code(code).map(Ok)
+    }
 }
 
-impl PathKind {
-    /// The kind of an integer value, if it is one.
-    pub fn from_value(value: i32) -> Option<Self> {
-        [Self::Poly9, Self::ThreePhase, Self::SmoothThreePhase, Self::External]
-            .into_iter()
-            .find(|k| *k as i32 == value)
-    }
-
-    /// The kind of a built-in move's profile and its ramp duration, if any.
-    pub fn of_profile(profile: Profile) -> (Self, Option<f64>) {
-        match profile {
-            Profile::Poly9 => (Self::Poly9, None),
-            Profile::ThreePhase { tau0 } => (Self::ThreePhase, Some(tau0)),
-            Profile::SmoothThreePhase { tau0 } => (Self::SmoothThreePhase, Some(tau0)),
-        }
-    }
+/// The `path` codes in words: "0 poly9, 1 three-phase, 2 smooth-three-phase
+/// (the built-in move) or 3 external target".
+pub fn path_help() -> String {
+    let profiles: Vec<String> = ProfileKind::ALL
+        .iter()
+        .map(|k| format!("{} {}", k.code(), k.name()))
+        .collect();
+    format!(
+        "{} (the built-in move) or {EXTERNAL_PATH} external target",
+        profiles.join(", ")
+    )
 }
 
 /// Two variables share a name (a model parameter called `dt`, say).
@@ -192,8 +193,7 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
             Role::End(k),
         );
     }
-    let (_, tau0) = PathKind::of_profile(spec.profile);
-    let tau0 = tau0.unwrap_or((spec.t1 - spec.t0) / 4.0);
+    let tau0 = spec.profile.tau0().unwrap_or((spec.t1 - spec.t0) / 4.0);
     real(
         &mut table,
         "tau0".into(),
@@ -259,8 +259,8 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
         integer: true,
         value_reference: 0,
         causality: Causality::Parameter,
-        start: 1.0,
-        description: "order of the scheme: 1 backward Euler (the paper's), 2..5 BDF-k".into(),
+        start: f64::from(Scheme::default().code()),
+        description: format!("the scheme: {}", Scheme::code_help()),
         role: Role::Scheme,
     });
     table.push(Variable {
@@ -268,9 +268,8 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
         integer: true,
         value_reference: 1,
         causality: Causality::Parameter,
-        start: f64::from(PathKind::of_profile(spec.profile).0 as i32),
-        description: "load path: 0 poly9, 1 three-phase, 2 smooth three-phase (the built-in move), 3 external target"
-            .into(),
+        start: f64::from(spec.profile.kind().code()),
+        description: format!("load path: {}", path_help()),
         role: Role::Path,
     });
     let mut seen = HashSet::new();

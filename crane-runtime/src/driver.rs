@@ -39,21 +39,34 @@ impl Options<Scheme> {
         if !tf.is_finite() {
             return Err(Error::InvalidEndTime { tf });
         }
-        Ok(Self { tf, ..Self::stepping(dt)? })
+        Ok(Self {
+            tf,
+            ..Self::stepping(dt)?
+        })
     }
 
     /// Settings for a stepper that runs without an end (a controller, an
     /// FMU): step `dt`, backward Euler, default Newton tolerances.
     pub fn stepping(dt: f64) -> Result<Self, Error> {
         check_step_size(dt)?;
-        Ok(Self { dt, tf: f64::INFINITY, scheme: Scheme::default(), newton: NewtonOptions::default() })
+        Ok(Self {
+            dt,
+            tf: f64::INFINITY,
+            scheme: Scheme::default(),
+            newton: NewtonOptions::default(),
+        })
     }
 }
 
 impl<S: Method> Options<S> {
     /// The same settings with another scheme.
     pub fn with_scheme<T: Method>(self, scheme: T) -> Options<T> {
-        Options { dt: self.dt, tf: self.tf, scheme, newton: self.newton }
+        Options {
+            dt: self.dt,
+            tf: self.tf,
+            scheme,
+            newton: self.newton,
+        }
     }
 
     /// The same settings with other Newton tolerances: each tolerance
@@ -61,7 +74,9 @@ impl<S: Method> Options<S> {
     pub fn with_newton(self, newton: NewtonOptions) -> Result<Self, Error> {
         let tolerance = |x: f64| x.is_finite() && x >= 0.0;
         if !(tolerance(newton.rtol) && tolerance(newton.atol) && tolerance(newton.residual_tol)) {
-            return Err(Error::InvalidNewtonOptions("rtol, atol and residual_tol must be finite and not negative"));
+            return Err(Error::InvalidNewtonOptions(
+                "rtol, atol and residual_tol must be finite and not negative",
+            ));
         }
         if newton.max_iterations == 0 {
             return Err(Error::InvalidNewtonOptions("max_iterations must be at least 1"));
@@ -137,14 +152,25 @@ pub fn check_parameters<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize
         if smallest < -1e-12 * scale {
             let direction = eigen.eigenvectors.column(index);
             let largest = direction.amax();
-            let coordinates: Vec<&str> =
-                (0..N).filter(|&i| direction[i].abs() > 0.1 * largest).map(|i| Mdl::INFO.coordinates[i]).collect();
-            let negative: Vec<&str> =
-                Mdl::INFO.parameters.iter().zip(&values).filter(|(_, v)| **v < 0.0).map(|(n, _)| *n).collect();
+            let coordinates: Vec<&str> = (0..N)
+                .filter(|&i| direction[i].abs() > 0.1 * largest)
+                .map(|i| Mdl::INFO.coordinates[i])
+                .collect();
+            let negative: Vec<&str> = Mdl::INFO
+                .parameters
+                .iter()
+                .zip(&values)
+                .filter(|(_, v)| **v < 0.0)
+                .map(|(n, _)| *n)
+                .collect();
             return Err(Error::IndefiniteMassMatrix {
                 smallest_eigenvalue: smallest,
                 coordinates: coordinates.join(", "),
-                negative_parameters: if negative.is_empty() { "none".into() } else { negative.join(", ") },
+                negative_parameters: if negative.is_empty() {
+                    "none".into()
+                } else {
+                    negative.join(", ")
+                },
             });
         }
     }
@@ -153,7 +179,11 @@ pub fn check_parameters<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize
 
 /// Refuse a time step that is not a finite positive number.
 fn check_step_size(dt: f64) -> Result<(), Error> {
-    if dt.is_finite() && dt > 0.0 { Ok(()) } else { Err(Error::InvalidTimeStep { dt }) }
+    if dt.is_finite() && dt > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidTimeStep { dt })
+    }
 }
 
 /// Number of steps of size `dt` from `t0` to `tf`, refusing spans that are
@@ -179,7 +209,10 @@ pub fn steps_in(span: f64, dt: f64) -> Result<usize, Error> {
     }
     // beyond 2^53 steps the times t0 + i dt no longer differ step by step
     if steps >= 2f64.powi(53) {
-        return Err(Error::TooManySteps { steps, bytes: f64::INFINITY });
+        return Err(Error::TooManySteps {
+            steps,
+            bytes: f64::INFINITY,
+        });
     }
     Ok(steps as usize)
 }
@@ -219,7 +252,13 @@ where
     solution.push(stepper.model(), &start, 0, 0, &mut lengths);
     for step in 1..=steps {
         let report = stepper.step()?;
-        solution.push(stepper.model(), stepper.state(), report.iterations, report.min_norm_steps, &mut lengths);
+        solution.push(
+            stepper.model(),
+            stepper.state(),
+            report.iterations,
+            report.min_norm_steps,
+            &mut lengths,
+        );
         progress(step, steps);
     }
     Ok(solution)

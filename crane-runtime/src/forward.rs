@@ -68,7 +68,12 @@ where
             mass,
             dt: f64::NAN,
             input: SVector::zeros(),
-            formula: StepFormula { rate: f64::NAN, dt: f64::NAN, value_offset: SVector::zeros(), rate_offset: SVector::zeros() },
+            formula: StepFormula {
+                rate: f64::NAN,
+                dt: f64::NAN,
+                value_offset: SVector::zeros(),
+                rate_offset: SVector::zeros(),
+            },
             blocks: [0..N, N..N + M],
         }
     }
@@ -106,12 +111,27 @@ where
         let lambda_scaled = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
         let u_scaled = self.input * (self.dt * self.dt);
         let model = &*self.model;
-        let rows = dynamic_rows(model, &self.mass, self.dt, self.formula.slopes(), &kinematics, &u_scaled, &lambda_scaled);
+        let rows = dynamic_rows(
+            model,
+            &self.mass,
+            self.dt,
+            self.formula.slopes(),
+            &kinematics,
+            &u_scaled,
+            &lambda_scaled,
+        );
         jac.fill(0.0);
         rows.write(&model.constraints(&kinematics[0]), N, r, jac);
         // the given inputs are applied forces: a row's scale includes them
         normalised_residual(r, jac, z, |i| {
-            if i < N { rows.inertia[i].abs().max(rows.applied[i].abs()).max(rows.inputs[i].abs()) } else { 0.0 }
+            if i < N {
+                rows.inertia[i]
+                    .abs()
+                    .max(rows.applied[i].abs())
+                    .max(rows.inputs[i].abs())
+            } else {
+                0.0
+            }
         })
     }
 
@@ -142,7 +162,14 @@ where
     }
 
     fn check_drive(&self, input: &SVector<f64, A>, t: f64) -> Result<(), Error> {
-        if input.iter().all(|x| x.is_finite()) { Ok(()) } else { Err(Error::NonFinite { quantity: "input u(t)", t }) }
+        if input.iter().all(|x| x.is_finite()) {
+            Ok(())
+        } else {
+            Err(Error::NonFinite {
+                quantity: "input u(t)",
+                t,
+            })
+        }
     }
 
     /// From the consistent `start` (its `q`, `v`, `lambda`); at rest
@@ -152,7 +179,11 @@ where
         self.input = start.u;
         z.rows_mut(0, N).copy_from(&start.q);
         z.rows_mut(N, M).copy_from(&(start.lambda * (dt * dt)));
-        Ok(Start { y0: start.q, v0: start.v, at_rest: start.v.amax() == 0.0 })
+        Ok(Start {
+            y0: start.q,
+            v0: start.v,
+            at_rest: start.v.amax() == 0.0,
+        })
     }
 
     fn prepare(&mut self, _t: f64, input: &SVector<f64, A>, formula: StepFormula<N>) {
@@ -163,7 +194,17 @@ where
     fn accept(&mut self, t: f64, z: &DVector<f64>) -> Result<Accepted<N, M, A, N>, Error> {
         let [q, v, _] = self.kinematics(z);
         let lambda = SVector::from_fn(|i, _| z[N + i] / (self.dt * self.dt));
-        Ok(Accepted { state: State { t, q, v, u: self.input, lambda }, y: q, v })
+        Ok(Accepted {
+            state: State {
+                t,
+                q,
+                v,
+                u: self.input,
+                lambda,
+            },
+            y: q,
+            v,
+        })
     }
 }
 
@@ -201,7 +242,11 @@ where
     In: Inputs<A>,
     S: Method,
 {
-    record(&mut stepper(model, inputs, start, options)?, options.tf(), &mut |_, _| {})
+    record(
+        &mut stepper(model, inputs, start, options)?,
+        options.tf(),
+        &mut |_, _| {},
+    )
 }
 
 #[cfg(test)]
@@ -225,7 +270,13 @@ mod tests {
                 let dt = 0.01;
                 let mut equations = Forward::new(&Gantry, |_t: f64| SVector::<f64, 2>::zeros());
                 let mut z0 = DVector::zeros(5);
-                let start = State { t: 0.0, q: past[0], v: rates[0], u: SVector::zeros(), lambda: SVector::zeros() };
+                let start = State {
+                    t: 0.0,
+                    q: past[0],
+                    v: rates[0],
+                    u: SVector::zeros(),
+                    lambda: SVector::zeros(),
+                };
                 equations.start(&start, dt, &mut z0).unwrap();
                 let input = SVector::from([rnd() * 100.0, rnd() * 1000.0]);
                 equations.prepare(dt, &input, history.formula(dt));

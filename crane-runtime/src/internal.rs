@@ -354,6 +354,7 @@ pub const RUNAWAY_FACTOR: f64 = 1e6;
 
 /// The internal dynamics along a computed run ([`diagnose`]).
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct RunDiagnosis {
     /// The count from the declaration ([`CraneModel::STRUCTURE`]).
     pub structural_dimension: Option<usize>,
@@ -370,6 +371,10 @@ pub struct RunDiagnosis {
     /// reason.
     pub unresolved: usize,
     /// Why the first unresolved state was not resolved.
+    #[cfg_attr(
+        feature = "serde",
+        serde(skip_serializing_if = "Option::is_none", serialize_with = "serialize_reason")
+    )]
     pub unresolved_reason: Option<InternalDynamicsError>,
     /// States sampled (evenly spaced, up to `runaway_at`: past a runaway
     /// input the states are not physical and not diagnosed).
@@ -377,6 +382,15 @@ pub struct RunDiagnosis {
     /// First time an input exceeds [`RUNAWAY_FACTOR`] times its size at the
     /// start.
     pub runaway_at: Option<f64>,
+}
+
+/// The reason as its message.
+#[cfg(feature = "serde")]
+fn serialize_reason<S: serde::Serializer>(reason: &Option<InternalDynamicsError>, s: S) -> Result<S::Ok, S::Error> {
+    match reason {
+        Some(reason) => s.collect_str(reason),
+        None => s.serialize_none(),
+    }
 }
 
 impl RunDiagnosis {

@@ -99,8 +99,8 @@ pub use minimal::{MinimalStepper, simulate_minimal};
 pub use model::{CraneModel, MapDerivatives, MinimalMap, ModelInfo, Rope, Scalar, Structure, UnknownParameter};
 pub use redundant::{RedundantStepper, simulate};
 pub use scheme::{Method, Scheme};
-pub use stepper::{Advance, Stepper};
 pub use solution::{Solution, State};
+pub use stepper::{Advance, Stepper};
 pub use trajectory::Trajectory;
 
 /// Re-exported so generated code and users name the same versions.

@@ -178,9 +178,18 @@ where
     let inputs = bt * u_scaled;
     let residual = inertia - applied - inputs + jac_g.tr_mul(lambda_scaled);
     let (da, dv) = (slopes.acceleration_dt2, slopes.velocity_dt2);
-    let coordinate_jacobian =
-        SMatrix::from_fn(|i, j| da * mass[(i, j)] - dt2 * df_dq[(i, j)] - dv * df_dv[(i, j)] - dbu_dq[(i, j)] + dgl_dq[(i, j)]);
-    DynamicRows { inertia, applied, inputs, residual, input_matrix: bt, constraint_jacobian: jac_g, coordinate_jacobian }
+    let coordinate_jacobian = SMatrix::from_fn(|i, j| {
+        da * mass[(i, j)] - dt2 * df_dq[(i, j)] - dv * df_dv[(i, j)] - dbu_dq[(i, j)] + dgl_dq[(i, j)]
+    });
+    DynamicRows {
+        inertia,
+        applied,
+        inputs,
+        residual,
+        input_matrix: bt,
+        constraint_jacobian: jac_g,
+        coordinate_jacobian,
+    }
 }
 
 impl<const N: usize, const M: usize, const A: usize> DynamicRows<N, M, A> {

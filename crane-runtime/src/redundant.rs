@@ -68,7 +68,12 @@ where
             mass,
             dt: f64::NAN,
             target: [SVector::zeros(); 3],
-            formula: StepFormula { rate: f64::NAN, dt: f64::NAN, value_offset: SVector::zeros(), rate_offset: SVector::zeros() },
+            formula: StepFormula {
+                rate: f64::NAN,
+                dt: f64::NAN,
+                value_offset: SVector::zeros(),
+                rate_offset: SVector::zeros(),
+            },
             blocks: [0..Self::P, Self::P..N, N..N + M],
         }
     }
@@ -109,7 +114,10 @@ pub(crate) fn check_target<const A: usize>(target: &ServoTarget<A>, t: f64) -> R
     if target.iter().all(|x| x.iter().all(|v| v.is_finite())) {
         Ok(())
     } else {
-        Err(Error::NonFinite { quantity: "load target gamma(t)", t })
+        Err(Error::NonFinite {
+            quantity: "load target gamma(t)",
+            t,
+        })
     }
 }
 
@@ -128,7 +136,15 @@ where
         let u_scaled = SVector::<f64, A>::from_fn(|k, _| z[p + k]);
         let lambda_scaled = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
         let model = &*self.model;
-        let rows = dynamic_rows(model, &self.mass, self.dt, self.formula.slopes(), &kinematics, &u_scaled, &lambda_scaled);
+        let rows = dynamic_rows(
+            model,
+            &self.mass,
+            self.dt,
+            self.formula.slopes(),
+            &kinematics,
+            &u_scaled,
+            &lambda_scaled,
+        );
         // residual: dynamic rows (22b, 22c) scaled by dt^2, then (22d); the
         // iteration matrix column by column of z: p, then dt^2 u, dt^2 lambda
         jac.fill(0.0);
@@ -140,7 +156,13 @@ where
         }
         // dynamic rows also by their largest term (the load row of x nearly
         // vanishes when the load hangs straight below the pulley)
-        normalised_residual(r, jac, z, |i| if i < N { rows.inertia[i].abs().max(rows.applied[i].abs()) } else { 0.0 })
+        normalised_residual(r, jac, z, |i| {
+            if i < N {
+                rows.inertia[i].abs().max(rows.applied[i].abs())
+            } else {
+                0.0
+            }
+        })
     }
 
     fn blocks(&self) -> &[Range<usize>] {
@@ -179,7 +201,11 @@ where
         z.rows_mut(0, p).copy_from(&start.q.rows(0, p));
         z.rows_mut(p, A).copy_from(&(start.u * dt2));
         z.rows_mut(N, M).copy_from(&(start.lambda * dt2));
-        Ok(Start { y0: start.q, v0: start.v, at_rest: init::at_rest(&self.trajectory, start) })
+        Ok(Start {
+            y0: start.q,
+            v0: start.v,
+            at_rest: init::at_rest(&self.trajectory, start),
+        })
     }
 
     fn prepare(&mut self, _t: f64, target: &ServoTarget<A>, formula: StepFormula<N>) {
@@ -192,7 +218,11 @@ where
         let [q, v, _] = self.kinematics(z);
         let u = SVector::from_fn(|k, _| z[p + k] / dt2);
         let lambda = SVector::from_fn(|i, _| z[N + i] / dt2);
-        Ok(Accepted { state: State { t, q, v, u, lambda }, y: q, v })
+        Ok(Accepted {
+            state: State { t, q, v, u, lambda },
+            y: q,
+            v,
+        })
     }
 }
 
@@ -279,7 +309,13 @@ mod tests {
                     let rates: Vec<SVector<f64, 4>> = (0..5).map(|_| SVector::from_fn(|_, _| rnd())).collect();
                     let history = History::from_past(scheme, &past, &rates);
                     let mut problem = Redundant::new(&Gantry, &path);
-                    let start = State { t: 0.0, q: past[0], v: rates[0], u: SVector::zeros(), lambda: SVector::zeros() };
+                    let start = State {
+                        t: 0.0,
+                        q: past[0],
+                        v: rates[0],
+                        u: SVector::zeros(),
+                        lambda: SVector::zeros(),
+                    };
                     problem.start(&start, dt, &mut DVector::zeros(5)).unwrap();
                     let target = [0.0, 1.0, 2.0].map(|scale| SVector::from_fn(|_, _| scale + rnd()));
                     problem.prepare(dt, &target, history.formula(dt));
@@ -290,7 +326,10 @@ mod tests {
                         _ => dt * dt * 100.0 * rnd(),
                     });
                     let (worst, largest) = central_difference_error(&mut problem, &z);
-                    assert!(worst <= 1e-6 * largest, "{scheme}, dt = {dt}: worst {worst:e} of {largest:e}");
+                    assert!(
+                        worst <= 1e-6 * largest,
+                        "{scheme}, dt = {dt}: worst {worst:e} of {largest:e}"
+                    );
                 }
             }
         }

@@ -316,11 +316,21 @@ where
     let settle_steps = (options.settle.max(0.0) / dt).round();
     let tf = end.t + settle_steps * dt;
     let plan = InterpolatedInputs::new(inverse, options.scheme.order() + 1);
-    let forward = Options::new(dt, tf)?.with_scheme(options.scheme).with_newton(options.newton)?;
+    let forward = Options::new(dt, tf)?
+        .with_scheme(options.scheme)
+        .with_newton(options.newton)?;
     let steps = step_count(start.t, tf, dt)?;
     let last = Cell::new(*start);
-    let gains = feedback.copied().unwrap_or(Feedback { kp: SVector::zeros(), kd: SVector::zeros() });
-    let inputs = ClosedLoop { plan, plant, feedback: gains, last: &last };
+    let gains = feedback.copied().unwrap_or(Feedback {
+        kp: SVector::zeros(),
+        kd: SVector::zeros(),
+    });
+    let inputs = ClosedLoop {
+        plan,
+        plant,
+        feedback: gains,
+        last: &last,
+    };
     let mut stepper = forward::stepper(plant, inputs, start, &forward)?;
     let mut solution = Solution::with_capacity(Mdl::INFO, dt, options.scheme.name(), steps + 1)?;
     let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];

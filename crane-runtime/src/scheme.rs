@@ -73,7 +73,11 @@ impl Formula {
         let steps = alpha.len().min(MAX_STEPS);
         let mut padded = [0.0; MAX_STEPS];
         padded[..steps].copy_from_slice(&alpha[..steps]);
-        Self { steps, c, alpha: padded }
+        Self {
+            steps,
+            c,
+            alpha: padded,
+        }
     }
 }
 
@@ -150,7 +154,13 @@ pub enum Scheme {
 impl Scheme {
     /// All schemes, in order: the one list the command line, scenario files
     /// and the FMU's `scheme` variable are made from.
-    pub const ALL: [Scheme; 5] = [Scheme::BackwardEuler, Scheme::Bdf2, Scheme::Bdf3, Scheme::Bdf4, Scheme::Bdf5];
+    pub const ALL: [Scheme; 5] = [
+        Scheme::BackwardEuler,
+        Scheme::Bdf2,
+        Scheme::Bdf3,
+        Scheme::Bdf4,
+        Scheme::Bdf5,
+    ];
 
     /// BDF of order `k` (1 = backward Euler), if `1 <= k <= 5`.
     pub fn bdf(k: usize) -> Option<Scheme> {
@@ -216,7 +226,11 @@ impl Scheme {
 
     /// The choices by FMU code, e.g. "1 backward Euler, the paper's (order 1), 2 BDF-2 (order 2), ...".
     pub fn code_help() -> String {
-        Self::ALL.iter().map(|s| format!("{} {}", s.code(), s.description())).collect::<Vec<_>>().join(", ")
+        Self::ALL
+            .iter()
+            .map(|s| format!("{} {}", s.code(), s.description()))
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 
     /// The scheme's formula with a full history.
@@ -247,7 +261,16 @@ fn bdf_formula(k: usize) -> Formula {
         2 => (2.0 / 3.0, &[-4.0 / 3.0, 1.0 / 3.0]),
         3 => (6.0 / 11.0, &[-18.0 / 11.0, 9.0 / 11.0, -2.0 / 11.0]),
         4 => (12.0 / 25.0, &[-48.0 / 25.0, 36.0 / 25.0, -16.0 / 25.0, 3.0 / 25.0]),
-        _ => (60.0 / 137.0, &[-300.0 / 137.0, 300.0 / 137.0, -200.0 / 137.0, 75.0 / 137.0, -12.0 / 137.0]),
+        _ => (
+            60.0 / 137.0,
+            &[
+                -300.0 / 137.0,
+                300.0 / 137.0,
+                -200.0 / 137.0,
+                75.0 / 137.0,
+                -12.0 / 137.0,
+            ],
+        ),
     };
     Formula::new(1.0 / beta, alpha)
 }
@@ -270,7 +293,10 @@ impl FromStr for Scheme {
         if s == "bdf1" {
             return Ok(Scheme::BackwardEuler);
         }
-        Self::ALL.into_iter().find(|scheme| scheme.name() == s).ok_or_else(|| UnknownScheme(s.to_string()))
+        Self::ALL
+            .into_iter()
+            .find(|scheme| scheme.name() == s)
+            .ok_or_else(|| UnknownScheme(s.to_string()))
     }
 }
 
@@ -332,7 +358,11 @@ impl<const K: usize> StepFormula<K> {
     /// as [`kinematics`](Self::kinematics)).
     pub fn slopes(&self) -> Slopes {
         let c_dt = self.rate * self.dt;
-        Slopes { velocity: self.rate, velocity_dt2: c_dt * self.dt, acceleration_dt2: c_dt * c_dt }
+        Slopes {
+            velocity: self.rate,
+            velocity_dt2: c_dt * self.dt,
+            acceleration_dt2: c_dt * c_dt,
+        }
     }
 }
 
@@ -355,17 +385,31 @@ impl<const K: usize, S: Method> History<K, S> {
     ///   from there on (measured in the tests on a start in the middle of a
     ///   move).
     pub fn new(method: S, y0: SVector<f64, K>, v0: SVector<f64, K>, at_rest: bool) -> Self {
-        if at_rest { Self::at_rest(method, y0) } else { Self::start(method, y0, v0) }
+        if at_rest {
+            Self::at_rest(method, y0)
+        } else {
+            Self::start(method, y0, v0)
+        }
     }
 
     /// A history at rest: every past value `y0`, every past rate zero.
     pub fn at_rest(method: S, y0: SVector<f64, K>) -> Self {
-        Self { method, values: [y0; MAX_STEPS], rates: [SVector::zeros(); MAX_STEPS], known: MAX_STEPS }
+        Self {
+            method,
+            values: [y0; MAX_STEPS],
+            rates: [SVector::zeros(); MAX_STEPS],
+            known: MAX_STEPS,
+        }
     }
 
     /// A history that knows only the start `(y0, v0)`.
     pub fn start(method: S, y0: SVector<f64, K>, v0: SVector<f64, K>) -> Self {
-        Self { method, values: [y0; MAX_STEPS], rates: [v0; MAX_STEPS], known: 1 }
+        Self {
+            method,
+            values: [y0; MAX_STEPS],
+            rates: [v0; MAX_STEPS],
+            known: 1,
+        }
     }
 
     /// A history from past values and rates, newest (`t0`) first (at least
@@ -419,7 +463,12 @@ impl<const K: usize, S: Method> History<K, S> {
             value_offset -= self.values[j] * formula.alpha[j];
             rate_offset -= self.rates[j] * formula.alpha[j];
         }
-        StepFormula { rate: formula.c / dt, dt, value_offset, rate_offset }
+        StepFormula {
+            rate: formula.c / dt,
+            dt,
+            value_offset,
+            rate_offset,
+        }
     }
 
     /// Predictor for the next value: the polynomial through the last
@@ -458,7 +507,13 @@ mod tests {
             assert_eq!(f.steps, k);
             for degree in 0..=k {
                 let y = |t: f64| t.powi(degree as i32);
-                let dy = |t: f64| if degree == 0 { 0.0 } else { degree as f64 * t.powi(degree as i32 - 1) };
+                let dy = |t: f64| {
+                    if degree == 0 {
+                        0.0
+                    } else {
+                        degree as f64 * t.powi(degree as i32 - 1)
+                    }
+                };
                 let dt = 0.5;
                 let t_new = 1.0;
                 let past: Vec<_> = (1..=k).map(|j| vector![y(t_new - j as f64 * dt)]).collect();
@@ -466,7 +521,11 @@ mod tests {
                 assert_eq!(history.order(), k);
                 let step = history.formula(dt);
                 let (v, _) = step.kinematics(0, y(t_new), dt);
-                assert!((v - dy(t_new)).abs() < 1e-12, "{scheme} degree {degree}: {v} vs {}", dy(t_new));
+                assert!(
+                    (v - dy(t_new)).abs() < 1e-12,
+                    "{scheme} degree {degree}: {v} vs {}",
+                    dy(t_new)
+                );
             }
         }
     }
@@ -494,7 +553,10 @@ mod tests {
             let (v0, a0) = step.kinematics(0, 2.0, dt);
             let (v1, a1) = step.kinematics(0, 3.0, dt);
             assert!((v1 - v0 - slopes.velocity).abs() < 1e-9 * slopes.velocity, "{scheme}");
-            assert!((a1 - a0 - slopes.acceleration_dt2).abs() < 1e-12 * slopes.acceleration_dt2, "{scheme}");
+            assert!(
+                (a1 - a0 - slopes.acceleration_dt2).abs() < 1e-12 * slopes.acceleration_dt2,
+                "{scheme}"
+            );
             assert!(((v1 - v0) * dt * dt - slopes.velocity_dt2).abs() < 1e-12, "{scheme}");
         }
     }

@@ -87,9 +87,16 @@ pub struct Stepper<P, S: Method, const N: usize, const M: usize, const A: usize,
 /// The runtime error for a failed Newton solve of the step to `t`.
 fn step_error(failure: NewtonFailure, t: f64) -> Error {
     match failure {
-        NewtonFailure::NotConverged { iterations, residual } => Error::NewtonNotConverged { t, iterations, residual },
+        NewtonFailure::NotConverged { iterations, residual } => Error::NewtonNotConverged {
+            t,
+            iterations,
+            residual,
+        },
         NewtonFailure::Singular { pivot_ratio } => Error::SingularIterationMatrix { t, pivot_ratio },
-        NewtonFailure::NonFinite => Error::NonFinite { quantity: "Newton iterate", t },
+        NewtonFailure::NonFinite => Error::NonFinite {
+            quantity: "Newton iterate",
+            t,
+        },
     }
 }
 
@@ -193,8 +200,10 @@ where
             // a weakly determined direction: retry from the last step
             Err(first) if predictor == Predictor::Extrapolation && self.known >= 3 => {
                 self.z.copy_from(&self.past[0]);
-                let mut retried =
-                    self.newton.solve(&mut self.problem, &mut self.z).map_err(|failure| step_error(failure, t))?;
+                let mut retried = self
+                    .newton
+                    .solve(&mut self.problem, &mut self.z)
+                    .map_err(|failure| step_error(failure, t))?;
                 if let NewtonFailure::NotConverged { iterations, .. } = first {
                     retried.iterations += iterations;
                 }
@@ -204,7 +213,10 @@ where
         };
         let accepted = self.problem.accept(t, &self.z)?;
         self.record(accepted, predictor);
-        Ok(StepReport { iterations: converged.iterations, min_norm_steps: converged.min_norm_steps })
+        Ok(StepReport {
+            iterations: converged.iterations,
+            min_norm_steps: converged.min_norm_steps,
+        })
     }
 
     /// Newton's first iterate of the step (see [`Predictor`]).
@@ -223,7 +235,11 @@ where
             Predictor::Extrapolation => {
                 let [h0, h1, h2] = &self.past;
                 for i in 0..self.z.len() {
-                    self.z[i] = if self.known >= 3 { 3.0 * h0[i] - 3.0 * h1[i] + h2[i] } else { h0[i] };
+                    self.z[i] = if self.known >= 3 {
+                        3.0 * h0[i] - 3.0 * h1[i] + h2[i]
+                    } else {
+                        h0[i]
+                    };
                 }
             }
         }
@@ -261,10 +277,18 @@ where
 
 /// Refuse a step to `t` that is not `t_n + dt` (to 1e-9 of the step).
 fn check_step_time(t: f64, t_prev: f64, dt: f64) -> Result<(), Error> {
-    if (t - (t_prev + dt)).abs() <= 1e-9 * dt { Ok(()) } else { Err(Error::WrongStepTime { t, expected: t_prev + dt }) }
+    if (t - (t_prev + dt)).abs() <= 1e-9 * dt {
+        Ok(())
+    } else {
+        Err(Error::WrongStepTime {
+            t,
+            expected: t_prev + dt,
+        })
+    }
 }
 
-impl<P, S, const N: usize, const M: usize, const A: usize, const K: usize> Advance<N, M, A> for Stepper<P, S, N, M, A, K>
+impl<P, S, const N: usize, const M: usize, const A: usize, const K: usize> Advance<N, M, A>
+    for Stepper<P, S, N, M, A, K>
 where
     P: Problem<N, M, A, K>,
     S: Method,
@@ -292,7 +316,8 @@ where
 /// `second` follows each of those states ([`Stepper::follow`]), so its
 /// history is its own when it takes over.
 #[derive(Clone)]
-pub struct Handover<P1, P2, S: Method, const N: usize, const M: usize, const A: usize, const K1: usize, const K2: usize> {
+pub struct Handover<P1, P2, S: Method, const N: usize, const M: usize, const A: usize, const K1: usize, const K2: usize>
+{
     first: Option<Stepper<P1, S, N, M, A, K1>>,
     second: Stepper<P2, S, N, M, A, K2>,
     first_steps: usize,
@@ -311,8 +336,16 @@ where
         second: Stepper<P2, S, N, M, A, K2>,
         first: impl FnOnce() -> Result<Stepper<P1, S, N, M, A, K1>, Error>,
     ) -> Result<Self, Error> {
-        let first = if second.problem.can_take_over(&second.state) { None } else { Some(first()?) };
-        Ok(Self { first, second, first_steps: 0 })
+        let first = if second.problem.can_take_over(&second.state) {
+            None
+        } else {
+            Some(first()?)
+        };
+        Ok(Self {
+            first,
+            second,
+            first_steps: 0,
+        })
     }
 
     /// How many steps the first problem took.
@@ -334,7 +367,9 @@ where
 
     /// Advance one step to `t` (`t_n + dt`) with the given drive.
     pub fn step_to(&mut self, t: f64, drive: &P2::Drive) -> Result<StepReport, Error> {
-        let Some(first) = self.first.as_mut() else { return self.second.step_to(t, drive) };
+        let Some(first) = self.first.as_mut() else {
+            return self.second.step_to(t, drive);
+        };
         check_step_time(t, self.second.state.t, self.second.dt)?;
         let report = first.step_to(t, drive)?;
         let state = first.state;

@@ -58,11 +58,7 @@ impl CraneModel<4, 1, 2> for Gantry {
         // a little velocity-dependent friction on the trolley, so that df/dv counts
         SVector::from([-v[0] * 3.0, T::from(0.0), T::from(0.0), T::from(-200.0 * 9.81)])
     }
-    fn force_jacobians<T: Scalar>(
-        &self,
-        _: &SVector<T, 4>,
-        _: &SVector<T, 4>,
-    ) -> (SMatrix<T, 4, 4>, SMatrix<T, 4, 4>) {
+    fn force_jacobians<T: Scalar>(&self, _: &SVector<T, 4>, _: &SVector<T, 4>) -> (SMatrix<T, 4, 4>, SMatrix<T, 4, 4>) {
         let mut df_dv = SMatrix::zeros();
         df_dv[(0, 0)] = T::from(-3.0);
         (SMatrix::zeros(), df_dv)
@@ -83,7 +79,6 @@ impl CraneModel<4, 1, 2> for Gantry {
         out[0] = q[1];
     }
 }
-
 
 /// Uniform numbers in [-1, 1) from a xorshift generator seeded with `seed`.
 pub(crate) fn uniform(mut seed: u64) -> impl FnMut() -> f64 {

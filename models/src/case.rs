@@ -98,6 +98,15 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
         init::check_start(&self.model, &self.path, self.t0(), &self.p0, None)
     }
 
+    /// The consistent start at `t0` from `p0` at rest: `p0` itself where
+    /// it is consistent ([`start`](Self::start) at the path's start), else
+    /// the static equilibrium from it (parameters or a later start time
+    /// moved it).
+    pub fn consistent_start(&self, t0: f64) -> Result<State<N, M, A>, Error> {
+        init::check_start(&self.model, &self.path, t0, &self.p0, None)
+            .or_else(|_| init::static_equilibrium(&self.model, &self.path, t0, &self.p0))
+    }
+
     /// The analytical reference at `t`, if the crane has one.
     pub fn reference(&self, t: f64) -> Option<State<N, M, A>> {
         C::reference(&self.model, &self.path, t)

@@ -29,6 +29,7 @@ pub mod drawing;
 pub mod path;
 pub mod plan;
 pub mod registry;
+pub mod study;
 
 pub mod coupled_trolley;
 pub mod gantry_3d;
@@ -40,5 +41,5 @@ pub mod tower_crane;
 
 pub use case::Case;
 pub use crane::{Crane, Maneuver};
-pub use path::{Path, PathSpec, Profile};
+pub use path::{Path, PathSpec, Profile, ProfileKind};
 pub use registry::{CATALOG, Entry, Visit};

@@ -10,6 +10,82 @@ use crane_runtime::Trajectory;
 use crane_runtime::trajectory::{Poly9, SmoothThreePhase, ThreePhase, TrajectoryError};
 use nalgebra::SVector;
 
+/// The kind of a move's profile: the one list of profiles that scenario
+/// files (by name: `trajectory = "poly9"`), planning and the FMU (by
+/// integer code: the `path` variable) name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ProfileKind {
+    /// Rest-to-rest 5-6-7-8-9 polynomial (eqs. 41-45).
+    Poly9,
+    /// Ramp, constant speed, ramp (eqs. 85-86 as corrected, docs/errata.md):
+    /// four times continuously differentiable.
+    ThreePhase,
+    /// The same with ramps continuous up to the 6th derivative (bounded
+    /// slewing torque for the 3D crane with pulley mass, docs/errata.md).
+    SmoothThreePhase,
+}
+
+impl ProfileKind {
+    /// All kinds, in the order of their codes.
+    pub const ALL: [ProfileKind; 3] = [
+        ProfileKind::Poly9,
+        ProfileKind::ThreePhase,
+        ProfileKind::SmoothThreePhase,
+    ];
+
+    /// The name in scenario files: `poly9`, `three-phase`, `smooth-three-phase`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ProfileKind::Poly9 => "poly9",
+            ProfileKind::ThreePhase => "three-phase",
+            ProfileKind::SmoothThreePhase => "smooth-three-phase",
+        }
+    }
+
+    /// The integer code (the FMU's `path` variable): 0, 1, 2.
+    pub fn code(self) -> i32 {
+        match self {
+            ProfileKind::Poly9 => 0,
+            ProfileKind::ThreePhase => 1,
+            ProfileKind::SmoothThreePhase => 2,
+        }
+    }
+
+    /// The kind of an integer code, if it is one.
+    pub fn from_code(code: i32) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.code() == code)
+    }
+
+    /// Whether the profile has ramps of a duration `tau0`.
+    pub fn has_ramps(self) -> bool {
+        self != ProfileKind::Poly9
+    }
+
+    /// The profile of this kind; `tau0` is the ramp duration of the
+    /// three-phase kinds (ignored for poly9; `None` there is an error
+    /// naming what is missing).
+    pub fn profile(self, tau0: Option<f64>) -> Result<Profile, MissingRamp> {
+        match (self, tau0) {
+            (ProfileKind::Poly9, _) => Ok(Profile::Poly9),
+            (ProfileKind::ThreePhase, Some(tau0)) => Ok(Profile::ThreePhase { tau0 }),
+            (ProfileKind::SmoothThreePhase, Some(tau0)) => Ok(Profile::SmoothThreePhase { tau0 }),
+            (kind, None) => Err(MissingRamp(kind)),
+        }
+    }
+}
+
+impl std::fmt::Display for ProfileKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A three-phase profile asked for without its ramp duration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("the {0} profile needs its ramp duration tau0")]
+pub struct MissingRamp(pub ProfileKind);
+
 /// The profile of a move.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Profile {
@@ -26,6 +102,34 @@ pub enum Profile {
         /// Ramp duration, s.
         tau0: f64,
     },
+}
+
+impl Profile {
+    /// Its kind.
+    pub fn kind(self) -> ProfileKind {
+        match self {
+            Profile::Poly9 => ProfileKind::Poly9,
+            Profile::ThreePhase { .. } => ProfileKind::ThreePhase,
+            Profile::SmoothThreePhase { .. } => ProfileKind::SmoothThreePhase,
+        }
+    }
+
+    /// The ramp duration, if the profile has ramps.
+    pub fn tau0(self) -> Option<f64> {
+        match self {
+            Profile::Poly9 => None,
+            Profile::ThreePhase { tau0 } | Profile::SmoothThreePhase { tau0 } => Some(tau0),
+        }
+    }
+
+    /// The same profile with its ramps scaled by `factor` (a move scaled in time).
+    pub fn scaled(self, factor: f64) -> Self {
+        match self {
+            Profile::Poly9 => Profile::Poly9,
+            Profile::ThreePhase { tau0 } => Profile::ThreePhase { tau0: tau0 * factor },
+            Profile::SmoothThreePhase { tau0 } => Profile::SmoothThreePhase { tau0: tau0 * factor },
+        }
+    }
 }
 
 /// A move of the load from `start` at `t0` to `end` at `t1` on a profile.

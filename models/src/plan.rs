@@ -25,11 +25,12 @@
 
 use rayon::prelude::*;
 
-use crane_runtime::{CraneModel, Options, Scheme, Solution, init};
+use crane_runtime::{CraneModel, Options, Scheme, Solution};
 
 use crate::case::Case;
 use crate::crane::Crane;
-use crate::path::{Path, PathSpec, Profile};
+use crate::path::{Path, PathSpec};
+use crate::study::summary::SLACK_TOLERANCE;
 
 /// Torque limits `|u_k| <= limit` and tension floors `N_r >= floor`, by
 /// input and rope index.
@@ -78,6 +79,9 @@ pub struct Evaluation {
     pub peak_u: Vec<(f64, f64)>,
     /// `(min N_r, time)` per rope.
     pub min_tension: Vec<(f64, f64)>,
+    /// The largest `|N_r|` of each rope over the run (the scale of its
+    /// round-off, [`below_floor`](crate::study::below_floor)).
+    pub peak_tension: Vec<f64>,
     /// The run's error, if it failed (then infeasible).
     pub error: Option<String>,
 }
@@ -96,16 +100,12 @@ pub struct Binding {
     /// How far past the limit, relative (`> 0`: past it).
     pub excess: f64,
     /// The excess still counted as within the limit: 0 for torques,
-    /// [`TENSION_ROUNDOFF`] for tensions.
+    /// for tensions the one slack rule's round-off
+    /// ([`below_floor`](crate::study::below_floor)), in the units of `excess`.
     pub allowance: f64,
     /// A tension floor (`value` is then a minimum), not a torque limit.
     pub tension: bool,
 }
-
-/// A tension this far below its floor, relative to `max(|floor|, 1 N)`,
-/// is round-off, not a violation: the paper's rope 1 carries -2.6e-13 N at
-/// its start, where it is slack by construction.
-pub const TENSION_ROUNDOFF: f64 = 1e-6;
 
 impl Limits {
     /// The same limits with a floor of 0 (taut) on every rope of `Mdl`
@@ -145,7 +145,7 @@ impl Evaluation {
             }
         }
         for &(r, floor) in &limits.tension {
-            if let Some(&(value, at)) = self.min_tension.get(r) {
+            if let (Some(&(value, at)), Some(&peak)) = (self.min_tension.get(r), self.peak_tension.get(r)) {
                 let scale = floor.abs().max(1.0);
                 out.push(Binding {
                     name: info.ropes[r].tension.to_string(),
@@ -153,7 +153,7 @@ impl Evaluation {
                     value,
                     at,
                     excess: (floor - value) / scale,
-                    allowance: TENSION_ROUNDOFF,
+                    allowance: SLACK_TOLERANCE * peak.max(floor.abs()) / scale,
                     tension: true,
                 });
             }
@@ -163,7 +163,8 @@ impl Evaluation {
     }
 
     /// Whether the run succeeded within every limit (a tension at its
-    /// floor to within [`TENSION_ROUNDOFF`] counts as at it).
+    /// floor to within round-off counts as at it:
+    /// [`below_floor`](crate::study::below_floor)).
     pub fn feasible<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
         &self,
         limits: &Limits,
@@ -187,11 +188,7 @@ pub fn with_duration<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
     let spec = *case.path().spec();
     let settle = (case.tf() - spec.t1).max(0.0);
     let scale = duration / (spec.t1 - spec.t0);
-    let profile = match spec.profile {
-        Profile::Poly9 => Profile::Poly9,
-        Profile::ThreePhase { tau0 } => Profile::ThreePhase { tau0: tau0 * scale },
-        Profile::SmoothThreePhase { tau0 } => Profile::SmoothThreePhase { tau0: tau0 * scale },
-    };
+    let profile = spec.profile.scaled(scale);
     let path = Path::new(PathSpec {
         profile,
         t1: spec.t0 + duration,
@@ -221,11 +218,10 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     }
     let steps = (span / settings.dt - 1e-9).ceil().max(1.0);
     let dt = span / steps;
-    let start = case
-        .start()
-        .or_else(|_| init::static_equilibrium(case.model(), case.path(), t0, &case.p0))
-        .map_err(|e| e.to_string())?;
-    let options = Options::new(dt, tf).map_err(|e| e.to_string())?.with_scheme(settings.scheme);
+    let start = case.consistent_start(t0).map_err(|e| e.to_string())?;
+    let options = Options::new(dt, tf)
+        .map_err(|e| e.to_string())?
+        .with_scheme(settings.scheme);
     case.simulate(&start, &options).map_err(|e| e.to_string())
 }
 
@@ -270,10 +266,14 @@ pub fn peaks<const N: usize, const M: usize, const A: usize>(duration: f64, run:
             (-value, at)
         })
         .collect();
+    let peak_tension = (0..ropes)
+        .map(|r| (0..states.len()).fold(0.0f64, |m, i| m.max(run.tensions_at(i)[r].abs())))
+        .collect();
     Evaluation {
         duration,
         peak_u,
         min_tension,
+        peak_tension,
         error: None,
     }
 }
@@ -300,6 +300,7 @@ fn evaluate_model<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
                 duration,
                 peak_u: Vec::new(),
                 min_tension: Vec::new(),
+                peak_tension: Vec::new(),
                 error: Some(error),
             },
             None,
@@ -604,6 +605,7 @@ pub fn sweep_point<C: Crane<N, M, A>, const N: usize, const M: usize, const A: u
             duration,
             peak_u: Vec::new(),
             min_tension: Vec::new(),
+            peak_tension: Vec::new(),
             error: Some(e),
         },
         None => evaluate_model(case, model, duration, settings).0,

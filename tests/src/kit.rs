@@ -44,7 +44,9 @@ pub fn run_to<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>
     let start = case
         .start()
         .unwrap_or_else(|e| panic!("{}: the start is consistent: {e}", C::NAME));
-    let options = Options::new(dt, tf).unwrap_or_else(|e| panic!("{}: {e}", C::NAME)).with_scheme(scheme);
+    let options = Options::new(dt, tf)
+        .unwrap_or_else(|e| panic!("{}: {e}", C::NAME))
+        .with_scheme(scheme);
     let result = match formulation {
         Formulation::Redundant => case.simulate(&start, &options),
         Formulation::Minimal => case

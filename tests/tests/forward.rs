@@ -34,8 +34,13 @@ fn replaying_the_analytical_inputs_keeps_the_load_on_the_path() {
             .iter()
             .map(|&dt| {
                 let inputs = |t: f64| reference_at(&model, &path, t).u;
-                let run = simulate_forward(case.model(), inputs, &start, &Options::new(dt, 4.0).unwrap().with_scheme(scheme))
-                    .unwrap_or_else(|e| panic!("{scheme} dt = {dt}: {e}"));
+                let run = simulate_forward(
+                    case.model(),
+                    inputs,
+                    &start,
+                    &Options::new(dt, 4.0).unwrap().with_scheme(scheme),
+                )
+                .unwrap_or_else(|e| panic!("{scheme} dt = {dt}: {e}"));
                 largest_deviation(&case, &run)
             })
             .collect();
@@ -77,8 +82,13 @@ fn on_a_smooth_path_the_replay_has_order_k() {
             .iter()
             .map(|&dt| {
                 let inputs = |t: f64| gantry_reference(&model, &path, t).u;
-                let run =
-                    simulate_forward(case.model(), inputs, &start, &Options::new(dt, 8.0).unwrap().with_scheme(scheme)).unwrap();
+                let run = simulate_forward(
+                    case.model(),
+                    inputs,
+                    &start,
+                    &Options::new(dt, 8.0).unwrap().with_scheme(scheme),
+                )
+                .unwrap();
                 run.states
                     .iter()
                     .map(|s| (s.q.fixed_rows::<3>(3) - path.derivative(s.t, 0)).amax())

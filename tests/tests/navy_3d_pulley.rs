@@ -509,7 +509,10 @@ fn in_the_vertical_plane_it_is_the_planar_pulley_crane_of_appendix_b() {
             .iter()
             .map(|&dt| {
                 let run = case
-                    .simulate(&case.start().unwrap(), &Options::new(dt, 1.5).unwrap().with_scheme(scheme))
+                    .simulate(
+                        &case.start().unwrap(),
+                        &Options::new(dt, 1.5).unwrap().with_scheme(scheme),
+                    )
                     .unwrap();
                 let off_plane = run
                     .states

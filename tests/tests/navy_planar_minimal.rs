@@ -149,7 +149,13 @@ fn a_singular_split_is_a_typed_error_not_a_nan() {
     let crane = BadSplitGantry::default();
     let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
     let start = init::static_equilibrium(&crane, &path, 0.0, &[0.3, 4.5]).unwrap();
-    let result = simulate_minimal(&crane, &path, &start, &vector![5.0, 0.0, 0.0], &Options::new(0.01, 5.0).unwrap());
+    let result = simulate_minimal(
+        &crane,
+        &path,
+        &start,
+        &vector![5.0, 0.0, 0.0],
+        &Options::new(0.01, 5.0).unwrap(),
+    );
     match result {
         Err(Error::SingularOutputJacobian { t, condition }) => {
             assert_eq!(t, 0.0);

@@ -179,10 +179,19 @@ fn invalid_settings_are_typed_errors() {
     let model = case.model();
     // the settings are checked once, when they are made
     assert!(matches!(Options::new(-0.1, 4.0), Err(Error::InvalidTimeStep { .. })));
-    assert!(matches!(Options::new(f64::NAN, 4.0), Err(Error::InvalidTimeStep { .. })));
-    assert!(matches!(Options::new(0.1, f64::INFINITY), Err(Error::InvalidEndTime { .. })));
+    assert!(matches!(
+        Options::new(f64::NAN, 4.0),
+        Err(Error::InvalidTimeStep { .. })
+    ));
+    assert!(matches!(
+        Options::new(0.1, f64::INFINITY),
+        Err(Error::InvalidEndTime { .. })
+    ));
     assert!(matches!(Options::stepping(0.0), Err(Error::InvalidTimeStep { .. })));
-    let no_iterations = crane_runtime::newton::NewtonOptions { max_iterations: 0, ..Default::default() };
+    let no_iterations = crane_runtime::newton::NewtonOptions {
+        max_iterations: 0,
+        ..Default::default()
+    };
     assert!(matches!(
         Options::new(0.1, 4.0).unwrap().with_newton(no_iterations),
         Err(Error::InvalidNewtonOptions(_))

@@ -57,6 +57,8 @@ pub enum ScenarioError {
     LimitNotPositive { key: String, value: f64 },
     #[error("scenario: `scheme`: {0}")]
     Scheme(UnknownScheme),
+    #[error("scenario: `tf`: {0}")]
+    Time(crane_runtime::Error),
 }
 
 #[cfg(test)]
@@ -79,6 +81,7 @@ impl ScenarioError {
             Physical(_) => Some("parameters".into()),
             UnknownInput { key, .. } | LimitNotPositive { key, .. } => Some(format!("limits.{key}")),
             Scheme(_) => Some("scheme".into()),
+            Time(_) => Some("tf".into()),
         }
     }
 }

@@ -8,20 +8,8 @@ use std::path::Path;
 use serde::Deserialize;
 
 use super::ScenarioError;
-use crate::Formulation;
-
-/// Trajectory profile.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Kind {
-    /// Rest-to-rest 5-6-7-8-9 polynomial (eqs. 41-45).
-    Poly9,
-    /// Ramp, constant speed, ramp (eqs. 85-86).
-    ThreePhase,
-    /// The same with ramps continuous up to the 6th derivative (bounded
-    /// slewing torque for the 3D crane with pulley mass, see docs/errata.md).
-    SmoothThreePhase,
-}
+use crane_models::ProfileKind;
+use crane_models::study::Formulation;
 
 /// A scenario file as written.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -36,7 +24,7 @@ pub struct ScenarioFile {
     pub scheme: Option<String>,
     pub p0: Option<Vec<f64>>,
     /// Profile of the load path.
-    pub trajectory: Option<Kind>,
+    pub trajectory: Option<ProfileKind>,
     /// Ramp duration of `three-phase`, s.
     pub tau0: Option<f64>,
     /// Load coordinates at `t0`.

@@ -2,7 +2,7 @@
 //! times, parameters, start and torque limits of a run, applied over the
 //! model's default manoeuvre. Three stages: [`file`] (the schema as
 //! written), [`error`] (what can be wrong, naming the key), [`resolve`]
-//! (the file against a crane: a `Case` and the run settings).
+//! (the file against a crane: a `RunSpec`, then its `Case` and run settings).
 //!
 //! ```toml
 //! dt = 0.01                 # time step, s
@@ -10,7 +10,7 @@
 //! formulation = "redundant" # or "minimal"
 //! scheme = "bdf4"           # backward-euler (default, also bdf1), bdf2 .. bdf5
 //! p0 = [8.66, 10, 5, 0, -5] # start of the robot coordinates (default: the paper's)
-//! trajectory = "poly9"      # or "three-phase" (then tau0 = ramp duration, s)
+//! trajectory = "poly9"      # or "three-phase", "smooth-three-phase" (then tau0 = ramp duration, s)
 //! start = [0.0, -10.0]      # load coordinates at t0
 //! end = [-3.0, -14.0]       # load coordinates at t1
 //! t0 = 0.0                  # start of the motion and the run, s
@@ -31,12 +31,11 @@ mod file;
 mod resolve;
 
 pub use error::ScenarioError;
-pub use file::{Kind, ScenarioFile};
+pub use file::ScenarioFile;
 pub use resolve::build;
 
+use crane_models::study::Formulation;
 use crane_runtime::Scheme;
-
-use crate::Formulation;
 
 /// Command-line values that override the file.
 #[derive(Debug, Clone, Default)]
@@ -46,21 +45,6 @@ pub struct Overrides {
     pub formulation: Option<Formulation>,
     pub scheme: Option<Scheme>,
 }
-
-/// Everything a run needs besides the case.
-pub struct Settings {
-    pub dt: f64,
-    pub formulation: Formulation,
-    pub scheme: Scheme,
-    /// `(input index, limit)` pairs.
-    pub limits: Vec<(usize, f64)>,
-    /// The `[plant]` table: parameters of the replay's plant that differ
-    /// from the planner's.
-    pub plant: Vec<(String, f64)>,
-}
-
-/// Default time step when neither the file nor the command line gives one.
-pub const DEFAULT_DT: f64 = 0.01;
 
 #[cfg(test)]
 mod tests {

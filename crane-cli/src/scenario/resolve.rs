@@ -1,12 +1,14 @@
 //! A scenario file against a built-in crane: its default manoeuvre with the
-//! file's keys and the command line's flags applied, giving the run's
-//! [`Case`] and [`Settings`].
+//! file's keys and the command line's flags applied, as a [`RunSpec`]
+//! (checked by [`RunSpec::build`], whose errors are named here by the keys
+//! they come from), giving the run's [`Case`] and [`RunSettings`].
 
-use crane_models::{Case, Crane, Path, PathSpec, Profile};
+use crane_models::study::{RunSettings, RunSpec, SpecError};
+use crane_models::{Case, Crane, PathSpec, ProfileKind};
 use crane_runtime::CraneModel;
 use nalgebra::SVector;
 
-use super::{DEFAULT_DT, Kind, Overrides, ScenarioError, ScenarioFile, Settings};
+use super::{Overrides, ScenarioError, ScenarioFile};
 
 fn positive(key: &'static str, value: f64) -> Result<f64, ScenarioError> {
     if value.is_finite() && value > 0.0 {
@@ -71,27 +73,13 @@ fn path_of<const A: usize>(
     if !(t1.is_finite() && t1 > t0) {
         return Err(ScenarioError::MotionEndsBeforeStart { t1, t0 });
     }
-    let default_tau0 = match default.profile {
-        Profile::Poly9 => None,
-        Profile::ThreePhase { tau0 } | Profile::SmoothThreePhase { tau0 } => Some(tau0),
-    };
-    let kind = file.trajectory.unwrap_or(match default.profile {
-        Profile::Poly9 => Kind::Poly9,
-        Profile::ThreePhase { .. } => Kind::ThreePhase,
-        Profile::SmoothThreePhase { .. } => Kind::SmoothThreePhase,
-    });
-    let profile = match kind {
-        Kind::Poly9 if file.tau0.is_some() => return Err(ScenarioError::RampWithoutPhases),
-        Kind::Poly9 => Profile::Poly9,
-        Kind::ThreePhase | Kind::SmoothThreePhase => {
-            let tau0 = file.tau0.or(default_tau0).ok_or(ScenarioError::RampMissing)?;
-            if kind == Kind::ThreePhase {
-                Profile::ThreePhase { tau0 }
-            } else {
-                Profile::SmoothThreePhase { tau0 }
-            }
-        }
-    };
+    let kind = file.trajectory.unwrap_or(default.profile.kind());
+    if kind == ProfileKind::Poly9 && file.tau0.is_some() {
+        return Err(ScenarioError::RampWithoutPhases);
+    }
+    let profile = kind
+        .profile(file.tau0.or(default.profile.tau0()))
+        .map_err(|_| ScenarioError::RampMissing)?;
     let start = match &file.start {
         Some(v) => vector::<A>("start", v, name, loads)?,
         None => default.start,
@@ -109,12 +97,12 @@ fn path_of<const A: usize>(
     })
 }
 
-/// Build the case and settings of `crane run MODEL` from a scenario (or none:
-/// the default manoeuvre) and the command-line overrides.
-pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+/// The run of `crane run MODEL` as data: crane `C`'s default manoeuvre with
+/// the scenario's keys (or none) and the command-line overrides applied.
+fn spec<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     file: Option<&ScenarioFile>,
     overrides: &Overrides,
-) -> Result<(Case<C, N, M, A>, Settings), ScenarioError> {
+) -> Result<RunSpec<A>, ScenarioError> {
     let empty = ScenarioFile::default();
     let file = file.unwrap_or(&empty);
     let name = C::NAME;
@@ -125,90 +113,70 @@ pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             running: name.into(),
         });
     }
-    let default = C::maneuver();
-    let dt = positive("dt", overrides.dt.or(file.dt).unwrap_or(DEFAULT_DT))?;
-    let formulation = overrides
-        .formulation
-        .or(file.formulation)
-        .unwrap_or(crate::Formulation::Redundant);
+    let default = RunSpec::default_for::<C, N, M>();
     let scheme = match (overrides.scheme, &file.scheme) {
         (Some(scheme), _) => scheme,
         (None, Some(name)) => name.parse().map_err(ScenarioError::Scheme)?,
-        (None, None) => Default::default(),
+        (None, None) => default.scheme,
     };
     let tf_given = overrides.tf.or(file.tf);
-    let spec = path_of(&default.path, file, tf_given, name, &info.coordinates[N - A..])?;
-    let tf = tf_given.unwrap_or(spec.t1);
-    if !(tf.is_finite() && tf > spec.t0) {
-        return Err(ScenarioError::EndBeforeStart { tf, t0: spec.t0 });
-    }
-    let path = Path::new(spec).map_err(ScenarioError::Path)?;
-    let mut model = C::Model::default();
-    for (key, value) in &file.parameters {
-        if !value.is_finite() {
-            return Err(ScenarioError::NotFinite {
-                key: format!("parameters.{key}"),
-                value: *value,
-            });
-        }
-        model
-            .set_parameter(key, *value)
-            .map_err(|source| ScenarioError::Parameter {
-                key: key.clone(),
-                source,
-            })?;
-    }
-    // masses, inertias and lengths declared positive, and a positive
-    // semi-definite mass matrix, with the file's values
-    crane_runtime::driver::check_parameters(&model).map_err(|e| match e {
-        crane_runtime::Error::NonPositiveParameter { name, value } => ScenarioError::NotPositiveParameter {
-            key: name.to_string(),
+    let path = path_of(&default.path, file, tf_given, name, &info.coordinates[N - A..])?;
+    Ok(RunSpec {
+        parameters: file.parameters.iter().map(|(k, v)| (k.clone(), *v)).collect(),
+        path,
+        p0: file.p0.clone().unwrap_or(default.p0),
+        tf: tf_given.unwrap_or(path.t1),
+        dt: overrides.dt.or(file.dt).unwrap_or(default.dt),
+        scheme,
+        formulation: overrides
+            .formulation
+            .or(file.formulation)
+            .unwrap_or(default.formulation),
+        limits: file.limits.iter().map(|(k, v)| (k.clone(), *v)).collect(),
+        plant: file.plant.iter().map(|(k, v)| (k.clone(), *v)).collect(),
+    })
+}
+
+/// Build the case and settings of `crane run MODEL` from a scenario (or none:
+/// the default manoeuvre) and the command-line overrides; every error names
+/// the scenario key it is about.
+pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    file: Option<&ScenarioFile>,
+    overrides: &Overrides,
+) -> Result<(Case<C, N, M, A>, RunSettings), ScenarioError> {
+    let spec = spec::<C, N, M, A>(file, overrides)?;
+    spec.build::<C, N, M>().map_err(|error| by_key::<C, N, M, A>(error))
+}
+
+/// A [`SpecError`] as the scenario error of the key it comes from.
+fn by_key<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(error: SpecError) -> ScenarioError {
+    let model = C::NAME.to_string();
+    match error {
+        SpecError::UnknownParameter { name, source } => ScenarioError::Parameter { key: name, source },
+        SpecError::NonFiniteParameter { name, value } => ScenarioError::NotFinite {
+            key: format!("parameters.{name}"),
             value,
         },
-        other => ScenarioError::Physical(other),
-    })?;
-    let robot = &info.coordinates[..N - A];
-    let p0 = match &file.p0 {
-        Some(p0) if p0.len() != N - A => {
-            return Err(ScenarioError::WrongCount {
-                key: "p0",
-                expected: N - A,
-                model: name.into(),
-                names: robot.join(", "),
-                found: p0.len(),
-            });
-        }
-        Some(p0) => p0.clone(),
-        None => default.p0,
-    };
-    let mut limits = Vec::new();
-    for (key, &limit) in &file.limits {
-        let k = info
-            .inputs
-            .iter()
-            .position(|n| n == key)
-            .ok_or_else(|| ScenarioError::UnknownInput {
-                key: key.clone(),
-                model: name.into(),
-                inputs: info.inputs.join(", "),
-            })?;
-        if !(limit.is_finite() && limit > 0.0) {
-            return Err(ScenarioError::LimitNotPositive {
-                key: key.clone(),
-                value: limit,
-            });
-        }
-        limits.push((k, limit));
-    }
-    let plant = file.plant.iter().map(|(k, v)| (k.clone(), *v)).collect();
-    Ok((
-        Case::from_parts(model, path, p0, tf),
-        Settings {
-            dt,
-            formulation,
-            scheme,
-            limits,
-            plant,
+        SpecError::NotPositiveParameter { name, value } => ScenarioError::NotPositiveParameter { key: name, value },
+        SpecError::Physical(e) => ScenarioError::Physical(e),
+        SpecError::Path(e) => ScenarioError::Path(e),
+        SpecError::WrongStartLength { expected, names, found } => ScenarioError::WrongCount {
+            key: "p0",
+            expected,
+            model,
+            names,
+            found,
         },
-    ))
+        SpecError::EndBeforeStart { tf, t0 } => ScenarioError::EndBeforeStart { tf, t0 },
+        SpecError::Time(crane_runtime::Error::InvalidTimeStep { dt }) => {
+            ScenarioError::NotPositiveTime { key: "dt", value: dt }
+        }
+        SpecError::Time(e) => ScenarioError::Time(e),
+        SpecError::UnknownInput { name, inputs } => ScenarioError::UnknownInput {
+            key: name,
+            model,
+            inputs,
+        },
+        SpecError::LimitNotPositive { name, value } => ScenarioError::LimitNotPositive { key: name, value },
+    }
 }

@@ -27,7 +27,11 @@ where
     let tolerance = 1e-9 * start.v.amax().max(1.0);
     let residual = (p * mu_dot - start.v).amax();
     if residual > tolerance {
-        return Err(Error::InconsistentStart { equation: "q0' = P mu0' (eq. 8)".into(), residual, tolerance });
+        return Err(Error::InconsistentStart {
+            equation: "q0' = P mu0' (eq. 8)".into(),
+            residual,
+            tolerance,
+        });
     }
     Ok((mu, mu_dot))
 }
@@ -91,7 +95,11 @@ pub(super) struct OutputJacobian {
 impl OutputJacobian {
     /// Workspace for `a` load coordinates.
     pub(super) fn new(a: usize) -> Self {
-        Self { solver: DenseSolver::new(a), matrix: DMatrix::zeros(a, a), rhs: DVector::zeros(a) }
+        Self {
+            solver: DenseSolver::new(a),
+            matrix: DMatrix::zeros(a, a),
+            rhs: DVector::zeros(a),
+        }
     }
 
     /// Take `D2 phi_x` from `P`.
@@ -112,7 +120,11 @@ impl OutputJacobian {
         t: f64,
     ) -> Result<(), Error> {
         self.set::<N, F, A>(p);
-        let norm1 = |m: &DMatrix<f64>| m.column_iter().map(|c| c.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max);
+        let norm1 = |m: &DMatrix<f64>| {
+            m.column_iter()
+                .map(|c| c.iter().map(|x| x.abs()).sum::<f64>())
+                .fold(0.0, f64::max)
+        };
         let d_norm = norm1(&self.matrix);
         let inverse_norm = self.solver.inverse_norm1(&self.matrix);
         let condition = d_norm * inverse_norm;
@@ -123,13 +135,20 @@ impl OutputJacobian {
     }
 
     /// `x` with `D2 phi_x x = rhs(i)` (the matrix of the last [`set`](Self::set)).
-    pub(super) fn solve<const A: usize>(&mut self, rhs: impl Fn(usize) -> f64, t: f64) -> Result<SVector<f64, A>, Error> {
+    pub(super) fn solve<const A: usize>(
+        &mut self,
+        rhs: impl Fn(usize) -> f64,
+        t: f64,
+    ) -> Result<SVector<f64, A>, Error> {
         for i in 0..A {
             self.rhs[i] = rhs(i);
         }
         self.solver
             .solve(&self.matrix, &mut self.rhs)
-            .map_err(|_| Error::SingularOutputJacobian { t, condition: f64::INFINITY })?;
+            .map_err(|_| Error::SingularOutputJacobian {
+                t,
+                condition: f64::INFINITY,
+            })?;
         Ok(SVector::from_fn(|k, _| self.rhs[k]))
     }
 }

@@ -81,8 +81,13 @@ where
         for k in 0..A {
             mu_dot[split + k] = mu2_hat[k];
         }
-        let accel_dt2 =
-            SVector::<f64, F>::from_fn(|i, _| if i < split { formula.kinematics(i, mu[i], dt).1 } else { 0.0 });
+        let accel_dt2 = SVector::<f64, F>::from_fn(|i, _| {
+            if i < split {
+                formula.kinematics(i, mu[i], dt).1
+            } else {
+                0.0
+            }
+        });
         let curvature = model.null_space_rate(&mu, &mu_dot) * mu_dot; // its load rows are w (eq. 17)
         let s = self.output.solve::<A>(
             |i| {

@@ -60,7 +60,12 @@ impl<const N: usize, const A: usize, const F: usize> MinimalEquations<N, A, F> {
         Self {
             dt,
             target: [SVector::zeros(); 3],
-            formula: StepFormula { rate: f64::NAN, dt, value_offset: SVector::zeros(), rate_offset: SVector::zeros() },
+            formula: StepFormula {
+                rate: f64::NAN,
+                dt,
+                value_offset: SVector::zeros(),
+                rate_offset: SVector::zeros(),
+            },
             blocks: [0..F, F..F + A, F + A..F + 2 * A, F + 2 * A..F + 3 * A],
         }
     }
@@ -153,8 +158,12 @@ impl<const N: usize, const A: usize, const F: usize> MinimalEquations<N, A, F> {
     /// `P^T (M dq''dt^2 - dt^2 f_v dq' - (dt^2 f_q + d(B^T ut)/dq) dq)`, plus
     /// `(dP/dmu_j)^T r` (column `j` of `H(r)`) for the columns of `mu`; the
     /// columns of `ut` are `[-P^T B^T; 0]`.
-    pub(super) fn iteration_matrix<Mdl, const M: usize>(&self, model: &Mdl, x: &Point<f64, N, F, A>, jac: &mut DMatrix<f64>)
-    where
+    pub(super) fn iteration_matrix<Mdl, const M: usize>(
+        &self,
+        model: &Mdl,
+        x: &Point<f64, N, F, A>,
+        jac: &mut DMatrix<f64>,
+    ) where
         Mdl: MinimalMap<N, M, A, F>,
     {
         let dt = self.dt;
@@ -208,7 +217,11 @@ impl<const N: usize, const A: usize, const F: usize> MinimalEquations<N, A, F> {
         };
         let zero = SVector::<f64, N>::zeros();
         for j in 0..F {
-            let (sigma, rho) = if j < split { (slopes.velocity, slopes.acceleration_dt2) } else { (0.0, 0.0) };
+            let (sigma, rho) = if j < split {
+                (slopes.velocity, slopes.acceleration_dt2)
+            } else {
+                (0.0, 0.0)
+            };
             let (p_j, p_rate_j) = (p.column(j).into_owned(), p_rate.column(j).into_owned());
             let dqdd_dt2 = p_accel.column(j)
                 + map.curvature_jacobian.column(j) * dt2
@@ -234,7 +247,10 @@ impl<const N: usize, const A: usize, const F: usize> MinimalEquations<N, A, F> {
     }
 }
 
-pub(super) fn write_residual<T: Scalar, const F: usize, const A: usize>(r: &Residual<T, F, A>, mut out: impl FnMut(usize, T)) {
+pub(super) fn write_residual<T: Scalar, const F: usize, const A: usize>(
+    r: &Residual<T, F, A>,
+    mut out: impl FnMut(usize, T),
+) {
     for i in 0..F {
         out(i, r.dynamics[i]);
     }

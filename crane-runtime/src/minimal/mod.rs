@@ -167,7 +167,11 @@ where
             z[F + 2 * A + k] = dt * dt * start.u[k];
         }
         self.output.check::<N, F, A>(&model.null_space(&mu), start.t)?;
-        Ok(Start { y0: mu, v0: mu_dot, at_rest: init::at_rest(&self.trajectory, start) })
+        Ok(Start {
+            y0: mu,
+            v0: mu_dot,
+            at_rest: init::at_rest(&self.trajectory, start),
+        })
     }
 
     fn prepare(&mut self, _t: f64, target: &ServoTarget<A>, formula: StepFormula<F>) {
@@ -195,10 +199,17 @@ where
         self.normal_rhs.copy_from(&(jac_g * rhs));
         self.lambda_solver
             .solve(&self.normal, &mut self.normal_rhs)
-            .map_err(|s| Error::SingularIterationMatrix { t, pivot_ratio: s.pivot_ratio })?;
+            .map_err(|s| Error::SingularIterationMatrix {
+                t,
+                pivot_ratio: s.pivot_ratio,
+            })?;
         let lambda = SVector::<f64, M>::from_fn(|i, _| self.normal_rhs[i]);
         self.output.check::<N, F, A>(&p, t)?;
-        Ok(Accepted { state: State { t, q, v, u, lambda }, y: mu, v: mu_dot })
+        Ok(Accepted {
+            state: State { t, q, v, u, lambda },
+            y: mu,
+            v: mu_dot,
+        })
     }
 }
 
@@ -241,7 +252,11 @@ where
     Tr: Trajectory<A> + Clone,
     S: Method,
 {
-    let minimal = Stepper::new(Minimal::new(model.clone(), trajectory.clone(), *mu_guess), start, options)?;
+    let minimal = Stepper::new(
+        Minimal::new(model.clone(), trajectory.clone(), *mu_guess),
+        start,
+        options,
+    )?;
     Handover::new(minimal, || redundant::stepper(model, trajectory, start, options))
 }
 

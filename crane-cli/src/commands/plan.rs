@@ -1,18 +1,219 @@
 //! `crane fastest` and `crane sweep`: the planning functions of
 //! `crane_models::plan` on the command line, with their files.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use crane_models::plan::{self, Limits, Settings};
+use crane_models::registry::Visit;
 use crane_models::{Case, Crane};
-use crane_runtime::CraneModel;
+use crane_runtime::{CraneModel, Options, Scheme};
 use serde_json::json;
 
+use super::{dispatch, out_dir};
 use crate::CliError;
 use crate::output::Staged;
 use crate::plot;
+use crate::scenario::{self, Overrides, ScenarioFile};
+
+/// The flags `crane fastest` and `crane sweep` share.
+#[derive(clap::Args, Debug)]
+pub struct PlanFlags {
+    /// Scenario file: the path shape, parameters and [limits].
+    #[arg(long, value_name = "FILE.toml")]
+    scenario: Option<PathBuf>,
+    /// A limit |u| <= VALUE on an input, NAME=VALUE (repeatable).
+    #[arg(long = "limit", value_name = "NAME=VALUE")]
+    limit: Vec<String>,
+    /// A floor N >= VALUE on a rope tension, NAME=VALUE (repeatable; ropes
+    /// without one must stay taut).
+    #[arg(long = "min-tension", value_name = "NAME=VALUE")]
+    min_tension: Vec<String>,
+    /// Scheme of the runs (default bdf4).
+    #[arg(long, value_name = "SCHEME")]
+    scheme: Option<Scheme>,
+    /// Largest time step of the runs, s (default 0.05).
+    #[arg(long)]
+    dt: Option<f64>,
+    /// Output directory (default out/MODEL).
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// The flags of `crane fastest`.
+#[derive(clap::Args, Debug)]
+pub struct FastestArgs {
+    /// Model name (see `crane list`).
+    model: String,
+    #[command(flatten)]
+    plan: PlanFlags,
+    /// Bisection tolerance on the duration, s.
+    #[arg(long, default_value_t = 1e-3)]
+    tolerance: f64,
+    /// Print fastest.json on stdout instead of the summary.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The flags of `crane sweep`.
+#[derive(clap::Args, Debug)]
+pub struct SweepArgs {
+    /// Model name (see `crane list`).
+    model: String,
+    /// A swept parameter, NAME=LOW:HIGH:COUNT (repeatable).
+    #[arg(long = "param", value_name = "NAME=LOW:HIGH:COUNT")]
+    param: Vec<String>,
+    /// Swept durations of the move, LOW:HIGH:COUNT (default: its own).
+    #[arg(long, value_name = "LOW:HIGH:COUNT")]
+    duration: Option<String>,
+    #[command(flatten)]
+    plan: PlanFlags,
+    /// Worker threads (default: one per core).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+impl PlanFlags {
+    /// The scenario file (loaded) and the output directory.
+    fn files(&self, model: &str) -> Result<(Option<ScenarioFile>, PathBuf), CliError> {
+        let file = self.scenario.as_deref().map(ScenarioFile::load).transpose()?;
+        Ok((file, out_dir(self.out.as_deref(), model)))
+    }
+
+    /// The planner's settings from the flags (BDF-4, dt 0.05 s, 1 ms by default).
+    fn settings(&self, tolerance: Option<f64>) -> Result<Settings, CliError> {
+        let defaults = Settings::default();
+        let dt = self.dt.unwrap_or(defaults.dt);
+        let tolerance = tolerance.unwrap_or(defaults.tolerance);
+        Options::stepping(dt).map_err(|e| CliError::Planning(format!("--dt: {e}")))?;
+        if !(tolerance > 0.0 && tolerance.is_finite()) {
+            return Err(CliError::Planning(format!("--tolerance {tolerance} must be positive")));
+        }
+        Ok(Settings {
+            dt,
+            scheme: self.scheme.unwrap_or(defaults.scheme),
+            tolerance,
+            ..defaults
+        })
+    }
+}
+
+/// The limits of a planning command for crane `C`: the scenario's and the flags'.
+fn case_and_limits<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    file: Option<&ScenarioFile>,
+    flags: &PlanFlags,
+) -> Result<(Case<C, N, M, A>, Limits), CliError> {
+    let (case, settings) = scenario::build::<C, N, M, A>(file, &Overrides::default())?;
+    let limits = limits::<C::Model, N, M, A>(&settings.limits, &flags.limit, &flags.min_tension)?;
+    Ok((case, limits))
+}
+
+struct Fastest<'a> {
+    file: Option<&'a ScenarioFile>,
+    flags: &'a PlanFlags,
+    settings: Settings,
+    out: &'a Path,
+    json: bool,
+}
+
+impl Visit for Fastest<'_> {
+    type Output = Result<(), CliError>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let (case, limits) = case_and_limits::<C, N, M, A>(self.file, self.flags)?;
+        search(&case, &limits, &self.settings, self.out, self.json)
+    }
+}
+
+/// `crane fastest`.
+pub fn fastest(args: FastestArgs) -> Result<(), CliError> {
+    let (file, out) = args.plan.files(&args.model)?;
+    let settings = args.plan.settings(Some(args.tolerance))?;
+    dispatch(
+        &args.model,
+        Fastest {
+            file: file.as_ref(),
+            flags: &args.plan,
+            settings,
+            out: &out,
+            json: args.json,
+        },
+    )
+}
+
+struct Sweep<'a> {
+    file: Option<&'a ScenarioFile>,
+    flags: &'a PlanFlags,
+    settings: Settings,
+    out: &'a Path,
+    params: &'a [String],
+    durations: Vec<f64>,
+    quiet: bool,
+}
+
+impl Visit for Sweep<'_> {
+    type Output = Result<(), CliError>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let (case, limits) = case_and_limits::<C, N, M, A>(self.file, self.flags)?;
+        let params = self
+            .params
+            .iter()
+            .map(|p| range("--param", p))
+            .collect::<Result<Vec<_>, _>>()?;
+        grid(
+            &case,
+            &params,
+            &self.durations,
+            &limits,
+            &self.settings,
+            self.out,
+            self.quiet,
+        )
+    }
+}
+
+/// `crane sweep`.
+pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
+    let (file, out) = args.plan.files(&args.model)?;
+    let settings = args.plan.settings(None)?;
+    let durations = match args.duration.as_deref() {
+        Some(spec) => values(spec).filter(|d| d.iter().all(|&x| x > 0.0)).ok_or_else(|| {
+            CliError::Planning(format!(
+                "--duration `{spec}`: expected LOW:HIGH:COUNT of positive durations, e.g. 3:5:5"
+            ))
+        })?,
+        None => Vec::new(),
+    };
+    if args.param.is_empty() && durations.len() < 2 {
+        return Err(CliError::Planning(
+            "nothing to sweep: give --param NAME=LOW:HIGH:COUNT or --duration LOW:HIGH:COUNT".into(),
+        ));
+    }
+    let job = || {
+        let job = Sweep {
+            file: file.as_ref(),
+            flags: &args.plan,
+            settings,
+            out: &out,
+            params: &args.param,
+            durations,
+            quiet: args.quiet,
+        };
+        dispatch(&args.model, job)
+    };
+    match args.threads {
+        Some(0) => Err(CliError::Planning("--threads must be at least 1".into())),
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| CliError::Planning(format!("--threads {n}: {e}")))?
+            .install(job),
+        None => job(),
+    }
+}
 
 /// `NAME=VALUE` of a `--limit` or `--min-tension`.
 fn name_value(flag: &str, item: &str) -> Result<(String, f64), CliError> {
@@ -28,7 +229,7 @@ fn name_value(flag: &str, item: &str) -> Result<(String, f64), CliError> {
 /// The limits of the scenario (`[limits]`, by input index) and the flags,
 /// with names checked against the model; a rope without `--min-tension`
 /// must stay taut (floor 0).
-pub fn limits<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+fn limits<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
     scenario: &[(usize, f64)],
     torque: &[String],
     tension: &[String],
@@ -70,7 +271,7 @@ pub fn limits<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A:
 }
 
 /// `NAME=LOW:HIGH:COUNT` as the name and `COUNT` evenly spaced values.
-pub fn range(flag: &str, item: &str) -> Result<(String, Vec<f64>), CliError> {
+fn range(flag: &str, item: &str) -> Result<(String, Vec<f64>), CliError> {
     let bad = || {
         CliError::Planning(format!(
             "{flag} `{item}`: expected NAME=LOW:HIGH:COUNT with COUNT >= 1, e.g. {flag} m_l=80:120:5"
@@ -81,7 +282,7 @@ pub fn range(flag: &str, item: &str) -> Result<(String, Vec<f64>), CliError> {
 }
 
 /// `LOW:HIGH:COUNT` as values (`COUNT = 1`: `LOW`).
-pub fn values(spec: &str) -> Option<Vec<f64>> {
+fn values(spec: &str) -> Option<Vec<f64>> {
     let parts: Vec<&str> = spec.split(':').collect();
     let [low, high, count] = parts[..] else { return None };
     let (low, high): (f64, f64) = (low.trim().parse().ok()?, high.trim().parse().ok()?);
@@ -107,8 +308,8 @@ fn binding_json(b: &plan::Binding) -> serde_json::Value {
     json!({ "name": b.name, "kind": if b.tension { "min-tension" } else { "limit" }, "limit": b.limit, "value": b.value, "at": b.at })
 }
 
-/// `crane fastest`: search, write fastest.json and the plots, print.
-pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+/// Search, write fastest.json and the plots, print.
+fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
     limits: &Limits,
     settings: &Settings,
@@ -218,9 +419,8 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
     Ok(())
 }
 
-/// `crane sweep`: the grid in parallel, sweep.csv and (two swept
-/// quantities) a heat map.
-pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+/// The grid in parallel, sweep.csv and (two swept quantities) a heat map.
+fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
     params: &[(String, Vec<f64>)],
     durations: &[f64],

@@ -1,24 +1,33 @@
-//! The run summary (`summary.json`): feasibility and accuracy at a glance.
+//! The run summary (`summary.json`): feasibility and accuracy at a glance,
+//! and the one slack rule of every study ([`below_floor`]).
 
+use crane_runtime::error::Seconds;
+use crane_runtime::internal::{RUNAWAY_FACTOR, RunDiagnosis};
 use crane_runtime::{Solution, State};
 use serde::Serialize;
 
 /// Extreme value of a column and when it occurs.
 #[derive(Debug, Clone, Serialize)]
 pub struct Extreme {
+    /// The column, as the model names it.
     pub name: String,
+    /// The value of largest magnitude (signed).
     pub value: f64,
+    /// When, s.
     pub t: f64,
 }
 
 /// A rope's tension over the run.
 #[derive(Debug, Clone, Serialize)]
 pub struct RopeSummary {
+    /// The tension's name, e.g. `N1`.
     pub name: String,
+    /// The smallest tension, N.
     pub min_tension: f64,
+    /// When, s.
     pub t_min: f64,
-    /// First time the tension is below `-SLACK_TOLERANCE` times the peak
-    /// tension (ropes only pull; a negative tension is infeasible).
+    /// First time the rope is slack ([`below_floor`] 0; ropes only pull, a
+    /// negative tension is infeasible).
     pub first_slack: Option<f64>,
 }
 
@@ -27,16 +36,24 @@ pub struct RopeSummary {
 pub struct ReferenceErrors {
     /// Relative error of u at t = 1.5 s, eq. (48): |u - u_ref| / |u_ref|.
     pub e_u_at_1_5s: Option<f64>,
+    /// Largest `|u - u_ref|` per input.
     pub max_abs_error_u: Vec<Extreme>,
+    /// Largest `|q - q_ref|` per coordinate.
     pub max_abs_error_q: Vec<Extreme>,
+    /// Largest `|lambda - lambda_ref|` per multiplier.
     pub max_abs_error_lambda: Vec<Extreme>,
 }
 
+/// Newton's work over the run.
 #[derive(Debug, Clone, Serialize)]
 pub struct NewtonSummary {
+    /// Iterations (linear solves) of all steps.
     pub total_iterations: usize,
+    /// Mean per step.
     pub mean_per_step: f64,
+    /// Most in one step.
     pub max_per_step: usize,
+    /// Minimum-norm steps on a singular iteration matrix.
     pub min_norm_steps: usize,
     /// Of a minimal run: the first steps taken in redundant coordinates at a
     /// degenerate start (a rope nearly slack).
@@ -46,35 +63,52 @@ pub struct NewtonSummary {
 /// A torque limit from the scenario's `[limits]` and when it is first exceeded.
 #[derive(Debug, Clone, Serialize)]
 pub struct LimitSummary {
+    /// The input.
     pub name: String,
+    /// The limit on `|u|`.
     pub limit: f64,
+    /// The largest `|u|` of the run.
     pub peak: f64,
     /// First time `|u| > limit`, if ever.
     pub first_violation: Option<f64>,
 }
 
+/// A run at a glance (`summary.json`).
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
+    /// The crane's name, e.g. `navy-planar`.
     pub model: String,
+    /// One line on it.
     pub description: String,
+    /// `redundant` or `minimal`.
     pub formulation: String,
     /// The time-discretisation scheme, e.g. `backward-euler` or `bdf4`.
     pub scheme: String,
+    /// Time step, s.
     pub dt: f64,
+    /// First and last time, s.
     pub t0: f64,
+    /// Last time, s.
     pub tf: f64,
+    /// Steps taken.
     pub steps: usize,
+    /// Newton's work.
     pub newton: NewtonSummary,
+    /// Wall time of the integration, s.
     pub wall_time_s: f64,
+    /// Largest `|u|` per input.
     pub peak_torque: Vec<Extreme>,
+    /// Each rope's tension.
     pub ropes: Vec<RopeSummary>,
+    /// Each limit's first violation.
     pub torque_limits: Vec<LimitSummary>,
+    /// Errors against the analytical reference, where there is one.
     pub reference: Option<ReferenceErrors>,
     /// `--replay`: the computed torques on the crane's forward dynamics.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub replay: Option<ReplaySummary>,
     /// The internal dynamics along the run (`crane_runtime::internal`).
-    pub internal_dynamics: InternalSummary,
+    pub internal_dynamics: RunDiagnosis,
     /// How smooth the path must be (the inputs depend on its derivatives
     /// up to `needed`) and is (`continuous`), where both are known.
     pub path_smoothness: Option<PathSmoothnessSummary>,
@@ -83,68 +117,12 @@ pub struct Summary {
 /// `path_smoothness` in summary.json.
 #[derive(Debug, Clone, Serialize)]
 pub struct PathSmoothnessSummary {
+    /// The highest path derivative the inputs depend on.
     pub needed: usize,
+    /// The highest continuous one.
     pub continuous: usize,
+    /// `continuous >= needed`.
     pub sufficient: bool,
-}
-
-/// The internal dynamics at sampled states of a run.
-#[derive(Debug, Clone, Serialize)]
-pub struct InternalSummary {
-    /// The count from the declaration's structure
-    /// (`CraneModel::STRUCTURE`; none for a hand-written model).
-    pub structural_dimension: Option<usize>,
-    /// Largest dimension found (0: flat at every sampled state).
-    pub dimension: usize,
-    /// Largest real part of an eigenvalue, 1/s, and where (none when flat).
-    pub max_real_part: Option<f64>,
-    pub at: Option<f64>,
-    /// No eigenvalue with a real part above round-off.
-    pub stable: bool,
-    /// States where the diagnosis could not tell (the first reason).
-    pub unresolved: usize,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub unresolved_reason: Option<String>,
-    /// Sampled states (up to `runaway_at`, past which states are not physical).
-    pub samples: usize,
-    /// First time an input exceeds 1e6 times the largest input at the start
-    /// (at least 1): beyond any physical scale, the mark of unstable internal
-    /// dynamics in the computed torques.
-    pub runaway_at: Option<f64>,
-}
-
-impl InternalSummary {
-    /// Nothing sampled yet.
-    pub fn none() -> Self {
-        Self::from(crane_runtime::internal::RunDiagnosis::none())
-    }
-}
-
-impl From<crane_runtime::internal::RunDiagnosis> for InternalSummary {
-    fn from(d: crane_runtime::internal::RunDiagnosis) -> Self {
-        Self {
-            structural_dimension: d.structural_dimension,
-            dimension: d.dimension,
-            max_real_part: d.max_real_part,
-            at: d.at,
-            stable: d.stable,
-            unresolved: d.unresolved,
-            unresolved_reason: d.unresolved_reason.map(|e| e.to_string()),
-            samples: d.samples,
-            runaway_at: d.runaway_at,
-        }
-    }
-}
-
-/// The internal dynamics at up to 101 evenly spaced states of `solution`.
-pub fn internal_summary<Mdl, const N: usize, const M: usize, const A: usize>(
-    model: &Mdl,
-    solution: &Solution<N, M, A>,
-) -> InternalSummary
-where
-    Mdl: crane_runtime::CraneModel<N, M, A>,
-{
-    crane_runtime::internal::diagnose(model, solution, 100).into()
 }
 
 /// The replay's results in summary.json.
@@ -158,8 +136,9 @@ pub struct ReplaySummary {
     pub residual_sway: f64,
     /// Length of the settling window, s.
     pub settle_time: f64,
-    /// Forward step, s, and scheme.
+    /// Forward step, s.
     pub dt: f64,
+    /// Forward scheme.
     pub scheme: String,
     /// The plant parameters that differ from the planner's.
     pub plant: std::collections::BTreeMap<String, f64>,
@@ -169,15 +148,24 @@ pub struct ReplaySummary {
     /// The largest deviation of the open-loop replay (the same as
     /// `max_load_deviation` without feedback), m.
     pub open_loop_max_load_deviation: f64,
-    /// Ropes that would have to push in the replay (tension below
-    /// `-SLACK_TOLERANCE` of the peak): the first time, per rope.
+    /// Ropes that would have to push in the replay ([`below_floor`] 0):
+    /// the first time, per rope.
     pub first_slack: std::collections::BTreeMap<String, f64>,
 }
 
-/// Tensions below `-SLACK_TOLERANCE * max |N|` count as slack; above it, a
-/// negative value is round-off around a rope that carries no load (as at the
-/// paper's start, where N1 = 0 exactly and evaluates to about -1e-13 N).
+/// The one slack rule of every study (`--strict`, planning, replay): a
+/// rope tension `n` is below its floor (0: taut) when `n < floor -
+/// SLACK_TOLERANCE * max(peak, |floor|)`, `peak` the largest `|N|` of that
+/// rope over the run. Above it, a value under the floor is round-off around
+/// a rope that carries no load (as at the paper's start, where N1 = 0
+/// exactly and evaluates to about -1e-13 N).
 pub const SLACK_TOLERANCE: f64 = 1e-9;
+
+/// Whether the tension `n` is below `floor` beyond round-off, for a rope
+/// whose largest `|N|` over the run is `peak` (see [`SLACK_TOLERANCE`]).
+pub fn below_floor(n: f64, floor: f64, peak: f64) -> bool {
+    n < floor - SLACK_TOLERANCE * peak.max(floor.abs())
+}
 
 fn column_extremes<const K: usize, const N: usize, const M: usize, const A: usize>(
     states: &[State<N, M, A>],
@@ -261,7 +249,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
             let (t_min, min_tension) = series()
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .unwrap_or((f64::NAN, f64::NAN));
-            let first_slack = series().find(|(_, n)| *n < -SLACK_TOLERANCE * peak).map(|(t, _)| t);
+            let first_slack = series().find(|&(_, n)| below_floor(n, 0.0, peak)).map(|(t, _)| t);
             RopeSummary {
                 name: rope.tension.to_string(),
                 min_tension,
@@ -327,68 +315,9 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         torque_limits,
         reference,
         replay: None,
-        internal_dynamics: InternalSummary::none(),
+        internal_dynamics: RunDiagnosis::none(),
         path_smoothness: None,
     }
-}
-
-/// A few lines for the terminal.
-pub fn highlights(summary: &Summary) -> Vec<String> {
-    let mut lines = Vec::new();
-    for p in &summary.peak_torque {
-        lines.push(format!(
-            "peak |{}| = {:.3} N m at t = {:.3} s",
-            p.name,
-            p.value.abs(),
-            p.t
-        ));
-    }
-    for r in &summary.ropes {
-        match r.first_slack {
-            Some(t) => lines.push(format!(
-                "WARNING: rope {} goes slack at t = {t:.3} s (min tension {:.3e} N)",
-                r.name, r.min_tension
-            )),
-            None => lines.push(format!(
-                "rope {} stays taut: min tension {:.3} N at t = {:.3} s",
-                r.name, r.min_tension, r.t_min
-            )),
-        }
-    }
-    for l in &summary.torque_limits {
-        match l.first_violation {
-            Some(t) => lines.push(format!(
-                "WARNING: |{}| exceeds its limit {} N m first at t = {t:.3} s (peak {:.3} N m)",
-                l.name, l.limit, l.peak
-            )),
-            None => lines.push(format!(
-                "|{}| stays within its limit {} N m (peak {:.3} N m)",
-                l.name, l.limit, l.peak
-            )),
-        }
-    }
-    if let Some(reference) = &summary.reference {
-        if let Some(e) = reference.e_u_at_1_5s {
-            lines.push(format!(
-                "relative error of u at t = 1.5 s against the analytical reference (eq. 48): {e:.3e}"
-            ));
-        }
-    }
-    let internal = &summary.internal_dynamics;
-    lines.push(match (internal.dimension, internal.stable) {
-        (0, _) if internal.unresolved == 0 => {
-            "internal dynamics: none (flat), the torques are the unique ones".to_string()
-        }
-        (0, _) => format!(
-            "internal dynamics: not resolved at {} of {} sampled states",
-            internal.unresolved, internal.samples
-        ),
-        (k, true) => format!("internal dynamics: dimension {k}, stable"),
-        (k, false) => {
-            format!("WARNING: internal dynamics: dimension {k}, UNSTABLE: the torques are not a usable feedforward")
-        }
-    });
-    lines
 }
 
 /// What makes a run infeasible: slack ropes, violated torque limits and
@@ -411,66 +340,15 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
         out.push(format!(
             "unstable internal dynamics (largest real part {:.4} 1/s at t = {} s)",
             internal.max_real_part.unwrap_or(f64::NAN),
-            crane_runtime::error::Seconds(internal.at.unwrap_or(f64::NAN))
+            Seconds(internal.at.unwrap_or(f64::NAN))
         ));
     }
     if let Some(t) = internal.runaway_at {
         out.push(format!(
             "an input exceeds {:e} times its size at the start from t = {} s",
-            crane_runtime::internal::RUNAWAY_FACTOR,
-            crane_runtime::error::Seconds(t)
+            RUNAWAY_FACTOR,
+            Seconds(t)
         ));
     }
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crane_models::coupled_trolley::CoupledTrolley as Coupled;
-    use crane_runtime::nalgebra::vector;
-    use crane_runtime::trajectory::Poly9;
-    use crane_runtime::{Options, init, simulate};
-
-    fn run(c: f64) -> Solution<4, 1, 2> {
-        let crane = Coupled {
-            c,
-            ..Coupled::default()
-        };
-        let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
-        let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0]).unwrap();
-        simulate(&crane, &path, &start, &Options::new(0.01, 5.0).unwrap()).unwrap()
-    }
-
-    /// The coupled crane: the run "succeeds", the summary says
-    /// why its torques are not a result: unstable internal dynamics of
-    /// dimension 2 from the start (sqrt(lambda/c) = 9.9045 1/s there, larger
-    /// where the load rises and accelerates), and an input beyond 1e6 times
-    /// its size at the start before t = 2.5 s (3.4e12 N there).
-    #[test]
-    fn an_unstable_crane_is_reported_as_such() {
-        let crane = Coupled::default();
-        let summary = internal_summary(&crane, &run(2.0));
-        assert_eq!(summary.structural_dimension, Some(2), "{summary:?}");
-        assert_eq!(summary.dimension, 2, "{summary:?}");
-        assert!(!summary.stable, "{summary:?}");
-        assert!(summary.max_real_part.unwrap() >= 9.9, "{summary:?}");
-        assert!(summary.runaway_at.is_some_and(|t| t < 2.5), "{summary:?}");
-        // diagnosed up to the runaway (1.8 s of 5 s: 37 of the 101 samples)
-        assert!(summary.samples >= 30 && summary.unresolved == 0, "{summary:?}");
-    }
-
-    /// Without the coupling: flat, nothing to report.
-    #[test]
-    fn a_flat_crane_is_reported_flat() {
-        let crane = Coupled {
-            c: 0.0,
-            ..Coupled::default()
-        };
-        let summary = internal_summary(&crane, &run(0.0));
-        // structurally 2 (c is a parameter), numerically 0 at c = 0
-        assert_eq!(summary.structural_dimension, Some(2), "{summary:?}");
-        assert_eq!(summary.dimension, 0, "{summary:?}");
-        assert!(summary.stable && summary.runaway_at.is_none(), "{summary:?}");
-    }
 }

@@ -1,0 +1,120 @@
+//! `crane bench`: time repeated runs of a crane's default manoeuvre without
+//! writing files.
+
+use std::time::Instant;
+
+use crane_models::registry::Visit;
+use crane_models::study::Formulation;
+use crane_models::{Case, Crane};
+use crane_runtime::{Options, Scheme};
+
+use super::{dispatch, formulation_help, scheme_help};
+use crate::CliError;
+use crate::scenario::{self, Overrides};
+
+/// The flags of `crane bench`.
+#[derive(clap::Args, Debug)]
+pub struct BenchArgs {
+    /// Model name (see `crane list`).
+    model: String,
+    /// Time step in s.
+    #[arg(long, default_value_t = 0.01)]
+    dt: f64,
+    /// Number of timed runs.
+    #[arg(long, default_value_t = 20)]
+    repeat: usize,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+    #[arg(long, value_name = "FORMULATION", help = formulation_help())]
+    formulation: Option<Formulation>,
+    #[arg(long, value_name = "SCHEME", help = scheme_help())]
+    scheme: Option<Scheme>,
+}
+
+struct Bench {
+    overrides: Overrides,
+    repeat: usize,
+    json: bool,
+}
+
+impl Visit for Bench {
+    type Output = Result<(), CliError>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let (case, settings) = scenario::build::<C, N, M, A>(None, &self.overrides)?;
+        time(
+            &case,
+            settings.formulation,
+            settings.scheme,
+            settings.dt,
+            self.repeat,
+            self.json,
+        )
+    }
+}
+
+/// Time the runs.
+pub fn bench(args: BenchArgs) -> Result<(), CliError> {
+    let overrides = Overrides {
+        dt: Some(args.dt),
+        tf: None,
+        formulation: args.formulation,
+        scheme: args.scheme,
+    };
+    dispatch(
+        &args.model,
+        Bench {
+            overrides,
+            repeat: args.repeat,
+            json: args.json,
+        },
+    )
+}
+
+/// Time `repeat` runs of one case (after one untimed run).
+fn time<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    formulation: Formulation,
+    scheme: Scheme,
+    dt: f64,
+    repeat: usize,
+    json: bool,
+) -> Result<(), CliError> {
+    if repeat == 0 {
+        return Err(CliError::NoRepeats);
+    }
+    let name = C::NAME;
+    let start = case.start()?;
+    let options = Options::new(dt, case.tf())?.with_scheme(scheme);
+    let mut times = Vec::with_capacity(repeat);
+    let mut steps = 0;
+    let mut iterations = 0.0;
+    formulation.simulate(case, &start, &options, &mut |_, _| {})?; // warm-up
+    for _ in 0..repeat {
+        let clock = Instant::now();
+        let solution = formulation.simulate(case, &start, &options, &mut |_, _| {})?;
+        times.push(clock.elapsed().as_secs_f64());
+        steps = solution.steps();
+        iterations = solution.mean_newton_iterations();
+    }
+    times.sort_by(f64::total_cmp);
+    let median = times[times.len() / 2];
+    if json {
+        let value = serde_json::json!({
+            "model": name, "formulation": formulation.name(), "scheme": scheme.name(), "dt": dt, "steps": steps,
+            "repeat": repeat, "median_run_s": median, "median_step_s": median / steps as f64,
+            "mean_newton_iterations": iterations,
+        });
+        println!("{value}");
+    } else {
+        println!(
+            "{name} ({}, {scheme}): dt = {dt} s, {steps} steps, {repeat} runs: median {:.3} ms per run, {:.2} us per \
+             step, {:.2} Newton iterations per step",
+            formulation.name(),
+            median * 1e3,
+            median / steps as f64 * 1e6,
+            iterations
+        );
+    }
+    Ok(())
+}

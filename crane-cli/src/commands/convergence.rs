@@ -1,0 +1,112 @@
+//! `crane convergence`: the convergence study of `crane_models::study` on
+//! the terminal, with convergence.csv and a log-log plot like the paper's
+//! Figs. 7 and 16.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use crane_models::registry::Visit;
+use crane_models::study::Formulation;
+use crane_models::study::convergence::{DTS, T_ERROR, study};
+use crane_models::{Case, Crane};
+use crane_runtime::Scheme;
+
+use super::{dispatch, formulation_help, out_dir, scheme_help};
+use crate::scenario::{self, Overrides, ScenarioFile};
+use crate::{CliError, plot};
+
+/// The flags of `crane convergence`.
+#[derive(clap::Args, Debug)]
+pub struct ConvergenceArgs {
+    /// Model name (see `crane list`); it needs an analytical reference.
+    model: String,
+    /// Scenario file (its dt is ignored).
+    #[arg(long, value_name = "FILE.toml")]
+    scenario: Option<PathBuf>,
+    #[arg(long, value_name = "FORMULATION", help = formulation_help())]
+    formulation: Option<Formulation>,
+    #[arg(long, value_name = "SCHEME", help = scheme_help())]
+    scheme: Option<Scheme>,
+    /// Output directory (default out/MODEL).
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+struct Convergence<'a> {
+    file: Option<&'a ScenarioFile>,
+    overrides: Overrides,
+    out: &'a Path,
+}
+
+impl Visit for Convergence<'_> {
+    type Output = Result<(), CliError>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let (case, settings) = scenario::build::<C, N, M, A>(self.file, &self.overrides)?;
+        write(&case, settings.formulation, settings.scheme, self.out)
+    }
+}
+
+/// Run the study.
+pub fn convergence(args: ConvergenceArgs) -> Result<(), CliError> {
+    let file = args.scenario.as_deref().map(ScenarioFile::load).transpose()?;
+    let out = out_dir(args.out.as_deref(), &args.model);
+    let overrides = Overrides {
+        dt: None,
+        tf: None,
+        formulation: args.formulation,
+        scheme: args.scheme,
+    };
+    dispatch(
+        &args.model,
+        Convergence {
+            file: file.as_ref(),
+            overrides,
+            out: &out,
+        },
+    )
+}
+
+/// Print the rows as they come and write `convergence.svg` and
+/// `convergence.csv` into `out`.
+fn write<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    formulation: Formulation,
+    scheme: Scheme,
+    out: &Path,
+) -> Result<(), CliError> {
+    let name = C::NAME;
+    let mut header = Some(format!(
+        "{name} ({}, {scheme}, order {}): relative error of u at t = {T_ERROR} s, eq. (48)\n{:>8}  {:>12}  {:>8}",
+        formulation.name(),
+        scheme.order(),
+        "dt [s]",
+        "e_u",
+        "order"
+    ));
+    let rows = study(case, formulation, scheme, &DTS, |row| {
+        if let Some(header) = header.take() {
+            println!("{header}");
+        }
+        match row.order {
+            Some(p) => println!("{:>8}  {:>12.4e}  {p:>8.3}", row.dt, row.e_u),
+            None => println!("{:>8}  {:>12.4e}  {:>8}", row.dt, row.e_u, "-"),
+        }
+    })?;
+    let mut staged = crate::output::Staged::new(out)?;
+    let mut csv = String::from("dt,e_u,order\n");
+    for row in &rows {
+        let order = row.order.map(|p| format!("{p}")).unwrap_or_default();
+        let _ = writeln!(csv, "{},{:e},{order}", row.dt, row.e_u);
+    }
+    let title = format!(
+        "{name} ({}, {scheme}) - relative error of u at t = {T_ERROR} s, eq. (48)",
+        formulation.name()
+    );
+    let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.dt, r.e_u)).collect();
+    let svg = plot::convergence(&title, &points, scheme.order())?;
+    staged.text("convergence.csv", csv)?;
+    staged.text("convergence.svg", svg)?;
+    staged.commit()?;
+    println!("wrote {}", out.join("convergence.svg").display());
+    Ok(())
+}

@@ -1,0 +1,330 @@
+//! `crane run`: a crane on its default manoeuvre or a scenario
+//! (`crane_models::study::run`), written as results.csv, summary.json and
+//! plots, with the highlights and warnings on the terminal.
+
+use std::path::{Path, PathBuf};
+
+use crane_models::registry::Visit;
+use crane_models::study::replay::{FeedbackSpec, ReplayOutcome};
+use crane_models::study::{self, Formulation, ReplayRequest, Summary};
+use crane_models::{Case, Crane};
+use crane_runtime::error::Seconds;
+use crane_runtime::{Scheme, State};
+
+use super::{dispatch, formulation_help, out_dir, scheme_help};
+use crate::scenario::{self, Overrides, ScenarioFile};
+use crate::{CliError, output, plot, progress, snapshots};
+
+/// The flags of `crane run`.
+#[derive(clap::Args, Debug)]
+pub struct RunArgs {
+    /// Model name (see `crane list`).
+    model: String,
+    /// Scenario file (TOML): load path, times, parameters, start, torque limits
+    /// (see examples/); flags given on the command line override it.
+    #[arg(long, value_name = "FILE.toml")]
+    scenario: Option<PathBuf>,
+    /// Time step in s (default 0.01).
+    #[arg(long)]
+    dt: Option<f64>,
+    /// End time in s of the run (and of the motion unless the scenario sets t1;
+    /// the paper uses 4 and 15 for navy-planar).
+    #[arg(long)]
+    tf: Option<f64>,
+    /// Output directory (default out/MODEL).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    #[arg(long, value_name = "FORMULATION", help = formulation_help())]
+    formulation: Option<Formulation>,
+    #[arg(long, value_name = "SCHEME", help = scheme_help())]
+    scheme: Option<Scheme>,
+    /// Exit non-zero if a rope goes slack, an input exceeds its limit or
+    /// the internal dynamics are unstable (the results are still written).
+    #[arg(long)]
+    strict: bool,
+    /// No progress bar (it is shown only on a terminal, for runs over a second).
+    #[arg(long)]
+    quiet: bool,
+    /// Replay the computed torques on the crane's forward dynamics (dt/4,
+    /// BDF-2, then a settling window with the torques held): writes
+    /// replay.csv and replay.svg and adds "replay" to summary.json.
+    #[arg(long)]
+    replay: bool,
+    /// With --replay: a plant parameter that differs from the planner's,
+    /// NAME=VALUE (repeatable; adds to the scenario's [plant] table).
+    #[arg(long = "plant", value_name = "NAME=VALUE")]
+    plant: Vec<String>,
+    /// With --replay: the settling window in s (default: twice the longest
+    /// rope pendulum period 2 pi sqrt(L/g) at the end).
+    #[arg(long, value_name = "SECONDS")]
+    settle: Option<f64>,
+    /// With --replay: add a PD law on the robot coordinates about the
+    /// planned p(t): `default` (gains from the model) or `KP,KD` (the same
+    /// stiffness and damping on every robot coordinate); the replay runs
+    /// open loop too and replay.svg shows both.
+    #[arg(long, value_name = "default|KP,KD")]
+    feedback: Option<String>,
+}
+
+/// `crane run`: the run, its files, and under `--strict` an error if it is
+/// infeasible.
+pub fn run(args: RunArgs) -> Result<(), CliError> {
+    let file = args.scenario.as_deref().map(ScenarioFile::load).transpose()?;
+    let out = out_dir(args.out.as_deref(), &args.model);
+    let overrides = Overrides {
+        dt: args.dt,
+        tf: args.tf,
+        formulation: args.formulation,
+        scheme: args.scheme,
+    };
+    let plant = args
+        .plant
+        .iter()
+        .map(|item| {
+            let (name, value) = item.split_once('=').ok_or_else(|| CliError::Plant(item.clone()))?;
+            let value: f64 = value.trim().parse().map_err(|_| CliError::Plant(item.clone()))?;
+            Ok((name.trim().to_string(), value))
+        })
+        .collect::<Result<Vec<_>, CliError>>()?;
+    let feedback = args
+        .feedback
+        .as_deref()
+        .map(|text| {
+            text.parse::<FeedbackSpec>()
+                .map_err(|e| CliError::Feedback(text.to_string(), e))
+        })
+        .transpose()?;
+    let replay = args.replay.then_some(ReplayRequest {
+        plant,
+        settle: args.settle,
+        feedback,
+    });
+    let job = Run {
+        file: file.as_ref(),
+        overrides,
+        out: &out,
+        quiet: args.quiet,
+        replay,
+    };
+    let summary = dispatch(&args.model, job)?;
+    let problems = study::infeasibilities(&summary);
+    if args.strict && !problems.is_empty() {
+        return Err(CliError::Infeasible {
+            problems: problems.join("; "),
+            out: out.display().to_string(),
+        });
+    }
+    Ok(())
+}
+
+/// `crane run` on one crane.
+struct Run<'a> {
+    file: Option<&'a ScenarioFile>,
+    overrides: Overrides,
+    out: &'a Path,
+    quiet: bool,
+    /// `--replay` and its options (the scenario's `[plant]` goes first).
+    replay: Option<ReplayRequest>,
+}
+
+impl Visit for Run<'_> {
+    type Output = Result<Summary, CliError>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let (case, settings) = scenario::build::<C, N, M, A>(self.file, &self.overrides)?;
+        let replay = self.replay.map(|request| ReplayRequest {
+            plant: settings.plant.iter().cloned().chain(request.plant).collect(),
+            ..request
+        });
+        let mut progress = progress::Progress::new(C::NAME, self.quiet);
+        let outcome = study::run(&case, &settings, replay.as_ref(), &mut |step, steps| {
+            progress.tick(step, steps)
+        });
+        progress.finish();
+        let outcome = outcome?;
+        for warning in &outcome.warnings {
+            eprintln!("warning: {warning}");
+        }
+        write(&case, &outcome, self.out)?;
+        let (solution, summary) = (&outcome.solution, &outcome.summary);
+        println!(
+            "{} ({}, {}): {} steps of dt = {} s in {:.1} ms ({:.2} Newton iterations per step)",
+            C::NAME,
+            settings.formulation.name(),
+            settings.scheme,
+            solution.steps(),
+            settings.dt,
+            summary.wall_time_s * 1e3,
+            solution.mean_newton_iterations()
+        );
+        if solution.redundant_start_steps > 0 {
+            let k = solution.redundant_start_steps;
+            println!(
+                "  first {k} steps (to t = {} s) in redundant coordinates: a rope carries under {:e} of the largest \
+                 tension (degenerate start)",
+                Seconds(solution.states[k].t),
+                crane_runtime::minimal::DEGENERATE_TENSION_RATIO
+            );
+        }
+        for line in highlights(summary) {
+            println!("  {line}");
+        }
+        println!("wrote {}", self.out.display());
+        Ok(outcome.summary)
+    }
+}
+
+/// results.csv, summary.json, the plots (the reference dashed, on a grid as
+/// fine as the plot shows), the snapshots and the replay's files.
+fn write<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    outcome: &study::Outcome<N, M, A>,
+    out: &Path,
+) -> Result<(), CliError> {
+    let solution = &outcome.solution;
+    let (t0, tf) = (case.t0(), case.tf());
+    let has_reference = outcome.summary.reference.is_some();
+    let samples = solution.steps().clamp(800, plot::MAX_POINTS);
+    let fine: Option<Vec<State<N, M, A>>> = has_reference
+        .then(|| {
+            (0..=samples)
+                .map(|i| case.reference(t0 + (tf - t0) * i as f64 / samples as f64))
+                .collect()
+        })
+        .flatten();
+    let mut extra: Vec<(String, String)> = snapshots::svg(C::drawing(case.model()), solution)?
+        .map(|svg| ("snapshots.svg".to_string(), svg))
+        .into_iter()
+        .collect();
+    if let Some(replay) = &outcome.replay {
+        extra.extend(replay_files(case, replay)?);
+    }
+    let derived = output::Derived {
+        names: case.derived_outputs(),
+        values: &|s| case.derived(s),
+    };
+    output::write_all(out, solution, fine.as_deref(), &outcome.summary, &derived, &extra)
+}
+
+/// replay.csv (the states of the replay the summary describes, with the
+/// load's deviation) and replay.svg (the deviation, open loop and with
+/// feedback).
+fn replay_files<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    replay: &ReplayOutcome<N, M, A>,
+) -> Result<Vec<(String, String)>, CliError> {
+    let (open, closed, result) = (&replay.open_loop, replay.closed_loop.as_ref(), replay.result());
+    let (info, tf) = (result.solution.info, replay.end);
+    let deviation = |s: &State<N, M, A>| crane_runtime::replay::load_deviation(case.path(), tf, s);
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    let mut header = vec!["t".to_string()];
+    header.extend(info.coordinates.iter().map(|s| s.to_string()));
+    header.extend((1..=M).map(|i| format!("lambda{i}")));
+    header.extend(info.ropes.iter().map(|r| r.tension.to_string()));
+    header.push("load_deviation".into());
+    let failed = |e: csv::Error| CliError::Output {
+        what: "replay.csv".into(),
+        message: e.to_string(),
+    };
+    writer.write_record(&header).map_err(failed)?;
+    let mut row = Vec::new();
+    for (i, s) in result.solution.states.iter().enumerate() {
+        row.clear();
+        row.push(format!("{}", s.t));
+        row.extend(s.q.iter().chain(s.lambda.iter()).map(|v| format!("{v:e}")));
+        row.extend(result.solution.tensions_at(i).iter().map(|v| format!("{v:e}")));
+        row.push(format!("{:e}", deviation(s)));
+        writer.write_record(&row).map_err(failed)?;
+    }
+    let csv = writer.into_inner().map_err(|e| CliError::Output {
+        what: "replay.csv".into(),
+        message: e.to_string(),
+    })?;
+    let curve = |r: &crane_runtime::replay::Replay<N, M, A>| -> Vec<(f64, f64)> {
+        r.solution.states.iter().map(|s| (s.t, deviation(s))).collect()
+    };
+    let changed = &replay.summary.plant;
+    let plant_label = if changed.is_empty() {
+        "the planned plant".to_string()
+    } else {
+        changed
+            .iter()
+            .map(|(k, v)| format!("{k} = {v}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let title = format!(
+        "{} - replay on {plant_label}: load deviation (torques held after {tf} s)",
+        info.name
+    );
+    let svg = match closed {
+        None => plot::curves_over_time(&title, "|x - gamma| [m]", &[("open loop", curve(open))])?,
+        Some(c) => plot::curves_over_time(
+            &title,
+            "|x - gamma| [m]",
+            &[("open loop", curve(open)), ("with feedback", curve(c))],
+        )?,
+    };
+    Ok(vec![
+        ("replay.csv".into(), String::from_utf8_lossy(&csv).into_owned()),
+        ("replay.svg".into(), svg),
+    ])
+}
+
+/// A few lines for the terminal.
+pub fn highlights(summary: &Summary) -> Vec<String> {
+    let mut lines = Vec::new();
+    for p in &summary.peak_torque {
+        lines.push(format!(
+            "peak |{}| = {:.3} N m at t = {:.3} s",
+            p.name,
+            p.value.abs(),
+            p.t
+        ));
+    }
+    for r in &summary.ropes {
+        match r.first_slack {
+            Some(t) => lines.push(format!(
+                "WARNING: rope {} goes slack at t = {t:.3} s (min tension {:.3e} N)",
+                r.name, r.min_tension
+            )),
+            None => lines.push(format!(
+                "rope {} stays taut: min tension {:.3} N at t = {:.3} s",
+                r.name, r.min_tension, r.t_min
+            )),
+        }
+    }
+    for l in &summary.torque_limits {
+        match l.first_violation {
+            Some(t) => lines.push(format!(
+                "WARNING: |{}| exceeds its limit {} N m first at t = {t:.3} s (peak {:.3} N m)",
+                l.name, l.limit, l.peak
+            )),
+            None => lines.push(format!(
+                "|{}| stays within its limit {} N m (peak {:.3} N m)",
+                l.name, l.limit, l.peak
+            )),
+        }
+    }
+    if let Some(reference) = &summary.reference {
+        if let Some(e) = reference.e_u_at_1_5s {
+            lines.push(format!(
+                "relative error of u at t = 1.5 s against the analytical reference (eq. 48): {e:.3e}"
+            ));
+        }
+    }
+    let internal = &summary.internal_dynamics;
+    lines.push(match (internal.dimension, internal.stable) {
+        (0, _) if internal.unresolved == 0 => {
+            "internal dynamics: none (flat), the torques are the unique ones".to_string()
+        }
+        (0, _) => format!(
+            "internal dynamics: not resolved at {} of {} sampled states",
+            internal.unresolved, internal.samples
+        ),
+        (k, true) => format!("internal dynamics: dimension {k}, stable"),
+        (k, false) => {
+            format!("WARNING: internal dynamics: dimension {k}, UNSTABLE: the torques are not a usable feedforward")
+        }
+    });
+    lines
+}

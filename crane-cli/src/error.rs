@@ -1,0 +1,34 @@
+//! The errors `crane` reports (then it exits non-zero), one line each.
+
+use crane_models::study::StudyError;
+
+/// Everything a command can fail with.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    #[error("unknown model `{0}`; `crane list` shows the built-in models")]
+    UnknownModel(String),
+    #[error(transparent)]
+    Runtime(#[from] crane_runtime::Error),
+    #[error(transparent)]
+    Study(#[from] StudyError),
+    #[error("{context}: {source}")]
+    Io { context: String, source: std::io::Error },
+    #[error("writing {what}: {message}")]
+    Output { what: String, message: String },
+    #[error("--repeat must be at least 1")]
+    NoRepeats,
+    #[error("--plant `{0}`: expected NAME=VALUE, e.g. --plant m_l=110")]
+    Plant(String),
+    #[error("--feedback `{0}`: {1}")]
+    Feedback(String, crane_models::study::replay::BadFeedback),
+    #[error(transparent)]
+    Scenario(#[from] crate::scenario::ScenarioError),
+    #[error("infeasible (--strict): {problems}; the results were still written to {out}")]
+    Infeasible { problems: String, out: String },
+    #[error("{0}")]
+    Planning(String),
+    #[error("no FMU library at {0}: build it with `cargo build --release -p crane-fmu` or give --library")]
+    NoFmuLibrary(String),
+    #[error(transparent)]
+    Package(#[from] crane_fmi::package::PackageError),
+}

@@ -1,0 +1,85 @@
+//! The convergence study of Figs. 7 and 16: the relative error of `u` at
+//! t = 1.5 s (eq. 48) against the analytical reference for a range of time
+//! steps, with the observed orders.
+
+use crane_runtime::{Options, Scheme};
+
+use super::{Formulation, StudyError};
+use crate::case::Case;
+use crate::crane::Crane;
+
+/// The time steps of the study, s.
+pub const DTS: [f64; 6] = [0.1, 0.05, 0.02, 0.01, 0.005, 0.001];
+
+/// Time of the error measure (eq. 48), s.
+pub const T_ERROR: f64 = 1.5;
+
+/// One time step of the study.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Row {
+    /// The time step, s.
+    pub dt: f64,
+    /// `|u - u_ref| / |u_ref|` at [`T_ERROR`] (eq. 48).
+    pub e_u: f64,
+    /// The observed order against the row before, if there is one.
+    pub order: Option<f64>,
+}
+
+/// The observed order between errors `e0` at step `dt0` and `e1` at `dt1`:
+/// `ln(e0/e1) / ln(dt0/dt1)`.
+pub fn observed_order(dt0: f64, e0: f64, dt1: f64, e1: f64) -> f64 {
+    (e0 / e1).ln() / (dt0 / dt1).ln()
+}
+
+/// The study on `case` for the steps `dts` (each run stops at 1.5 s: the
+/// state there does not depend on later steps), handing each row to
+/// `observe` as soon as it is known.
+///
+/// ```
+/// use crane_models::navy_planar::PaperCase;
+/// use crane_models::study::{Formulation, convergence};
+/// use crane_runtime::Scheme;
+///
+/// let case = PaperCase::new(4.0).unwrap();
+/// let rows = convergence::study(&case, Formulation::Redundant, Scheme::Bdf2, &[0.01, 0.005], |_| {}).unwrap();
+/// assert!((rows[1].order.unwrap() - 2.0).abs() < 0.1);
+/// ```
+pub fn study<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    formulation: Formulation,
+    scheme: Scheme,
+    dts: &[f64],
+    mut observe: impl FnMut(&Row),
+) -> Result<Vec<Row>, StudyError> {
+    if !(case.t0() < T_ERROR && T_ERROR <= case.tf()) {
+        return Err(StudyError::Convergence(format!(
+            "the error is measured at t = {T_ERROR} s, outside the run [{}, {}] s",
+            case.t0(),
+            case.tf()
+        )));
+    }
+    let no_reference = || {
+        StudyError::Convergence(format!(
+            "{} has no analytical reference at t = {T_ERROR} s to measure the error against",
+            C::NAME
+        ))
+    };
+    case.reference(T_ERROR).ok_or_else(no_reference)?;
+    let start = case.start()?;
+    let mut rows: Vec<Row> = Vec::new();
+    for &dt in dts {
+        let options = Options::new(dt, T_ERROR)?.with_scheme(scheme);
+        let solution = formulation.simulate(case, &start, &options, &mut |_, _| {})?;
+        let state = solution
+            .states
+            .iter()
+            .find(|s| (s.t - T_ERROR).abs() < 0.5 * dt)
+            .ok_or_else(|| StudyError::Convergence(format!("dt = {dt} s: no step at t = {T_ERROR} s")))?;
+        let e_u = case.relative_input_error(state).ok_or_else(no_reference)?;
+        let order = rows.last().map(|last| observed_order(last.dt, last.e_u, dt, e_u));
+        let row = Row { dt, e_u, order };
+        observe(&row);
+        rows.push(row);
+    }
+    Ok(rows)
+}

@@ -1,0 +1,305 @@
+//! What a run means, in one place for the command line, the FMU, the tests
+//! and API users: the formulation dispatch ([`Formulation`]), a run with
+//! its summary, feasibility and warnings ([`run`], [`summary`],
+//! [`warnings`]), the convergence study ([`convergence`]) and the replay
+//! policy ([`replay`]). A run is described as data by a [`RunSpec`]
+//! ([`spec`]), which scenario files and FMU variables both fill in.
+//!
+//! ```
+//! use crane_models::navy_planar::PaperCase;
+//! use crane_models::study::{self, RunSettings};
+//!
+//! let case = PaperCase::new(4.0).unwrap();                 // sect. 5.1.3
+//! let outcome = study::run(&case, &RunSettings::default(), None, &mut |_, _| {}).unwrap();
+//! let summary = &outcome.summary;
+//! assert_eq!(summary.steps, 400);
+//! assert!(summary.reference.as_ref().unwrap().e_u_at_1_5s.unwrap() < 2e-3); // eq. (48)
+//! assert!(study::summary::infeasibilities(summary).is_empty());             // ropes taut, flat
+//! assert!(outcome.warnings.is_empty());
+//! ```
+
+pub mod convergence;
+pub mod replay;
+pub mod spec;
+pub mod summary;
+pub mod warnings;
+
+use std::fmt;
+use std::str::FromStr;
+use std::time::Instant;
+
+use crane_runtime::internal::{diagnose, path_smoothness};
+use crane_runtime::{Options, Scheme, Solution, State};
+
+use crate::case::Case;
+use crate::crane::Crane;
+pub use replay::{FeedbackSpec, ReplayOutcome, ReplayRequest};
+pub use spec::{RunSpec, SpecError};
+pub use summary::{PathSmoothnessSummary, Summary, below_floor, infeasibilities};
+pub use warnings::Warning;
+
+/// Which index-3 formulation a run integrates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Formulation {
+    /// Redundant coordinates, eqs. (22a-d) (the default).
+    #[default]
+    Redundant,
+    /// Minimal coordinates, eqs. (24a-e), for a crane with a minimal map.
+    Minimal,
+}
+
+impl Formulation {
+    /// Both, in order.
+    pub const ALL: [Formulation; 2] = [Formulation::Redundant, Formulation::Minimal];
+
+    /// The name in scenario files, on the command line and in `summary.json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Formulation::Redundant => "redundant",
+            Formulation::Minimal => "minimal",
+        }
+    }
+
+    /// What it is, in a few words.
+    pub fn description(self) -> &'static str {
+        match self {
+            Formulation::Redundant => "redundant coordinates, eqs. (22a-d)",
+            Formulation::Minimal => "minimal coordinates, eqs. (24a-e)",
+        }
+    }
+
+    /// The choices as one line of help.
+    pub fn help() -> String {
+        Self::ALL
+            .iter()
+            .map(|f| format!("{} ({})", f.name(), f.description()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    /// Integrate `case` from `start` with this formulation, calling
+    /// `progress(step, steps)` after every step.
+    pub fn simulate<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+        self,
+        case: &Case<C, N, M, A>,
+        start: &State<N, M, A>,
+        options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<Solution<N, M, A>, StudyError> {
+        match self {
+            Formulation::Redundant => Ok(case.simulate_with_progress(start, options, progress)?),
+            Formulation::Minimal => Ok(case
+                .simulate_minimal_with_progress(start, options, progress)
+                .ok_or_else(|| StudyError::NoMinimalMap(C::NAME.to_string()))??),
+        }
+    }
+}
+
+impl fmt::Display for Formulation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A formulation name that is neither `redundant` nor `minimal`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown formulation `{0}`; expected redundant or minimal")]
+pub struct UnknownFormulation(pub String);
+
+impl FromStr for Formulation {
+    type Err = UnknownFormulation;
+    fn from_str(s: &str) -> Result<Self, UnknownFormulation> {
+        Self::ALL
+            .into_iter()
+            .find(|f| f.name() == s)
+            .ok_or_else(|| UnknownFormulation(s.to_string()))
+    }
+}
+
+/// Why a study could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum StudyError {
+    /// The runtime refused the run or a step failed.
+    #[error(transparent)]
+    Runtime(#[from] crane_runtime::Error),
+    /// The minimal formulation of a crane without a minimal map.
+    #[error("model `{0}` declares no minimal-coordinate map; use --formulation redundant")]
+    NoMinimalMap(String),
+    /// The convergence study cannot measure its error.
+    #[error("{0}")]
+    Convergence(String),
+    /// A plant parameter of a replay is unknown or not finite.
+    #[error("plant parameter `{name}`: {message}")]
+    PlantParameter {
+        /// The parameter.
+        name: String,
+        /// What is wrong with it.
+        message: String,
+    },
+}
+
+/// How a case is run: the settings a scenario file or the command line
+/// gives besides the case itself.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSettings {
+    /// Time step, s.
+    pub dt: f64,
+    /// The formulation.
+    pub formulation: Formulation,
+    /// The scheme.
+    pub scheme: Scheme,
+    /// `(input index, limit)`: limits on `|u|`.
+    pub limits: Vec<(usize, f64)>,
+    /// Parameters of a replay's plant that differ from the planner's.
+    pub plant: Vec<(String, f64)>,
+}
+
+/// The time step when neither a scenario nor the command line gives one, s.
+pub const DEFAULT_DT: f64 = 0.01;
+
+impl Default for RunSettings {
+    /// `dt = 0.01 s`, redundant coordinates, backward Euler, no limits.
+    fn default() -> Self {
+        Self {
+            dt: DEFAULT_DT,
+            formulation: Formulation::default(),
+            scheme: Scheme::default(),
+            limits: Vec::new(),
+            plant: Vec::new(),
+        }
+    }
+}
+
+/// A run and what it means.
+#[derive(Debug, Clone)]
+pub struct Outcome<const N: usize, const M: usize, const A: usize> {
+    /// The states of every step.
+    pub solution: Solution<N, M, A>,
+    /// Its summary (with the replay's, if one was asked for).
+    pub summary: Summary,
+    /// What the summary warns of.
+    pub warnings: Vec<Warning>,
+    /// The replay, if one was asked for.
+    pub replay: Option<ReplayOutcome<N, M, A>>,
+}
+
+/// Run `case` from its checked start with `settings`, calling
+/// `progress(step, steps)` after every step: the solution, its summary
+/// (peaks, ropes, limits, errors against the reference, the internal
+/// dynamics at 101 states, the path's smoothness), the warnings, and the
+/// replay if `replay` asks for one.
+pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    settings: &RunSettings,
+    replay: Option<&ReplayRequest>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Outcome<N, M, A>, StudyError> {
+    let start = case.start()?;
+    let options = Options::new(settings.dt, case.tf())?.with_scheme(settings.scheme);
+    let clock = Instant::now();
+    let solution = settings.formulation.simulate(case, &start, &options, progress)?;
+    let wall = clock.elapsed().as_secs_f64();
+    // the reference is evaluated where it is needed, never stored per step
+    let reference_at = |t: f64| case.reference(t);
+    let has_reference = C::HAS_REFERENCE && case.reference(case.t0()).is_some();
+    let mut summary = summary::summarize(
+        C::NAME,
+        settings.formulation.name(),
+        &solution,
+        has_reference.then_some(&reference_at as &dyn Fn(f64) -> Option<State<N, M, A>>),
+        &settings.limits,
+        wall,
+    );
+    summary.internal_dynamics = diagnose(case.model(), &solution, 100);
+    summary.path_smoothness =
+        path_smoothness::<C::Model, _, N, M, A>(case.path()).map(|smooth| PathSmoothnessSummary {
+            needed: smooth.needed,
+            continuous: smooth.continuous,
+            sufficient: smooth.is_sufficient(),
+        });
+    let warnings = warnings::warnings(&summary);
+    let replay = replay
+        .map(|request| replay::replay_run(case, &solution, request))
+        .transpose()?;
+    summary.replay = replay.as_ref().map(|r| r.summary.clone());
+    Ok(Outcome {
+        solution,
+        summary,
+        warnings,
+        replay,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coupled_trolley::CoupledTrolley;
+    use crane_runtime::nalgebra::vector;
+    use crane_runtime::trajectory::Poly9;
+    use crane_runtime::{init, simulate};
+
+    fn run(c: f64) -> (CoupledTrolley, Solution<4, 1, 2>) {
+        let crane = CoupledTrolley {
+            c,
+            ..CoupledTrolley::default()
+        };
+        let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
+        let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0]).unwrap();
+        let run = simulate(&crane, &path, &start, &Options::new(0.01, 5.0).unwrap()).unwrap();
+        (crane, run)
+    }
+
+    /// The coupled crane: the run "succeeds", the diagnosis says why its
+    /// torques are not a result: unstable internal dynamics of dimension 2
+    /// from the start (sqrt(lambda/c) = 9.9045 1/s there, larger where the
+    /// load rises and accelerates), and an input beyond 1e6 times its size
+    /// at the start before t = 2.5 s (3.4e12 N there); both are warnings
+    /// and make the run infeasible.
+    #[test]
+    fn an_unstable_crane_is_reported_as_such() {
+        let (crane, solution) = run(2.0);
+        let mut summary = summary::summarize("coupled-trolley", "redundant", &solution, None, &[], 0.0);
+        summary.internal_dynamics = diagnose(&crane, &solution, 100);
+        let d = &summary.internal_dynamics;
+        assert_eq!(d.structural_dimension, Some(2), "{d:?}");
+        assert_eq!(d.dimension, 2, "{d:?}");
+        assert!(!d.stable, "{d:?}");
+        assert!(d.max_real_part.unwrap() >= 9.9, "{d:?}");
+        assert!(d.runaway_at.is_some_and(|t| t < 2.5), "{d:?}");
+        // diagnosed up to the runaway (1.8 s of 5 s: 37 of the 101 samples)
+        assert!(d.samples >= 30 && d.unresolved == 0, "{d:?}");
+        let warnings = warnings::warnings(&summary);
+        assert!(matches!(
+            warnings[..],
+            [Warning::UnstableInternalDynamics { .. }, Warning::Runaway { .. }]
+        ));
+        let problems = infeasibilities(&summary);
+        assert!(
+            problems.iter().any(|p| p.starts_with("unstable internal dynamics")),
+            "{problems:?}"
+        );
+    }
+
+    /// Without the coupling: flat, nothing to report.
+    #[test]
+    fn a_flat_crane_is_reported_flat() {
+        let (crane, solution) = run(0.0);
+        let d = diagnose(&crane, &solution, 100);
+        // structurally 2 (c is a parameter), numerically 0 at c = 0
+        assert_eq!(d.structural_dimension, Some(2), "{d:?}");
+        assert_eq!(d.dimension, 0, "{d:?}");
+        assert!(d.stable && d.runaway_at.is_none(), "{d:?}");
+    }
+
+    /// One slack rule: round-off around a rope that carries nothing is not
+    /// slack, anything beyond 1e-9 of the rope's peak is.
+    #[test]
+    fn the_slack_rule_allows_round_off_only() {
+        assert!(!below_floor(-2.6e-13, 0.0, 1000.0), "the paper's start");
+        assert!(below_floor(-2e-6, 0.0, 1000.0));
+        assert!(!below_floor(99.9999999, 100.0, 1000.0));
+        assert!(below_floor(99.99, 100.0, 1000.0));
+        assert!(below_floor(f64::NEG_INFINITY, 0.0, 1.0));
+    }
+}

@@ -1,0 +1,218 @@
+//! A run as data ([`RunSpec`]): the crane's parameters, the load path, the
+//! start, the end and the settings. Scenario files and FMU variables fill
+//! one in; [`RunSpec::build`] checks it once against the crane and makes
+//! the [`Case`] and [`RunSettings`] of the run.
+
+use crane_runtime::trajectory::TrajectoryError;
+use crane_runtime::{CraneModel, Options, Scheme, UnknownParameter, driver::check_parameters};
+
+use super::{DEFAULT_DT, Formulation, RunSettings};
+use crate::case::Case;
+use crate::crane::Crane;
+use crate::path::{Path, PathSpec};
+
+/// A run of a crane with `A` load coordinates, as data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSpec<const A: usize> {
+    /// Parameter values that differ from the model's defaults, `(name,
+    /// value)`, in order.
+    pub parameters: Vec<(String, f64)>,
+    /// The load path.
+    pub path: PathSpec<A>,
+    /// The robot coordinates at the start (a guess, checked or improved
+    /// when the run starts).
+    pub p0: Vec<f64>,
+    /// End of the run, s.
+    pub tf: f64,
+    /// Time step, s.
+    pub dt: f64,
+    /// The scheme.
+    pub scheme: Scheme,
+    /// The formulation.
+    pub formulation: Formulation,
+    /// Limits on `|u|`, `(input name, limit)`.
+    pub limits: Vec<(String, f64)>,
+    /// Parameters of a replay's plant that differ from the planner's.
+    pub plant: Vec<(String, f64)>,
+}
+
+/// What is wrong with a [`RunSpec`] for its crane.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SpecError {
+    /// The crane has no parameter of this name.
+    #[error("{source}")]
+    UnknownParameter {
+        /// The name given.
+        name: String,
+        /// The crane's answer, listing its parameters.
+        source: UnknownParameter,
+    },
+    /// A parameter value is NaN or infinite.
+    #[error("parameter `{name}` = {value} is not finite")]
+    NonFiniteParameter {
+        /// The parameter.
+        name: String,
+        /// Its value.
+        value: f64,
+    },
+    /// A parameter declared `positive` is not.
+    #[error("parameter `{name}` = {value} must be positive (the model declares it `positive`)")]
+    NotPositiveParameter {
+        /// The parameter.
+        name: String,
+        /// Its value.
+        value: f64,
+    },
+    /// The parameters give the crane no physical meaning (an indefinite
+    /// mass matrix).
+    #[error("{0}")]
+    Physical(crane_runtime::Error),
+    /// The load path cannot be built.
+    #[error("the load path: {0}")]
+    Path(TrajectoryError),
+    /// The start has the wrong number of robot coordinates.
+    #[error("the start p0 needs {expected} numbers ({names}), got {found}")]
+    WrongStartLength {
+        /// `n - a`.
+        expected: usize,
+        /// The robot coordinates' names.
+        names: String,
+        /// How many were given.
+        found: usize,
+    },
+    /// The end of the run is not after its start.
+    #[error("the run ends at tf = {tf} s, not after its start t0 = {t0} s")]
+    EndBeforeStart {
+        /// The end.
+        tf: f64,
+        /// The start.
+        t0: f64,
+    },
+    /// The time step or the end is not a number the runtime accepts.
+    #[error("{0}")]
+    Time(crane_runtime::Error),
+    /// A limit on an input the crane does not have.
+    #[error("the crane has no input `{name}`; its inputs are {inputs}")]
+    UnknownInput {
+        /// The name given.
+        name: String,
+        /// The crane's inputs.
+        inputs: String,
+    },
+    /// A limit that is not a positive number.
+    #[error("the limit on `{name}` must be a positive number, got {value}")]
+    LimitNotPositive {
+        /// The input.
+        name: String,
+        /// The limit given.
+        value: f64,
+    },
+}
+
+impl<const A: usize> RunSpec<A> {
+    /// The default manoeuvre of crane `C` with its default parameters, run
+    /// to the end of the motion at `dt = 0.01 s` with backward Euler in
+    /// redundant coordinates (what `crane run MODEL` does).
+    pub fn default_for<C: Crane<N, M, A>, const N: usize, const M: usize>() -> Self {
+        let maneuver = C::maneuver();
+        Self {
+            parameters: Vec::new(),
+            tf: maneuver.path.t1,
+            path: maneuver.path,
+            p0: maneuver.p0,
+            dt: DEFAULT_DT,
+            scheme: Scheme::default(),
+            formulation: Formulation::default(),
+            limits: Vec::new(),
+            plant: Vec::new(),
+        }
+    }
+
+    /// Check the description against crane `C` and make the run's case and
+    /// settings: every parameter known, finite and (where declared)
+    /// positive, the mass matrix positive semi-definite, the path buildable,
+    /// `p0` of the right length, `dt` a valid step and `tf` after `t0`, every
+    /// limit on a known input and positive.
+    ///
+    /// ```
+    /// use crane_models::navy_planar::Description;
+    /// use crane_models::study::{RunSpec, SpecError};
+    ///
+    /// let mut spec = RunSpec::default_for::<Description, 7, 3>();
+    /// spec.parameters.push(("m_l".into(), 150.0));
+    /// let (case, settings) = spec.build::<Description, 7, 3>().unwrap();
+    /// assert_eq!(case.model().m_l, 150.0);
+    /// assert_eq!(settings.dt, 0.01);
+    /// spec.parameters.push(("m_l".into(), -1.0));
+    /// assert!(matches!(spec.build::<Description, 7, 3>(), Err(SpecError::NotPositiveParameter { .. })));
+    /// ```
+    pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize>(
+        &self,
+    ) -> Result<(Case<C, N, M, A>, RunSettings), SpecError> {
+        let info = <C::Model as CraneModel<N, M, A>>::INFO;
+        let mut model = C::Model::default();
+        for (name, value) in &self.parameters {
+            if !value.is_finite() {
+                return Err(SpecError::NonFiniteParameter {
+                    name: name.clone(),
+                    value: *value,
+                });
+            }
+            model
+                .set_parameter(name, *value)
+                .map_err(|source| SpecError::UnknownParameter {
+                    name: name.clone(),
+                    source,
+                })?;
+        }
+        // masses, inertias and lengths declared positive, and a positive
+        // semi-definite mass matrix
+        check_parameters(&model).map_err(|e| match e {
+            crane_runtime::Error::NonPositiveParameter { name, value } => SpecError::NotPositiveParameter {
+                name: name.to_string(),
+                value,
+            },
+            other => SpecError::Physical(other),
+        })?;
+        let path = Path::new(self.path).map_err(SpecError::Path)?;
+        if self.p0.len() != N - A {
+            return Err(SpecError::WrongStartLength {
+                expected: N - A,
+                names: info.coordinates[..N - A].join(", "),
+                found: self.p0.len(),
+            });
+        }
+        let t0 = self.path.t0;
+        if !(self.tf.is_finite() && self.tf > t0) {
+            return Err(SpecError::EndBeforeStart { tf: self.tf, t0 });
+        }
+        Options::new(self.dt, self.tf).map_err(SpecError::Time)?;
+        let mut limits = Vec::new();
+        for (name, limit) in &self.limits {
+            let k = info
+                .inputs
+                .iter()
+                .position(|n| n == name)
+                .ok_or_else(|| SpecError::UnknownInput {
+                    name: name.clone(),
+                    inputs: info.inputs.join(", "),
+                })?;
+            if !(limit.is_finite() && *limit > 0.0) {
+                return Err(SpecError::LimitNotPositive {
+                    name: name.clone(),
+                    value: *limit,
+                });
+            }
+            limits.push((k, *limit));
+        }
+        let case = Case::from_parts(model, path, self.p0.clone(), self.tf);
+        let settings = RunSettings {
+            dt: self.dt,
+            formulation: self.formulation,
+            scheme: self.scheme,
+            limits,
+            plant: self.plant.clone(),
+        };
+        Ok((case, settings))
+    }
+}

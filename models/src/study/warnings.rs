@@ -1,0 +1,106 @@
+//! What a run's summary warns of: results that are not a usable feedforward
+//! although every step converged (unstable internal dynamics, an input far
+//! beyond its size at the start) and a path too rough for the crane.
+
+use std::fmt;
+
+use crane_runtime::error::Seconds;
+
+use super::summary::Summary;
+
+/// A warning about a run.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Warning {
+    /// The internal dynamics along the path are unstable: the causal
+    /// inverse grows without bound.
+    UnstableInternalDynamics {
+        /// The crane's name.
+        model: String,
+        /// Their dimension.
+        dimension: usize,
+        /// The largest real part of an eigenvalue, 1/s.
+        max_real_part: f64,
+        /// Where, s.
+        at: f64,
+    },
+    /// The inputs depend on derivatives of the path beyond its continuity.
+    PathTooRough {
+        /// The crane's name.
+        model: String,
+        /// The highest path derivative the inputs depend on.
+        needed: usize,
+        /// The highest continuous one.
+        continuous: usize,
+    },
+    /// An input exceeds [`RUNAWAY_FACTOR`](crane_runtime::internal::RUNAWAY_FACTOR)
+    /// times its size at the start.
+    Runaway {
+        /// The crane's name.
+        model: String,
+        /// From when, s.
+        at: f64,
+    },
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Warning::UnstableInternalDynamics {
+                model,
+                dimension,
+                max_real_part,
+                at,
+            } => write!(
+                f,
+                "{model} has unstable internal dynamics along this path (dimension {dimension}, largest real part \
+                 {max_real_part:.4} 1/s at t = {} s): the computed inputs grow without bound; see the README, \
+                 \"Flat and non-flat cranes\"",
+                Seconds(*at)
+            ),
+            Warning::PathTooRough {
+                model,
+                needed,
+                continuous,
+            } => write!(
+                f,
+                "the inputs of {model} depend on the load path's derivatives up to order {needed}, but this path is \
+                 continuous only up to order {continuous}: the exact inputs jump or carry impulses where its \
+                 derivative {} jumps, and the computed ones grow there as dt shrinks (use a smoother path, e.g. \
+                 trajectory = \"smooth-three-phase\")",
+                continuous + 1
+            ),
+            Warning::Runaway { model, at } => write!(
+                f,
+                "an input of {model} exceeds 1e6 times its size at the start from t = {} s: not a physical result",
+                Seconds(*at)
+            ),
+        }
+    }
+}
+
+/// The warnings of a run's summary, in this order: unstable internal
+/// dynamics, a path too rough, a runaway input.
+pub fn warnings(summary: &Summary) -> Vec<Warning> {
+    let model = summary.model.clone();
+    let internal = &summary.internal_dynamics;
+    let mut out = Vec::new();
+    if !internal.stable {
+        out.push(Warning::UnstableInternalDynamics {
+            model: model.clone(),
+            dimension: internal.dimension,
+            max_real_part: internal.max_real_part.unwrap_or(f64::NAN),
+            at: internal.at.unwrap_or(f64::NAN),
+        });
+    }
+    if let Some(smooth) = summary.path_smoothness.as_ref().filter(|s| !s.sufficient) {
+        out.push(Warning::PathTooRough {
+            model: model.clone(),
+            needed: smooth.needed,
+            continuous: smooth.continuous,
+        });
+    }
+    if let Some(at) = internal.runaway_at {
+        out.push(Warning::Runaway { model, at });
+    }
+    out
+}
