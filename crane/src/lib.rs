@@ -7,8 +7,18 @@
 //! index reduction by minimal extension gives an index-3 DAE that backward
 //! Euler (the paper's scheme, the default) or BDF-k, k = 2..5
 //! ([`Scheme`](prelude::Scheme)), integrates (paper eqs. 22a-d in redundant
-//! coordinates, 24a-e in minimal coordinates). This crate re-exports the macro (`crane-macros`) and
-//! the runtime (`crane-runtime`): depend on it alone.
+//! coordinates, 24a-e in minimal coordinates). This crate carries the whole
+//! API; depend on it alone:
+//!
+//! | module | what |
+//! |---|---|
+//! | [`crane_model!`], [`prelude`] | declare a crane, run it |
+//! | [`runtime`] | problems, schemes, the stepper, paths, starts, diagnosis |
+//! | [`models`] | the built-in cranes with their references, [`Case`](models::Case), the [`Crane`](models::Crane) description |
+//! | [`study`] | what a run means: summary, feasibility, warnings, convergence, replay policy |
+//! | [`plan`] | the fastest feasible move, parameter sweeps |
+//! | [`replay`], [`forward`] | the computed torques on the forward dynamics (another plant, feedback) |
+//! | [`fmi`] (feature `fmu`, on by default) | any crane as an FMI 2.0 co-simulation FMU |
 //!
 //! # Worked example: a planar gantry crane
 //!
@@ -57,21 +67,120 @@
 //!
 //! // flat (the path fixes every state: the declaration says so), so the
 //! // torques are the unique ones; a crane with internal dynamics would be
-//! // told here (`crane_runtime::internal`)
+//! // told here (`crane::runtime::internal`)
 //! assert_eq!(<Gantry as CraneModel<4, 1, 2>>::STRUCTURE.map(|s| s.dimension), Some(0));
 //! assert!(internal::diagnose(&crane, &run, 100).is_usable());
 //! # Ok(())
 //! # }
 //! ```
 //!
-//! For online use (a controller computing feedforward torques), a
-//! [`RedundantStepper`](prelude::RedundantStepper) advances one step at a time
-//! from the load target at the new time and does not allocate: see
-//! `examples/control_loop.rs`.
+//! For online use (a controller computing feedforward torques), a stepper
+//! advances one step at a time from the load target at the new time and
+//! does not allocate: see `examples/control_loop.rs`.
+//!
+//! # A run and what it means: [`study`]
+//!
+//! A built-in crane (or a [`Crane`](models::Crane) description of one's
+//! own) on its default manoeuvre, with the summary `crane run` writes:
+//! peaks, ropes, errors against the analytical reference, internal
+//! dynamics, feasibility and warnings.
+//!
+//! ```
+//! use crane::models::navy_planar::PaperCase;
+//! use crane::study::{self, RunSettings};
+//!
+//! let case = PaperCase::new(4.0).unwrap(); // the paper's sect. 5.1.3
+//! let outcome = study::run(&case, &RunSettings::default(), None, &mut |_, _| {}).unwrap();
+//! let reference = outcome.summary.reference.as_ref().unwrap();
+//! assert!(reference.e_u_at_1_5s.unwrap() < 2e-3); // eq. (48), Fig. 7
+//! assert!(study::infeasibilities(&outcome.summary).is_empty());
+//! ```
+//!
+//! # The fastest feasible move: [`plan`]
+//!
+//! ```
+//! use crane::models::navy_planar::PaperCase;
+//! use crane::plan::{Limits, Settings, fastest};
+//!
+//! let case = PaperCase::maneuver().unwrap();
+//! // |u2| <= 150 N m, and both ropes taut
+//! let limits = Limits { torque: vec![(1, 150.0)], tension: vec![] };
+//! let limits = limits.with_taut_ropes::<crane::models::navy_planar::NavyPlanar, 7, 3, 2>();
+//! let best = fastest(&case, &limits, &Settings::default()).unwrap();
+//! println!("T* = {:.4} s, bound by {}", best.duration, best.binding.name);
+//! assert!(best.duration < 4.0 && best.interval.holds);
+//! ```
+//!
+//! # The torques on another plant: [`replay`]
+//!
+//! The computed torques (BDF-4) drive the forward dynamics ([`forward`]) of
+//! the planned crane, whose load follows its path to the integration error
+//! (3e-5 m), and of one whose load is 10 % heavier, which the winches do not
+//! hold: it leaves the path by metres.
+//!
+//! ```
+//! use crane::models::navy_planar_pulley::PaperCase;
+//! use crane::prelude::*;
+//! use crane::replay::{ReplayOptions, replay};
+//!
+//! let case = PaperCase::new(4.0).unwrap();
+//! let start = case.start().unwrap();
+//! let options = Options::new(0.01, 4.0).unwrap().with_scheme(Scheme::Bdf4);
+//! let planned = case.simulate(&start, &options).unwrap();
+//! let mut heavier = case.model().clone();
+//! heavier.m_l *= 1.1;
+//! let options = ReplayOptions::new(2.0, Scheme::Bdf2);
+//! let on_planned = replay(case.model(), case.path(), &planned, &options).unwrap();
+//! let on_heavier = replay(&heavier, case.path(), &planned, &options).unwrap();
+//! assert!(on_planned.max_load_deviation < 1e-4);
+//! assert!(on_heavier.max_load_deviation > 1.0);
+//! ```
+//!
+//! # Any crane as an FMU: [`fmi`]
+//!
+//! A `cdylib` crate declares its crane, describes its default move (a
+//! [`Crane`](models::Crane)) and exports the FMI functions with
+//! `crane::fmi::export_fmu!(MyCrane);`; `crane::fmi::package::package`
+//! writes the `.fmu` (see `examples/fmu-crane`). The state machine behind the
+//! C functions runs in Rust too:
+//!
+//! ```
+//! # #[cfg(feature = "fmu")] {
+//! use crane::fmi::instance::{Component, Instance};
+//! use crane::models::navy_planar;
+//!
+//! let mut fmu = Instance::<navy_planar::Description, 7, 3, 2>::new().unwrap();
+//! fmu.setup_experiment(0.0).unwrap();
+//! fmu.enter_initialization_mode().unwrap();
+//! fmu.exit_initialization_mode().unwrap(); // the consistent start
+//! fmu.do_step(0.0, 0.1).unwrap(); // ten internal steps of dt = 0.01 s
+//! assert!((fmu.time() - 0.1).abs() < 1e-12);
+//! # }
+//! ```
 #![warn(missing_docs)]
 
-/// The runtime: traits, load paths, initialisation, integrators, results.
+/// The runtime: traits, problems, schemes, the stepper, load paths,
+/// initialisation, results, diagnosis.
 pub use crane_runtime as runtime;
+
+/// The built-in cranes with their references, cases and descriptions.
+pub use crane_models as models;
+
+/// What a run means: summary, feasibility, warnings, convergence, replay policy.
+pub use crane_models::study;
+
+/// Planning: the fastest feasible move and parameter sweeps.
+pub use crane_models::plan;
+
+/// Replay: the computed torques on the forward dynamics of a plant.
+pub use crane_runtime::replay;
+
+/// The forward problem: a crane driven by given inputs.
+pub use crane_runtime::forward;
+
+/// FMI 2.0 co-simulation export (feature `fmu`).
+#[cfg(feature = "fmu")]
+pub use crane_fmi as fmi;
 
 /// Declare a crane: see the crate docs and `crane_macros::crane_model!` for
 /// the DSL. Generated code refers to this crate's [`runtime`], so depending on
@@ -91,11 +200,12 @@ pub mod __private {
 /// Everything a typical program needs: `use crane::prelude::*;`.
 pub mod prelude {
     pub use crate::crane_model;
+    pub use crane_models::{Case, Crane, Maneuver, Path, PathSpec, Profile, ProfileKind};
     pub use crane_runtime::check::{SampleBox, check_derivatives, check_minimal_map};
     pub use crane_runtime::nalgebra::{SMatrix, SVector};
     pub use crane_runtime::trajectory::{FromFn, Poly9, ThreePhase, Trajectory};
     pub use crane_runtime::{
-        CraneModel, Error, MinimalMap, MinimalStepper, Options, RedundantStepper, Scheme, Solution, State, Stepper,
-        init, internal, simulate, simulate_minimal,
+        Advance, CraneModel, Error, ForwardStepper, Method, MinimalMap, MinimalStepper, Options, RedundantStepper,
+        Scheme, Solution, State, Stepper, forward, init, internal, minimal, redundant, simulate, simulate_minimal,
     };
 }

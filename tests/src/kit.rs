@@ -1,8 +1,8 @@
 //! The shared test kit: the paper's checks written once for every built-in
 //! crane, so that the per-crane test files read like the paper's checks.
 //!
-//! - [`run`]: a crane's case from its consistent start, either formulation,
-//!   any scheme;
+//! - [`run`]: a crane's case from its consistent start, either formulation
+//!   ([`Formulation`], the study's dispatch), any scheme;
 //! - [`e_u`]: the relative error of `u` at t = 1.5 s (eq. 48);
 //! - [`assert_order`]: e_u falls with dt and the observed order between the
 //!   two smallest steps lies in a band;
@@ -19,17 +19,8 @@ use crane_models::{Case, Crane, Path, PathSpec, Profile};
 use crane_runtime::{Options, Scheme, Solution};
 use nalgebra::SVector;
 
-/// Time of the error measure of eq. (48), s.
-pub const T_ERROR: f64 = 1.5;
-
-/// Which index-3 formulation a test runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Formulation {
-    /// Redundant coordinates, eqs. (22a-d).
-    Redundant,
-    /// Minimal coordinates, eqs. (24a-e).
-    Minimal,
-}
+pub use crane_models::study::Formulation;
+pub use crane_models::study::convergence::{T_ERROR, observed_order};
 
 /// `case` from its consistent start to `tf` with `scheme` and step `dt`;
 /// panics with the crane, formulation, scheme and step if the start or the
@@ -47,13 +38,9 @@ pub fn run_to<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>
     let options = Options::new(dt, tf)
         .unwrap_or_else(|e| panic!("{}: {e}", C::NAME))
         .with_scheme(scheme);
-    let result = match formulation {
-        Formulation::Redundant => case.simulate(&start, &options),
-        Formulation::Minimal => case
-            .simulate_minimal(&start, &options)
-            .unwrap_or_else(|| panic!("{} has no minimal map", C::NAME)),
-    };
-    result.unwrap_or_else(|e| panic!("{} {formulation:?} {scheme} at dt = {dt}: {e}", C::NAME))
+    formulation
+        .simulate(case, &start, &options, &mut |_, _| {})
+        .unwrap_or_else(|e| panic!("{} {formulation:?} {scheme} at dt = {dt}: {e}", C::NAME))
 }
 
 /// [`run_to`] the case's end time.
@@ -76,11 +63,6 @@ pub fn e_u<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     assert!((state.t - T_ERROR).abs() < 1e-9, "no step at 1.5 s: {}", state.t);
     case.relative_input_error(state)
         .unwrap_or_else(|| panic!("{} has no reference at 1.5 s", C::NAME))
-}
-
-/// The observed order between errors `e0` at step `dt0` and `e1` at `dt1`.
-pub fn observed_order(dt0: f64, e0: f64, dt1: f64, e1: f64) -> f64 {
-    (e0 / e1).ln() / (dt0 / dt1).ln()
 }
 
 /// e_u for every step in `dts` (coarse to fine) falls monotonically, and

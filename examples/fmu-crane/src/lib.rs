@@ -2,7 +2,6 @@
 //! FMI 2.0 co-simulation FMU: declare it, describe its default move, export.
 
 use crane::prelude::*;
-use crane_fmi::{Crane, Maneuver, PathSpec, Profile};
 
 crane_model! {
     /// Planar gantry crane: trolley, hoist winch, load on one rope.
@@ -37,4 +36,4 @@ impl Crane<4, 1, 2> for PlanarGantry {
     }
 }
 
-crane_fmi::export_fmu!(PlanarGantry);
+crane::fmi::export_fmu!(PlanarGantry);

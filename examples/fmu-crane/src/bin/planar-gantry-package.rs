@@ -11,7 +11,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = std::path::PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| ".".into()));
     let library = std::env::current_exe()?.with_file_name("libplanar_gantry_fmu.so");
     let fmu = dir.join("planar-gantry.fmu");
-    crane_fmi::package::package::<PlanarGantry, 4, 1, 2>(&library, &fmu)?;
+    crane::fmi::package::package::<PlanarGantry, 4, 1, 2>(&library, &fmu)?;
     println!("wrote {}", fmu.display());
 
     // the same move through the API: the FMU must reproduce it
