@@ -329,10 +329,10 @@ pub fn heat_map(
         let steps = 50;
         for k in 0..steps {
             let v = lo + (hi - lo) * k as f64 / (steps - 1) as f64;
-            let y0 = 560 - (k * 480 / steps) as i32;
+            let y0 = 560 - (k * 480 / steps);
             bar_area
                 .draw(&Rectangle::new(
-                    [(20, y0 - 480 / steps as i32 - 1), (50, y0)],
+                    [(20, y0 - 480 / steps - 1), (50, y0)],
                     colour(v).filled(),
                 ))
                 .map_err(|e| failed(e.to_string()))?;

@@ -41,7 +41,7 @@ fn do_step_does_not_allocate() {
         fmu.enter_initialization_mode().unwrap();
         fmu.set_integer(&[1], &[path_kind]).unwrap();
         fmu.exit_initialization_mode().unwrap();
-        let steps = (4.0 / h as f64).round() as usize;
+        let steps = (4.0f64 / h).round() as usize;
         let mut out = [0.0; 4];
         let mut values = [0.0; 6];
         let (allocations, ()) = allocations_during(|| {

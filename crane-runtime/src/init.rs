@@ -57,10 +57,10 @@ where
     if p0.len() != p {
         return Err(wrong_length(p, p0.len(), "the start p0"));
     }
-    if let Some(v0) = v0 {
-        if v0.len() != p {
-            return Err(wrong_length(p, v0.len(), "the start velocity v0"));
-        }
+    if let Some(v0) = v0
+        && v0.len() != p
+    {
+        return Err(wrong_length(p, v0.len(), "the start velocity v0"));
     }
     let info = Mdl::INFO;
     let gamma = [0, 1, 2].map(|k| trajectory.derivative(t0, k));

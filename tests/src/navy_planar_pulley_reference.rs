@@ -39,7 +39,7 @@ impl Trajectory<3> for PaperPath {
 }
 
 fn params_of(model: &NavyPlanarPulley) -> NavyPlanarPulley {
-    model.clone()
+    *model
 }
 
 /// `n` equally spaced times strictly inside `(0, tf)`.

@@ -42,10 +42,10 @@ impl CraneModel<7, 3, 2> for Broken {
     fn constraint_jacobian<T: Scalar>(&self, q: &SVector<T, 7>) -> SMatrix<T, 3, 7> {
         let mut jac = self.model.constraint_jacobian(q);
         if self.flaw == Flaw::Jacobian {
-            jac[(2, 5)] = jac[(2, 5)] * 2.0;
+            jac[(2, 5)] *= 2.0;
         }
         if self.flaw == Flaw::SmallEntry {
-            jac[(2, 0)] = jac[(2, 0)] + T::from(1e-7);
+            jac[(2, 0)] += T::from(1e-7);
         }
         jac
     }

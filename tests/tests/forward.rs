@@ -26,7 +26,7 @@ fn largest_deviation(case: &PaperCase, run: &Solution<8, 4, 3>) -> f64 {
 fn replaying_the_analytical_inputs_keeps_the_load_on_the_path() {
     let case = PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
-    let model = case.model().clone();
+    let model = *case.model();
     let path = case.path().clone();
     // BDF-3..5 show order 2 here: see the next test for why
     for scheme in [Scheme::BackwardEuler, Scheme::Bdf2] {
@@ -76,7 +76,7 @@ fn on_a_smooth_path_the_replay_has_order_k() {
     })
     .unwrap();
     let start = case.start().unwrap();
-    let (model, path) = (case.model().clone(), case.path().clone());
+    let (model, path) = (*case.model(), case.path().clone());
     for scheme in [Scheme::BackwardEuler, Scheme::Bdf2, Scheme::Bdf3, Scheme::Bdf4] {
         let d: Vec<f64> = [0.02, 0.01]
             .iter()
@@ -129,7 +129,7 @@ fn replaying_the_inverse_runs_torques() {
     let options = ReplayOptions::new(9.0, Scheme::Bdf2);
     let be = replay(case.model(), case.path(), &inverse(Scheme::BackwardEuler), &options).unwrap();
     let bdf4 = replay(case.model(), case.path(), &inverse(Scheme::Bdf4), &options).unwrap();
-    let mut heavy = case.model().clone();
+    let mut heavy = *case.model();
     heavy.set_parameter("m_l", 110.0).unwrap();
     let mismatched = replay(&heavy, case.path(), &inverse(Scheme::Bdf4), &options).unwrap();
     for (name, r) in [
@@ -174,7 +174,7 @@ fn feedback_takes_away_the_mismatch() {
     let options = ReplayOptions::new(9.0, Scheme::Bdf2);
     let gains = Feedback::from_model(case.model(), &start);
     for m_l in [110.0, 90.0, 100.0] {
-        let mut plant = case.model().clone();
+        let mut plant = *case.model();
         plant.set_parameter("m_l", m_l).unwrap();
         let open = replay(&plant, case.path(), &inverse, &options).unwrap();
         let closed = replay_with_feedback(&plant, case.path(), &inverse, &options, Some(&gains)).unwrap();

@@ -180,7 +180,7 @@ fn generated_model_matches_the_paper_equations() {
         generated.parameter_values(),
         [100.0, 480.0, 0.1, 0.1, 0.1, 0.1, pi / 3.0, 5.0, 5.0, 0.5, 9.81]
     );
-    let paper = Paper(generated.clone());
+    let paper = Paper(generated);
     // implicit parameters (docs/errata.md): r = (k + l) sin(alpha) = 5 sqrt 3, M = J_b / r^2 = 6.4 kg
     assert!((paper.r() - 5.0 * 3f64.sqrt()).abs() < 1e-14);
     assert!((paper.0.J_b / (paper.r() * paper.r()) - 6.4).abs() < 1e-13);
@@ -375,7 +375,7 @@ fn static_solve_finds_the_regular_end_equilibrium() {
 fn reference_satisfies_the_equations_of_motion() {
     let case = case();
     let model = case.model();
-    let params = case.model().clone();
+    let params = *case.model();
     let mut worst = [0.0f64; 3];
     for i in 0..=400 {
         let t = TF * i as f64 / 400.0;

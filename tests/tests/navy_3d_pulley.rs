@@ -503,7 +503,7 @@ fn in_the_vertical_plane_it_is_the_planar_pulley_crane_of_appendix_b() {
     .unwrap();
     let q = reference_at(&planar, &planar_path, 0.0).q; // [L1, L2, L3, L0, x0 | x, z, z0]
     let p0 = vec![q[0], q[1], q[2], q[3], q[4] + tip[0], 0.0, r, 0.0];
-    let case = PaperCase::from_parts(crane.clone(), path, p0, 4.0);
+    let case = PaperCase::from_parts(crane, path, p0, 4.0);
     for scheme in [Scheme::BackwardEuler, Scheme::Bdf2] {
         let errors: Vec<f64> = [0.02, 0.01]
             .iter()

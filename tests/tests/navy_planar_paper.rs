@@ -209,8 +209,10 @@ fn invalid_settings_are_typed_errors() {
         simulate(model, case.path(), &start, &Options::new(0.3, 4.0).unwrap()),
         Err(Error::StepsDoNotFit { .. })
     ));
-    let mut broken = NavyPlanar::default();
-    broken.m_l = f64::NAN;
+    let broken = NavyPlanar {
+        m_l: f64::NAN,
+        ..NavyPlanar::default()
+    };
     assert!(matches!(
         simulate(&broken, case.path(), &start, &Options::new(0.1, 4.0).unwrap()),
         Err(Error::NonFiniteParameter { name: "m_l", .. })

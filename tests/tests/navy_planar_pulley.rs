@@ -136,7 +136,7 @@ fn generated_model_matches_the_paper_equations() {
         generated.parameter_values(),
         [100.0, 150.0, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, pi / 3.0, 10.0, 5.0, 9.81]
     );
-    let paper = Paper(generated.clone());
+    let paper = Paper(generated);
     let sample = sample_box();
     let mut rng = SmallRng::seed_from_u64(23);
     let close = |a: &[f64], b: &[f64], what: &str| {
@@ -383,7 +383,7 @@ fn coordinates_and_multipliers_follow_the_reference() {
 fn ropes_stay_taut_along_the_maneuver() {
     for tf in [4.0, 15.0] {
         let case = PaperCase::new(tf).unwrap();
-        let params = case.model().clone();
+        let params = *case.model();
         let solution = run(&case, 0.01);
         let (mut min, mut peak, mut worst) = ([f64::INFINITY; 3], [0.0f64; 3], [0.0f64; 3]);
         for (i, state) in solution.states.iter().enumerate() {

@@ -108,7 +108,7 @@ fn a_negative_mass_from_a_parameter_is_refused() {
 fn a_non_positive_declared_parameter_is_refused() {
     let case = PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
-    let mut crane = case.model().clone();
+    let mut crane = *case.model();
     crane.set_parameter("m_l", -100.0).unwrap();
     let error = simulate(&crane, case.path(), &start, &Options::new(0.01, 4.0).unwrap()).unwrap_err();
     assert_eq!(

@@ -117,8 +117,8 @@ mod gantry {
     }
 
     /// The flatness reference (written from the load's equations alone)
-    /// satisfies the generated model's equations of motion `M q'' = f + B^T u
-    /// - G^T lambda`, the constraint `g = 0` and `G q' = 0` along the move,
+    /// satisfies the generated model's equations of motion
+    /// `M q'' = f + B^T u - G^T lambda`, the constraint `g = 0` and `G q' = 0` along the move,
     /// to round-off (1e-9 of the force scale m_l g = 4905 N, 1e-12 m).
     #[test]
     fn reference_satisfies_the_generated_equations() {

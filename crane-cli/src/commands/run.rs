@@ -305,12 +305,12 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
             )),
         }
     }
-    if let Some(reference) = &summary.reference {
-        if let Some(e) = reference.e_u_at_1_5s {
-            lines.push(format!(
-                "relative error of u at t = 1.5 s against the analytical reference (eq. 48): {e:.3e}"
-            ));
-        }
+    if let Some(reference) = &summary.reference
+        && let Some(e) = reference.e_u_at_1_5s
+    {
+        lines.push(format!(
+            "relative error of u at t = 1.5 s against the analytical reference (eq. 48): {e:.3e}"
+        ));
     }
     let internal = &summary.internal_dynamics;
     lines.push(match (internal.dimension, internal.stable) {

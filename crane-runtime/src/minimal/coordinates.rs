@@ -36,6 +36,10 @@ where
     Ok((mu, mu_dot))
 }
 
+/// Minimal coordinates `mu`, their rates `mu'` and `P = D phi(mu)`.
+pub(super) type MinimalCoordinates<const N: usize, const F: usize> =
+    (SVector<f64, F>, SVector<f64, F>, SMatrix<f64, N, F>);
+
 /// `mu` with `phi(mu) = q` by Gauss-Newton from `mu_guess`, the least-squares
 /// `mu'` of `P mu' = q'` (the projection of `q'` onto the motions the map
 /// allows) and `P`; allocation-free.
@@ -43,7 +47,7 @@ pub(super) fn minimal_coordinates<Mdl, const N: usize, const M: usize, const A: 
     model: &Mdl,
     state: &State<N, M, A>,
     mu_guess: &SVector<f64, F>,
-) -> Result<(SVector<f64, F>, SVector<f64, F>, SMatrix<f64, N, F>), Error>
+) -> Result<MinimalCoordinates<N, F>, Error>
 where
     Mdl: MinimalMap<N, M, A, F>,
 {

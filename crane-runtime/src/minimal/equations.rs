@@ -348,8 +348,8 @@ mod tests {
         };
         let model = Overhead::default();
         // read off the declaration: friction on dot(s), beta in the winch's force
-        assert!(<Overhead as CraneModel<4, 1, 2>>::FORCES_DEPEND_ON_VELOCITY);
-        assert!(<Overhead as CraneModel<4, 1, 2>>::FORCES_DEPEND_ON_POSITION);
+        const { assert!(<Overhead as CraneModel<4, 1, 2>>::FORCES_DEPEND_ON_VELOCITY) };
+        const { assert!(<Overhead as CraneModel<4, 1, 2>>::FORCES_DEPEND_ON_POSITION) };
         const DIM: usize = 3 + 3 * 2;
         for scheme in Scheme::ALL {
             for dt in [0.1, 0.01, 0.001] {
