@@ -10,7 +10,9 @@
 //! at 45 degrees, shortened by half); both with equal scales on both axes.
 
 use crane_runtime::{ModelInfo, Solution};
-use plotters::element::DashedPathElement;
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
+use plotters::element::{DashedPathElement, Drawable, PointCollection};
 use plotters::prelude::*;
 
 use crate::CliError;
@@ -97,6 +99,87 @@ pub fn svg<const N: usize, const M: usize, const A: usize>(
     draw(info, solution.dt, &geometry, &poses, &along).map(Some)
 }
 
+/// The chart of the snapshots: data coordinates in metres.
+type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// The legend column.
+type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+
+/// What `snapshots.svg` failed at, as the command's error.
+fn failed(e: impl ToString) -> CliError {
+    CliError::Output {
+        what: "snapshots.svg".into(),
+        message: e.to_string(),
+    }
+}
+
+/// The data window and the plot size: everything drawn inside, padded,
+/// with equal scales on both axes (a fixed plot width, the height from the
+/// data's aspect ratio within limits, the other range widened to fill).
+struct View {
+    x: (f64, f64),
+    z: (f64, f64),
+    px_per_m: f64,
+    plot_w: u32,
+    plot_h: u32,
+}
+
+impl View {
+    /// The view of `points` (projected), or an error if none is finite.
+    fn of(points: Vec<(f64, f64)>) -> Result<Self, CliError> {
+        let points: Vec<(f64, f64)> = points
+            .into_iter()
+            .filter(|(x, z)| x.is_finite() && z.is_finite())
+            .collect();
+        if points.is_empty() {
+            return Err(failed("no finite positions to draw"));
+        }
+        let (mut x0, mut x1, mut z0, mut z1) = points.iter().fold(
+            (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+            |(a, b, c, d), &(x, z)| (a.min(x), b.max(x), c.min(z), d.max(z)),
+        );
+        let pad = 0.06 * (x1 - x0).max(z1 - z0).max(1.0);
+        (x0, x1, z0, z1) = (x0 - pad, x1 + pad, z0 - pad, z1 + pad);
+        const PLOT_W: f64 = 700.0;
+        let (min_h, max_h) = (380.0, 820.0);
+        let mut px_per_m = PLOT_W / (x1 - x0);
+        let mut plot_h = (z1 - z0) * px_per_m;
+        if plot_h > max_h {
+            plot_h = max_h;
+            px_per_m = max_h / (z1 - z0);
+            let widen = (PLOT_W / px_per_m - (x1 - x0)) / 2.0;
+            (x0, x1) = (x0 - widen, x1 + widen);
+        } else if plot_h < min_h {
+            plot_h = min_h;
+            let widen = (min_h / px_per_m - (z1 - z0)) / 2.0;
+            (z0, z1) = (z0 - widen, z1 + widen);
+        }
+        Ok(Self {
+            x: (x0, x1),
+            z: (z0, z1),
+            px_per_m,
+            plot_w: PLOT_W.round() as u32,
+            plot_h: plot_h.round() as u32,
+        })
+    }
+}
+
+const MARGIN: u32 = 15;
+const Y_LABELS: u32 = 70;
+const X_LABELS: u32 = 50;
+const CAPTION: u32 = 40;
+const LEGEND_W: u32 = 300;
+
+/// Draw one series on the chart.
+fn series<'b, E, S>(chart: &mut Chart<'_, 'b>, elements: S) -> Result<(), CliError>
+where
+    S: IntoIterator<Item = E>,
+    for<'e> &'e E: PointCollection<'e, (f64, f64)>,
+    E: Drawable<SVGBackend<'b>>,
+{
+    chart.draw_series(elements).map(|_| ()).map_err(failed)
+}
+
 fn draw(
     info: &ModelInfo,
     dt: f64,
@@ -105,10 +188,6 @@ fn draw(
     along: &[Pose],
 ) -> Result<String, CliError> {
     register_font();
-    let failed = |e: String| CliError::Output {
-        what: "snapshots.svg".into(),
-        message: e,
-    };
     let spatial = geometry.spatial;
     let pr = |p: P3| project(spatial, p);
     // the extent of everything drawn
@@ -122,59 +201,22 @@ fn draw(
         points.push(pr(pose.pulley));
     }
     points.extend(geometry.fixed.iter().map(|&(_, p)| pr(p)));
-    let points: Vec<(f64, f64)> = points
-        .into_iter()
-        .filter(|(x, z)| x.is_finite() && z.is_finite())
-        .collect();
-    if points.is_empty() {
-        return Err(failed("no finite positions to draw".into()));
-    }
-    let (mut x0, mut x1, mut z0, mut z1) = points.iter().fold(
-        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
-        |(a, b, c, d), &(x, z)| (a.min(x), b.max(x), c.min(z), d.max(z)),
-    );
-    let pad = 0.06 * (x1 - x0).max(z1 - z0).max(1.0);
-    (x0, x1, z0, z1) = (x0 - pad, x1 + pad, z0 - pad, z1 + pad);
-    // equal scales: a fixed plot width, the height from the data's aspect
-    // ratio within limits, the other range widened to fill
-    const PLOT_W: f64 = 700.0;
-    let (min_h, max_h) = (380.0, 820.0);
-    let mut px_per_m = PLOT_W / (x1 - x0);
-    let mut plot_h = (z1 - z0) * px_per_m;
-    if plot_h > max_h {
-        plot_h = max_h;
-        px_per_m = max_h / (z1 - z0);
-        let widen = (PLOT_W / px_per_m - (x1 - x0)) / 2.0;
-        (x0, x1) = (x0 - widen, x1 + widen);
-    } else if plot_h < min_h {
-        plot_h = min_h;
-        let widen = (min_h / px_per_m - (z1 - z0)) / 2.0;
-        (z0, z1) = (z0 - widen, z1 + widen);
-    }
-    const MARGIN: u32 = 15;
-    const Y_LABELS: u32 = 70;
-    const X_LABELS: u32 = 50;
-    const CAPTION: u32 = 40;
-    const LEGEND_W: u32 = 300;
-    let plot_w = PLOT_W.round() as u32;
-    let plot_h = plot_h.round() as u32;
-    let left_w = plot_w + Y_LABELS + 2 * MARGIN;
-    let height = plot_h + X_LABELS + 2 * MARGIN + CAPTION;
+    let view = View::of(points)?;
+    let left_w = view.plot_w + Y_LABELS + 2 * MARGIN;
+    let height = view.plot_h + X_LABELS + 2 * MARGIN + CAPTION;
     let title = format!("{} - snapshots at {} instants (dt = {dt} s)", info.name, poses.len());
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (left_w + LEGEND_W, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| failed(e.to_string()))?;
-        let root = root
-            .titled(&title, ("sans-serif", 22))
-            .map_err(|e| failed(e.to_string()))?;
+        root.fill(&WHITE).map_err(failed)?;
+        let root = root.titled(&title, ("sans-serif", 22)).map_err(failed)?;
         let (plot_area, legend_area) = root.split_horizontally(left_w);
         let mut chart = ChartBuilder::on(&plot_area)
             .margin(MARGIN)
             .x_label_area_size(X_LABELS)
             .y_label_area_size(Y_LABELS)
-            .build_cartesian_2d(x0..x1, z0..z1)
-            .map_err(|e| failed(e.to_string()))?;
+            .build_cartesian_2d(view.x.0..view.x.1, view.z.0..view.z.1)
+            .map_err(failed)?;
         let (x_desc, z_desc) = if spatial {
             ("x + y/(2√2) [m]   (cabinet projection)", "z + y/(2√2) [m]")
         } else {
@@ -188,163 +230,173 @@ fn draw(
             .light_line_style(RGBColor(240, 240, 240))
             .max_light_lines(4)
             .draw()
-            .map_err(|e| failed(e.to_string()))?;
-        let io = |r: Result<(), String>| r.map_err(failed);
-        let err = |e: DrawingAreaErrorKind<_>| e.to_string();
-        // trajectories first, thin
-        let load_path: Vec<(f64, f64)> = along.iter().map(|p| pr(p.load)).collect();
-        let pulley_path: Vec<(f64, f64)> = along.iter().map(|p| pr(p.pulley)).collect();
-        io(chart
-            .draw_series(LineSeries::new(load_path, ShapeStyle::from(&LOAD_PATH).stroke_width(1)))
-            .map(|_| ())
-            .map_err(err))?;
-        io(chart
-            .draw_series(DashedLineSeries::new(
-                pulley_path,
-                5,
-                3,
-                ShapeStyle::from(&PULLEY_PATH).stroke_width(1),
-            ))
-            .map(|_| ())
-            .map_err(err))?;
-        // the snapshots, early (light) to late (dark) so the late ones are on top
-        let n = poses.len();
-        for (i, (_, pose)) in poses.iter().enumerate() {
-            let color = shade(i, n);
-            let boom_color = if spatial { color } else { BOOM };
-            io(chart
-                .draw_series(std::iter::once(PathElement::new(
-                    pose.boom.iter().map(|&p| pr(p)).collect::<Vec<_>>(),
-                    ShapeStyle::from(&boom_color).stroke_width(5),
-                )))
-                .map(|_| ())
-                .map_err(err))?;
-            io(chart
-                .draw_series(
-                    pose.ropes
-                        .iter()
-                        .map(|r| PathElement::new(vec![pr(r[0]), pr(r[1])], ShapeStyle::from(&color).stroke_width(1))),
-                )
-                .map(|_| ())
-                .map_err(err))?;
-            io(chart
-                .draw_series([
-                    Circle::new(pr(pose.pulley), 4, ShapeStyle::from(&WHITE).filled()),
-                    Circle::new(pr(pose.pulley), 4, ShapeStyle::from(&color).stroke_width(2)),
-                    Circle::new(pr(pose.load), 6, ShapeStyle::from(&color).filled()),
-                ])
-                .map(|_| ())
-                .map_err(err))?;
-        }
-        // the fixed points, labelled
-        for &(label, p) in &geometry.fixed {
-            io(chart
-                .draw_series([Rectangle::new(
-                    [
-                        (pr(p).0 - 3.0 / px_per_m, pr(p).1 - 3.0 / px_per_m),
-                        (pr(p).0 + 3.0 / px_per_m, pr(p).1 + 3.0 / px_per_m),
-                    ],
-                    ShapeStyle::from(&BLACK).filled(),
-                )])
-                .map(|_| ())
-                .map_err(err))?;
-            io(chart
-                .draw_series(std::iter::once(Text::new(
-                    label.to_string(),
-                    (
-                        pr(p).0 + 6.0 / px_per_m,
-                        pr(p).1 + if spatial { -4.0 } else { 22.0 } / px_per_m,
-                    ),
-                    ("sans-serif", 16),
-                )))
-                .map(|_| ())
-                .map_err(err))?;
-        }
-        // legend column: what is drawn, then the instants
-        let text = |s: &str, y: i32, size: u32| {
-            legend_area
-                .draw(&Text::new(s.to_string(), (10, y), ("sans-serif", size)))
-                .map_err(|e| failed(e.to_string()))
-        };
-        let mut y = 20;
-        let line = |y: i32, style: ShapeStyle, dashed: bool| {
-            let sample = vec![(10, y + 8), (40, y + 8)];
-            if dashed {
-                legend_area.draw(&DashedPathElement::new(sample, 5, 3, style))
-            } else {
-                legend_area.draw(&PathElement::new(sample, style))
-            }
-            .map_err(|e| failed(e.to_string()))
-        };
-        let entry = |y: i32, s: &str| {
-            legend_area
-                .draw(&Text::new(s.to_string(), (48, y), ("sans-serif", 14)))
-                .map_err(|e| failed(e.to_string()))
-        };
-        let dark = shade(n - 1, n);
-        line(
-            y,
-            ShapeStyle::from(&if spatial { dark } else { BOOM }).stroke_width(5),
-            false,
-        )?;
-        entry(y, "boom")?;
-        y += 22;
-        line(y, ShapeStyle::from(&dark).stroke_width(1), false)?;
-        entry(y, geometry.ropes)?;
-        y += 22;
-        legend_area
-            .draw(&Circle::new((25, y + 8), 4, ShapeStyle::from(&dark).stroke_width(2)))
-            .map_err(|e| failed(e.to_string()))?;
-        entry(y, "main pulley B")?;
-        y += 22;
-        legend_area
-            .draw(&Circle::new((25, y + 8), 6, ShapeStyle::from(&dark).filled()))
-            .map_err(|e| failed(e.to_string()))?;
-        entry(y, "load C")?;
-        y += 22;
-        line(y, ShapeStyle::from(&LOAD_PATH).stroke_width(1), false)?;
-        entry(y, "path of the load")?;
-        y += 22;
-        line(y, ShapeStyle::from(&PULLEY_PATH).stroke_width(1), true)?;
-        entry(y, "trajectory of the pulley")?;
-        y += 22;
-        legend_area
-            .draw(&Rectangle::new(
-                [(22, y + 5), (28, y + 11)],
-                ShapeStyle::from(&BLACK).filled(),
-            ))
-            .map_err(|e| failed(e.to_string()))?;
-        entry(y, if spatial { "boom foot O" } else { "winches and boom tip" })?;
-        y += 34;
-        text("snapshots (light to dark):", y, 15)?;
-        y += 24;
-        for (i, (t, _)) in poses.iter().enumerate() {
-            line(y, ShapeStyle::from(&shade(i, n)).stroke_width(4), false)?;
-            entry(y, &format!("t = {t:.2} s"))?;
-            y += 20;
-        }
-        if spatial {
-            y += 14;
-            text("cabinet projection: y drawn at", y, 13)?;
-            text("45 degrees, shortened by 1/2:", y + 16, 13)?;
-            // axis triad
-            let (ox, oy) = (40, y + 110);
-            let grey = ShapeStyle::from(&RGBColor(90, 90, 90)).stroke_width(2);
-            for (label, (dx, dy)) in [("x", (60, 0)), ("y", (30, -30)), ("z", (0, -60))] {
-                legend_area
-                    .draw(&PathElement::new(vec![(ox, oy), (ox + dx, oy + dy)], grey))
-                    .map_err(|e| failed(e.to_string()))?;
-                legend_area
-                    .draw(&Text::new(label, (ox + dx + 4, oy + dy - 8), ("sans-serif", 15)))
-                    .map_err(|e| failed(e.to_string()))?;
-            }
-        } else {
-            y += 14;
-            text("equal scales on x and z", y, 13)?;
-        }
-        root.present().map_err(|e| failed(e.to_string()))?;
+            .map_err(failed)?;
+        draw_trajectories(&mut chart, along, &pr)?;
+        draw_poses(&mut chart, poses, spatial, &pr)?;
+        draw_fixed_points(&mut chart, geometry, view.px_per_m, &pr)?;
+        draw_legend(&legend_area, geometry, poses)?;
+        root.present().map_err(failed)?;
     }
     Ok(svg)
+}
+
+/// The load's path (solid) and the pulley's trajectory (dashed), thin,
+/// under everything else.
+fn draw_trajectories(chart: &mut Chart, along: &[Pose], pr: &impl Fn(P3) -> (f64, f64)) -> Result<(), CliError> {
+    let load_path: Vec<(f64, f64)> = along.iter().map(|p| pr(p.load)).collect();
+    let pulley_path: Vec<(f64, f64)> = along.iter().map(|p| pr(p.pulley)).collect();
+    series(
+        chart,
+        LineSeries::new(load_path, ShapeStyle::from(&LOAD_PATH).stroke_width(1)),
+    )?;
+    series(
+        chart,
+        DashedLineSeries::new(pulley_path, 5, 3, ShapeStyle::from(&PULLEY_PATH).stroke_width(1)),
+    )
+}
+
+/// The crane at each instant, early (light) to late (dark) so the late
+/// ones are on top: boom, ropes, pulley, load.
+fn draw_poses(
+    chart: &mut Chart,
+    poses: &[(f64, Pose)],
+    spatial: bool,
+    pr: &impl Fn(P3) -> (f64, f64),
+) -> Result<(), CliError> {
+    let n = poses.len();
+    for (i, (_, pose)) in poses.iter().enumerate() {
+        let color = shade(i, n);
+        let boom_color = if spatial { color } else { BOOM };
+        series(
+            chart,
+            std::iter::once(PathElement::new(
+                pose.boom.iter().map(|&p| pr(p)).collect::<Vec<_>>(),
+                ShapeStyle::from(&boom_color).stroke_width(5),
+            )),
+        )?;
+        series(
+            chart,
+            pose.ropes
+                .iter()
+                .map(|r| PathElement::new(vec![pr(r[0]), pr(r[1])], ShapeStyle::from(&color).stroke_width(1))),
+        )?;
+        series(
+            chart,
+            [
+                Circle::new(pr(pose.pulley), 4, ShapeStyle::from(&WHITE).filled()),
+                Circle::new(pr(pose.pulley), 4, ShapeStyle::from(&color).stroke_width(2)),
+                Circle::new(pr(pose.load), 6, ShapeStyle::from(&color).filled()),
+            ],
+        )?;
+    }
+    Ok(())
+}
+
+/// The fixed points (winches, boom foot and tip), labelled.
+fn draw_fixed_points(
+    chart: &mut Chart,
+    geometry: &Geometry,
+    px_per_m: f64,
+    pr: &impl Fn(P3) -> (f64, f64),
+) -> Result<(), CliError> {
+    for &(label, p) in &geometry.fixed {
+        let (x, z) = pr(p);
+        let corners = [
+            (x - 3.0 / px_per_m, z - 3.0 / px_per_m),
+            (x + 3.0 / px_per_m, z + 3.0 / px_per_m),
+        ];
+        series(chart, [Rectangle::new(corners, ShapeStyle::from(&BLACK).filled())])?;
+        let at = (
+            x + 6.0 / px_per_m,
+            z + if geometry.spatial { -4.0 } else { 22.0 } / px_per_m,
+        );
+        series(
+            chart,
+            std::iter::once(Text::new(label.to_string(), at, ("sans-serif", 16))),
+        )?;
+    }
+    Ok(())
+}
+
+/// The legend column: what is drawn, then the instants, then the
+/// projection's axes (3D) or a note on the scales (planar).
+fn draw_legend(area: &Area, geometry: &Geometry, poses: &[(f64, Pose)]) -> Result<(), CliError> {
+    let spatial = geometry.spatial;
+    let n = poses.len();
+    let text = |s: &str, y: i32, size: u32| {
+        area.draw(&Text::new(s.to_string(), (10, y), ("sans-serif", size)))
+            .map_err(failed)
+    };
+    let line = |y: i32, style: ShapeStyle, dashed: bool| {
+        let sample = vec![(10, y + 8), (40, y + 8)];
+        if dashed {
+            area.draw(&DashedPathElement::new(sample, 5, 3, style))
+        } else {
+            area.draw(&PathElement::new(sample, style))
+        }
+        .map_err(failed)
+    };
+    let entry = |y: i32, s: &str| {
+        area.draw(&Text::new(s.to_string(), (48, y), ("sans-serif", 14)))
+            .map_err(failed)
+    };
+    let dark = shade(n - 1, n);
+    let mut y = 20;
+    line(
+        y,
+        ShapeStyle::from(&if spatial { dark } else { BOOM }).stroke_width(5),
+        false,
+    )?;
+    entry(y, "boom")?;
+    y += 22;
+    line(y, ShapeStyle::from(&dark).stroke_width(1), false)?;
+    entry(y, geometry.ropes)?;
+    y += 22;
+    area.draw(&Circle::new((25, y + 8), 4, ShapeStyle::from(&dark).stroke_width(2)))
+        .map_err(failed)?;
+    entry(y, "main pulley B")?;
+    y += 22;
+    area.draw(&Circle::new((25, y + 8), 6, ShapeStyle::from(&dark).filled()))
+        .map_err(failed)?;
+    entry(y, "load C")?;
+    y += 22;
+    line(y, ShapeStyle::from(&LOAD_PATH).stroke_width(1), false)?;
+    entry(y, "path of the load")?;
+    y += 22;
+    line(y, ShapeStyle::from(&PULLEY_PATH).stroke_width(1), true)?;
+    entry(y, "trajectory of the pulley")?;
+    y += 22;
+    area.draw(&Rectangle::new(
+        [(22, y + 5), (28, y + 11)],
+        ShapeStyle::from(&BLACK).filled(),
+    ))
+    .map_err(failed)?;
+    entry(y, if spatial { "boom foot O" } else { "winches and boom tip" })?;
+    y += 34;
+    text("snapshots (light to dark):", y, 15)?;
+    y += 24;
+    for (i, (t, _)) in poses.iter().enumerate() {
+        line(y, ShapeStyle::from(&shade(i, n)).stroke_width(4), false)?;
+        entry(y, &format!("t = {t:.2} s"))?;
+        y += 20;
+    }
+    y += 14;
+    if spatial {
+        text("cabinet projection: y drawn at", y, 13)?;
+        text("45 degrees, shortened by 1/2:", y + 16, 13)?;
+        // axis triad
+        let (ox, oy) = (40, y + 110);
+        let grey = ShapeStyle::from(&RGBColor(90, 90, 90)).stroke_width(2);
+        for (label, (dx, dy)) in [("x", (60, 0)), ("y", (30, -30)), ("z", (0, -60))] {
+            area.draw(&PathElement::new(vec![(ox, oy), (ox + dx, oy + dy)], grey))
+                .map_err(failed)?;
+            area.draw(&Text::new(label, (ox + dx + 4, oy + dy - 8), ("sans-serif", 15)))
+                .map_err(failed)?;
+        }
+    } else {
+        text("equal scales on x and z", y, 13)?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]
