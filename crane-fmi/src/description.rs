@@ -74,7 +74,8 @@ pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, cons
         };
         let _ = write!(
             vars,
-            "    <ScalarVariable name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{causality}\" variability=\"{variability}\"{initial}>\n      <{kind}{start}/>\n    </ScalarVariable>\n",
+            "    <ScalarVariable name=\"{}\" valueReference=\"{}\" description=\"{}\" \
+                causality=\"{causality}\" variability=\"{variability}\"{initial}>\n      <{kind}{start}/>\n    </ScalarVariable>\n",
             escape(&v.name),
             v.value_reference,
             escape(&v.description),
@@ -88,7 +89,8 @@ pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, cons
         .collect();
     let identifier = model_identifier(C::NAME);
     let body = format!(
-        "  <CoSimulation modelIdentifier=\"{identifier}\" canHandleVariableCommunicationStepSize=\"true\" canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"false\" canSerializeFMUstate=\"false\" providesDirectionalDerivative=\"false\"/>\n  <DefaultExperiment startTime=\"{}\" stopTime=\"{}\" stepSize=\"{}\"/>\n  <ModelVariables>\n{vars}  </ModelVariables>\n  <ModelStructure>\n    <Outputs>\n{outputs}    </Outputs>\n    <InitialUnknowns>\n{outputs}    </InitialUnknowns>\n  </ModelStructure>\n",
+        "  <CoSimulation modelIdentifier=\"{identifier}\" canHandleVariableCommunicationStepSize=\"true\" \
+            canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"false\" canSerializeFMUstate=\"false\" providesDirectionalDerivative=\"false\"/>\n  <DefaultExperiment startTime=\"{}\" stopTime=\"{}\" stepSize=\"{}\"/>\n  <ModelVariables>\n{vars}  </ModelVariables>\n  <ModelStructure>\n    <Outputs>\n{outputs}    </Outputs>\n    <InitialUnknowns>\n{outputs}    </InitialUnknowns>\n  </ModelStructure>\n",
         number(maneuver.path.t0),
         number(maneuver.path.t1),
         number(crate::variables::DEFAULT_DT),
@@ -96,7 +98,8 @@ pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, cons
     let version = env!("CARGO_PKG_VERSION");
     let guid = guid(&format!("{version}\n{}\n{body}", C::NAME));
     let xml = format!(
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{}\" guid=\"{guid}\" description=\"{}\" generationTool=\"crane-fmi {version}\" variableNamingConvention=\"flat\" numberOfEventIndicators=\"0\">\n{body}</fmiModelDescription>\n",
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<fmiModelDescription fmiVersion=\"2.0\" \
+            modelName=\"{}\" guid=\"{guid}\" description=\"{}\" generationTool=\"crane-fmi {version}\" variableNamingConvention=\"flat\" numberOfEventIndicators=\"0\">\n{body}</fmiModelDescription>\n",
         escape(C::NAME),
         escape(C::DESCRIPTION),
     );

@@ -101,7 +101,9 @@ macro_rules! export_fmu {
     };
     (@functions $entries:path) => {
         const _: () = {
-            use $crate::fmi2::{Boolean, CallbackFunctions, Component, FmiString, FmuType, Integer, Real, Status, StatusKind, ValueReference};
+            use $crate::fmi2::{
+                Boolean, CallbackFunctions, Component, FmiString, FmuType, Integer, Real, Status, StatusKind, ValueReference,
+            };
             use $crate::ffi;
             use ::std::ffi::c_char;
 
@@ -110,7 +112,12 @@ macro_rules! export_fmu {
             #[unsafe(no_mangle)]
             pub extern "C" fn fmi2GetVersion() -> *const c_char { ffi::get_version() }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetDebugLogging(c: Component, on: Boolean, _n: usize, _categories: *const FmiString) -> Status {
+            pub unsafe extern "C" fn fmi2SetDebugLogging(
+                c: Component,
+                on: Boolean,
+                _n: usize,
+                _categories: *const FmiString,
+            ) -> Status {
                 unsafe { ffi::set_debug_logging(c, on) }
             }
             #[unsafe(no_mangle)]
@@ -124,71 +131,236 @@ macro_rules! export_fmu {
             #[unsafe(no_mangle)]
             pub unsafe extern "C" fn fmi2FreeInstance(c: Component) { unsafe { ffi::free_instance(c) } }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetupExperiment(c: Component, _tol_defined: Boolean, _tol: Real, start: Real, _stop_defined: Boolean, _stop: Real) -> Status {
+            pub unsafe extern "C" fn fmi2SetupExperiment(
+                c: Component,
+                _tol_defined: Boolean,
+                _tol: Real,
+                start: Real,
+                _stop_defined: Boolean,
+                _stop: Real,
+            ) -> Status {
                 unsafe { ffi::setup_experiment(c, start) }
             }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Component) -> Status { unsafe { ffi::enter_initialization_mode(c) } }
+            pub unsafe extern "C" fn fmi2EnterInitializationMode(
+                c: Component,
+            ) -> Status {
+                unsafe { ffi::enter_initialization_mode(c) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Component) -> Status { unsafe { ffi::exit_initialization_mode(c) } }
+            pub unsafe extern "C" fn fmi2ExitInitializationMode(
+                c: Component,
+            ) -> Status {
+                unsafe { ffi::exit_initialization_mode(c) }
+            }
             #[unsafe(no_mangle)]
             pub unsafe extern "C" fn fmi2Terminate(c: Component) -> Status { unsafe { ffi::terminate(c) } }
             #[unsafe(no_mangle)]
             pub unsafe extern "C" fn fmi2Reset(c: Component) -> Status { unsafe { ffi::reset(c) } }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetReal(c: Component, vr: *const ValueReference, n: usize, v: *mut Real) -> Status { unsafe { ffi::get_real(c, vr, n, v) } }
+            pub unsafe extern "C" fn fmi2GetReal(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *mut Real,
+            ) -> Status {
+                unsafe { ffi::get_real(c, vr, n, v) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetReal(c: Component, vr: *const ValueReference, n: usize, v: *const Real) -> Status { unsafe { ffi::set_real(c, vr, n, v) } }
+            pub unsafe extern "C" fn fmi2SetReal(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *const Real,
+            ) -> Status {
+                unsafe { ffi::set_real(c, vr, n, v) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetInteger(c: Component, vr: *const ValueReference, n: usize, v: *mut Integer) -> Status { unsafe { ffi::get_integer(c, vr, n, v) } }
+            pub unsafe extern "C" fn fmi2GetInteger(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *mut Integer,
+            ) -> Status {
+                unsafe { ffi::get_integer(c, vr, n, v) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetInteger(c: Component, vr: *const ValueReference, n: usize, v: *const Integer) -> Status { unsafe { ffi::set_integer(c, vr, n, v) } }
+            pub unsafe extern "C" fn fmi2SetInteger(
+                c: Component,
+                vr: *const ValueReference,
+                n: usize,
+                v: *const Integer,
+            ) -> Status {
+                unsafe { ffi::set_integer(c, vr, n, v) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetBoolean(c: Component, _vr: *const ValueReference, n: usize, _v: *mut Boolean) -> Status { unsafe { ffi::no_variables(c, "fmi2GetBoolean", n) } }
+            pub unsafe extern "C" fn fmi2GetBoolean(
+                c: Component,
+                _vr: *const ValueReference,
+                n: usize,
+                _v: *mut Boolean,
+            ) -> Status {
+                unsafe { ffi::no_variables(c, "fmi2GetBoolean", n) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetBoolean(c: Component, _vr: *const ValueReference, n: usize, _v: *const Boolean) -> Status { unsafe { ffi::no_variables(c, "fmi2SetBoolean", n) } }
+            pub unsafe extern "C" fn fmi2SetBoolean(
+                c: Component,
+                _vr: *const ValueReference,
+                n: usize,
+                _v: *const Boolean,
+            ) -> Status {
+                unsafe { ffi::no_variables(c, "fmi2SetBoolean", n) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetString(c: Component, _vr: *const ValueReference, n: usize, _v: *mut FmiString) -> Status { unsafe { ffi::no_variables(c, "fmi2GetString", n) } }
+            pub unsafe extern "C" fn fmi2GetString(
+                c: Component,
+                _vr: *const ValueReference,
+                n: usize,
+                _v: *mut FmiString,
+            ) -> Status {
+                unsafe { ffi::no_variables(c, "fmi2GetString", n) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetString(c: Component, _vr: *const ValueReference, n: usize, _v: *const FmiString) -> Status { unsafe { ffi::no_variables(c, "fmi2SetString", n) } }
+            pub unsafe extern "C" fn fmi2SetString(
+                c: Component,
+                _vr: *const ValueReference,
+                n: usize,
+                _v: *const FmiString,
+            ) -> Status {
+                unsafe { ffi::no_variables(c, "fmi2SetString", n) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetFMUstate(c: Component, _s: *mut *mut ::std::ffi::c_void) -> Status { unsafe { ffi::unsupported(c, "fmi2GetFMUstate") } }
+            pub unsafe extern "C" fn fmi2GetFMUstate(
+                c: Component,
+                _s: *mut *mut ::std::ffi::c_void,
+            ) -> Status {
+                unsafe { ffi::unsupported(c, "fmi2GetFMUstate") }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, _s: *mut ::std::ffi::c_void) -> Status { unsafe { ffi::unsupported(c, "fmi2SetFMUstate") } }
+            pub unsafe extern "C" fn fmi2SetFMUstate(
+                c: Component,
+                _s: *mut ::std::ffi::c_void,
+            ) -> Status {
+                unsafe { ffi::unsupported(c, "fmi2SetFMUstate") }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2FreeFMUstate(c: Component, _s: *mut *mut ::std::ffi::c_void) -> Status { unsafe { ffi::unsupported(c, "fmi2FreeFMUstate") } }
+            pub unsafe extern "C" fn fmi2FreeFMUstate(
+                c: Component,
+                _s: *mut *mut ::std::ffi::c_void,
+            ) -> Status {
+                unsafe { ffi::unsupported(c, "fmi2FreeFMUstate") }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SerializedFMUstateSize(c: Component, _s: *mut ::std::ffi::c_void, _size: *mut usize) -> Status { unsafe { ffi::unsupported(c, "fmi2SerializedFMUstateSize") } }
+            pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
+                c: Component,
+                _s: *mut ::std::ffi::c_void,
+                _size: *mut usize,
+            ) -> Status {
+                unsafe { ffi::unsupported(c, "fmi2SerializedFMUstateSize") }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SerializeFMUstate(c: Component, _s: *mut ::std::ffi::c_void, _b: *mut c_char, _size: usize) -> Status { unsafe { ffi::unsupported(c, "fmi2SerializeFMUstate") } }
+            pub unsafe extern "C" fn fmi2SerializeFMUstate(
+                c: Component,
+                _s: *mut ::std::ffi::c_void,
+                _b: *mut c_char,
+                _size: usize,
+            ) -> Status {
+                unsafe { ffi::unsupported(c, "fmi2SerializeFMUstate") }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2DeSerializeFMUstate(c: Component, _b: *const c_char, _size: usize, _s: *mut *mut ::std::ffi::c_void) -> Status { unsafe { ffi::unsupported(c, "fmi2DeSerializeFMUstate") } }
+            pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
+                c: Component,
+                _b: *const c_char,
+                _size: usize,
+                _s: *mut *mut ::std::ffi::c_void,
+            ) -> Status {
+                unsafe { ffi::unsupported(c, "fmi2DeSerializeFMUstate") }
+            }
             #[unsafe(no_mangle)]
             pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
-                c: Component, _u: *const ValueReference, _nu: usize, _k: *const ValueReference, _nk: usize, _dk: *const Real, _du: *mut Real,
+                c: Component,
+                _u: *const ValueReference,
+                _nu: usize,
+                _k: *const ValueReference,
+                _nk: usize,
+                _dk: *const Real,
+                _du: *mut Real,
             ) -> Status { unsafe { ffi::unsupported(c, "fmi2GetDirectionalDerivative") } }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetRealInputDerivatives(c: Component, _vr: *const ValueReference, _n: usize, _o: *const Integer, _v: *const Real) -> Status {
+            pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
+                c: Component,
+                _vr: *const ValueReference,
+                _n: usize,
+                _o: *const Integer,
+                _v: *const Real,
+            ) -> Status {
                 unsafe { ffi::unsupported(c, "fmi2SetRealInputDerivatives") }
             }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(c: Component, _vr: *const ValueReference, _n: usize, _o: *const Integer, _v: *mut Real) -> Status {
+            pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
+                c: Component,
+                _vr: *const ValueReference,
+                _n: usize,
+                _o: *const Integer,
+                _v: *mut Real,
+            ) -> Status {
                 unsafe { ffi::unsupported(c, "fmi2GetRealOutputDerivatives") }
             }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2DoStep(c: Component, t: Real, h: Real, _no_set_prior: Boolean) -> Status { unsafe { ffi::do_step(c, t, h) } }
+            pub unsafe extern "C" fn fmi2DoStep(
+                c: Component,
+                t: Real,
+                h: Real,
+                _no_set_prior: Boolean,
+            ) -> Status {
+                unsafe { ffi::do_step(c, t, h) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2CancelStep(c: Component) -> Status { unsafe { ffi::unsupported(c, "fmi2CancelStep") } }
+            pub unsafe extern "C" fn fmi2CancelStep(
+                c: Component,
+            ) -> Status {
+                unsafe { ffi::unsupported(c, "fmi2CancelStep") }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetStatus(c: Component, _k: StatusKind, _v: *mut Status) -> Status { unsafe { ffi::unsupported(c, "fmi2GetStatus") } }
+            pub unsafe extern "C" fn fmi2GetStatus(
+                c: Component,
+                _k: StatusKind,
+                _v: *mut Status,
+            ) -> Status {
+                unsafe { ffi::unsupported(c, "fmi2GetStatus") }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetRealStatus(c: Component, k: StatusKind, v: *mut Real) -> Status { unsafe { ffi::get_real_status(c, k, v) } }
+            pub unsafe extern "C" fn fmi2GetRealStatus(
+                c: Component,
+                k: StatusKind,
+                v: *mut Real,
+            ) -> Status {
+                unsafe { ffi::get_real_status(c, k, v) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetIntegerStatus(c: Component, _k: StatusKind, _v: *mut Integer) -> Status { unsafe { ffi::unsupported(c, "fmi2GetIntegerStatus") } }
+            pub unsafe extern "C" fn fmi2GetIntegerStatus(
+                c: Component,
+                _k: StatusKind,
+                _v: *mut Integer,
+            ) -> Status {
+                unsafe { ffi::unsupported(c, "fmi2GetIntegerStatus") }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetBooleanStatus(c: Component, k: StatusKind, v: *mut Boolean) -> Status { unsafe { ffi::get_boolean_status(c, k, v) } }
+            pub unsafe extern "C" fn fmi2GetBooleanStatus(
+                c: Component,
+                k: StatusKind,
+                v: *mut Boolean,
+            ) -> Status {
+                unsafe { ffi::get_boolean_status(c, k, v) }
+            }
             #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetStringStatus(c: Component, _k: StatusKind, _v: *mut FmiString) -> Status { unsafe { ffi::unsupported(c, "fmi2GetStringStatus") } }
+            pub unsafe extern "C" fn fmi2GetStringStatus(
+                c: Component,
+                _k: StatusKind,
+                _v: *mut FmiString,
+            ) -> Status {
+                unsafe { ffi::unsupported(c, "fmi2GetStringStatus") }
+            }
         };
     };
 }

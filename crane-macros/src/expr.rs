@@ -5,7 +5,7 @@
 //! interned: structurally identical subexpressions are the same [`Id`], so
 //! equality of expressions is equality of ids, derivatives of shared
 //! subexpressions are computed once, and the code generator finds common
-//! subexpressions by counting references (see `codegen.rs`).
+//! subexpressions by counting references (see `codegen/body.rs`).
 //!
 //! Nodes are immutable and children are always interned before their
 //! parents, so ids grow along every edge: sorting ids is a topological order.

@@ -200,7 +200,12 @@ impl Structure {
             Structure::Singular => None,
         };
         let smoothness = order
-            .map(|d| format!(" The inputs depend on the load path's derivatives up to order {d}: a path continuous only to a lower order gives them jumps or impulses."))
+            .map(|d| {
+                format!(
+                    " The inputs depend on the load path's derivatives up to order {d}: a path \
+                continuous only to a lower order gives them jumps or impulses."
+                )
+            })
             .unwrap_or_default();
         let count = match *self {
             Structure::Internal { dimension: 0, .. } => {
@@ -211,9 +216,9 @@ impl Structure {
                  the inputs follow an ODE driven by the path, which may be unstable; \
                  `crane_runtime::internal::internal_dynamics` gives its eigenvalues at a state."
             ),
-            Structure::Singular => {
-                "Internal dynamics (structural, eqs. 22a-d): the equations cannot fix coordinates, multipliers and inputs from a load path (structurally singular).".to_string()
-            }
+            Structure::Singular => "Internal dynamics (structural, eqs. 22a-d): the equations cannot fix coordinates, \
+                    multipliers and inputs from a load path (structurally singular)."
+                .to_string(),
         };
         count + &smoothness
     }

@@ -108,7 +108,8 @@ pub enum Error {
     },
     /// Solving `phi(mu0) = q0` for the minimal start did not converge.
     #[error(
-        "no minimal coordinates mu0 with phi(mu0) = q0 found from the guess: residual {residual:.3e} after {iterations} iterations"
+        "no minimal coordinates mu0 with phi(mu0) = q0 found from the guess: residual {residual:.3e} after \
+            {iterations} iterations"
     )]
     MinimalStartNotFound {
         /// Iterations taken.

@@ -1,5 +1,7 @@
-//! Newton's method with an exact iteration matrix for the square systems of
-//! the backward Euler schemes (eqs. 22a-d).
+//! Newton's method with an exact iteration matrix for the square system of
+//! one step of any problem on any scheme (eqs. 22a-d, 24b-e, the forward
+//! dynamics), with a relative stopping test per block of unknowns and a
+//! minimum-norm step on a singular matrix.
 
 use std::ops::Range;
 

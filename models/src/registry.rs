@@ -59,26 +59,44 @@ pub trait Visit {
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output;
 }
 
+/// An associated item of a built-in crane's description: `described!(module,
+/// Model, ITEM)` is `<module::Description as Crane<N, M, A>>::ITEM` with the
+/// sizes of `module::Model`.
+macro_rules! described {
+    ($module:ident, $model:ident, $item:ident) => {
+        <crate::$module::Description as Crane<
+            { crate::$module::$model::N },
+            { crate::$module::$model::M },
+            { crate::$module::$model::A },
+        >>::$item
+    };
+}
+
 macro_rules! registry {
     ($($module:ident :: $model:ident),* $(,)?) => {
         /// The built-in cranes, in the order `crane list` shows them.
         pub const CATALOG: &[Entry] = &[$(
             Entry {
-                name: <crate::$module::Description as Crane<{ crate::$module::$model::N }, { crate::$module::$model::M }, { crate::$module::$model::A }>>::NAME,
-                description: <crate::$module::Description as Crane<{ crate::$module::$model::N }, { crate::$module::$model::M }, { crate::$module::$model::A }>>::DESCRIPTION,
+                name: described!($module, $model, NAME),
+                description: described!($module, $model, DESCRIPTION),
                 n: crate::$module::$model::N,
                 m: crate::$module::$model::M,
                 a: crate::$module::$model::A,
-                reference: <crate::$module::Description as Crane<{ crate::$module::$model::N }, { crate::$module::$model::M }, { crate::$module::$model::A }>>::HAS_REFERENCE,
-                minimal: <crate::$module::Description as Crane<{ crate::$module::$model::N }, { crate::$module::$model::M }, { crate::$module::$model::A }>>::HAS_MINIMAL_MAP,
+                reference: described!($module, $model, HAS_REFERENCE),
+                minimal: described!($module, $model, HAS_MINIMAL_MAP),
             },
         )*];
 
         /// Run `visitor` on the built-in crane called `name`; `None` if there is none.
         pub fn visit<V: Visit>(name: &str, visitor: V) -> Option<V::Output> {
             $(
-                if name == <crate::$module::Description as Crane<{ crate::$module::$model::N }, { crate::$module::$model::M }, { crate::$module::$model::A }>>::NAME {
-                    return Some(visitor.visit::<crate::$module::Description, { crate::$module::$model::N }, { crate::$module::$model::M }, { crate::$module::$model::A }>());
+                if name == described!($module, $model, NAME) {
+                    return Some(visitor.visit::<
+                        crate::$module::Description,
+                        { crate::$module::$model::N },
+                        { crate::$module::$model::M },
+                        { crate::$module::$model::A },
+                    >());
                 }
             )*
             None

@@ -1,5 +1,5 @@
-//! Internal dynamics: which cranes are flat, and the coupled crane
-//! whose causal inverse explodes (`crane_runtime::internal`).
+//! Internal dynamics: which cranes are flat, and the coupled trolley crane
+//! (a trolley-load coupling the path does not fix) whose causal inverse explodes (`crane_runtime::internal`).
 
 use crane_models::coupled_trolley::CoupledTrolley as Coupled;
 use crane_runtime::internal::internal_dynamics;
@@ -9,7 +9,7 @@ use crane_runtime::{Trajectory, init};
 
 /// The coupled crane at rest, load straight below the trolley at depth |z|:
 /// the load's row reads c s'' - lambda s = -lambda x - m x'' with
-/// lambda = -m (g + z'')/z (the derivation), so the trolley follows
+/// lambda = -m (g + z'')/z (the load's vertical balance), so the trolley follows
 /// s'' = (lambda/c) s: eigenvalues +-sqrt(lambda/c), real for a hanging load
 /// (unstable), imaginary for a load held above the trolley (z > 0, lambda < 0:
 /// a strut instead of a rope; stable, oscillating). Both to 1 %, dimension 2.

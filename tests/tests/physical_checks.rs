@@ -77,7 +77,7 @@ fn the_self_test_of_a_wrong_minimal_map_fails() {
 
 /// A negative mass from a parameter's value: refused before the start is
 /// even computed, with the smallest eigenvalue, its direction and the
-/// negative parameter named (the overhead crane with mt = -10).
+/// negative parameter named (an overhead crane with a trolley mass mt = -10).
 #[test]
 fn a_negative_mass_from_a_parameter_is_refused() {
     let mut crane = Overhead::default();

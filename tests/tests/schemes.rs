@@ -296,8 +296,10 @@ fn navy_3d_self_converges_with_order_k() {
 /// differences do not settle into order 4 at these steps (D = 0.36, 3.9e-3,
 /// 1.7e-2 N m for dt = 0.1, 0.05, 0.025, largest near t = 1.1 and 4 s). A
 /// 1e-13 relative change of m_l moves u4 by up to 9e-5 N m at dt = 0.0125,
-/// so round-off (1e-16) does not explain it; this is recorded as an open
-/// question on the issue rather than hidden behind a wider band.
+/// so round-off (1e-16) does not explain it; it is an open question (the
+/// crane's inputs need the path's 6th derivative, beyond what the index-3
+/// formulation tolerates for BDF-4), kept visible rather than hidden behind
+/// a wider band.
 #[test]
 fn navy_3d_pulley_smooth_self_converges_with_order_k() {
     let case = navy_3d_pulley::PaperCase::smooth(navy_3d_pulley::TF).unwrap();

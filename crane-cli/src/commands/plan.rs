@@ -409,7 +409,8 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
                 "feasible durations form an interval on the bracket".to_string()
             } else {
                 format!(
-                    "WARNING: feasible durations are not an interval on the bracket (at {:.4} s): the answer may not be the shortest",
+                    "WARNING: feasible durations are not an interval on the bracket (at {:.4} s): the answer \
+                        may not be the shortest",
                     best.interval.counterexample.unwrap_or(f64::NAN)
                 )
             }
@@ -555,7 +556,8 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let failed = points.iter().filter(|p| p.evaluation.error.is_some()).count();
     let feasible = points.iter().filter(|p| p.feasible).count();
     println!(
-        "{}: {} points in {:.2} s ({:.0} points/s on {} threads): {feasible} feasible, {failed} failed; the move's own duration is {:.3} s",
+        "{}: {} points in {:.2} s ({:.0} points/s on {} threads): {feasible} feasible, {failed} failed; the \
+            move's own duration is {:.3} s",
         C::NAME,
         points.len(),
         wall,

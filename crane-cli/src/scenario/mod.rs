@@ -168,7 +168,8 @@ mod tests {
         /// A valid file with one byte changed anywhere.
         #[test]
         fn mutated_scenarios_resolve_or_name_the_key(position in 0usize..200, byte in 32u8..127) {
-            let mut text = String::from("dt = 0.01\ntf = 4.0\nscheme = \"bdf2\"\ntrajectory = \"poly9\"\nstart = [0.0, -10.0]\nend = [-3.0, -14.0]\n[parameters]\nm_l = 120.0\n[limits]\nu1 = 150.0\n").into_bytes();
+            let mut text = String::from("dt = 0.01\ntf = 4.0\nscheme = \"bdf2\"\ntrajectory = \
+                \"poly9\"\nstart = [0.0, -10.0]\nend = [-3.0, -14.0]\n[parameters]\nm_l = 120.0\n[limits]\nu1 = 150.0\n").into_bytes();
             let i = position % text.len();
             text[i] = byte;
             check(&String::from_utf8(text).unwrap());

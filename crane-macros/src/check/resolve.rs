@@ -274,7 +274,8 @@ impl Lowerer<'_> {
                     self.cx.error_spanned_by(
                         e.range(),
                         format!(
-                            "velocity `dot({coord})` is not allowed in {}: velocities may appear only in `kinetic` and `forces`",
+                            "velocity `dot({coord})` is not allowed in {}: velocities may appear only in \
+                                `kinetic` and `forces`",
                             place.describe()
                         ),
                     );

@@ -261,7 +261,8 @@ fn quadratic_form(arena: &mut Arena, t: Id, names: &Names) -> Result<(), String>
                 let dijk = d.diff(dij, vk);
                 if !d.arena().is_zero(dijk) {
                     return Err(format!(
-                        "{NOT_QUADRATIC}: this term is cubic or of higher degree in the velocities (or not polynomial in them)"
+                        "{NOT_QUADRATIC}: this term is cubic or of higher degree in the velocities (or not \
+                            polynomial in them)"
                     ));
                 }
             }
@@ -289,7 +290,8 @@ fn quadratic_form(arena: &mut Arena, t: Id, names: &Names) -> Result<(), String>
             let dij = d.diff(di, vj);
             if let Some(coord) = d.arena().find_symbol(dij, |s| matches!(s, Sym::Coord(_))) {
                 return Err(format!(
-                    "configuration-dependent mass matrix: the method needs a constant M, but the coefficient of this term depends on {}",
+                    "configuration-dependent mass matrix: the method needs a constant M, but the coefficient \
+                        of this term depends on {}",
                     describe_sym(coord, names)
                 ));
             }
@@ -324,7 +326,8 @@ fn check_force(coord: &Ident, e: &Expr, force: Id, is_load: bool, names: &Names,
         cx.error_spanned_by(
             e.range(),
             format!(
-                "{} acts on the load coordinate `{coord}`: inputs may act only on robot coordinates (B^T = [B1^T; 0], eq. 11c)",
+                "{} acts on the load coordinate `{coord}`: inputs may act only on robot coordinates (B^T = \
+                    [B1^T; 0], eq. 11c)",
                 describe_sym(inputs[0], names)
             ),
         );
@@ -347,7 +350,8 @@ fn check_force(coord: &Ident, e: &Expr, force: Id, is_load: bool, names: &Names,
             cx.error_spanned_by(
                 e.range(),
                 format!(
-                    "force on `{coord}`: the coefficient of {} depends on {}; B^T may depend only on the coordinates (eq. 11c)",
+                    "force on `{coord}`: the coefficient of {} depends on {}; B^T may depend only on the \
+                        coordinates (eq. 11c)",
                     describe_sym(ui, names),
                     describe_sym(v, names)
                 ),

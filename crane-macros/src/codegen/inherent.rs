@@ -48,7 +48,8 @@ fn counts(model: &Model) -> TokenStream {
         names_list(&constraint_names)
     ));
     let doc_a = doc(format!(
-        "Number of inputs `a` (eq. 1a), equal to the number of load coordinates prescribed by `x = gamma(t)` (eq. 1c): {}.",
+        "Number of inputs `a` (eq. 1a), equal to the number of load coordinates prescribed by `x = gamma(t)` \
+            (eq. 1c): {}.",
         names_list(&model.inputs)
     ));
     quote! {

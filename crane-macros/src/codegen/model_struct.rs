@@ -29,7 +29,8 @@ pub(super) fn model_struct(model: &Model, structure: &Structure) -> TokenStream 
         quote!(#pname: #value,)
     });
     let summary = doc(format!(
-        "Declared with `crane_model!`: n = {n} coordinates, m = {m} constraints, a = {a} inputs, f = n - m = {} degrees of freedom.",
+        "Declared with `crane_model!`: n = {n} coordinates, m = {m} constraints, a = {a} inputs, f = n - m = \
+            {} degrees of freedom.",
         n - m
     ));
     let structure_doc = doc(structure.describe(model.a()));

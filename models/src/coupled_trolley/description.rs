@@ -1,6 +1,6 @@
-//! The coupled trolley crane as a built-in crane: the move of the issue that
-//! found it, poly9 from `(0, -5)` to `(4, -3)` in 5 s from rest straight
-//! below the trolley; its causal inverse explodes (u(2.5 s) ~ 3e12 N), which
+//! The coupled trolley crane as a built-in crane: the move on which its
+//! unstable internal dynamics were found, poly9 from `(0, -5)` to `(4, -3)`
+//! in 5 s from rest straight below the trolley; its causal inverse explodes (u(2.5 s) ~ 3e12 N), which
 //! `crane run` diagnoses and reports.
 
 use nalgebra::vector;
