@@ -11,8 +11,8 @@ use crane_models::study::{RunSpec, SpecError};
 use crane_models::{Crane, Path, PathSpec, Profile};
 use crane_runtime::driver::steps_in;
 use crane_runtime::problem::ServoTarget;
-use crane_runtime::redundant::{self, RedundantStepper};
-use crane_runtime::{Advance, CraneModel, Options, Scheme, State};
+use crane_runtime::redundant::{Redundant, RedundantStepper};
+use crane_runtime::{Advance, CraneModel, Options, Scheme, State, Stepper};
 use nalgebra::SVector;
 
 use crate::variables::{
@@ -102,7 +102,7 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> R
         options: &Options,
         external: Option<ServoTarget<A>>,
     ) -> Result<Self, String> {
-        let stepper = redundant::stepper(Box::new(model), path, start, options).map_err(|e| e.to_string())?;
+        let stepper = Stepper::new(Redundant::new(Box::new(model), path), start, options).map_err(|e| e.to_string())?;
         Ok(Self {
             stepper,
             external,

@@ -73,6 +73,31 @@ pub struct QuantityError {
     pub at: Vec<f64>,
 }
 
+impl QuantityError {
+    /// No error yet for each of `names`.
+    fn none_of(names: &[&'static str]) -> Vec<Self> {
+        names
+            .iter()
+            .map(|&quantity| QuantityError {
+                quantity,
+                worst_relative_error: 0.0,
+                at: Vec::new(),
+            })
+            .collect()
+    }
+
+    /// Keep, per quantity, the larger of its worst error and `errors` at the
+    /// point `at` (a NaN error counts as infinite).
+    fn record(worst: &mut [Self], errors: &[f64], at: &[f64]) {
+        for (entry, &error) in worst.iter_mut().zip(errors) {
+            if error > entry.worst_relative_error || error.is_nan() {
+                entry.worst_relative_error = if error.is_nan() { f64::INFINITY } else { error };
+                entry.at = at.to_vec();
+            }
+        }
+    }
+}
+
 /// Result of [`check_derivatives`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct DerivativeReport {
@@ -208,14 +233,7 @@ where
 {
     let mut rng = SmallRng::seed_from_u64(seed);
     let names = ["G = dg/dq", "d(G^T lambda)/dq", "df/dq", "df/dq'", "d(B^T u)/dq"];
-    let mut worst: Vec<QuantityError> = names
-        .iter()
-        .map(|&quantity| QuantityError {
-            quantity,
-            worst_relative_error: 0.0,
-            at: Vec::new(),
-        })
-        .collect();
+    let mut worst = QuantityError::none_of(&names);
     for _ in 0..points {
         let q = SVector::<f64, N>::from_fn(|i, _| rng.random_range(sample.q[i].0..=sample.q[i].1));
         let v = SVector::<f64, N>::from_fn(|_, _| rng.random_range(-1.0..=1.0) * sample.velocity);
@@ -252,12 +270,7 @@ where
                 &dual_jacobian(&q, |q| model.input_matrix(q) * u_d),
             ),
         ];
-        for (entry, error) in worst.iter_mut().zip(errors) {
-            if error > entry.worst_relative_error || error.is_nan() {
-                entry.worst_relative_error = if error.is_nan() { f64::INFINITY } else { error };
-                entry.at = q.iter().copied().collect();
-            }
-        }
+        QuantityError::record(&mut worst, &errors, q.as_slice());
     }
     DerivativeReport {
         points,
@@ -297,14 +310,7 @@ where
         "d(P' mu')/dmu",
     ];
     let mut output_jacobian: Option<OutputJacobian> = None;
-    let mut worst: Vec<QuantityError> = names
-        .iter()
-        .map(|&quantity| QuantityError {
-            quantity,
-            worst_relative_error: 0.0,
-            at: Vec::new(),
-        })
-        .collect();
+    let mut worst = QuantityError::none_of(&names);
     for _ in 0..points {
         let mu = SVector::<f64, F>::from_fn(|i, _| rng.random_range(mu_box[i].0..=mu_box[i].1));
         let mu_rate = SVector::<f64, F>::from_fn(|_, _| rng.random_range(-1.0..=1.0) * mu_dot);
@@ -371,12 +377,7 @@ where
                 &dual_jacobian(&mu, |mu| model.null_space_rate(mu, &mu_rate_d) * mu_rate_d),
             ),
         ];
-        for (entry, error) in worst.iter_mut().zip(errors) {
-            if error > entry.worst_relative_error || error.is_nan() {
-                entry.worst_relative_error = if error.is_nan() { f64::INFINITY } else { error };
-                entry.at = mu.iter().copied().collect();
-            }
-        }
+        QuantityError::record(&mut worst, &errors, mu.as_slice());
     }
     DerivativeReport {
         points,

@@ -7,9 +7,10 @@
 use crate::error::Error;
 use crate::model::CraneModel;
 use crate::newton::NewtonOptions;
+use crate::problem::Problem;
 use crate::scheme::{Method, Scheme};
 use crate::solution::{Solution, State};
-use crate::stepper::Advance;
+use crate::stepper::{Advance, Stepper};
 
 /// Settings of a run: the time step, the end time, the scheme (a
 /// [`Method`]: the built-in [`Scheme`]s by default) and Newton's
@@ -262,4 +263,19 @@ where
         progress(step, steps);
     }
     Ok(solution)
+}
+
+/// Run `problem` from `start` to `options.tf()` on the [`Stepper`] and
+/// record the solution (see [`record`]).
+pub fn solve<P, S, const N: usize, const M: usize, const A: usize, const K: usize>(
+    problem: P,
+    start: &State<N, M, A>,
+    options: &Options<S>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Solution<N, M, A>, Error>
+where
+    P: Problem<N, M, A, K>,
+    S: Method,
+{
+    record(&mut Stepper::new(problem, start, options)?, options.tf(), progress)
 }

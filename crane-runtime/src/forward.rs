@@ -19,7 +19,7 @@ use std::ops::{Deref, Range};
 
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-use crate::driver::{Options, record};
+use crate::driver::{Options, solve};
 use crate::error::Error;
 use crate::model::CraneModel;
 use crate::newton::{NonlinearSystem, normalised_residual};
@@ -208,26 +208,12 @@ where
     }
 }
 
-/// The forward problem one step at a time: the [`Stepper`] of [`Forward`].
+/// The forward problem one step at a time: the [`Stepper`] of [`Forward`],
+/// made by `Stepper::new(Forward::new(&crane, inputs), &start, &options)`
+/// from a consistent start (its `q`, `v`, `lambda`); after construction a
+/// step does not allocate.
 pub type ForwardStepper<H, In, const N: usize, const M: usize, const A: usize, S = crate::Scheme> =
     Stepper<Forward<H, In, N, M, A>, S, N, M, A, N>;
-
-/// A forward stepper of the crane behind `model` with `inputs` from the
-/// consistent `start` (its `q`, `v`, `lambda`), with the step, scheme and
-/// tolerances of `options`; after construction a step does not allocate.
-pub fn stepper<H, In, S, const N: usize, const M: usize, const A: usize>(
-    model: H,
-    inputs: In,
-    start: &State<N, M, A>,
-    options: &Options<S>,
-) -> Result<ForwardStepper<H, In, N, M, A, S>, Error>
-where
-    H: Deref<Target: CraneModel<N, M, A> + Sized>,
-    In: Inputs<A>,
-    S: Method,
-{
-    Stepper::new(Forward::new(model, inputs), start, options)
-}
 
 /// Integrate the forward problem from `start` to `options.tf()` with the
 /// inputs `inputs(t)` on its scheme.
@@ -242,18 +228,14 @@ where
     In: Inputs<A>,
     S: Method,
 {
-    record(
-        &mut stepper(model, inputs, start, options)?,
-        options.tf(),
-        &mut |_, _| {},
-    )
+    solve(Forward::new(model, inputs), start, options, &mut |_, _| {})
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scheme::{History, Scheme};
-    use crate::test_support::{Gantry, central_difference_error, uniform};
+    use crate::scheme::Scheme;
+    use crate::test_support::{Gantry, central_difference_error, random_history, uniform};
 
     /// The forward iteration matrix is the Jacobian of the forward residual:
     /// against central differences at random points and histories, for
@@ -264,20 +246,10 @@ mod tests {
         let mut rnd = uniform(7);
         for scheme in Scheme::ALL {
             for _ in 0..20 {
-                let past: Vec<SVector<f64, 4>> = (0..5).map(|_| SVector::from_fn(|_, _| 3.0 + rnd())).collect();
-                let rates: Vec<SVector<f64, 4>> = (0..5).map(|_| SVector::from_fn(|_, _| rnd())).collect();
-                let history = History::from_past(scheme, &past, &rates);
+                let (history, start) = random_history(scheme, &mut rnd);
                 let dt = 0.01;
                 let mut equations = Forward::new(&Gantry, |_t: f64| SVector::<f64, 2>::zeros());
-                let mut z0 = DVector::zeros(5);
-                let start = State {
-                    t: 0.0,
-                    q: past[0],
-                    v: rates[0],
-                    u: SVector::zeros(),
-                    lambda: SVector::zeros(),
-                };
-                equations.start(&start, dt, &mut z0).unwrap();
+                equations.start(&start, dt, &mut DVector::zeros(5)).unwrap();
                 let input = SVector::from([rnd() * 100.0, rnd() * 1000.0]);
                 equations.prepare(dt, &input, history.formula(dt));
                 let z = DVector::from_fn(5, |i, _| if i < 4 { 3.0 + rnd() } else { rnd() * 0.1 });

@@ -35,6 +35,20 @@ fn wrong_length(expected: usize, found: usize, what: &str) -> Error {
     }
 }
 
+/// The crane's parameters checked ([`check_parameters`]) and `values` of
+/// the length of the robot coordinates, `n - a` (returned).
+fn checked_robot_coordinates<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    values: &[f64],
+    what: &str,
+) -> Result<usize, Error> {
+    check_parameters(model)?;
+    if values.len() != N - A {
+        return Err(wrong_length(N - A, values.len(), what));
+    }
+    Ok(N - A)
+}
+
 /// Check a user-given start `p0` (and `v0`, zero if `None`) at `t0` against
 /// eqs. (22d) and (23) and, when the load is at rest, the static balance;
 /// return the consistent start with `u0, lambda0` from the balance (least
@@ -52,11 +66,7 @@ where
     Mdl: CraneModel<N, M, A>,
     Tr: Trajectory<A>,
 {
-    check_parameters(model)?;
-    let p = N - A;
-    if p0.len() != p {
-        return Err(wrong_length(p, p0.len(), "the start p0"));
-    }
+    let p = checked_robot_coordinates(model, p0, "the start p0")?;
     if let Some(v0) = v0
         && v0.len() != p
     {
@@ -192,11 +202,7 @@ where
     Mdl: CraneModel<N, M, A>,
     Tr: Trajectory<A>,
 {
-    check_parameters(model)?;
-    let p = N - A;
-    if p_guess.len() != p {
-        return Err(wrong_length(p, p_guess.len(), "the guess for p0"));
-    }
+    let p = checked_robot_coordinates(model, p_guess, "the guess for p0")?;
     if !p_guess.iter().all(|x| x.is_finite()) {
         return Err(Error::NonFinite {
             quantity: "guess for p0",

@@ -25,7 +25,7 @@ use std::ops::{Deref, Range};
 
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-use crate::driver::{Options, record};
+use crate::driver::{Options, solve};
 use crate::error::Error;
 use crate::init;
 use crate::model::CraneModel;
@@ -227,27 +227,11 @@ where
 }
 
 /// Eqs. (22a-d) one step at a time: the [`Stepper`] of the [`Redundant`]
-/// problem on the scheme `S`.
+/// problem on the scheme `S`, made by
+/// `Stepper::new(Redundant::new(&crane, &path), &start, &options)`; after
+/// construction a step does not allocate.
 pub type RedundantStepper<H, Tr, const N: usize, const M: usize, const A: usize, S = Scheme> =
     Stepper<Redundant<H, Tr, N, M, A>, S, N, M, A, N>;
-
-/// A stepper of eqs. (22a-d) for the crane behind `model` (`&crane`, or an
-/// owning `Box`/`Arc`) on `trajectory` from the consistent `start`, with the
-/// step, scheme and tolerances of `options`; after construction a step
-/// does not allocate.
-pub fn stepper<H, Tr, S, const N: usize, const M: usize, const A: usize>(
-    model: H,
-    trajectory: Tr,
-    start: &State<N, M, A>,
-    options: &Options<S>,
-) -> Result<RedundantStepper<H, Tr, N, M, A, S>, Error>
-where
-    H: Deref<Target: CraneModel<N, M, A> + Sized>,
-    Tr: Trajectory<A>,
-    S: Method,
-{
-    Stepper::new(Redundant::new(model, trajectory), start, options)
-}
 
 /// Integrate eqs. (22a-d) from `start` to `options.tf()` with its scheme.
 ///
@@ -282,14 +266,13 @@ where
     Tr: Trajectory<A>,
     S: Method,
 {
-    record(&mut stepper(model, trajectory, start, options)?, options.tf(), progress)
+    solve(Redundant::new(model, trajectory), start, options, progress)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scheme::History;
-    use crate::test_support::{Gantry, central_difference_error, uniform};
+    use crate::test_support::{Gantry, central_difference_error, random_history, uniform};
     use crate::trajectory::FromFn;
 
     /// The redundant iteration matrix (eqs. 22b-d in `[p; dt^2 u; dt^2
@@ -305,17 +288,8 @@ mod tests {
         for scheme in Scheme::ALL {
             for dt in [0.1, 0.01, 0.001] {
                 for _ in 0..10 {
-                    let past: Vec<SVector<f64, 4>> = (0..5).map(|_| SVector::from_fn(|_, _| 3.0 + rnd())).collect();
-                    let rates: Vec<SVector<f64, 4>> = (0..5).map(|_| SVector::from_fn(|_, _| rnd())).collect();
-                    let history = History::from_past(scheme, &past, &rates);
+                    let (history, start) = random_history(scheme, &mut rnd);
                     let mut problem = Redundant::new(&Gantry, &path);
-                    let start = State {
-                        t: 0.0,
-                        q: past[0],
-                        v: rates[0],
-                        u: SVector::zeros(),
-                        lambda: SVector::zeros(),
-                    };
                     problem.start(&start, dt, &mut DVector::zeros(5)).unwrap();
                     let target = [0.0, 1.0, 2.0].map(|scale| SVector::from_fn(|_, _| scale + rnd()));
                     problem.prepare(dt, &target, history.formula(dt));

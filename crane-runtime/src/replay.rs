@@ -11,11 +11,12 @@ use nalgebra::SVector;
 
 use crate::driver::{Options, run, step_count};
 use crate::error::Error;
-use crate::forward::{self, Inputs};
+use crate::forward::{Forward, Inputs};
 use crate::model::CraneModel;
 use crate::newton::NewtonOptions;
 use crate::scheme::Scheme;
 use crate::solution::Solution;
+use crate::stepper::Stepper;
 use crate::trajectory::Trajectory;
 
 /// Most points of the interpolating polynomial (degree 5).
@@ -331,7 +332,7 @@ where
         feedback: gains,
         last: &last,
     };
-    let mut stepper = forward::stepper(plant, inputs, start, &forward)?;
+    let mut stepper = Stepper::new(Forward::new(plant, inputs), start, &forward)?;
     let mut solution = Solution::with_capacity(Mdl::INFO, dt, options.scheme.name(), steps + 1)?;
     let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
     solution.push(plant, start, 0, 0, &mut lengths);

@@ -7,8 +7,8 @@
 //! [`Advance`] is what the run loop of [`crate::driver`] drives.
 //!
 //! ```
-//! use crane_runtime::{Options, redundant};
-//! use crane_runtime::stepper::Advance;
+//! use crane_runtime::{Options, Stepper};
+//! use crane_runtime::redundant::Redundant;
 //! # use crane_runtime::{init, trajectory::Poly9, nalgebra::vector};
 //! # crane_macros::crane_model! {
 //! #     #[crane(runtime = crane_runtime)]
@@ -27,7 +27,7 @@
 //! let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0])?;
 //! // the servo problem in redundant coordinates on BDF-2, one step at a time
 //! let options = Options::stepping(0.01)?.with_scheme(crane_runtime::Scheme::Bdf2);
-//! let mut stepper = redundant::stepper(&crane, &path, &start, &options)?;
+//! let mut stepper = Stepper::new(Redundant::new(&crane, &path), &start, &options)?;
 //! for _ in 0..100 {
 //!     stepper.step()?;
 //! }

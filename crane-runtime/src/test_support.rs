@@ -7,6 +7,8 @@ use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 use crate::model::{CraneModel, ModelInfo, Rope, Scalar, UnknownParameter};
 use crate::newton::NonlinearSystem;
+use crate::scheme::{History, Scheme};
+use crate::solution::State;
 
 /// A planar gantry written by hand: trolley `s`, rope `L`, load `(x, z)`.
 pub(crate) struct Gantry;
@@ -111,4 +113,19 @@ pub(crate) fn central_difference_error(system: &mut impl NonlinearSystem, z: &DV
         }
     }
     (worst, jac.amax())
+}
+
+/// A random history of the gantry's coordinates for `scheme` (positions
+/// 2 .. 4 m, rates in [-1, 1]) and the state at its newest entry.
+pub(crate) fn random_history(scheme: Scheme, rnd: &mut impl FnMut() -> f64) -> (History<4>, State<4, 1, 2>) {
+    let past: Vec<SVector<f64, 4>> = (0..5).map(|_| SVector::from_fn(|_, _| 3.0 + rnd())).collect();
+    let rates: Vec<SVector<f64, 4>> = (0..5).map(|_| SVector::from_fn(|_, _| rnd())).collect();
+    let start = State {
+        t: 0.0,
+        q: past[0],
+        v: rates[0],
+        u: SVector::zeros(),
+        lambda: SVector::zeros(),
+    };
+    (History::from_past(scheme, &past, &rates), start)
 }

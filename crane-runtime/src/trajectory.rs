@@ -261,32 +261,7 @@ const RAMP: [f64; 9] = [0.0, 0.0, 0.0, 0.0, 0.0, 7.0, -14.0, 10.0, -2.5];
 /// assert!((path.derivative(10.0, 0)[0] - 0.5).abs() < 1e-15);
 /// assert!((path.derivative(10.0, 1)[0] - 1.0 / 15.0).abs() < 1e-15);
 /// ```
-#[derive(Debug, Clone, PartialEq)]
-pub struct ThreePhase<const A: usize>(Phases<A>);
-
-impl<const A: usize> ThreePhase<A> {
-    /// Motion from `start` at `t0` to `end` at `t0 + tau` with ramps of length `tau0` (`0 < tau0 <= tau/2`).
-    pub fn new(
-        t0: f64,
-        tau: f64,
-        tau0: f64,
-        start: SVector<f64, A>,
-        end: SVector<f64, A>,
-    ) -> Result<Self, TrajectoryError> {
-        Phases::new(t0, tau, tau0, start, end, &RAMP).map(Self)
-    }
-}
-
-impl<const A: usize> Trajectory<A> for ThreePhase<A> {
-    fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
-        self.0.derivative(t, k)
-    }
-
-    /// 4: the ramps are four times continuously differentiable.
-    fn continuity(&self) -> Option<usize> {
-        Some(4)
-    }
-}
+pub type ThreePhase<const A: usize> = Phased<A, false>;
 
 /// Coefficients of the smooth ramp `h(s)/tau0 = 66 s^7 - 495/2 s^8 + 385 s^9
 /// - 308 s^10 + 126 s^11 - 21 s^12` of [`SmoothThreePhase`].
@@ -332,10 +307,15 @@ const SMOOTH_RAMP: [f64; 13] = [
 /// assert!((left - right).abs() < 1e-6);
 /// assert_eq!(path.derivative(20.0, 0)[0], 1.0);
 /// ```
-#[derive(Debug, Clone, PartialEq)]
-pub struct SmoothThreePhase<const A: usize>(Phases<A>);
+pub type SmoothThreePhase<const A: usize> = Phased<A, true>;
 
-impl<const A: usize> SmoothThreePhase<A> {
+/// A three-phase move (ramp, constant speed, ramp) with the ramp of
+/// [`ThreePhase`] (`SMOOTH = false`, four times continuously
+/// differentiable) or of [`SmoothThreePhase`] (`SMOOTH = true`, six times).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Phased<const A: usize, const SMOOTH: bool>(Phases<A>);
+
+impl<const A: usize, const SMOOTH: bool> Phased<A, SMOOTH> {
     /// Motion from `start` at `t0` to `end` at `t0 + tau` with ramps of length `tau0` (`0 < tau0 <= tau/2`).
     pub fn new(
         t0: f64,
@@ -344,18 +324,18 @@ impl<const A: usize> SmoothThreePhase<A> {
         start: SVector<f64, A>,
         end: SVector<f64, A>,
     ) -> Result<Self, TrajectoryError> {
-        Phases::new(t0, tau, tau0, start, end, &SMOOTH_RAMP).map(Self)
+        Phases::new(t0, tau, tau0, start, end, if SMOOTH { &SMOOTH_RAMP } else { &RAMP }).map(Self)
     }
 }
 
-impl<const A: usize> Trajectory<A> for SmoothThreePhase<A> {
+impl<const A: usize, const SMOOTH: bool> Trajectory<A> for Phased<A, SMOOTH> {
     fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
         self.0.derivative(t, k)
     }
 
-    /// 6: the ramps are continuous up to the 6th derivative.
+    /// 4 for the ramps of [`ThreePhase`], 6 for those of [`SmoothThreePhase`].
     fn continuity(&self) -> Option<usize> {
-        Some(6)
+        Some(if SMOOTH { 6 } else { 4 })
     }
 }
 

@@ -10,7 +10,7 @@
 use std::time::{Duration, Instant};
 
 use crane::prelude::*;
-use crane::runtime::redundant;
+use crane::runtime::redundant::Redundant;
 
 crane_model! {
     /// Planar gantry crane: trolley, hoist winch, load on one rope.
@@ -35,7 +35,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // the planner's path: 4 m across, 2 m up, in 5 s
     let path = Poly9::new(0.0, 5.0, SVector::from([0.0, -5.0]), SVector::from([4.0, -3.0]))?;
     let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0])?;
-    let mut stepper = redundant::stepper(&crane, &path, &start, &Options::stepping(dt)?)?;
+    let mut stepper = Stepper::new(Redundant::new(&crane, &path), &start, &Options::stepping(dt)?)?;
 
     println!("   t [s]   trolley u1 [N]   winch u2 [N m]   rope tension [N]");
     let mut slowest = Duration::ZERO;

@@ -88,3 +88,25 @@ pub fn finite_state<const N: usize, const M: usize, const A: usize>(state: State
         && finite(state.lambda.as_slice()))
     .then_some(state)
 }
+
+/// The [`Crane::simulate_minimal`] of a crane that declares a minimal map:
+/// `minimal_run!((N, M, A), |model, start| guess);` inside its `impl
+/// Crane`, with `guess` a rough guess of `mu` at the redundant `start`
+/// (the minimal stepper refines it by Gauss-Newton).
+macro_rules! minimal_run {
+    (($n:literal, $m:literal, $a:literal), |$model:ident, $start:ident| $guess:expr) => {
+        fn simulate_minimal(
+            $model: &Self::Model,
+            path: &$crate::path::Path<$a>,
+            $start: &crane_runtime::State<$n, $m, $a>,
+            options: &crane_runtime::Options,
+            progress: &mut dyn FnMut(usize, usize),
+        ) -> Option<Result<crane_runtime::Solution<$n, $m, $a>, crane_runtime::Error>> {
+            let guess = $guess;
+            Some(crane_runtime::minimal::simulate_minimal_with_progress(
+                $model, path, $start, &guess, options, progress,
+            ))
+        }
+    };
+}
+pub(crate) use minimal_run;

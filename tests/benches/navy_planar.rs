@@ -13,7 +13,8 @@ use std::hint::black_box;
 
 use crane_models::{Case, Crane, navy_planar, navy_planar_pulley};
 use crane_runtime::nalgebra::SVector;
-use crane_runtime::{CraneModel, MinimalMap, Options, Scheme, State, minimal, redundant, simulate};
+use crane_runtime::redundant::Redundant;
+use crane_runtime::{CraneModel, MinimalMap, Options, Scheme, State, Stepper, minimal, simulate};
 use crane_tests::handwritten::HandNavyPlanar;
 
 /// Redundant runs and one step with `model` on the navy-planar maneuver.
@@ -31,7 +32,14 @@ fn redundant_runs<Mdl: CraneModel<7, 3, 2>>(c: &mut Criterion, label: &str, mode
     let state: State<7, 3, 2> = solution.states[150];
     c.bench_function(&format!("navy-planar/{label}/one step dt=0.01"), |b| {
         b.iter_batched_ref(
-            || redundant::stepper(model, case.path(), &state, &Options::stepping(0.01).unwrap()).unwrap(),
+            || {
+                Stepper::new(
+                    Redundant::new(model, case.path()),
+                    &state,
+                    &Options::stepping(0.01).unwrap(),
+                )
+                .unwrap()
+            },
             |stepper| stepper.step().unwrap(),
             BatchSize::SmallInput,
         )
@@ -70,7 +78,7 @@ fn one_step_each<const N: usize, const M: usize, const A: usize, const F: usize,
     Mdl: MinimalMap<N, M, A, F> + Clone,
 {
     let options = Options::stepping(0.01).unwrap();
-    let mut redundant = redundant::stepper(model, path, start, &options).unwrap();
+    let mut redundant = Stepper::new(Redundant::new(model, path), start, &options).unwrap();
     let mut minimal = minimal::stepper(model, path, start, mu_guess, &options).unwrap();
     for _ in 0..150 {
         redundant.step().unwrap();
@@ -107,7 +115,7 @@ fn schemes(c: &mut Criterion) {
         c.bench_function(&format!("schemes/navy-planar/{scheme}/run dt=0.01"), |b| {
             b.iter(|| simulate(black_box(case.model()), case.path(), &start, &options).unwrap())
         });
-        let mut at_1_5 = redundant::stepper(case.model(), case.path(), &start, &options).unwrap();
+        let mut at_1_5 = Stepper::new(Redundant::new(case.model(), case.path()), &start, &options).unwrap();
         for _ in 0..150 {
             at_1_5.step().unwrap();
         }

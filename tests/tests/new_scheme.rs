@@ -14,8 +14,9 @@
 //! rates of the rates, should be order 2 with half BDF-2's error.
 
 use crane_models::{navy_planar, navy_planar_pulley};
+use crane_runtime::forward::Forward;
 use crane_runtime::scheme::{Formula, Method};
-use crane_runtime::{Options, Scheme, Trajectory, forward, simulate, simulate_minimal};
+use crane_runtime::{Options, Scheme, Stepper, Trajectory, simulate, simulate_minimal};
 use crane_tests::kit;
 
 /// NDF-2, started with backward Euler and BDF-2 while its history is short
@@ -109,7 +110,7 @@ fn ndf2_defined_here_runs_the_forward_dynamics() {
     let inputs = |t: f64| case.reference(t).expect("the reference is defined on the move").u;
     let deviation = |dt: f64| {
         let options = Options::new(dt, kit::T_ERROR).unwrap().with_scheme(Ndf2);
-        let mut stepper = forward::stepper(case.model(), inputs, &start, &options).unwrap();
+        let mut stepper = Stepper::new(Forward::new(case.model(), inputs), &start, &options).unwrap();
         let steps = (kit::T_ERROR / dt).round() as usize;
         for _ in 0..steps {
             stepper.step().unwrap();

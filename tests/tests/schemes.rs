@@ -336,11 +336,12 @@ fn navy_3d_pulley_smooth_self_converges_with_order_k() {
 /// instead of stamping the wrong time on the result.
 #[test]
 fn a_step_to_the_wrong_time_is_refused() {
-    use crane_runtime::{Error, Trajectory, redundant};
+    use crane_runtime::redundant::Redundant;
+    use crane_runtime::{Error, Stepper, Trajectory};
     let case = navy_planar::PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();
     let options = Options::stepping(0.01).unwrap().with_scheme(Scheme::Bdf3);
-    let mut stepper = redundant::stepper(case.model(), case.path(), &start, &options).unwrap();
+    let mut stepper = Stepper::new(Redundant::new(case.model(), case.path()), &start, &options).unwrap();
     let target = |t: f64| [0, 1, 2].map(|k| case.path().derivative(t, k));
     let error = stepper.step_to(0.02, &target(0.02)).unwrap_err();
     assert_eq!(

@@ -7,7 +7,9 @@
 //! One test function, so that no other test allocates while one counts.
 
 use crane_models::navy_planar::{PaperCase, minimal_guess};
-use crane_runtime::{Advance, Options, Scheme, forward, minimal, redundant};
+use crane_runtime::forward::Forward;
+use crane_runtime::redundant::Redundant;
+use crane_runtime::{Advance, Options, Scheme, Stepper, minimal};
 use crane_tests::counting::{Counting, allocations_during, assert_counter_works};
 
 #[global_allocator]
@@ -36,7 +38,7 @@ fn stepping_does_not_allocate() {
         for dt in [0.01f64, 0.001] {
             let steps = (4.0 / dt).round() as usize;
             let options = Options::stepping(dt).unwrap().with_scheme(scheme);
-            let mut redundant = redundant::stepper(case.model(), case.path(), &start, &options).unwrap();
+            let mut redundant = Stepper::new(Redundant::new(case.model(), case.path()), &start, &options).unwrap();
             let (allocations, min_norm) = allocations_in(&mut redundant, steps);
             assert_eq!(
                 allocations, 0,
@@ -56,7 +58,7 @@ fn stepping_does_not_allocate() {
             // the forward problem, driven by the inputs of the inverse run's last state
             let u = redundant.state().u;
             let end = *redundant.state();
-            let mut forward = forward::stepper(case.model(), move |_t: f64| u, &end, &options).unwrap();
+            let mut forward = Stepper::new(Forward::new(case.model(), move |_t: f64| u), &end, &options).unwrap();
             let (allocations, _) = allocations_in(&mut forward, steps.min(400));
             assert_eq!(allocations, 0, "forward {scheme} dt = {dt}: {allocations} allocations");
         }

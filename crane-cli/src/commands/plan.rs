@@ -303,6 +303,11 @@ fn values(spec: &str) -> Option<Vec<f64>> {
     )
 }
 
+/// `f(x, y)` for every cell of the grid `xs` by `ys`, a row per `y`.
+fn over_cells<T>(xs: &[f64], ys: &[f64], f: impl Fn(f64, f64) -> T) -> Vec<Vec<T>> {
+    ys.iter().map(|&y| xs.iter().map(|&x| f(x, y)).collect()).collect()
+}
+
 /// A binding as JSON.
 fn binding_json(b: &plan::Binding) -> serde_json::Value {
     json!({ "name": b.name, "kind": if b.tension { "min-tension" } else { "limit" }, "limit": b.limit, "value": b.value, "at": b.at })
@@ -516,31 +521,16 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
                 p.values[params.iter().position(|(n, _)| n == name).unwrap_or(0)]
             }
         };
-        let grid: Vec<Vec<Option<f64>>> =
-            ay.1.iter()
-                .map(|&y| {
-                    ax.1.iter()
-                        .map(|&x| {
-                            points
-                                .iter()
-                                .find(|p| index(&ax.0, p) == x && index(&ay.0, p) == y)
-                                .and_then(|p| measure(&p.evaluation))
-                        })
-                        .collect()
-                })
-                .collect();
-        let marked: Vec<Vec<bool>> =
-            ay.1.iter()
-                .map(|&y| {
-                    ax.1.iter()
-                        .map(|&x| {
-                            points
-                                .iter()
-                                .any(|p| index(&ax.0, p) == x && index(&ay.0, p) == y && !p.feasible)
-                        })
-                        .collect()
-                })
-                .collect();
+        // per cell (rows: the second axis), the points of the sweep there
+        let at = |x: f64, y: f64| {
+            points
+                .iter()
+                .filter(move |p| index(&ax.0, p) == x && index(&ay.0, p) == y)
+        };
+        let grid = over_cells(&ax.1, &ay.1, |x, y| {
+            at(x, y).next().and_then(|p| measure(&p.evaluation))
+        });
+        let marked = over_cells(&ax.1, &ay.1, |x, y| at(x, y).any(|p| !p.feasible));
         let label = if limits.torque.is_empty() {
             format!("peak |{}|", info.inputs[0])
         } else {

@@ -84,26 +84,30 @@ fn unexpected_after_operand(input: ParseStream) -> syn::Error {
     input.error("expected an operator (+ - * / ^) or the end of the expression")
 }
 
+/// A number literal (integer or float): no type suffix, finite.
+fn number(
+    suffix: &str,
+    span: proc_macro2::Span,
+    digits: &str,
+    value: impl FnOnce() -> syn::Result<f64>,
+) -> syn::Result<Expr> {
+    no_suffix(suffix, span)?;
+    let value = finite(value()?, span)?;
+    Ok(Expr::Num {
+        value,
+        text: digits.to_owned(),
+        span,
+    })
+}
+
 fn primary(input: ParseStream) -> syn::Result<Expr> {
     if input.peek(LitInt) {
         let lit: LitInt = input.parse()?;
-        no_suffix(lit.suffix(), lit.span())?;
-        let value = finite(lit.base10_parse::<f64>()?, lit.span())?;
-        return Ok(Expr::Num {
-            value,
-            text: lit.base10_digits().to_owned(),
-            span: lit.span(),
-        });
+        return number(lit.suffix(), lit.span(), lit.base10_digits(), || lit.base10_parse());
     }
     if input.peek(LitFloat) {
         let lit: LitFloat = input.parse()?;
-        no_suffix(lit.suffix(), lit.span())?;
-        let value = finite(lit.base10_parse::<f64>()?, lit.span())?;
-        return Ok(Expr::Num {
-            value,
-            text: lit.base10_digits().to_owned(),
-            span: lit.span(),
-        });
+        return number(lit.suffix(), lit.span(), lit.base10_digits(), || lit.base10_parse());
     }
     if input.peek(syn::token::Paren) {
         let content;

@@ -60,7 +60,7 @@ use crate::linsolve::DenseSolver;
 use crate::model::{CraneModel, MinimalMap};
 use crate::newton::NonlinearSystem;
 use crate::problem::{Accepted, Predictor, Problem, ServoTarget, Start};
-use crate::redundant::{self, Redundant, check_target, servo_target};
+use crate::redundant::{Redundant, check_target, servo_target};
 use crate::scheme::{Method, Scheme, StepFormula};
 use crate::solution::{Solution, State};
 use crate::stepper::{Handover, Stepper};
@@ -257,7 +257,9 @@ where
         start,
         options,
     )?;
-    Handover::new(minimal, || redundant::stepper(model, trajectory, start, options))
+    Handover::new(minimal, || {
+        Stepper::new(Redundant::new(model, trajectory), start, options)
+    })
 }
 
 /// Integrate eqs. (24a-e) from the redundant `start` to `options.tf()` with

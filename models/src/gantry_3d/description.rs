@@ -2,15 +2,14 @@
 //! from `(0, 0, -5)` to `(6, 3, -3)` in 8 s from the load hanging at rest
 //! straight below the trolley, its flatness-based reference and the drawing.
 
-use crane_runtime::minimal::simulate_minimal_with_progress;
-use crane_runtime::{Error, Options, Solution, State};
+use crane_runtime::State;
 use nalgebra::SVector;
 use nalgebra::vector;
 
 use super::model::Gantry3d;
 use super::reference::reference_at;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver, finite_state};
+use crate::crane::{Crane, Maneuver, finite_state, minimal_run};
 use crate::drawing::{Drawing, Pose};
 use crate::path::{Path, PathSpec, Profile};
 
@@ -58,18 +57,7 @@ impl Crane<6, 1, 3> for Description {
         })
     }
 
-    fn simulate_minimal(
-        model: &Gantry3d,
-        path: &Path<3>,
-        start: &State<6, 1, 3>,
-        options: &Options,
-        progress: &mut dyn FnMut(usize, usize),
-    ) -> Option<Result<Solution<6, 1, 3>, Error>> {
-        let guess = minimal_guess(start);
-        Some(simulate_minimal_with_progress(
-            model, path, start, &guess, options, progress,
-        ))
-    }
+    minimal_run!((6, 1, 3), |model, start| minimal_guess(start));
 
     /// `q = [X, Y, L | x, y, z]`: the bridge at `X` spanning `y` from -10 to
     /// 10 m at height 0, the trolley `(X, Y, 0)`, the rope to the load.

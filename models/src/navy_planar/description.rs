@@ -3,14 +3,13 @@
 //! reference on any path, the minimal coordinates of eq. (36) and the
 //! drawing.
 
-use crane_runtime::minimal::simulate_minimal_with_progress;
-use crane_runtime::{Error, Options, Solution, State};
+use crane_runtime::State;
 use nalgebra::{SVector, vector};
 
 use super::model::NavyPlanar;
 use super::reference::reference_at;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver, finite_state};
+use crate::crane::{Crane, Maneuver, finite_state, minimal_run};
 use crate::drawing::{Drawing, Pose};
 use crate::path::{Path, PathSpec, Profile};
 
@@ -61,18 +60,7 @@ impl Crane<7, 3, 2> for Description {
         })
     }
 
-    fn simulate_minimal(
-        model: &NavyPlanar,
-        path: &Path<2>,
-        start: &State<7, 3, 2>,
-        options: &Options,
-        progress: &mut dyn FnMut(usize, usize),
-    ) -> Option<Result<Solution<7, 3, 2>, Error>> {
-        let guess = minimal_guess(model, start);
-        Some(simulate_minimal_with_progress(
-            model, path, start, &guess, options, progress,
-        ))
-    }
+    minimal_run!((7, 3, 2), |model, start| minimal_guess(model, start));
 
     /// `q = [L1, L2, L0, x0, z0 | x, z]`; tip P at the origin, winch 1 at
     /// `A = -l (sin alpha, cos alpha)` on the boom (eqs. 25-33).

@@ -3,14 +3,13 @@
 //! Appendix B reference on any path, the minimal coordinates of eq. (59) and
 //! the drawing.
 
-use crane_runtime::minimal::simulate_minimal_with_progress;
-use crane_runtime::{Error, Options, Solution, State};
+use crane_runtime::State;
 use nalgebra::{SVector, vector};
 
 use super::model::NavyPlanarPulley;
 use super::reference::reference_at;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver, finite_state};
+use crate::crane::{Crane, Maneuver, finite_state, minimal_run};
 use crate::drawing::{Drawing, Pose, scale};
 use crate::path::{Path, PathSpec, Profile};
 
@@ -63,18 +62,7 @@ impl Crane<8, 4, 3> for Description {
         })
     }
 
-    fn simulate_minimal(
-        model: &NavyPlanarPulley,
-        path: &Path<3>,
-        start: &State<8, 4, 3>,
-        options: &Options,
-        progress: &mut dyn FnMut(usize, usize),
-    ) -> Option<Result<Solution<8, 4, 3>, Error>> {
-        let guess = minimal_guess(model, start);
-        Some(simulate_minimal_with_progress(
-            model, path, start, &guess, options, progress,
-        ))
-    }
+    minimal_run!((8, 4, 3), |model, start| minimal_guess(model, start));
 
     /// `q = [L1, L2, L3, L0, x0 | x, z, z0]`; tip S at the origin, winch 3 at
     /// `P = -s (sin, cos)`, winch 1 at `A = -(l + s) (sin, cos)` (eqs. 49-56).

@@ -3,15 +3,14 @@
 //! 63 degrees) from the load hanging at rest below the trolley, and the
 //! drawing.
 
-use crane_runtime::minimal::simulate_minimal_with_progress;
-use crane_runtime::{Error, Options, Solution, State};
+use crane_runtime::State;
 use nalgebra::{SVector, vector};
 
 use super::model::TowerCrane;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver};
+use crate::crane::{Crane, Maneuver, minimal_run};
 use crate::drawing::{Drawing, Pose};
-use crate::path::{Path, PathSpec, Profile};
+use crate::path::{PathSpec, Profile};
 
 /// The rotary tower crane: slewing jib, trolley, hoist, load on one rope.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -50,18 +49,7 @@ impl Crane<8, 3, 3> for Description {
         }
     }
 
-    fn simulate_minimal(
-        model: &TowerCrane,
-        path: &Path<3>,
-        start: &State<8, 3, 3>,
-        options: &Options,
-        progress: &mut dyn FnMut(usize, usize),
-    ) -> Option<Result<Solution<8, 3, 3>, Error>> {
-        let guess = minimal_guess(start);
-        Some(simulate_minimal_with_progress(
-            model, path, start, &guess, options, progress,
-        ))
-    }
+    minimal_run!((8, 3, 3), |model, start| minimal_guess(start));
 
     fn derived_outputs() -> &'static [&'static str] {
         &["phi"]
