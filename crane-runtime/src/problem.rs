@@ -15,7 +15,7 @@ use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use crate::error::Error;
 use crate::model::CraneModel;
 use crate::newton::NonlinearSystem;
-use crate::scheme::{Slopes, StepFormula};
+use crate::scheme::StepFormula;
 use crate::solution::State;
 
 /// The load target of one step: `gamma, gamma', gamma''` at the new time.
@@ -151,14 +151,14 @@ pub struct DynamicRows<const N: usize, const M: usize, const A: usize> {
 
 /// The dynamic rows (22b, 22c; eq. 1a for the forward problem) of `model`
 /// at `q, v, a` with the scaled inputs `dt^2 u` and multipliers
-/// `dt^2 lambda`, and their Jacobian in `q` with the scheme's `slopes`:
+/// `dt^2 lambda`, and their Jacobian in `q` with the slopes of the step's
+/// `formula`:
 /// written once for every problem on redundant coordinates.
 #[allow(clippy::too_many_arguments)]
 pub fn dynamic_rows<Mdl, const N: usize, const M: usize, const A: usize>(
     model: &Mdl,
     mass: &SMatrix<f64, N, N>,
-    dt: f64,
-    slopes: Slopes,
+    formula: &StepFormula<N>,
     [q, v, a]: &[SVector<f64, N>; 3],
     u_scaled: &SVector<f64, A>,
     lambda_scaled: &SVector<f64, M>,
@@ -166,6 +166,7 @@ pub fn dynamic_rows<Mdl, const N: usize, const M: usize, const A: usize>(
 where
     Mdl: CraneModel<N, M, A>,
 {
+    let (dt, slopes) = (formula.dt, formula.slopes());
     let dt2 = dt * dt;
     let f = model.forces(q, v);
     let (df_dq, df_dv) = model.force_jacobians(q, v);

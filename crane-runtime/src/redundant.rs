@@ -136,15 +136,7 @@ where
         let u_scaled = SVector::<f64, A>::from_fn(|k, _| z[p + k]);
         let lambda_scaled = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
         let model = &*self.model;
-        let rows = dynamic_rows(
-            model,
-            &self.mass,
-            self.dt,
-            self.formula.slopes(),
-            &kinematics,
-            &u_scaled,
-            &lambda_scaled,
-        );
+        let rows = dynamic_rows(model, &self.mass, &self.formula, &kinematics, &u_scaled, &lambda_scaled);
         // residual: dynamic rows (22b, 22c) scaled by dt^2, then (22d); the
         // iteration matrix column by column of z: p, then dt^2 u, dt^2 lambda
         jac.fill(0.0);
