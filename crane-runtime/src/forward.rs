@@ -111,9 +111,18 @@ where
         let lambda_scaled = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
         let u_scaled = self.input * (self.dt * self.dt);
         let model = &*self.model;
-        let rows = dynamic_rows(model, &self.mass, &self.formula, &kinematics, &u_scaled, &lambda_scaled);
-        jac.fill(0.0);
-        rows.write(&model.constraints(&kinematics[0]), N, r, jac);
+        let rows = dynamic_rows(
+            model,
+            &self.mass,
+            &self.formula,
+            &kinematics,
+            &u_scaled,
+            &lambda_scaled,
+            N,
+            r,
+            jac,
+        );
+        jac.view_mut((N, N), (M, M)).fill(0.0);
         // the given inputs are applied forces: a row's scale includes them
         normalised_residual(r, jac, z, |i| {
             if i < N {

@@ -125,35 +125,33 @@ pub trait Follow<const N: usize, const M: usize, const A: usize, const K: usize>
     ) -> Result<(SVector<f64, K>, SVector<f64, K>), Error>;
 }
 
-/// The parts of the dynamic rows of eq. (1a) on redundant coordinates at one
-/// iterate, multiplied by `dt^2`,
-/// ```text
-/// r_dyn = M (dt^2 a) - dt^2 f(q, v) - B^T(q) (dt^2 u) + G^T(q) (dt^2 lambda)
-/// ```
-/// with the model's Jacobians at `(q, v)` for the iteration matrix.
-pub struct DynamicRows<const N: usize, const M: usize, const A: usize> {
+/// The terms of the dynamic rows of eq. (1a) on redundant coordinates at
+/// one iterate, multiplied by `dt^2` (what a problem needs after
+/// [`dynamic_rows`] wrote the rows: the sizes of the terms for the
+/// residual's normalisation, `B^T` for the columns of the inputs).
+pub struct DynamicTerms<const N: usize, const A: usize> {
     /// `M a dt^2`.
     pub inertia: SVector<f64, N>,
     /// `f dt^2`.
     pub applied: SVector<f64, N>,
     /// `B^T (dt^2 u)`.
     pub inputs: SVector<f64, N>,
-    /// The residual `inertia - applied - inputs + G^T (dt^2 lambda)`.
-    pub residual: SVector<f64, N>,
     /// `B^T(q)`.
     pub input_matrix: SMatrix<f64, N, A>,
-    /// `G(q)`.
-    pub constraint_jacobian: SMatrix<f64, M, N>,
-    /// `d r_dyn / dq` for `q` moved with its scheme's slopes: `c^2 M - dt^2
-    /// df/dq - c dt df/dv - d(B^T dt^2 u)/dq + d(G^T dt^2 lambda)/dq`.
-    pub coordinate_jacobian: SMatrix<f64, N, N>,
 }
 
 /// The dynamic rows (22b, 22c; eq. 1a for the forward problem) of `model`
 /// at `q, v, a` with the scaled inputs `dt^2 u` and multipliers
-/// `dt^2 lambda`, and their Jacobian in `q` with the slopes of the step's
-/// `formula`:
-/// written once for every problem on redundant coordinates.
+/// `dt^2 lambda`, written once for every problem on redundant coordinates:
+/// ```text
+/// r_dyn = M (dt^2 a) - dt^2 f(q, v) - B^T(q) (dt^2 u) + G^T(q) (dt^2 lambda),   r_g = g(q)
+/// ```
+/// into `r` (rows `0..n`, then the constraints), and into `jac` their
+/// columns for unknowns `z = [q_0 .. q_cols; ...; dt^2 lambda]` (the
+/// multipliers last): for the first `cols` coordinates, moved with the
+/// slopes of the step's `formula`, `c^2 M - dt^2 df/dq - c dt df/dv -
+/// d(B^T dt^2 u)/dq + d(G^T dt^2 lambda)/dq` over `G`, and for the
+/// multipliers `G^T` over 0. Other entries of `jac` are left alone.
 #[allow(clippy::too_many_arguments)]
 pub fn dynamic_rows<Mdl, const N: usize, const M: usize, const A: usize>(
     model: &Mdl,
@@ -162,7 +160,10 @@ pub fn dynamic_rows<Mdl, const N: usize, const M: usize, const A: usize>(
     [q, v, a]: &[SVector<f64, N>; 3],
     u_scaled: &SVector<f64, A>,
     lambda_scaled: &SVector<f64, M>,
-) -> DynamicRows<N, M, A>
+    cols: usize,
+    r: &mut DVector<f64>,
+    jac: &mut DMatrix<f64>,
+) -> DynamicTerms<N, A>
 where
     Mdl: CraneModel<N, M, A>,
 {
@@ -178,41 +179,28 @@ where
     let applied = f * dt2;
     let inputs = bt * u_scaled;
     let residual = inertia - applied - inputs + jac_g.tr_mul(lambda_scaled);
+    r.rows_mut(0, N).copy_from(&residual);
+    r.rows_mut(N, M).copy_from(&model.constraints(q));
     let (da, dv) = (slopes.acceleration_dt2, slopes.velocity_dt2);
-    let coordinate_jacobian = SMatrix::from_fn(|i, j| {
-        da * mass[(i, j)] - dt2 * df_dq[(i, j)] - dv * df_dv[(i, j)] - dbu_dq[(i, j)] + dgl_dq[(i, j)]
-    });
-    DynamicRows {
+    for j in 0..cols {
+        for i in 0..N {
+            jac[(i, j)] =
+                da * mass[(i, j)] - dt2 * df_dq[(i, j)] - dv * df_dv[(i, j)] - dbu_dq[(i, j)] + dgl_dq[(i, j)];
+        }
+        for i in 0..M {
+            jac[(N + i, j)] = jac_g[(i, j)];
+        }
+    }
+    let lambda = jac.ncols() - M;
+    for l in 0..M {
+        for i in 0..N {
+            jac[(i, lambda + l)] = jac_g[(l, i)];
+        }
+    }
+    DynamicTerms {
         inertia,
         applied,
         inputs,
-        residual,
         input_matrix: bt,
-        constraint_jacobian: jac_g,
-        coordinate_jacobian,
-    }
-}
-
-impl<const N: usize, const M: usize, const A: usize> DynamicRows<N, M, A> {
-    /// Write the residual `[r_dyn; g]` and, for unknowns `z = [q_0..q_cols;
-    /// ...; dt^2 lambda]` (the multipliers last), the dynamic and constraint
-    /// rows' columns of the first `cols` coordinates and of the multipliers.
-    pub fn write(&self, g: &SVector<f64, M>, cols: usize, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) {
-        r.rows_mut(0, N).copy_from(&self.residual);
-        r.rows_mut(N, M).copy_from(g);
-        let lambda = jac.ncols() - M;
-        for j in 0..cols {
-            for i in 0..N {
-                jac[(i, j)] = self.coordinate_jacobian[(i, j)];
-            }
-            for i in 0..M {
-                jac[(N + i, j)] = self.constraint_jacobian[(i, j)];
-            }
-        }
-        for l in 0..M {
-            for i in 0..N {
-                jac[(i, lambda + l)] = self.constraint_jacobian[(l, i)];
-            }
-        }
     }
 }

@@ -136,11 +136,21 @@ where
         let u_scaled = SVector::<f64, A>::from_fn(|k, _| z[p + k]);
         let lambda_scaled = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
         let model = &*self.model;
-        let rows = dynamic_rows(model, &self.mass, &self.formula, &kinematics, &u_scaled, &lambda_scaled);
         // residual: dynamic rows (22b, 22c) scaled by dt^2, then (22d); the
-        // iteration matrix column by column of z: p, then dt^2 u, dt^2 lambda
-        jac.fill(0.0);
-        rows.write(&model.constraints(&kinematics[0]), p, r, jac);
+        // iteration matrix column by column of z: p, then dt^2 u (-B^T over
+        // 0), dt^2 lambda
+        let rows = dynamic_rows(
+            model,
+            &self.mass,
+            &self.formula,
+            &kinematics,
+            &u_scaled,
+            &lambda_scaled,
+            p,
+            r,
+            jac,
+        );
+        jac.view_mut((N, p), (M, A + M)).fill(0.0);
         for k in 0..A {
             for i in 0..N {
                 jac[(i, p + k)] = -rows.input_matrix[(i, k)];
