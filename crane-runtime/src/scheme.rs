@@ -212,16 +212,31 @@ impl Scheme {
     }
 
     /// The choices as one line of help, e.g. for a command-line flag:
-    /// "backward-euler (backward Euler, the paper's (order 1); default), bdf2 (BDF-2 (order 2)), ...".
+    /// "backward-euler (backward Euler, the paper's (order 1)), bdf2 (BDF-2 (order 2)), ...".
     pub fn help() -> String {
         Self::ALL
             .iter()
-            .map(|s| {
-                let default = if *s == Scheme::default() { "; default" } else { "" };
-                format!("{} ({}{default})", s.name(), s.description())
-            })
+            .map(|s| format!("{} ({})", s.name(), s.description()))
             .collect::<Vec<_>>()
             .join(", ")
+    }
+
+    /// The names, "backward-euler (also bdf1), bdf2, bdf3, bdf4 or bdf5".
+    pub fn names() -> String {
+        let names: Vec<String> = Self::ALL
+            .iter()
+            .map(|s| {
+                if *s == Scheme::BackwardEuler {
+                    format!("{s} (also bdf1)")
+                } else {
+                    s.to_string()
+                }
+            })
+            .collect();
+        let (last, rest) = names
+            .split_last()
+            .map_or((String::new(), &[][..]), |(l, r)| (l.clone(), r));
+        format!("{} or {last}", rest.join(", "))
     }
 
     /// The choices by FMU code, e.g. "1 backward Euler, the paper's (order 1), 2 BDF-2 (order 2), ...".
@@ -283,7 +298,7 @@ impl fmt::Display for Scheme {
 
 /// A scheme name that is none of `backward-euler`, `bdf1` .. `bdf5`.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown scheme `{0}`; expected backward-euler, bdf1, bdf2, bdf3, bdf4 or bdf5")]
+#[error("unknown scheme `{0}`; expected {names}", names = Scheme::names())]
 pub struct UnknownScheme(pub String);
 
 impl FromStr for Scheme {

@@ -28,7 +28,7 @@ pub struct BenchArgs {
     json: bool,
     #[arg(long, value_name = "FORMULATION", help = formulation_help())]
     formulation: Option<Formulation>,
-    #[arg(long, value_name = "SCHEME", help = scheme_help())]
+    #[arg(long, value_name = "SCHEME", help = scheme_help(Scheme::default()))]
     scheme: Option<Scheme>,
 }
 

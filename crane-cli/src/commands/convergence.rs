@@ -25,7 +25,7 @@ pub struct ConvergenceArgs {
     scenario: Option<PathBuf>,
     #[arg(long, value_name = "FORMULATION", help = formulation_help())]
     formulation: Option<Formulation>,
-    #[arg(long, value_name = "SCHEME", help = scheme_help())]
+    #[arg(long, value_name = "SCHEME", help = scheme_help(Scheme::default()))]
     scheme: Option<Scheme>,
     /// Output directory (default out/MODEL).
     #[arg(long)]

@@ -28,8 +28,8 @@ pub fn out_dir(out: Option<&Path>, model: &str) -> PathBuf {
 }
 
 /// The help of a `--scheme` flag, from the one list of schemes.
-pub fn scheme_help() -> String {
-    format!("Time-discretisation scheme: {}", Scheme::help())
+pub fn scheme_help(default: Scheme) -> String {
+    format!("Time-discretisation scheme: {} (default {default})", Scheme::help())
 }
 
 /// The help of a `--formulation` flag, from the one list of formulations.

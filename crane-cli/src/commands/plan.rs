@@ -30,8 +30,7 @@ pub struct PlanFlags {
     /// without one must stay taut).
     #[arg(long = "min-tension", value_name = "NAME=VALUE")]
     min_tension: Vec<String>,
-    /// Scheme of the runs (default bdf4).
-    #[arg(long, value_name = "SCHEME")]
+    #[arg(long, value_name = "SCHEME", help = super::scheme_help(Settings::default().scheme))]
     scheme: Option<Scheme>,
     /// Largest time step of the runs, s (default 0.05).
     #[arg(long)]

@@ -36,7 +36,7 @@ pub struct RunArgs {
     out: Option<PathBuf>,
     #[arg(long, value_name = "FORMULATION", help = formulation_help())]
     formulation: Option<Formulation>,
-    #[arg(long, value_name = "SCHEME", help = scheme_help())]
+    #[arg(long, value_name = "SCHEME", help = scheme_help(Scheme::default()))]
     scheme: Option<Scheme>,
     /// Exit non-zero if a rope goes slack, an input exceeds its limit or
     /// the internal dynamics are unstable (the results are still written).
