@@ -9,7 +9,7 @@
 
 use crane_models::study::{RunSpec, SpecError};
 use crane_models::{Crane, Path, PathSpec, Profile};
-use crane_runtime::driver::steps_in;
+use crane_runtime::options::steps_in;
 use crane_runtime::problem::ServoTarget;
 use crane_runtime::redundant::{Redundant, RedundantStepper};
 use crane_runtime::{Advance, CraneModel, Options, Scheme, State, Stepper};

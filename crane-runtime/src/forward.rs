@@ -19,10 +19,11 @@ use std::ops::{Deref, Range};
 
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-use crate::driver::{Options, solve};
+use crate::driver::solve;
 use crate::error::Error;
 use crate::model::CraneModel;
 use crate::newton::{NonlinearSystem, normalised_residual};
+use crate::options::Options;
 use crate::problem::{Accepted, Predictor, Problem, Start, dynamic_rows};
 use crate::scheme::{Method, StepFormula};
 use crate::solution::{Solution, State};
@@ -213,7 +214,7 @@ where
 /// made by `Stepper::new(Forward::new(&crane, inputs), &start, &options)`
 /// from a consistent start (its `q`, `v`, `lambda`); after construction a
 /// step does not allocate.
-pub type ForwardStepper<H, In, const N: usize, const M: usize, const A: usize, S = crate::Scheme> =
+pub type ForwardStepper<H, In, const N: usize, const M: usize, const A: usize, S = crate::scheme::Scheme> =
     Stepper<Forward<H, In, N, M, A>, S, N, M, A, N>;
 
 /// Integrate the forward problem from `start` to `options.tf()` with the

@@ -10,9 +10,9 @@
 
 use nalgebra::{DMatrix, DVector, SVector};
 
-use crate::driver::check_parameters;
 use crate::error::Error;
 use crate::model::CraneModel;
+use crate::model::check_parameters;
 use crate::newton::normalised_residual;
 use crate::solution::State;
 use crate::trajectory::Trajectory;

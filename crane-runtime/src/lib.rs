@@ -14,8 +14,9 @@
 //! the paper's and the default, or BDF-2..5, or one's own) says how the
 //! rates at the new time follow from the new value and the history; one
 //! [`Stepper`] ([`stepper`]) runs any problem on any method, and
-//! [`driver`] holds what a run is ([`Options`], the run loop with its
-//! observers). A new scheme touches no problem and a new problem no scheme.
+//! [`options`] says what a run is ([`Options`], validated once) and
+//! [`driver`] runs it (the run loop with its observers). A new scheme
+//! touches no problem and a new problem no scheme.
 //! [`forward`] is the crane driven by given inputs, and [`replay`] drives
 //! it with the torques an inverse run computed (on the planned or another
 //! plant).
@@ -81,6 +82,7 @@ pub mod linsolve;
 pub mod minimal;
 pub mod model;
 pub mod newton;
+pub mod options;
 pub mod problem;
 pub mod redundant;
 pub mod replay;
@@ -92,15 +94,15 @@ pub mod trajectory;
 #[cfg(test)]
 mod test_support;
 
-pub use driver::{Options, StepReport};
 pub use error::Error;
 pub use forward::ForwardStepper;
 pub use minimal::{MinimalStepper, simulate_minimal};
 pub use model::{CraneModel, MapDerivatives, MinimalMap, ModelInfo, Rope, Scalar, Structure, UnknownParameter};
+pub use options::Options;
 pub use redundant::{RedundantStepper, simulate};
 pub use scheme::{Method, Scheme};
 pub use solution::{Solution, State};
-pub use stepper::{Advance, Stepper};
+pub use stepper::{Advance, StepReport, Stepper};
 pub use trajectory::Trajectory;
 
 /// Re-exported so generated code and users name the same versions.

@@ -10,6 +10,8 @@
 //! `M q'' = f(q, q') + B^T(q) u - G^T(q) lambda`, `g(q) = 0`.
 
 use nalgebra::{SMatrix, SVector};
+
+use crate::error::Error;
 use num_dual::DualNum;
 
 /// Scalars the generated model functions accept: `f64` and the dual numbers
@@ -218,4 +220,58 @@ impl<T: Scalar, const N: usize, const F: usize> MapDerivatives<T, N, F> {
         }
         hessian
     }
+}
+
+/// Refuse parameters a crane cannot have before a run starts: NaN or
+/// infinite values, values that make the mass matrix indefinite (a kinetic
+/// energy is positive semi-definite; a negative mass or inertia would flip
+/// the sign of the inputs it moves and still "converge"), and non-positive
+/// values of parameters the model declares `positive`.
+pub fn check_parameters<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+) -> Result<(), Error> {
+    let values = model.parameter_values();
+    for (name, &value) in Mdl::INFO.parameters.iter().zip(&values) {
+        if !value.is_finite() {
+            return Err(Error::NonFiniteParameter { name, value });
+        }
+    }
+    for &k in Mdl::INFO.positive {
+        if let (Some(&name), Some(&value)) = (Mdl::INFO.parameters.get(k), values.get(k))
+            && !(value > 0.0)
+        {
+            return Err(Error::NonPositiveParameter { name, value });
+        }
+    }
+    let mass = model.mass_matrix::<f64>();
+    let scale = mass.amax();
+    if scale > 0.0 {
+        let eigen = nalgebra::DMatrix::from_column_slice(N, N, mass.as_slice()).symmetric_eigen();
+        let (index, smallest) = eigen.eigenvalues.argmin();
+        if smallest < -1e-12 * scale {
+            let direction = eigen.eigenvectors.column(index);
+            let largest = direction.amax();
+            let coordinates: Vec<&str> = (0..N)
+                .filter(|&i| direction[i].abs() > 0.1 * largest)
+                .map(|i| Mdl::INFO.coordinates[i])
+                .collect();
+            let negative: Vec<&str> = Mdl::INFO
+                .parameters
+                .iter()
+                .zip(&values)
+                .filter(|(_, v)| **v < 0.0)
+                .map(|(n, _)| *n)
+                .collect();
+            return Err(Error::IndefiniteMassMatrix {
+                smallest_eigenvalue: smallest,
+                coordinates: coordinates.join(", "),
+                negative_parameters: if negative.is_empty() {
+                    "none".into()
+                } else {
+                    negative.join(", ")
+                },
+            });
+        }
+    }
+    Ok(())
 }

@@ -25,11 +25,12 @@ use std::ops::{Deref, Range};
 
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-use crate::driver::{Options, solve};
+use crate::driver::solve;
 use crate::error::Error;
 use crate::init;
 use crate::model::CraneModel;
 use crate::newton::{NonlinearSystem, normalised_residual};
+use crate::options::Options;
 use crate::problem::{Accepted, Predictor, Problem, ServoTarget, Start, dynamic_rows};
 use crate::scheme::{Method, Scheme, StepFormula};
 use crate::solution::{Solution, State};

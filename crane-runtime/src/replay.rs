@@ -9,11 +9,12 @@ use std::cell::Cell;
 
 use nalgebra::SVector;
 
-use crate::driver::{Options, run, step_count};
+use crate::driver::run;
 use crate::error::Error;
 use crate::forward::{Forward, Inputs};
 use crate::model::CraneModel;
 use crate::newton::NewtonOptions;
+use crate::options::{Options, step_count};
 use crate::scheme::Scheme;
 use crate::solution::Solution;
 use crate::stepper::Stepper;

@@ -38,13 +38,23 @@
 
 use nalgebra::{DVector, SVector};
 
-use crate::driver::{Options, StepReport, check_parameters};
 use crate::error::Error;
 use crate::model::CraneModel;
+use crate::model::check_parameters;
 use crate::newton::{Newton, NewtonFailure};
+use crate::options::Options;
 use crate::problem::{Accepted, Follow, Predictor, Problem};
 use crate::scheme::{History, Method};
 use crate::solution::State;
+
+/// What one step reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StepReport {
+    /// Newton iterations.
+    pub iterations: usize,
+    /// Of those, minimum-norm steps on a singular iteration matrix.
+    pub min_norm_steps: usize,
+}
 
 /// Anything that advances a crane one step at a time: a [`Stepper`], or
 /// problems in sequence ([`Handover`]). The run loop of [`crate::driver`]

@@ -53,12 +53,13 @@ use nalgebra::{DMatrix, DVector, SVector};
 pub use coordinates::{OUTPUT_JACOBIAN_CONDITION_LIMIT, minimal_start};
 pub use degenerate::DEGENERATE_TENSION_RATIO;
 
-use crate::driver::{Options, record};
+use crate::driver::record;
 use crate::error::Error;
 use crate::init;
 use crate::linsolve::DenseSolver;
 use crate::model::{CraneModel, MinimalMap};
 use crate::newton::NonlinearSystem;
+use crate::options::Options;
 use crate::problem::{Accepted, Predictor, Problem, ServoTarget, Start};
 use crate::redundant::{Redundant, check_target, servo_target};
 use crate::scheme::{Method, Scheme, StepFormula};

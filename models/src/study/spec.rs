@@ -3,8 +3,9 @@
 //! one in; [`RunSpec::build`] checks it once against the crane and makes
 //! the [`Case`] and [`RunSettings`] of the run.
 
+use crane_runtime::model::check_parameters;
 use crane_runtime::trajectory::TrajectoryError;
-use crane_runtime::{CraneModel, Options, Scheme, UnknownParameter, driver::check_parameters};
+use crane_runtime::{CraneModel, Options, Scheme, UnknownParameter};
 
 use super::{DEFAULT_DT, Formulation, RunSettings};
 use crate::case::Case;

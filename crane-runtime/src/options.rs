@@ -1,0 +1,150 @@
+//! The settings of a run ([`Options`], each checked when it is set) and the
+//! count of its steps ([`step_count`], [`steps_in`]): the one place that
+//! says what a valid time step, end time and span are.
+
+use crate::error::Error;
+use crate::newton::NewtonOptions;
+use crate::scheme::{Method, Scheme};
+
+/// Settings of a run: the time step, the end time, the scheme (a
+/// [`Method`]: the built-in [`Scheme`]s by default) and Newton's
+/// tolerances, each checked when it is set.
+///
+/// ```
+/// use crane_runtime::{Error, Options, Scheme};
+/// let options = Options::new(0.01, 4.0)?.with_scheme(Scheme::Bdf4);
+/// assert_eq!((options.dt(), options.tf(), *options.scheme()), (0.01, 4.0, Scheme::Bdf4));
+/// assert!(matches!(Options::new(-0.01, 4.0), Err(Error::InvalidTimeStep { .. })));
+/// assert!(matches!(Options::new(0.01, f64::NAN), Err(Error::InvalidEndTime { .. })));
+/// # Ok::<(), Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options<S: Method = Scheme> {
+    dt: f64,
+    tf: f64,
+    scheme: S,
+    newton: NewtonOptions,
+}
+
+impl Options<Scheme> {
+    /// A run with step `dt` to `tf`, backward Euler (the paper's scheme) and
+    /// default Newton tolerances; [`Error::InvalidTimeStep`] unless `dt` is
+    /// finite and positive, [`Error::InvalidEndTime`] unless `tf` is finite.
+    pub fn new(dt: f64, tf: f64) -> Result<Self, Error> {
+        if !tf.is_finite() {
+            return Err(Error::InvalidEndTime { tf });
+        }
+        Ok(Self {
+            tf,
+            ..Self::stepping(dt)?
+        })
+    }
+
+    /// Settings for a stepper that runs without an end (a controller, an
+    /// FMU): step `dt`, backward Euler, default Newton tolerances.
+    pub fn stepping(dt: f64) -> Result<Self, Error> {
+        check_step_size(dt)?;
+        Ok(Self {
+            dt,
+            tf: f64::INFINITY,
+            scheme: Scheme::default(),
+            newton: NewtonOptions::default(),
+        })
+    }
+}
+
+impl<S: Method> Options<S> {
+    /// The same settings with another scheme.
+    pub fn with_scheme<T: Method>(self, scheme: T) -> Options<T> {
+        Options {
+            dt: self.dt,
+            tf: self.tf,
+            scheme,
+            newton: self.newton,
+        }
+    }
+
+    /// The same settings with other Newton tolerances: each tolerance
+    /// finite and not negative, at least one iteration.
+    pub fn with_newton(self, newton: NewtonOptions) -> Result<Self, Error> {
+        let tolerance = |x: f64| x.is_finite() && x >= 0.0;
+        if !(tolerance(newton.rtol) && tolerance(newton.atol) && tolerance(newton.residual_tol)) {
+            return Err(Error::InvalidNewtonOptions(
+                "rtol, atol and residual_tol must be finite and not negative",
+            ));
+        }
+        if newton.max_iterations == 0 {
+            return Err(Error::InvalidNewtonOptions("max_iterations must be at least 1"));
+        }
+        Ok(Self { newton, ..self })
+    }
+
+    /// The same settings with another end time (finite).
+    pub fn with_end(self, tf: f64) -> Result<Self, Error> {
+        if !tf.is_finite() {
+            return Err(Error::InvalidEndTime { tf });
+        }
+        Ok(Self { tf, ..self })
+    }
+
+    /// Time step `dt`.
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// End time `tf` (infinite for [`Options::stepping`]); the run starts
+    /// at the start state's time.
+    pub fn tf(&self) -> f64 {
+        self.tf
+    }
+
+    /// The scheme.
+    pub fn scheme(&self) -> &S {
+        &self.scheme
+    }
+
+    /// Newton's tolerances.
+    pub fn newton(&self) -> &NewtonOptions {
+        &self.newton
+    }
+}
+
+/// Refuse a time step that is not a finite positive number.
+fn check_step_size(dt: f64) -> Result<(), Error> {
+    if dt.is_finite() && dt > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidTimeStep { dt })
+    }
+}
+
+/// Number of steps of size `dt` from `t0` to `tf`, refusing spans that are
+/// not a whole number of steps (to 1e-9 relative) and step counts that
+/// cannot be indexed.
+pub fn step_count(t0: f64, tf: f64, dt: f64) -> Result<usize, Error> {
+    check_step_size(dt)?;
+    if !(tf.is_finite() && t0.is_finite() && tf > t0) {
+        return Err(Error::InvalidTimeSpan { t0, tf });
+    }
+    steps_in(tf - t0, dt)
+}
+
+/// Number of steps of size `dt` in `span` (`> 0`), refusing a span that is
+/// not a whole number of steps (to 1e-9 relative) and step counts that
+/// cannot be indexed: the one rule for a run's length and an FMU's
+/// communication step.
+pub fn steps_in(span: f64, dt: f64) -> Result<usize, Error> {
+    check_step_size(dt)?;
+    let steps = (span / dt).round();
+    if !((steps * dt - span).abs() <= 1e-9 * span && steps >= 1.0) {
+        return Err(Error::StepsDoNotFit { span, dt });
+    }
+    // beyond 2^53 steps the times t0 + i dt no longer differ step by step
+    if steps >= 2f64.powi(53) {
+        return Err(Error::TooManySteps {
+            steps,
+            bytes: f64::INFINITY,
+        });
+    }
+    Ok(steps as usize)
+}
