@@ -218,7 +218,9 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                          to 0 before fmi2ExitInitializationMode"
                     ));
                 }
-                // at rest at the target: a move from it to itself
+                // at rest at the target from the start time on: a move from
+                // the target to itself (the move's own t0 plays no part)
+                let t0 = self.start_time;
                 spec.path = PathSpec {
                     profile: Profile::Poly9,
                     t0,
@@ -251,8 +253,12 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
     fn build(&self) -> Result<Run<C::Model, N, M, A>, String> {
         let (spec, external) = self.spec()?;
         let (case, settings) = spec.build::<C, N, M>().map_err(|e| match e {
+            SpecError::Path(e) if external.is_some() => format!("the external target: {e}"),
             SpecError::Path(e) => format!("the built-in move: {e}"),
             SpecError::Time(e) => format!("`dt`: {e}"),
+            SpecError::EndBeforeStart { tf, t0 } => {
+                format!("the built-in move: `duration` = {} s must be positive", tf - t0)
+            }
             other => other.to_string(),
         })?;
         let options = Options::stepping(settings.dt)

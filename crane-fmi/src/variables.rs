@@ -15,7 +15,7 @@ use crane_runtime::CraneModel;
 use crane_runtime::Scheme;
 
 /// Default internal step, s (that of `crane run`).
-pub const DEFAULT_DT: f64 = 0.01;
+pub use crane_models::study::DEFAULT_DT;
 
 /// What a variable is to the instance.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -44,7 +44,7 @@ pub enum Role {
     Multiplier(usize),
     /// Output: tension of rope `k`.
     Tension(usize),
-    /// Integer: the scheme's order (1 backward Euler, 2..5 BDF-k).
+    /// Integer: the scheme's code ([`Scheme::code`](crane_runtime::Scheme::code)).
     Scheme,
     /// Integer: the path ([`path_of_code`]).
     Path,

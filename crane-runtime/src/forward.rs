@@ -48,7 +48,6 @@ pub struct Forward<H, In, const N: usize, const M: usize, const A: usize> {
     model: H,
     inputs: In,
     mass: SMatrix<f64, N, N>,
-    dt: f64,
     /// `u` at the new time.
     input: SVector<f64, A>,
     formula: StepFormula<N>,
@@ -67,14 +66,8 @@ where
             model,
             inputs,
             mass,
-            dt: f64::NAN,
             input: SVector::zeros(),
-            formula: StepFormula {
-                rate: f64::NAN,
-                dt: f64::NAN,
-                value_offset: SVector::zeros(),
-                rate_offset: SVector::zeros(),
-            },
+            formula: StepFormula::unprepared(),
             blocks: [0..N, N..N + M],
         }
     }
@@ -90,9 +83,9 @@ where
         let mut v = SVector::<f64, N>::zeros();
         let mut a = SVector::<f64, N>::zeros();
         for i in 0..N {
-            let (v_i, a_dt2) = self.formula.kinematics(i, z[i], self.dt);
+            let (v_i, a_dt2) = self.formula.kinematics(i, z[i]);
             v[i] = v_i;
-            a[i] = a_dt2 / (self.dt * self.dt);
+            a[i] = a_dt2 / (self.formula.dt * self.formula.dt);
         }
         [q, v, a]
     }
@@ -110,7 +103,7 @@ where
     fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
         let kinematics = self.kinematics(z);
         let lambda_scaled = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
-        let u_scaled = self.input * (self.dt * self.dt);
+        let u_scaled = self.input * (self.formula.dt * self.formula.dt);
         let model = &*self.model;
         let rows = dynamic_rows(
             model,
@@ -124,13 +117,11 @@ where
             jac,
         );
         jac.view_mut((N, N), (M, M)).fill(0.0);
-        // the given inputs are applied forces: a row's scale includes them
+        // the given inputs are applied forces: a row's scale is its inertia
+        // or all its applied forces
         normalised_residual(r, jac, z, |i| {
             if i < N {
-                rows.inertia[i]
-                    .abs()
-                    .max(rows.applied[i].abs())
-                    .max(rows.inputs[i].abs())
+                rows.inertia[i].abs().max((rows.applied[i] + rows.inputs[i]).abs())
             } else {
                 0.0
             }
@@ -177,7 +168,6 @@ where
     /// From the consistent `start` (its `q`, `v`, `lambda`); at rest
     /// (`v = 0`) the crane rested before `t0`.
     fn start(&mut self, start: &State<N, M, A>, dt: f64, z: &mut DVector<f64>) -> Result<Start<N>, Error> {
-        self.dt = dt;
         self.input = start.u;
         z.rows_mut(0, N).copy_from(&start.q);
         z.rows_mut(N, M).copy_from(&(start.lambda * (dt * dt)));
@@ -188,14 +178,14 @@ where
         })
     }
 
-    fn prepare(&mut self, _t: f64, input: &SVector<f64, A>, formula: StepFormula<N>) {
+    fn prepare(&mut self, input: &SVector<f64, A>, formula: StepFormula<N>) {
         self.input = *input;
         self.formula = formula;
     }
 
     fn accept(&mut self, t: f64, z: &DVector<f64>) -> Result<Accepted<N, M, A, N>, Error> {
         let [q, v, _] = self.kinematics(z);
-        let lambda = SVector::from_fn(|i, _| z[N + i] / (self.dt * self.dt));
+        let lambda = SVector::from_fn(|i, _| z[N + i] / (self.formula.dt * self.formula.dt));
         Ok(Accepted {
             state: State {
                 t,
@@ -253,7 +243,7 @@ mod tests {
                 let mut equations = Forward::new(&Gantry, |_t: f64| SVector::<f64, 2>::zeros());
                 equations.start(&start, dt, &mut DVector::zeros(5)).unwrap();
                 let input = SVector::from([rnd() * 100.0, rnd() * 1000.0]);
-                equations.prepare(dt, &input, history.formula(dt));
+                equations.prepare(&input, history.formula(dt));
                 let z = DVector::from_fn(5, |i, _| if i < 4 { 3.0 + rnd() } else { rnd() * 0.1 });
                 let (worst, largest) = central_difference_error(&mut equations, &z);
                 assert!(worst <= 1e-6 * largest, "{scheme}: worst {worst:e} of {largest}");

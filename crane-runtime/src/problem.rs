@@ -98,9 +98,9 @@ pub trait Problem<const N: usize, const M: usize, const A: usize, const K: usize
     /// from them). `dt` is the step of the run.
     fn start(&mut self, start: &State<N, M, A>, dt: f64, z: &mut DVector<f64>) -> Result<Start<K>, Error>;
 
-    /// Set the drive of the step to `t` and the scheme's affine maps of
-    /// that step.
-    fn prepare(&mut self, t: f64, drive: &Self::Drive, formula: StepFormula<K>);
+    /// Set the drive of the next step and the scheme's affine maps of that
+    /// step.
+    fn prepare(&mut self, drive: &Self::Drive, formula: StepFormula<K>);
 
     /// The state at `t` from the converged unknowns `z` (which the problem
     /// may not change), or why it is not one (an ill-conditioned map, say).

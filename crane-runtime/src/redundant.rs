@@ -45,7 +45,6 @@ pub struct Redundant<H, Tr, const N: usize, const M: usize, const A: usize> {
     model: H,
     trajectory: Tr,
     mass: SMatrix<f64, N, N>,
-    dt: f64,
     /// `gamma, gamma', gamma''` at `t_{n+1}`.
     target: ServoTarget<A>,
     /// The scheme's affine maps `p -> v, a` for this step.
@@ -67,14 +66,8 @@ where
             model,
             trajectory,
             mass,
-            dt: f64::NAN,
             target: [SVector::zeros(); 3],
-            formula: StepFormula {
-                rate: f64::NAN,
-                dt: f64::NAN,
-                value_offset: SVector::zeros(),
-                rate_offset: SVector::zeros(),
-            },
+            formula: StepFormula::unprepared(),
             blocks: [0..Self::P, Self::P..N, N..N + M],
         }
     }
@@ -86,13 +79,13 @@ where
 
     /// `q`, `v`, `a` at the new time from the unknowns.
     fn kinematics(&self, z: &DVector<f64>) -> [SVector<f64, N>; 3] {
-        let (p, dt) = (Self::P, self.dt);
+        let (p, dt) = (Self::P, self.formula.dt);
         let mut q = SVector::<f64, N>::zeros();
         let mut v = SVector::<f64, N>::zeros();
         let mut a = SVector::<f64, N>::zeros();
         for i in 0..p {
             q[i] = z[i];
-            let (v_i, a_dt2) = self.formula.kinematics(i, z[i], dt); // eq. (22a)
+            let (v_i, a_dt2) = self.formula.kinematics(i, z[i]); // eq. (22a)
             v[i] = v_i;
             a[i] = a_dt2 / (dt * dt);
         }
@@ -199,7 +192,6 @@ where
     }
 
     fn start(&mut self, start: &State<N, M, A>, dt: f64, z: &mut DVector<f64>) -> Result<Start<N>, Error> {
-        self.dt = dt;
         let (p, dt2) = (Self::P, dt * dt);
         z.rows_mut(0, p).copy_from(&start.q.rows(0, p));
         z.rows_mut(p, A).copy_from(&(start.u * dt2));
@@ -211,13 +203,13 @@ where
         })
     }
 
-    fn prepare(&mut self, _t: f64, target: &ServoTarget<A>, formula: StepFormula<N>) {
+    fn prepare(&mut self, target: &ServoTarget<A>, formula: StepFormula<N>) {
         self.target = *target;
         self.formula = formula;
     }
 
     fn accept(&mut self, t: f64, z: &DVector<f64>) -> Result<Accepted<N, M, A, N>, Error> {
-        let (p, dt2) = (Self::P, self.dt * self.dt);
+        let (p, dt2) = (Self::P, self.formula.dt * self.formula.dt);
         let [q, v, _] = self.kinematics(z);
         let u = SVector::from_fn(|k, _| z[p + k] / dt2);
         let lambda = SVector::from_fn(|i, _| z[N + i] / dt2);
@@ -295,7 +287,7 @@ mod tests {
                     let mut problem = Redundant::new(&Gantry, &path);
                     problem.start(&start, dt, &mut DVector::zeros(5)).unwrap();
                     let target = [0.0, 1.0, 2.0].map(|scale| SVector::from_fn(|_, _| scale + rnd()));
-                    problem.prepare(dt, &target, history.formula(dt));
+                    problem.prepare(&target, history.formula(dt));
                     // p = [s, L] of the crane's size, dt^2 u, dt^2 lambda
                     let z = DVector::from_fn(5, |i, _| match i {
                         0 | 1 => 3.0 + rnd(),

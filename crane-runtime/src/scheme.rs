@@ -43,7 +43,7 @@
 //! // y = t^3 at t = -2, -1, 0 (history) and 1 (new), dt = 1
 //! let past = [vector![0.0], vector![-1.0], vector![-8.0]]; // y_n, y_{n-1}, y_{n-2}
 //! let history = History::from_past(bdf3, &past, &past);
-//! let (rate, _) = history.formula(1.0).kinematics(0, 1.0, 1.0);
+//! let (rate, _) = history.formula(1.0).kinematics(0, 1.0);
 //! assert!((rate - 3.0).abs() < 1e-12); // y'(1) = 3
 //! ```
 
@@ -296,6 +296,9 @@ impl fmt::Display for Scheme {
     }
 }
 
+/// The other name of backward Euler: BDF-1.
+const BACKWARD_EULER_ALIAS: &str = "bdf1";
+
 /// A scheme name that is none of `backward-euler`, `bdf1` .. `bdf5`.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("unknown scheme `{0}`; expected {names}", names = Scheme::names())]
@@ -305,7 +308,7 @@ impl FromStr for Scheme {
     type Err = UnknownScheme;
     /// `backward-euler` (or `bdf1`), `bdf2` .. `bdf5`.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        if s == "bdf1" {
+        if s == BACKWARD_EULER_ALIAS {
             return Ok(Scheme::BackwardEuler);
         }
         Self::ALL
@@ -357,16 +360,28 @@ pub struct Slopes {
 impl<const K: usize> StepFormula<K> {
     /// `v_i` and `dt^2 a_i` for a new value `y` of component `i` (generic in
     /// the scalar, so that dual numbers pass through).
-    pub fn kinematics<T>(&self, i: usize, y: T, dt: f64) -> (T, T)
+    pub fn kinematics<T>(&self, i: usize, y: T) -> (T, T)
     where
         T: Copy + std::ops::Sub<f64, Output = T> + std::ops::Mul<f64, Output = T>,
     {
+        let dt = self.dt;
         let v = (y - self.value_offset[i]) * self.rate;
         // dt^2 a = dt^2 rate (v - vbar) = (c dt) (v - vbar) ... written so
         // that backward Euler reads y - y_n - dt v_n exactly
         let c_dt = self.rate * dt;
         let accel_dt2 = (y - self.value_offset[i]) * (c_dt * c_dt) - self.rate_offset[i] * (c_dt * dt);
         (v, accel_dt2)
+    }
+
+    /// No step prepared yet: every map NaN (a problem's state between its
+    /// construction and the first [`Problem::prepare`](crate::problem::Problem::prepare)).
+    pub fn unprepared() -> Self {
+        Self {
+            rate: f64::NAN,
+            dt: f64::NAN,
+            value_offset: SVector::zeros(),
+            rate_offset: SVector::zeros(),
+        }
     }
 
     /// The slopes of `v`, `dt^2 v` and `dt^2 a` in `y` (the same products
@@ -535,7 +550,7 @@ mod tests {
                 let history = History::<1>::from_past(scheme, &past, &past);
                 assert_eq!(history.order(), k);
                 let step = history.formula(dt);
-                let (v, _) = step.kinematics(0, y(t_new), dt);
+                let (v, _) = step.kinematics(0, y(t_new));
                 assert!(
                     (v - dy(t_new)).abs() < 1e-12,
                     "{scheme} degree {degree}: {v} vs {}",
@@ -550,7 +565,7 @@ mod tests {
     fn backward_euler_is_eq_22a() {
         let history = History::<1>::start(Scheme::BackwardEuler, vector![2.0], vector![3.0]);
         let step = history.formula(0.1);
-        let (v, a_dt2) = step.kinematics(0, 2.5, 0.1);
+        let (v, a_dt2) = step.kinematics(0, 2.5);
         assert!((v - (2.5 - 2.0) / 0.1).abs() < 1e-12);
         assert!((a_dt2 - (2.5 - 2.0 - 0.1 * 3.0)).abs() < 1e-12);
     }
@@ -565,8 +580,8 @@ mod tests {
             let dt = 0.05;
             let step = History::<1>::from_past(scheme, &past, &rates).formula(dt);
             let slopes = step.slopes();
-            let (v0, a0) = step.kinematics(0, 2.0, dt);
-            let (v1, a1) = step.kinematics(0, 3.0, dt);
+            let (v0, a0) = step.kinematics(0, 2.0);
+            let (v1, a1) = step.kinematics(0, 3.0);
             assert!((v1 - v0 - slopes.velocity).abs() < 1e-9 * slopes.velocity, "{scheme}");
             assert!(
                 (a1 - a0 - slopes.acceleration_dt2).abs() < 1e-12 * slopes.acceleration_dt2,

@@ -60,7 +60,7 @@ pub struct StepReport {
 /// problems in sequence ([`Handover`]). The run loop of [`crate::driver`]
 /// takes one.
 pub trait Advance<const N: usize, const M: usize, const A: usize> {
-    /// The crane.
+    /// The crane's model type.
     type Model: CraneModel<N, M, A>;
     /// The crane.
     fn model(&self) -> &Self::Model;
@@ -201,7 +201,7 @@ where
     /// One step: the scheme's formula, the prediction, Newton, the state.
     fn advance(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
         self.problem.check_drive(drive, t)?;
-        self.problem.prepare(t, drive, self.history.formula(self.dt));
+        self.problem.prepare(drive, self.history.formula(self.dt));
         let predictor = self.problem.predictor();
         self.predict(predictor);
         let converged = match self.newton.solve(&mut self.problem, &mut self.z) {
@@ -341,7 +341,9 @@ where
     S: Method,
 {
     /// `second` from its start, with the first steps by the stepper
-    /// `first()` builds if `second` cannot take the start.
+    /// `first()` builds if `second` cannot take the start. Both must start
+    /// from the same state with the same step and scheme (the minimal
+    /// stepper builds them from one start and one [`Options`]).
     pub fn new(
         second: Stepper<P2, S, N, M, A, K2>,
         first: impl FnOnce() -> Result<Stepper<P1, S, N, M, A, K1>, Error>,
@@ -349,13 +351,30 @@ where
         let first = if second.problem.can_take_over(&second.state) {
             None
         } else {
-            Some(first()?)
+            let first = first()?;
+            if first.dt != second.dt || first.state != second.state {
+                return Err(Error::WrongStepTime {
+                    t: first.state.t + first.dt,
+                    expected: second.next_time(),
+                });
+            }
+            Some(first)
         };
         Ok(Self {
             first,
             second,
             first_steps: 0,
         })
+    }
+
+    /// The state after the last step (the start before the first).
+    pub fn state(&self) -> &State<N, M, A> {
+        &self.second.state
+    }
+
+    /// The time step.
+    pub fn dt(&self) -> f64 {
+        self.second.dt
     }
 
     /// How many steps the first problem took.

@@ -74,9 +74,36 @@
 //! # }
 //! ```
 //!
-//! For online use (a controller computing feedforward torques), a stepper
-//! advances one step at a time from the load target at the new time and
-//! does not allocate: see `examples/control_loop.rs`.
+//! # One step at a time: the stepper
+//!
+//! For online use (a controller computing feedforward torques) the
+//! [`Stepper`](prelude::Stepper) runs a problem (here the servo problem in
+//! redundant coordinates, [`Redundant`](prelude::Redundant)) one step at a
+//! time from the load target at the new time, without allocating
+//! (`examples/control_loop.rs` drives it in a simulated 100 Hz loop). Any
+//! [`Method`](prelude::Method) is a scheme for it: the built-in BDF-k or one
+//! of your own.
+//!
+//! ```
+//! use crane::models::navy_planar::PaperCase;
+//! use crane::prelude::*;
+//!
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let case = PaperCase::new(4.0)?;
+//! let start = case.start()?;
+//! let options = Options::stepping(0.01)?.with_scheme(Scheme::Bdf2);
+//! let mut stepper = Stepper::new(Redundant::new(case.model(), case.path()), &start, &options)?;
+//! for k in 1..=150 {
+//!     let t = 0.01 * k as f64;
+//!     // what a controller receives: gamma, gamma', gamma'' at the new time
+//!     let target = [0, 1, 2].map(|d| case.path().derivative(t, d));
+//!     stepper.step_to(t, &target)?;
+//! }
+//! let reference = case.reference(1.5).unwrap();
+//! assert!((stepper.state().u - reference.u).norm() < 1e-3 * reference.u.norm()); // BDF-2 at dt = 0.01
+//! # Ok(())
+//! # }
+//! ```
 //!
 //! # A run and what it means: [`study`]
 //!
@@ -208,4 +235,5 @@ pub mod prelude {
         Advance, CraneModel, Error, ForwardStepper, Method, MinimalMap, MinimalStepper, Options, RedundantStepper,
         Scheme, Solution, State, Stepper, forward, init, internal, minimal, redundant, simulate, simulate_minimal,
     };
+    pub use crane_runtime::{forward::Forward, minimal::Minimal, redundant::Redundant};
 }

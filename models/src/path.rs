@@ -13,8 +13,7 @@ use nalgebra::SVector;
 /// The kind of a move's profile: the one list of profiles that scenario
 /// files (by name: `trajectory = "poly9"`), planning and the FMU (by
 /// integer code: the `path` variable) name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Deserialize, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ProfileKind {
     /// Rest-to-rest 5-6-7-8-9 polynomial (eqs. 41-45).
     Poly9,
@@ -43,13 +42,19 @@ impl ProfileKind {
         }
     }
 
-    /// The integer code (the FMU's `path` variable): 0, 1, 2.
+    /// The integer code (the FMU's `path` variable): the place in [`ALL`](Self::ALL), 0, 1, 2.
     pub fn code(self) -> i32 {
-        match self {
-            ProfileKind::Poly9 => 0,
-            ProfileKind::ThreePhase => 1,
-            ProfileKind::SmoothThreePhase => 2,
-        }
+        Self::ALL.iter().position(|k| *k == self).map_or(-1, |i| i as i32)
+    }
+
+    /// The names of the kinds with ramps, for messages: `"three-phase" and "smooth-three-phase"`.
+    pub fn with_ramps() -> String {
+        let names: Vec<String> = Self::ALL
+            .iter()
+            .filter(|k| k.has_ramps())
+            .map(|k| format!("\"{}\"", k.name()))
+            .collect();
+        names.join(" and ")
     }
 
     /// The kind of an integer code, if it is one.
@@ -72,6 +77,29 @@ impl ProfileKind {
             (ProfileKind::SmoothThreePhase, Some(tau0)) => Ok(Profile::SmoothThreePhase { tau0 }),
             (kind, None) => Err(MissingRamp(kind)),
         }
+    }
+}
+
+/// A profile name that is none of [`ProfileKind::ALL`]'s.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown profile `{0}`; expected {names}", names = ProfileKind::ALL.map(|k| k.name()).join(", "))]
+pub struct UnknownProfile(pub String);
+
+impl std::str::FromStr for ProfileKind {
+    type Err = UnknownProfile;
+    fn from_str(s: &str) -> Result<Self, UnknownProfile> {
+        Self::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| UnknownProfile(s.to_string()))
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for ProfileKind {
+    /// By [`name`](Self::name).
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        name.parse().map_err(serde::de::Error::custom)
     }
 }
 

@@ -30,7 +30,7 @@ use crane_runtime::{CraneModel, Options, Scheme, Solution};
 use crate::case::Case;
 use crate::crane::Crane;
 use crate::path::{Path, PathSpec};
-use crate::study::summary::SLACK_TOLERANCE;
+use crate::study::summary::slack_allowance;
 
 /// Torque limits `|u_k| <= limit` and tension floors `N_r >= floor`, by
 /// input and rope index.
@@ -108,6 +108,63 @@ pub struct Binding {
 }
 
 impl Limits {
+    /// Limits of crane `Mdl` by name: `torque` on the inputs `(name, |u|
+    /// limit)` over `base` (by index; a name given again replaces it),
+    /// `tension` floors on the ropes `(tension name, floor)`; every other
+    /// rope taut (floor 0). Names are checked against the model, limits
+    /// must be positive and floors finite.
+    ///
+    /// ```
+    /// use crane_models::navy_planar::NavyPlanar;
+    /// use crane_models::plan::Limits;
+    /// let limits = Limits::by_name::<NavyPlanar, 7, 3, 2>(&[], &[("u2".into(), 150.0)], &[]).unwrap();
+    /// assert_eq!(limits.torque, vec![(1, 150.0)]);
+    /// assert_eq!(limits.tension, vec![(0, 0.0), (1, 0.0)]); // both ropes taut
+    /// assert!(Limits::by_name::<NavyPlanar, 7, 3, 2>(&[], &[("u9".into(), 1.0)], &[]).is_err());
+    /// ```
+    pub fn by_name<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+        base: &[(usize, f64)],
+        torque: &[(String, f64)],
+        tension: &[(String, f64)],
+    ) -> Result<Self, PlanError> {
+        let info = Mdl::INFO;
+        let mut out = Limits {
+            torque: base.to_vec(),
+            tension: Vec::new(),
+        };
+        for (name, value) in torque {
+            let k = info.inputs.iter().position(|u| u == name).ok_or_else(|| {
+                PlanError::TorqueLimit(format!(
+                    "{name}: no such input; the inputs are {}",
+                    info.inputs.join(", ")
+                ))
+            })?;
+            if !(value.is_finite() && *value > 0.0) {
+                return Err(PlanError::TorqueLimit(format!(
+                    "{name}={value}: a limit on |{name}| must be positive"
+                )));
+            }
+            out.torque.retain(|&(j, _)| j != k);
+            out.torque.push((k, *value));
+        }
+        for (name, value) in tension {
+            let r = info.ropes.iter().position(|r| r.tension == name).ok_or_else(|| {
+                let ropes: Vec<&str> = info.ropes.iter().map(|r| r.tension).collect();
+                PlanError::TensionFloor(format!(
+                    "{name}: no such rope tension; the ropes are {}",
+                    ropes.join(", ")
+                ))
+            })?;
+            if !value.is_finite() {
+                return Err(PlanError::TensionFloor(format!(
+                    "{name}={value}: a tension floor must be finite"
+                )));
+            }
+            out.tension.push((r, *value));
+        }
+        Ok(out.with_taut_ropes::<Mdl, N, M, A>())
+    }
+
     /// The same limits with a floor of 0 (taut) on every rope of `Mdl`
     /// that has no floor yet.
     pub fn with_taut_ropes<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(mut self) -> Self {
@@ -145,7 +202,8 @@ impl Evaluation {
             }
         }
         for &(r, floor) in &limits.tension {
-            if let (Some(&(value, at)), Some(&peak)) = (self.min_tension.get(r), self.peak_tension.get(r)) {
+            if let Some(&(value, at)) = self.min_tension.get(r) {
+                let peak = self.peak_tension.get(r).copied().unwrap_or(0.0);
                 let scale = floor.abs().max(1.0);
                 out.push(Binding {
                     name: info.ropes[r].tension.to_string(),
@@ -153,7 +211,7 @@ impl Evaluation {
                     value,
                     at,
                     excess: (floor - value) / scale,
-                    allowance: SLACK_TOLERANCE * peak.max(floor.abs()) / scale,
+                    allowance: slack_allowance(floor, peak) / scale,
                     tension: true,
                 });
             }
@@ -359,6 +417,12 @@ pub enum PlanError {
     /// Settings out of range.
     #[error("{0}")]
     Settings(String),
+    /// A torque limit on an input the crane does not have, or not positive.
+    #[error("{0}")]
+    TorqueLimit(String),
+    /// A tension floor on a rope the crane does not have, or not finite.
+    #[error("{0}")]
+    TensionFloor(String),
     /// Even `duration` (the longest tried) violates a limit.
     #[error("no feasible duration up to {duration:.3} s: {reason}")]
     NoFeasibleDuration {

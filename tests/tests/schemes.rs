@@ -180,7 +180,7 @@ fn coordinates_stay_on_the_reference_for_every_scheme() {
 /// A start that is not at rest: navy-planar picked up at t0 = 1 s in the
 /// middle of the Fig. 5 move, from the Appendix A state there. The history
 /// before t0 is unknown, so the scheme starts itself with an order ramp
-/// (BDF-j on step j, `init::history`). For this flat crane the start-up error
+/// (BDF-j on step j, `History::new`). For this flat crane the start-up error
 /// leaves u after 2k steps, so e_u(1.5 s) keeps order k. Expected from the
 /// rest start's table: the same e_u at 1.5 s to within the start-up's
 /// leftovers.

@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use crane_models::registry::Visit;
-use crane_models::study::Formulation;
+use crane_models::study::{DEFAULT_DT, Formulation};
 use crane_models::{Case, Crane};
 use crane_runtime::{Options, Scheme};
 
@@ -18,7 +18,7 @@ pub struct BenchArgs {
     /// Model name (see `crane list`).
     model: String,
     /// Time step in s.
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = DEFAULT_DT)]
     dt: f64,
     /// Number of timed runs.
     #[arg(long, default_value_t = 20)]

@@ -34,5 +34,17 @@ pub fn scheme_help(default: Scheme) -> String {
 
 /// The help of a `--formulation` flag, from the one list of formulations.
 pub fn formulation_help() -> String {
-    format!("Formulation: {} (default redundant)", Formulation::help())
+    format!(
+        "Formulation: {} (default {})",
+        Formulation::help(),
+        Formulation::default()
+    )
+}
+
+/// `NAME=VALUE` of a flag such as `--plant m_l=110` or `--limit u2=150`,
+/// or the error `bad()` makes (what the value may be is the library's to say).
+pub fn name_value(item: &str, bad: impl Fn() -> CliError) -> Result<(String, f64), CliError> {
+    let (name, value) = item.split_once('=').ok_or_else(&bad)?;
+    let value: f64 = value.trim().parse().map_err(|_| bad())?;
+    Ok((name.trim().to_string(), value))
 }

@@ -11,7 +11,7 @@ use crane_models::{Case, Crane};
 use crane_runtime::{CraneModel, Options, Scheme};
 use serde_json::json;
 
-use super::{dispatch, out_dir};
+use super::{dispatch, name_value, out_dir};
 use crate::CliError;
 use crate::output::Staged;
 use crate::plot;
@@ -215,58 +215,23 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
 }
 
 /// `NAME=VALUE` of a `--limit` or `--min-tension`.
-fn name_value(flag: &str, item: &str) -> Result<(String, f64), CliError> {
-    let bad = || CliError::Planning(format!("{flag} `{item}`: expected NAME=VALUE, e.g. {flag} u2=150"));
-    let (name, value) = item.split_once('=').ok_or_else(bad)?;
-    let value: f64 = value.trim().parse().map_err(|_| bad())?;
-    if !value.is_finite() {
-        return Err(bad());
-    }
-    Ok((name.trim().to_string(), value))
-}
-
-/// The limits of the scenario (`[limits]`, by input index) and the flags,
-/// with names checked against the model; a rope without `--min-tension`
-/// must stay taut (floor 0).
+/// The limits of the scenario (`[limits]`, by input index) and of the flags
+/// `--limit NAME=VALUE` and `--min-tension NAME=VALUE` (a rope without one
+/// must stay taut), checked against crane `Mdl`.
 fn limits<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
     scenario: &[(usize, f64)],
     torque: &[String],
     tension: &[String],
 ) -> Result<Limits, CliError> {
-    let info = Mdl::INFO;
-    let mut out = Limits {
-        torque: scenario.to_vec(),
-        tension: Vec::new(),
+    let parse = |flag: &str, items: &[String]| -> Result<Vec<(String, f64)>, CliError> {
+        let bad = |item: &str| CliError::Planning(format!("{flag} `{item}`: expected NAME=VALUE, e.g. {flag} u2=150"));
+        items.iter().map(|item| name_value(item, || bad(item))).collect()
     };
-    for item in torque {
-        let (name, value) = name_value("--limit", item)?;
-        let k = info.inputs.iter().position(|u| *u == name).ok_or_else(|| {
-            CliError::Planning(format!(
-                "--limit {name}: no such input; the inputs are {}",
-                info.inputs.join(", ")
-            ))
-        })?;
-        if !(value > 0.0) {
-            return Err(CliError::Planning(format!(
-                "--limit {name}={value}: a limit on |{name}| must be positive"
-            )));
-        }
-        out.torque.retain(|&(j, _)| j != k);
-        out.torque.push((k, value));
-    }
-    for item in tension {
-        let (name, value) = name_value("--min-tension", item)?;
-        let r = info.ropes.iter().position(|r| r.tension == name).ok_or_else(|| {
-            let ropes: Vec<&str> = info.ropes.iter().map(|r| r.tension).collect();
-            CliError::Planning(format!(
-                "--min-tension {name}: no such rope tension; the ropes are {}",
-                ropes.join(", ")
-            ))
-        })?;
-        out.tension.push((r, value));
-    }
-    // every other rope taut (floor 0)
-    Ok(out.with_taut_ropes::<Mdl, N, M, A>())
+    let (torque, tension) = (parse("--limit", torque)?, parse("--min-tension", tension)?);
+    Limits::by_name::<Mdl, N, M, A>(scenario, &torque, &tension).map_err(|e| match e {
+        plan::PlanError::TensionFloor(message) => CliError::Planning(format!("--min-tension {message}")),
+        other => CliError::Planning(format!("--limit {other}")),
+    })
 }
 
 /// `NAME=LOW:HIGH:COUNT` as the name and `COUNT` evenly spaced values.

@@ -11,7 +11,7 @@ use crane_models::{Case, Crane};
 use crane_runtime::error::Seconds;
 use crane_runtime::{Scheme, State};
 
-use super::{dispatch, formulation_help, out_dir, scheme_help};
+use super::{dispatch, formulation_help, name_value, out_dir, scheme_help};
 use crate::scenario::{self, Overrides, ScenarioFile};
 use crate::{CliError, output, plot, progress, snapshots};
 
@@ -80,11 +80,7 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
     let plant = args
         .plant
         .iter()
-        .map(|item| {
-            let (name, value) = item.split_once('=').ok_or_else(|| CliError::Plant(item.clone()))?;
-            let value: f64 = value.trim().parse().map_err(|_| CliError::Plant(item.clone()))?;
-            Ok((name.trim().to_string(), value))
-        })
+        .map(|item| name_value(item, || CliError::Plant(item.clone())))
         .collect::<Result<Vec<_>, CliError>>()?;
     let feedback = args
         .feedback

@@ -1,5 +1,6 @@
 //! What can be wrong with a scenario, each variant naming the key.
 
+use crane_models::ProfileKind;
 use crane_runtime::UnknownParameter;
 use crane_runtime::scheme::UnknownScheme;
 use crane_runtime::trajectory::TrajectoryError;
@@ -37,10 +38,11 @@ pub enum ScenarioError {
         index: usize,
         name: String,
     },
-    #[error("scenario: `tau0` applies only to trajectory = \"three-phase\" and \"smooth-three-phase\"")]
+    #[error("scenario: `tau0` applies only to trajectory = {}", ProfileKind::with_ramps())]
     RampWithoutPhases,
     #[error(
-        "scenario: `tau0` (ramp duration, s) is required for trajectory = \"three-phase\" and \"smooth-three-phase\""
+        "scenario: `tau0` (ramp duration, s) is required for trajectory = {}",
+        ProfileKind::with_ramps()
     )]
     RampMissing,
     #[error("scenario: the load path (keys `trajectory`, `tau0`, `start`, `end`, `t0`, `t1`): {0}")]

@@ -153,12 +153,17 @@ fn by_key<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(err
     let model = C::NAME.to_string();
     match error {
         SpecError::UnknownParameter { name, source } => ScenarioError::Parameter { key: name, source },
-        SpecError::NonFiniteParameter { name, value } => ScenarioError::NotFinite {
+        SpecError::Parameters(crane_runtime::Error::NonFiniteParameter { name, value }) => ScenarioError::NotFinite {
             key: format!("parameters.{name}"),
             value,
         },
-        SpecError::NotPositiveParameter { name, value } => ScenarioError::NotPositiveParameter { key: name, value },
-        SpecError::Physical(e) => ScenarioError::Physical(e),
+        SpecError::Parameters(crane_runtime::Error::NonPositiveParameter { name, value }) => {
+            ScenarioError::NotPositiveParameter {
+                key: name.to_string(),
+                value,
+            }
+        }
+        SpecError::Parameters(e) => ScenarioError::Physical(e),
         SpecError::Path(e) => ScenarioError::Path(e),
         SpecError::WrongStartLength { expected, names, found } => ScenarioError::WrongCount {
             key: "p0",

@@ -70,7 +70,7 @@ where
         let (dt, split, off) = (self.equations.dt, F - A, N - A);
         let (mu, mut mu_dot, p) = minimal_coordinates(model, state, last)?;
         for i in 0..split {
-            mu_dot[i] = formula.kinematics(i, mu[i], dt).0;
+            mu_dot[i] = formula.kinematics(i, mu[i]).0;
         }
         self.output.set::<N, F, A>(&p);
         let [gamma_rate, gamma_accel] = [1, 2].map(|k| self.trajectory.derivative(state.t, k));
@@ -81,13 +81,7 @@ where
         for k in 0..A {
             mu_dot[split + k] = mu2_hat[k];
         }
-        let accel_dt2 = SVector::<f64, F>::from_fn(|i, _| {
-            if i < split {
-                formula.kinematics(i, mu[i], dt).1
-            } else {
-                0.0
-            }
-        });
+        let accel_dt2 = SVector::<f64, F>::from_fn(|i, _| if i < split { formula.kinematics(i, mu[i]).1 } else { 0.0 });
         let curvature = model.null_space_rate(&mu, &mu_dot) * mu_dot; // its load rows are w (eq. 17)
         let s = self.output.solve::<A>(
             |i| {

@@ -79,7 +79,7 @@ impl<const N: usize, const A: usize, const F: usize> MinimalEquations<N, A, F> {
         let mut accel_dt2 = SVector::<T, F>::zeros();
         for i in 0..F {
             (mu_dot[i], accel_dt2[i]) = if i < split {
-                self.formula.kinematics(i, z(i), dt) // eq. (24a)
+                self.formula.kinematics(i, z(i)) // eq. (24a)
             } else {
                 (z(F + i - split) * (1.0 / dt), z(F + A + i - split))
             };

@@ -175,7 +175,7 @@ where
         })
     }
 
-    fn prepare(&mut self, _t: f64, target: &ServoTarget<A>, formula: StepFormula<F>) {
+    fn prepare(&mut self, target: &ServoTarget<A>, formula: StepFormula<F>) {
         self.equations.target = *target;
         self.equations.formula = formula;
     }

@@ -39,8 +39,7 @@ pub use summary::{PathSmoothnessSummary, Summary, below_floor, infeasibilities};
 pub use warnings::Warning;
 
 /// Which index-3 formulation a run integrates.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Formulation {
     /// Redundant coordinates, eqs. (22a-d) (the default).
     #[default]
@@ -67,6 +66,12 @@ impl Formulation {
             Formulation::Redundant => "redundant coordinates, eqs. (22a-d)",
             Formulation::Minimal => "minimal coordinates, eqs. (24a-e)",
         }
+    }
+
+    /// The names, "redundant or minimal".
+    pub fn names() -> String {
+        let names: Vec<&str> = Self::ALL.iter().map(|f| f.name()).collect();
+        names.join(" or ")
     }
 
     /// The choices as one line of help.
@@ -104,8 +109,16 @@ impl fmt::Display for Formulation {
 
 /// A formulation name that is neither `redundant` nor `minimal`.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown formulation `{0}`; expected redundant or minimal")]
+#[error("unknown formulation `{0}`; expected {names}", names = Formulation::names())]
 pub struct UnknownFormulation(pub String);
+
+impl<'de> serde::Deserialize<'de> for Formulation {
+    /// By [`name`](Self::name).
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        name.parse().map_err(serde::de::Error::custom)
+    }
+}
 
 impl FromStr for Formulation {
     type Err = UnknownFormulation;
@@ -124,7 +137,7 @@ pub enum StudyError {
     #[error(transparent)]
     Runtime(#[from] crane_runtime::Error),
     /// The minimal formulation of a crane without a minimal map.
-    #[error("model `{0}` declares no minimal-coordinate map; use --formulation redundant")]
+    #[error("model `{0}` declares no minimal-coordinate map; use the redundant formulation")]
     NoMinimalMap(String),
     /// The convergence study cannot measure its error.
     #[error("{0}")]

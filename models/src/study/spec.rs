@@ -15,8 +15,8 @@ use crate::path::{Path, PathSpec};
 /// A run of a crane with `A` load coordinates, as data.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSpec<const A: usize> {
-    /// Parameter values that differ from the model's defaults, `(name,
-    /// value)`, in order.
+    /// Parameter values, `(name, value)`, set in order over the model's
+    /// defaults (a scenario gives those it changes, an FMU all of them).
     pub parameters: Vec<(String, f64)>,
     /// The load path.
     pub path: PathSpec<A>,
@@ -48,26 +48,11 @@ pub enum SpecError {
         /// The crane's answer, listing its parameters.
         source: UnknownParameter,
     },
-    /// A parameter value is NaN or infinite.
-    #[error("parameter `{name}` = {value} is not finite")]
-    NonFiniteParameter {
-        /// The parameter.
-        name: String,
-        /// Its value.
-        value: f64,
-    },
-    /// A parameter declared `positive` is not.
-    #[error("parameter `{name}` = {value} must be positive (the model declares it `positive`)")]
-    NotPositiveParameter {
-        /// The parameter.
-        name: String,
-        /// Its value.
-        value: f64,
-    },
-    /// The parameters give the crane no physical meaning (an indefinite
-    /// mass matrix).
+    /// The parameters give the crane no physical meaning: a value NaN or
+    /// infinite, a parameter declared `positive` that is not, an indefinite
+    /// mass matrix ([`check_parameters`]).
     #[error("{0}")]
-    Physical(crane_runtime::Error),
+    Parameters(crane_runtime::Error),
     /// The load path cannot be built.
     #[error("the load path: {0}")]
     Path(TrajectoryError),
@@ -130,10 +115,10 @@ impl<const A: usize> RunSpec<A> {
     }
 
     /// Check the description against crane `C` and make the run's case and
-    /// settings: every parameter known, finite and (where declared)
-    /// positive, the mass matrix positive semi-definite, the path buildable,
-    /// `p0` of the right length, `dt` a valid step and `tf` after `t0`, every
-    /// limit on a known input and positive.
+    /// settings, in this order: `tf` after `t0` and `dt` a valid step, the
+    /// path buildable, every parameter known, finite and (where declared)
+    /// positive with a positive semi-definite mass matrix, `p0` of the
+    /// right length, every limit on a known input and positive.
     ///
     /// ```
     /// use crane_models::navy_planar::Description;
@@ -145,20 +130,21 @@ impl<const A: usize> RunSpec<A> {
     /// assert_eq!(case.model().m_l, 150.0);
     /// assert_eq!(settings.dt, 0.01);
     /// spec.parameters.push(("m_l".into(), -1.0));
-    /// assert!(matches!(spec.build::<Description, 7, 3>(), Err(SpecError::NotPositiveParameter { .. })));
+    /// assert!(matches!(spec.build::<Description, 7, 3>(), Err(SpecError::Parameters(_))));
     /// ```
     pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize>(
         &self,
     ) -> Result<(Case<C, N, M, A>, RunSettings), SpecError> {
         let info = <C::Model as CraneModel<N, M, A>>::INFO;
+        // the times first, then the path, then the crane
+        let t0 = self.path.t0;
+        if !(self.tf.is_finite() && self.tf > t0) {
+            return Err(SpecError::EndBeforeStart { tf: self.tf, t0 });
+        }
+        Options::new(self.dt, self.tf).map_err(SpecError::Time)?;
+        let path = Path::new(self.path).map_err(SpecError::Path)?;
         let mut model = C::Model::default();
         for (name, value) in &self.parameters {
-            if !value.is_finite() {
-                return Err(SpecError::NonFiniteParameter {
-                    name: name.clone(),
-                    value: *value,
-                });
-            }
             model
                 .set_parameter(name, *value)
                 .map_err(|source| SpecError::UnknownParameter {
@@ -166,16 +152,9 @@ impl<const A: usize> RunSpec<A> {
                     source,
                 })?;
         }
-        // masses, inertias and lengths declared positive, and a positive
-        // semi-definite mass matrix
-        check_parameters(&model).map_err(|e| match e {
-            crane_runtime::Error::NonPositiveParameter { name, value } => SpecError::NotPositiveParameter {
-                name: name.to_string(),
-                value,
-            },
-            other => SpecError::Physical(other),
-        })?;
-        let path = Path::new(self.path).map_err(SpecError::Path)?;
+        // finite values, masses, inertias and lengths declared positive, and
+        // a positive semi-definite mass matrix
+        check_parameters(&model).map_err(SpecError::Parameters)?;
         if self.p0.len() != N - A {
             return Err(SpecError::WrongStartLength {
                 expected: N - A,
@@ -183,11 +162,6 @@ impl<const A: usize> RunSpec<A> {
                 found: self.p0.len(),
             });
         }
-        let t0 = self.path.t0;
-        if !(self.tf.is_finite() && self.tf > t0) {
-            return Err(SpecError::EndBeforeStart { tf: self.tf, t0 });
-        }
-        Options::new(self.dt, self.tf).map_err(SpecError::Time)?;
         let mut limits = Vec::new();
         for (name, limit) in &self.limits {
             let k = info

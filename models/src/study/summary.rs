@@ -161,10 +161,16 @@ pub struct ReplaySummary {
 /// exactly and evaluates to about -1e-13 N).
 pub const SLACK_TOLERANCE: f64 = 1e-9;
 
+/// How far below `floor` a tension may be and still count as at it, for a
+/// rope whose largest `|N|` over the run is `peak` (see [`SLACK_TOLERANCE`]).
+pub fn slack_allowance(floor: f64, peak: f64) -> f64 {
+    SLACK_TOLERANCE * peak.max(floor.abs())
+}
+
 /// Whether the tension `n` is below `floor` beyond round-off, for a rope
 /// whose largest `|N|` over the run is `peak` (see [`SLACK_TOLERANCE`]).
 pub fn below_floor(n: f64, floor: f64, peak: f64) -> bool {
-    n < floor - SLACK_TOLERANCE * peak.max(floor.abs())
+    n < floor - slack_allowance(floor, peak)
 }
 
 fn column_extremes<const K: usize, const N: usize, const M: usize, const A: usize>(
