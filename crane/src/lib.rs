@@ -117,7 +117,7 @@
 //! use crane::study::{self, RunSettings};
 //!
 //! let case = PaperCase::new(4.0).unwrap(); // the paper's sect. 5.1.3
-//! let outcome = study::run(&case, &RunSettings::default(), None, &mut |_, _| {}).unwrap();
+//! let outcome = study::run(&case, &RunSettings::default(), &mut |_, _| {}).unwrap();
 //! let reference = outcome.summary.reference.as_ref().unwrap();
 //! assert!(reference.e_u_at_1_5s.unwrap() < 2e-3); // eq. (48), Fig. 7
 //! assert!(study::infeasibilities(&outcome.summary).is_empty());

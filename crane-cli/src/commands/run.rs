@@ -132,13 +132,14 @@ impl Visit for Run<'_> {
             ..request
         });
         let mut progress = progress::Progress::new(C::NAME, self.quiet);
-        let outcome = study::run(&case, &settings, replay.as_ref(), &mut |step, steps| {
-            progress.tick(step, steps)
-        });
+        let outcome = study::run(&case, &settings, &mut |step, steps| progress.tick(step, steps));
         progress.finish();
-        let outcome = outcome?;
+        let mut outcome = outcome?;
         for warning in &outcome.warnings {
             eprintln!("warning: {warning}");
+        }
+        if let Some(request) = &replay {
+            outcome.replay(&case, request)?;
         }
         write(&case, &outcome, self.out)?;
         let (solution, summary) = (&outcome.solution, &outcome.summary);

@@ -10,7 +10,7 @@
 //! use crane_models::study::{self, RunSettings};
 //!
 //! let case = PaperCase::new(4.0).unwrap();                 // sect. 5.1.3
-//! let outcome = study::run(&case, &RunSettings::default(), None, &mut |_, _| {}).unwrap();
+//! let outcome = study::run(&case, &RunSettings::default(), &mut |_, _| {}).unwrap();
 //! let summary = &outcome.summary;
 //! assert_eq!(summary.steps, 400);
 //! assert!(summary.reference.as_ref().unwrap().e_u_at_1_5s.unwrap() < 2e-3); // eq. (48)
@@ -189,23 +189,36 @@ impl Default for RunSettings {
 pub struct Outcome<const N: usize, const M: usize, const A: usize> {
     /// The states of every step.
     pub solution: Solution<N, M, A>,
-    /// Its summary (with the replay's, if one was asked for).
+    /// Its summary (with the replay's, once [`replay`](Self::replay) made one).
     pub summary: Summary,
     /// What the summary warns of.
     pub warnings: Vec<Warning>,
-    /// The replay, if one was asked for.
+    /// The replay, once [`replay`](Self::replay) made one.
     pub replay: Option<ReplayOutcome<N, M, A>>,
+}
+
+impl<const N: usize, const M: usize, const A: usize> Outcome<N, M, A> {
+    /// Replay the run's torques as `request` asks ([`replay::replay_run`])
+    /// and add the replay to the outcome and its summary.
+    pub fn replay<C: Crane<N, M, A>>(
+        &mut self,
+        case: &Case<C, N, M, A>,
+        request: &ReplayRequest,
+    ) -> Result<&ReplayOutcome<N, M, A>, StudyError> {
+        let replay = replay::replay_run(case, &self.solution, request)?;
+        self.summary.replay = Some(replay.summary.clone());
+        Ok(self.replay.insert(replay))
+    }
 }
 
 /// Run `case` from its checked start with `settings`, calling
 /// `progress(step, steps)` after every step: the solution, its summary
 /// (peaks, ropes, limits, errors against the reference, the internal
-/// dynamics at 101 states, the path's smoothness), the warnings, and the
-/// replay if `replay` asks for one.
+/// dynamics at 101 states, the path's smoothness) and the warnings; a
+/// replay is added by [`Outcome::replay`].
 pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
     settings: &RunSettings,
-    replay: Option<&ReplayRequest>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Outcome<N, M, A>, StudyError> {
     let start = case.start()?;
@@ -232,15 +245,11 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             sufficient: smooth.is_sufficient(),
         });
     let warnings = warnings::warnings(&summary);
-    let replay = replay
-        .map(|request| replay::replay_run(case, &solution, request))
-        .transpose()?;
-    summary.replay = replay.as_ref().map(|r| r.summary.clone());
     Ok(Outcome {
         solution,
         summary,
         warnings,
-        replay,
+        replay: None,
     })
 }
 
