@@ -950,6 +950,45 @@ fn sweep_writes_a_row_per_point_and_survives_a_failure() {
     assert!(String::from_utf8_lossy(&result.stderr).contains("no such parameter"));
 }
 
+/// A crane whose inputs need the path's 6th derivative run through the
+/// paper's formulation (which covers the 4th) is warned of, its summary says
+/// so, and `--strict` fails on it (the results are still written).
+#[test]
+fn a_crane_beyond_the_formulation_is_warned_of_and_strict_fails() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("smooth.toml");
+    std::fs::write(&file, "dt = 0.1\ntrajectory = \"smooth-three-phase\"\n").unwrap();
+    let out = dir.path().join("smooth");
+    let args = [
+        "run",
+        "navy-3d-pulley",
+        "--scenario",
+        file.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let result = crane(&args);
+    assert!(result.status.success());
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        stderr.contains("derivatives up to order 6, but this formulation (the paper's minimal extension, eqs. 22 and 24) covers order 4"),
+        "{stderr}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["internal_dynamics"]["path_order"]["needed"], 6);
+    assert_eq!(summary["internal_dynamics"]["path_order"]["covered"], 4);
+    let strict = crane(&[&args[..], &["--strict"]].concat());
+    assert!(!strict.status.success());
+    let stderr = String::from_utf8_lossy(&strict.stderr);
+    assert!(
+        stderr.contains("infeasible (--strict): the crane needs the path's derivatives up to order 6, the formulation covers order 4"),
+        "{stderr}"
+    );
+    assert!(out.join("results.csv").exists(), "--strict still writes the results");
+}
+
 /// A path too rough for the crane is reported: navy-3d-pulley's inputs
 /// need the path's 6th derivative, the paper's three-phase profile is
 /// continuous only to the 4th (a warning and `path_smoothness` in

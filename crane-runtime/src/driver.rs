@@ -41,6 +41,7 @@ where
     let steps = step_count(start.t, tf, stepper.dt())?;
     let info = <Adv::Model as CraneModel<N, M, A>>::INFO;
     let mut solution = Solution::with_capacity(info, stepper.dt(), stepper.scheme_name(), steps + 1)?;
+    solution.path_order_covered = stepper.path_order_covered();
     let mut lengths = vec![0.0; info.ropes.len()];
     solution.push(stepper.model(), &start, 0, 0, &mut lengths);
     for step in 1..=steps {

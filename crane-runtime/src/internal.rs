@@ -382,6 +382,31 @@ pub struct RunDiagnosis {
     /// First time an input exceeds [`RUNAWAY_FACTOR`] times its size at the
     /// start.
     pub runaway_at: Option<f64>,
+    /// The highest derivative of the load path the crane's inputs need
+    /// ([`Structure::path_order`]) and the highest the formulation that
+    /// computed the run covers, where both are known.
+    #[cfg_attr(feature = "serde", serde(skip_serializing_if = "Option::is_none"))]
+    pub path_order: Option<PathOrder>,
+}
+
+/// The load path's derivative a crane's inputs need and the one the
+/// formulation of a run covers: beyond it the run's errors grow as dt
+/// shrinks (the index of the discretised system exceeds what the scheme
+/// tolerates), whatever Newton reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct PathOrder {
+    /// What the crane needs ([`Structure::path_order`]).
+    pub needed: usize,
+    /// What the formulation covers ([`Problem::path_order_covered`](crate::problem::Problem::path_order_covered)).
+    pub covered: usize,
+}
+
+impl PathOrder {
+    /// Whether the formulation covers the crane.
+    pub fn is_covered(&self) -> bool {
+        self.needed <= self.covered
+    }
 }
 
 /// The reason as its message.
@@ -406,13 +431,15 @@ impl RunDiagnosis {
             unresolved_reason: None,
             samples: 0,
             runaway_at: None,
+            path_order: None,
         }
     }
 
     /// Whether the run's torques can be used as a feedforward: stable
-    /// internal dynamics and no runaway input.
+    /// internal dynamics, no runaway input, and a formulation that covers
+    /// the crane's path order.
     pub fn is_usable(&self) -> bool {
-        self.stable && self.runaway_at.is_none()
+        self.stable && self.runaway_at.is_none() && self.path_order.is_none_or(|p| p.is_covered())
     }
 }
 
@@ -445,6 +472,12 @@ where
     let stride = (states.len() / samples.max(1)).max(1);
     let mut diagnosis = RunDiagnosis {
         structural_dimension: Mdl::STRUCTURE.map(|s| s.dimension),
+        path_order: Mdl::STRUCTURE
+            .zip(solution.path_order_covered)
+            .map(|(s, covered)| PathOrder {
+                needed: s.path_order(A),
+                covered,
+            }),
         ..RunDiagnosis::none()
     };
     let scale = states.first().map_or(1.0, |s| s.u.amax().max(1.0));

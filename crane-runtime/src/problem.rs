@@ -84,6 +84,15 @@ pub trait Problem<const N: usize, const M: usize, const A: usize, const K: usize
     /// The crane.
     fn model(&self) -> &Self::Model;
 
+    /// The highest derivative of the load path ([`Structure::path_order`](crate::Structure::path_order))
+    /// whose cranes the problem's index reduction covers: a crane needing
+    /// more is beyond it, and the problem's results for it are not reliable
+    /// (errors that grow as dt shrinks). `None` for a problem that is not a
+    /// servo problem (the forward dynamics).
+    fn path_order_covered(&self) -> Option<usize> {
+        None
+    }
+
     /// How the unknowns of a step are predicted.
     fn predictor(&self) -> Predictor;
 

@@ -179,6 +179,12 @@ where
     }
 
     /// The scheme's extrapolation for `p`, the last step's scaled `u` and `lambda`.
+    /// 4: the minimal extension of eqs. (22, 24) reduces servo constraints of
+    /// index 5, whose inputs need the path's 4th derivative.
+    fn path_order_covered(&self) -> Option<usize> {
+        Some(4)
+    }
+
     fn predictor(&self) -> Predictor {
         Predictor::Scheme { leading: Self::P }
     }

@@ -403,6 +403,7 @@ mod tests {
             newton_iterations: vec![0; 21],
             tensions: vec![],
             min_norm_steps: 0,
+            path_order_covered: None,
             redundant_start_steps: 0,
         };
         let inputs = InterpolatedInputs::new(&run, 4);

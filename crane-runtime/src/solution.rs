@@ -39,6 +39,10 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     /// Newton steps that fell back to the minimum-norm solve (singular
     /// iteration matrix, as at the paper's degenerate starts).
     pub min_norm_steps: usize,
+    /// The highest path order the formulation that computed it covers
+    /// ([`Problem::path_order_covered`](crate::problem::Problem::path_order_covered));
+    /// `None` if not a servo problem's run.
+    pub path_order_covered: Option<usize>,
     /// Of a minimal-coordinate run: how many of the first steps were taken
     /// in redundant coordinates because a rope was (nearly) slack at the
     /// start ([`crate::minimal::DEGENERATE_TENSION_RATIO`]); 0 otherwise.
@@ -63,6 +67,7 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
             newton_iterations: Vec::new(),
             tensions: Vec::new(),
             min_norm_steps: 0,
+            path_order_covered: None,
             redundant_start_steps: 0,
         };
         solution.states.try_reserve_exact(states).map_err(|_| too_many())?;

@@ -72,6 +72,8 @@ pub trait Advance<const N: usize, const M: usize, const A: usize> {
     fn dt(&self) -> f64;
     /// The scheme's name.
     fn scheme_name(&self) -> &'static str;
+    /// What the problem's index reduction covers ([`Problem::path_order_covered`]).
+    fn path_order_covered(&self) -> Option<usize>;
 }
 
 /// The generic one-step integrator of a [`Problem`] `P` on a [`Method`] `S`
@@ -319,6 +321,9 @@ where
     fn scheme_name(&self) -> &'static str {
         self.history.method().name()
     }
+    fn path_order_covered(&self) -> Option<usize> {
+        self.problem.path_order_covered()
+    }
 }
 
 /// Two problems in sequence: `first` takes the steps until `second` can
@@ -433,5 +438,8 @@ where
     }
     fn scheme_name(&self) -> &'static str {
         self.second.history.method().name()
+    }
+    fn path_order_covered(&self) -> Option<usize> {
+        self.second.problem.path_order_covered()
     }
 }

@@ -310,6 +310,13 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
         ));
     }
     let internal = &summary.internal_dynamics;
+    if let Some(p) = internal.path_order.filter(|p| !p.is_covered()) {
+        lines.push(format!(
+            "WARNING: the inputs need the path's derivatives up to order {}, the formulation covers order {}: \
+             not a reliable result",
+            p.needed, p.covered
+        ));
+    }
     lines.push(match (internal.dimension, internal.stable) {
         (0, _) if internal.unresolved == 0 => {
             "internal dynamics: none (flat), the torques are the unique ones".to_string()

@@ -140,6 +140,12 @@ where
         &self.model
     }
 
+    /// 4: the minimal extension of eqs. (22, 24) reduces servo constraints of
+    /// index 5, whose inputs need the path's 4th derivative.
+    fn path_order_covered(&self) -> Option<usize> {
+        Some(4)
+    }
+
     fn predictor(&self) -> Predictor {
         Predictor::Extrapolation
     }

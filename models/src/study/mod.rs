@@ -314,6 +314,48 @@ mod tests {
         assert!(d.stable && d.runaway_at.is_none(), "{d:?}");
     }
 
+    /// A crane whose inputs need the path's 6th derivative (navy-3d-pulley)
+    /// is beyond the paper's formulation, which covers the 4th: the run is
+    /// not usable, warned of and infeasible; the paper's planar crane is
+    /// covered and none of that.
+    #[test]
+    fn a_crane_beyond_the_formulation_is_not_reported_usable() {
+        let beyond = crate::navy_3d_pulley::PaperCase::smooth(crate::navy_3d_pulley::TF).unwrap();
+        let settings = RunSettings {
+            dt: 0.1,
+            ..RunSettings::default()
+        };
+        let outcome = super::run(&beyond, &settings, &mut |_, _| {}).unwrap();
+        let d = &outcome.summary.internal_dynamics;
+        assert_eq!(
+            d.path_order,
+            Some(crane_runtime::internal::PathOrder { needed: 6, covered: 4 }),
+            "{d:?}"
+        );
+        assert!(d.stable && !d.is_usable(), "{d:?}");
+        assert!(
+            matches!(
+                outcome.warnings[..],
+                [Warning::BeyondFormulation {
+                    needed: 6,
+                    covered: 4,
+                    ..
+                }]
+            ),
+            "{:?}",
+            outcome.warnings
+        );
+        assert!(infeasibilities(&outcome.summary)[0].contains("covers order 4"));
+        let covered = crate::navy_planar::PaperCase::new(4.0).unwrap();
+        let outcome = super::run(&covered, &RunSettings::default(), &mut |_, _| {}).unwrap();
+        let d = &outcome.summary.internal_dynamics;
+        assert_eq!(
+            d.path_order,
+            Some(crane_runtime::internal::PathOrder { needed: 4, covered: 4 })
+        );
+        assert!(d.is_usable() && outcome.warnings.is_empty());
+    }
+
     /// One slack rule: round-off around a rope that carries nothing is not
     /// slack, anything beyond 1e-9 of the rope's peak is.
     #[test]

@@ -326,8 +326,9 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
     }
 }
 
-/// What makes a run infeasible: slack ropes, violated torque limits and
-/// unstable internal dynamics (for `--strict`).
+/// What makes a run infeasible (for `--strict`): slack ropes, violated
+/// torque limits, a crane beyond its formulation's path order, unstable
+/// internal dynamics, a runaway input.
 pub fn infeasibilities(summary: &Summary) -> Vec<String> {
     let mut out: Vec<String> = summary
         .ropes
@@ -342,6 +343,12 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
             .map(|t| format!("|{}| exceeds its limit {} N m at t = {t:.3} s", l.name, l.limit))
     }));
     let internal = &summary.internal_dynamics;
+    if let Some(p) = internal.path_order.filter(|p| !p.is_covered()) {
+        out.push(format!(
+            "the crane needs the path's derivatives up to order {}, the formulation covers order {}",
+            p.needed, p.covered
+        ));
+    }
     if !internal.stable {
         out.push(format!(
             "unstable internal dynamics (largest real part {:.4} 1/s at t = {} s)",

@@ -32,6 +32,16 @@ pub enum Warning {
         /// The highest continuous one.
         continuous: usize,
     },
+    /// The crane's inputs need a higher derivative of the path than the
+    /// formulation's index reduction covers: its errors grow as dt shrinks.
+    BeyondFormulation {
+        /// The crane's name.
+        model: String,
+        /// The path order the crane needs.
+        needed: usize,
+        /// The path order the formulation covers.
+        covered: usize,
+    },
     /// An input exceeds [`RUNAWAY_FACTOR`](crane_runtime::internal::RUNAWAY_FACTOR)
     /// times its size at the start.
     Runaway {
@@ -69,6 +79,13 @@ impl fmt::Display for Warning {
                  trajectory = \"smooth-three-phase\")",
                 continuous + 1
             ),
+            Warning::BeyondFormulation { model, needed, covered } => write!(
+                f,
+                "the inputs of {model} depend on the load path's derivatives up to order {needed}, but this \
+                 formulation (the paper's minimal extension, eqs. 22 and 24) covers order {covered}: the \
+                 discretised system's index is too high for the scheme, its errors grow as dt shrinks, and the \
+                 computed inputs are not a reliable result"
+            ),
             Warning::Runaway { model, at } => write!(
                 f,
                 "an input of {model} exceeds 1e6 times its size at the start from t = {} s: not a physical result",
@@ -78,12 +95,19 @@ impl fmt::Display for Warning {
     }
 }
 
-/// The warnings of a run's summary, in this order: unstable internal
-/// dynamics, a path too rough, a runaway input.
+/// The warnings of a run's summary, in this order: a crane beyond the
+/// formulation, unstable internal dynamics, a path too rough, a runaway input.
 pub fn warnings(summary: &Summary) -> Vec<Warning> {
     let model = summary.model.clone();
     let internal = &summary.internal_dynamics;
     let mut out = Vec::new();
+    if let Some(p) = internal.path_order.filter(|p| !p.is_covered()) {
+        out.push(Warning::BeyondFormulation {
+            model: model.clone(),
+            needed: p.needed,
+            covered: p.covered,
+        });
+    }
     if !internal.stable {
         out.push(Warning::UnstableInternalDynamics {
             model: model.clone(),
