@@ -116,7 +116,6 @@ where
             r,
             jac,
         );
-        jac.view_mut((N, N), (M, M)).fill(0.0);
         // the given inputs are applied forces: a row's scale is its inertia
         // or all its applied forces
         normalised_residual(r, jac, z, |i| {

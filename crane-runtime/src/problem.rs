@@ -159,8 +159,11 @@ pub struct DynamicTerms<const N: usize, const A: usize> {
 /// columns for unknowns `z = [q_0 .. q_cols; ...; dt^2 lambda]` (the
 /// multipliers last): for the first `cols` coordinates, moved with the
 /// slopes of the step's `formula`, `c^2 M - dt^2 df/dq - c dt df/dv -
-/// d(B^T dt^2 u)/dq + d(G^T dt^2 lambda)/dq` over `G`, and for the
-/// multipliers `G^T` over 0. Other entries of `jac` are left alone.
+/// d(B^T dt^2 u)/dq + d(G^T dt^2 lambda)/dq` over `G`, for the multipliers
+/// `G^T` over 0, and 0 in the constraint rows of every other column (`g`
+/// depends on `q` alone). The dynamic rows of columns between the
+/// coordinates and the multipliers (the inputs of the servo problem) are
+/// the problem's to write.
 #[allow(clippy::too_many_arguments)]
 pub fn dynamic_rows<Mdl, const N: usize, const M: usize, const A: usize>(
     model: &Mdl,
@@ -200,6 +203,7 @@ where
             jac[(N + i, j)] = jac_g[(i, j)];
         }
     }
+    jac.view_mut((N, cols), (M, jac.ncols() - cols)).fill(0.0);
     let lambda = jac.ncols() - M;
     for l in 0..M {
         for i in 0..N {

@@ -144,7 +144,6 @@ where
             r,
             jac,
         );
-        jac.view_mut((N, p), (M, A + M)).fill(0.0);
         for k in 0..A {
             for i in 0..N {
                 jac[(i, p + k)] = -rows.input_matrix[(i, k)];
