@@ -404,8 +404,9 @@ where
         let Some(first) = self.first.as_mut() else {
             return self.second.step_to(t, drive);
         };
+        // the two start alike and step in lockstep: one check of the time
         check_step_time(t, self.second.state.t, self.second.dt)?;
-        let report = first.step_to(t, drive)?;
+        let report = first.advance(t, drive)?;
         let state = first.state;
         self.second.follow(&state)?;
         self.first_steps += 1;
