@@ -113,6 +113,11 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         &self.tensions[i * r..(i + 1) * r]
     }
 
+    /// The largest `|N|` of rope `r` over the run.
+    pub fn peak_tension(&self, r: usize) -> f64 {
+        (0..self.states.len()).fold(0.0f64, |m, i| m.max(self.tensions_at(i)[r].abs()))
+    }
+
     /// Mean Newton iterations per step.
     pub fn mean_newton_iterations(&self) -> f64 {
         let steps = self.steps().max(1);

@@ -324,9 +324,7 @@ pub fn peaks<const N: usize, const M: usize, const A: usize>(duration: f64, run:
             (-value, at)
         })
         .collect();
-    let peak_tension = (0..ropes)
-        .map(|r| (0..states.len()).fold(0.0f64, |m, i| m.max(run.tensions_at(i)[r].abs())))
-        .collect();
+    let peak_tension = (0..ropes).map(|r| run.peak_tension(r)).collect();
     Evaluation {
         duration,
         peak_u,

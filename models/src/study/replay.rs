@@ -11,7 +11,7 @@ use crane_runtime::replay::{Feedback, Pendulum, Replay, ReplayOptions, replay, r
 use crane_runtime::{CraneModel, Scheme, Solution, State};
 
 use super::StudyError;
-use super::summary::{ReplaySummary, below_floor};
+use super::summary::{self, ReplaySummary};
 use crate::case::Case;
 use crate::crane::Crane;
 
@@ -160,14 +160,9 @@ pub fn replay_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
     let result = closed_loop.as_ref().unwrap_or(&open_loop);
     let info = inverse.info;
     let solution = &result.solution;
-    let mut first_slack = BTreeMap::new();
-    for (r, rope) in info.ropes.iter().enumerate() {
-        let tension = |i: usize| solution.tensions_at(i)[r];
-        let peak = (0..solution.states.len()).fold(0.0f64, |m, i| m.max(tension(i).abs()));
-        if let Some(i) = (0..solution.states.len()).find(|&i| below_floor(tension(i), 0.0, peak)) {
-            first_slack.insert(rope.tension.to_string(), solution.states[i].t);
-        }
-    }
+    let first_slack = (info.ropes.iter().enumerate())
+        .filter_map(|(r, rope)| summary::first_slack(solution, r).map(|t| (rope.tension.to_string(), t)))
+        .collect();
     let summary = ReplaySummary {
         max_load_deviation: result.max_load_deviation,
         deviation_at_tf: result.deviation_at_tf,

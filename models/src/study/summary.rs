@@ -167,6 +167,18 @@ pub fn slack_allowance(floor: f64, peak: f64) -> f64 {
     SLACK_TOLERANCE * peak.max(floor.abs())
 }
 
+/// The first time rope `r` of `solution` is slack ([`below_floor`] 0, with
+/// the rope's own peak over the run), if ever.
+pub fn first_slack<const N: usize, const M: usize, const A: usize>(
+    solution: &Solution<N, M, A>,
+    r: usize,
+) -> Option<f64> {
+    let peak = solution.peak_tension(r);
+    (0..solution.states.len())
+        .find(|&i| below_floor(solution.tensions_at(i)[r], 0.0, peak))
+        .map(|i| solution.states[i].t)
+}
+
 /// Whether the tension `n` is below `floor` beyond round-off, for a rope
 /// whose largest `|N|` over the run is `peak` (see [`SLACK_TOLERANCE`]).
 pub fn below_floor(n: f64, floor: f64, peak: f64) -> bool {
@@ -251,16 +263,14 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
                     .enumerate()
                     .map(|(i, s)| (s.t, solution.tensions_at(i)[r]))
             };
-            let peak = series().fold(0.0f64, |m, (_, n)| m.max(n.abs()));
             let (t_min, min_tension) = series()
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .unwrap_or((f64::NAN, f64::NAN));
-            let first_slack = series().find(|&(_, n)| below_floor(n, 0.0, peak)).map(|(t, _)| t);
             RopeSummary {
                 name: rope.tension.to_string(),
                 min_tension,
                 t_min,
-                first_slack,
+                first_slack: first_slack(solution, r),
             }
         })
         .collect();
