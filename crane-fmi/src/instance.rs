@@ -16,7 +16,7 @@ use crane_runtime::{Advance, CraneModel, Options, Scheme, State, Stepper};
 use nalgebra::SVector;
 
 use crate::variables::{
-    Causality, EXTERNAL_PATH, External, NameClash, Role, Variable, path_help, path_of_code, variables,
+    Causality, EXTERNAL_PATH, NameClash, PathChoice, Role, Variable, path_help, path_of_code, variables,
 };
 
 /// What an instance can be asked to do, whatever its crane: the object the
@@ -210,7 +210,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         let t0 = self.value(Role::T0);
         let external = match path_of_code(self.integers[1]) {
             None => return Err(format!("path = {}: expected {}", self.integers[1], path_help())),
-            Some(Err(External)) => {
+            Some(PathChoice::External) => {
                 let target = self.target();
                 if target[1].amax() != 0.0 || target[2].amax() != 0.0 {
                     return Err(format!(
@@ -230,7 +230,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                 };
                 Some(target)
             }
-            Some(Ok(kind)) => {
+            Some(PathChoice::Move(kind)) => {
                 let profile = kind.profile(Some(self.value(Role::Tau0))).map_err(|e| e.to_string())?;
                 let t1 = t0 + self.value(Role::Duration);
                 spec.path = PathSpec {

@@ -84,17 +84,21 @@ pub struct Variable {
 /// codes of [`ProfileKind::code`], 0 to 2).
 pub const EXTERNAL_PATH: i32 = ProfileKind::ALL.len() as i32;
 
-/// The external target as the `path` of an instance.
+/// What an instance's `path` code asks for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct External;
+pub enum PathChoice {
+    /// A built-in move of this profile.
+    Move(ProfileKind),
+    /// The external target.
+    External,
+}
 
-/// What a `path` code asks for: a built-in profile, the external target, or
-/// (`None`) nothing known.
-pub fn path_of_code(code: i32) -> Option<Result<ProfileKind, External>> {
+/// What a `path` code asks for, if it is a code at all.
+pub fn path_of_code(code: i32) -> Option<PathChoice> {
     if code == EXTERNAL_PATH {
-        Some(Err(External))
+        Some(PathChoice::External)
     } else {
-        ProfileKind::from_code(code).map(Ok)
+        ProfileKind::from_code(code).map(PathChoice::Move)
     }
 }
 
