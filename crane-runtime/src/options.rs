@@ -79,14 +79,6 @@ impl<S: Method> Options<S> {
         Ok(Self { newton, ..self })
     }
 
-    /// The same settings with another end time (finite).
-    pub fn with_end(self, tf: f64) -> Result<Self, Error> {
-        if !tf.is_finite() {
-            return Err(Error::InvalidEndTime { tf });
-        }
-        Ok(Self { tf, ..self })
-    }
-
     /// Time step `dt`.
     pub fn dt(&self) -> f64 {
         self.dt
