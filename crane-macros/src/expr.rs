@@ -52,6 +52,9 @@ pub enum Sym {
     Mu(u16),
     /// A minimal velocity `mu_k'` (only in `P'` and `w`, eqs. 9 and 17).
     MuDot(u16),
+    /// The derivative of order `k` of unknown `j` of `[q, lambda, u]` (only
+    /// in the dummy-derivative system of `dummy.rs`).
+    Jet(u16, u8),
 }
 
 /// An `f64` that can be hashed: its bit pattern, with `-0.0` stored as `0.0`.

@@ -95,6 +95,7 @@ mod check;
 mod codegen;
 mod ctxt;
 mod diff;
+mod dummy;
 mod expr;
 mod model;
 mod parse;
@@ -132,7 +133,9 @@ fn expand(input: TokenStream) -> TokenStream {
                 tokens.extend(codegen::stub(&decl));
                 return tokens;
             }
-            codegen::generate(&model, &kernels)
+            let structure = structure::structure(&model, &kernels);
+            let dummy = dummy::DummyKernels::derive(&mut model, &kernels, &structure);
+            codegen::generate(&model, &kernels, &structure, dummy.as_ref())
         }
         (_, Err(error)) => {
             let mut tokens = error.to_compile_error();

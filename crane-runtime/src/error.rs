@@ -171,6 +171,17 @@ pub enum Error {
         /// Bytes its results would take (infinite if not even countable).
         bytes: f64,
     },
+    /// The crane's inputs need more derivatives of the load path than the
+    /// dummy-derivative problem carries.
+    #[error(
+        "the inputs need the load path's derivative of order {order}; the dummy-derivative problem carries up to {max}"
+    )]
+    PathOrderTooHigh {
+        /// The crane's path order.
+        order: usize,
+        /// [`MAX_PATH_ORDER`](crate::dummy_derivative::MAX_PATH_ORDER).
+        max: usize,
+    },
 }
 
 /// A time printed as a person writes it: the shortest decimal that reads back

@@ -74,6 +74,7 @@
 
 pub mod check;
 pub mod driver;
+pub mod dummy_derivative;
 pub mod error;
 pub mod forward;
 pub mod init;
@@ -97,7 +98,9 @@ mod test_support;
 pub use error::Error;
 pub use forward::ForwardStepper;
 pub use minimal::{MinimalStepper, simulate_minimal};
-pub use model::{CraneModel, MapDerivatives, MinimalMap, ModelInfo, Rope, Scalar, Structure, UnknownParameter};
+pub use model::{
+    CraneModel, DummyDerivatives, MapDerivatives, MinimalMap, ModelInfo, Rope, Scalar, Structure, UnknownParameter,
+};
 pub use options::Options;
 pub use redundant::{RedundantStepper, simulate};
 pub use scheme::{Method, Scheme};

@@ -31,7 +31,7 @@ use crate::init;
 use crate::model::CraneModel;
 use crate::newton::{NonlinearSystem, normalised_residual};
 use crate::options::Options;
-use crate::problem::{Accepted, Predictor, Problem, ServoTarget, Start, dynamic_rows};
+use crate::problem::{Accepted, Follow, Predictor, Problem, ServoTarget, Start, dynamic_rows};
 use crate::scheme::{Method, Scheme, StepFormula};
 use crate::solution::{Solution, State};
 use crate::stepper::Stepper;
@@ -223,6 +223,32 @@ where
             y: q,
             v,
         })
+    }
+}
+
+impl<H, Tr, const N: usize, const M: usize, const A: usize> Follow<N, M, A, N> for Redundant<H, Tr, N, M, A>
+where
+    H: Deref<Target: CraneModel<N, M, A> + Sized>,
+    Tr: Trajectory<A>,
+{
+    /// Always: a consistent state is all its history needs.
+    fn can_take_over(&self, _state: &State<N, M, A>) -> bool {
+        true
+    }
+
+    /// `q` and `q'` of the state, and its unknowns `[p; dt^2 u; dt^2 lambda]`.
+    fn follow(
+        &mut self,
+        state: &State<N, M, A>,
+        _last: &SVector<f64, N>,
+        formula: StepFormula<N>,
+        z: &mut DVector<f64>,
+    ) -> Result<(SVector<f64, N>, SVector<f64, N>), Error> {
+        let (p, dt2) = (Self::P, formula.dt * formula.dt);
+        z.rows_mut(0, p).copy_from(&state.q.rows(0, p));
+        z.rows_mut(p, A).copy_from(&(state.u * dt2));
+        z.rows_mut(N, M).copy_from(&(state.lambda * dt2));
+        Ok((state.q, state.v))
     }
 }
 

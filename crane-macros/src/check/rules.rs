@@ -309,6 +309,7 @@ fn describe_sym(sym: Sym, names: &Names) -> String {
         Sym::Lambda(k) => format!("lambda_{}", k + 1),
         Sym::Mu(k) => format!("the minimal coordinate number {}", k + 1),
         Sym::MuDot(k) => format!("the velocity of minimal coordinate number {}", k + 1),
+        Sym::Jet(j, k) => format!("derivative {k} of unknown number {}", j + 1),
     }
 }
 

@@ -130,7 +130,9 @@ fn reads(model: &Model, mode: Mode, reachable: &[Id]) -> TokenStream {
                 let k = index(k as usize);
                 quote!(let #name = #u[#k];)
             }
-            Sym::Lambda(_) => quote!(),
+            // multipliers are read by the constraint Hessian's printer, jets
+            // by the dummy-derivative system's own reads
+            Sym::Lambda(_) | Sym::Jet(..) => quote!(),
             Sym::Mu(k) => {
                 let name = minimal_coordinate(model, k);
                 let k = index(k as usize);

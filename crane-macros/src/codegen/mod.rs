@@ -24,6 +24,7 @@
 
 mod body;
 mod constants;
+mod dummy;
 mod inherent;
 mod minimal;
 mod model_impl;
@@ -35,7 +36,9 @@ mod stub;
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
+use crate::dummy::DummyKernels;
 use crate::model::{Kernels, Model};
+use crate::structure::Structure;
 use inherent::inherent_impl;
 use minimal::generate_minimal;
 use model_impl::crane_model_impl;
@@ -67,17 +70,19 @@ fn str_list(idents: impl IntoIterator<Item = String>) -> TokenStream {
 }
 
 /// The complete expansion for a checked model.
-pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
+pub fn generate(model: &Model, k: &Kernels, structure: &Structure, dummy: Option<&DummyKernels>) -> TokenStream {
     let runtime = &model.runtime;
     let lints = quote!(#[allow(non_snake_case, unused_variables, clippy::too_many_lines, clippy::unreadable_literal)]);
-    let structure = crate::structure::structure(model, k);
-    let model_struct = model_struct(model, &structure);
+    let model_struct = model_struct(model, structure);
     let inherent = inherent_impl(model, k, &lints);
-    let crane_model = crane_model_impl(model, k, &structure, &lints);
+    let crane_model = crane_model_impl(model, k, structure, &lints);
     let minimal_items = match (&model.minimal, &k.minimal) {
         (Some(minimal), Some(kernels)) => generate_minimal(model, minimal, kernels, &lints),
         _ => TokenStream::new(),
     };
+    let dummy_items = dummy
+        .map(|d| dummy::dummy_derivatives_impl(model, d, &lints))
+        .unwrap_or_default();
     let self_test = self_test(model);
     quote! {
         #model_struct
@@ -91,6 +96,8 @@ pub fn generate(model: &Model, k: &Kernels) -> TokenStream {
         #crane_model
 
         #minimal_items
+
+        #dummy_items
         };
 
         #self_test

@@ -179,6 +179,7 @@ impl Printer<'_> {
             }
             Sym::Mu(k) => minimal_coordinate(self.model, k).to_token_stream(),
             Sym::MuDot(k) => velocity_name(minimal_coordinate(self.model, k)).to_token_stream(),
+            Sym::Jet(j, k) => jet_name(self.model, j, k).to_token_stream(),
         }
     }
 
@@ -343,6 +344,20 @@ fn divisor(c: f64) -> Option<f64> {
 
 pub(super) fn velocity_name(coord: &Ident) -> Ident {
     Ident::new(&format!("dot_{coord}"), Span::mixed_site())
+}
+
+/// The local holding derivative `k` of unknown `j` of `[q, lambda, u]`:
+/// `L1_d2`, `lambda_rope_d4`, `u1_d0`.
+pub(super) fn jet_name(model: &Model, j: u16, k: u8) -> Ident {
+    let (j, n, m) = (j as usize, model.n(), model.m());
+    let base = if j < n {
+        model.coords[j].to_string()
+    } else if j < n + m {
+        format!("lambda_{}", model.constraints[j - n].name)
+    } else {
+        model.inputs[j - n - m].to_string()
+    };
+    Ident::new(&format!("{base}_d{k}"), Span::mixed_site())
 }
 
 /// The name of the minimal coordinate `mu_k`.

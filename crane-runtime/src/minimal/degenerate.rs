@@ -28,7 +28,7 @@ pub const DEGENERATE_TENSION_RATIO: f64 = 1e-5;
 
 /// Whether some rope of `state` carries less than [`DEGENERATE_TENSION_RATIO`]
 /// of the largest rope tension (no rope: never).
-pub(super) fn degenerate<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+pub(crate) fn degenerate<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
     model: &Mdl,
     state: &State<N, M, A>,
 ) -> bool {

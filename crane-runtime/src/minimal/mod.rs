@@ -52,6 +52,7 @@ use nalgebra::{DMatrix, DVector, SVector};
 
 pub use coordinates::{OUTPUT_JACOBIAN_CONDITION_LIMIT, minimal_start};
 pub use degenerate::DEGENERATE_TENSION_RATIO;
+pub(crate) use degenerate::degenerate;
 
 use crate::driver::record;
 use crate::error::Error;

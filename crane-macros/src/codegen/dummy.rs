@@ -1,0 +1,122 @@
+//! The `DummyDerivatives` implementation of a flat crane: the
+//! dummy-derivative system of `dummy.rs` (its residual and Jacobian in one
+//! function body) and its layout.
+
+use proc_macro2::TokenStream;
+use quote::{ToTokens, quote};
+
+use super::body::{Output, body};
+use super::printer::{Mode, jet_name};
+use super::{index, internal};
+use crate::dummy::DummyKernels;
+use crate::expr::{Node, Sym};
+use crate::model::Model;
+
+/// `impl DummyDerivatives<N, M, A, J> for Name { ... }`.
+pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &TokenStream) -> TokenStream {
+    let name = &model.name;
+    let (n, m, a, nr) = (model.n(), model.m(), model.a(), model.n_robot);
+    let size = k.unknowns.len();
+    let (n_lit, m_lit, a_lit, j_lit) = (index(n), index(m), index(a), index(size));
+    let offsets = k.offsets.iter().map(|&c| index(c.into()));
+    let path_order = index(k.path_order.into());
+    let sv = quote!(__crane_runtime::nalgebra::SVector);
+    let sm = quote!(__crane_runtime::nalgebra::SMatrix);
+    let (gamma, z) = (internal("gamma"), internal("z"));
+
+    let residual = Output {
+        var: internal("residual"),
+        init: Some(quote!(#sv::<f64, #j_lit>::zeros())),
+        writes: k
+            .residual
+            .iter()
+            .enumerate()
+            .map(|(i, &id)| (index(i).into_token_stream(), id))
+            .collect(),
+    };
+    let mut writes = Vec::new();
+    for (i, row) in k.jacobian.iter().enumerate() {
+        for (j, &id) in row.iter().enumerate() {
+            let (i, j) = (index(i), index(j));
+            writes.push((quote!((#i, #j)), id));
+        }
+    }
+    let jacobian = Output {
+        var: internal("jacobian"),
+        init: Some(quote!(#sm::<f64, #j_lit, #j_lit>::zeros())),
+        writes,
+    };
+    let outputs = [residual, jacobian];
+    let statements = body(model, Mode::F64, &outputs);
+
+    // the jets the body reads: unknowns from z, the load's from gamma
+    let roots = k.residual.iter().chain(k.jacobian.iter().flatten()).copied();
+    let mut jets: Vec<(u16, u8)> = model
+        .arena
+        .reachable(roots)
+        .into_iter()
+        .filter_map(|id| match model.arena.node(id) {
+            Node::Sym(Sym::Jet(j, order)) => Some((*j, *order)),
+            _ => None,
+        })
+        .collect();
+    jets.sort_unstable();
+    let reads = jets.iter().map(|&(j, order)| {
+        let local = jet_name(model, j, order);
+        let (j, order_usize) = (j as usize, order as usize);
+        if (nr..n).contains(&j) {
+            let (r, order) = (index(j - nr), index(order_usize));
+            quote!(let #local = #gamma[#order][#r];)
+        } else {
+            let slot = k.unknowns.iter().position(|&u| u == (j, order));
+            let slot = index(slot.unwrap_or(0));
+            quote!(let #local = #z[#slot];)
+        }
+    });
+    let [res_var, jac_var] = [&outputs[0].var, &outputs[1].var];
+    let layout = super::doc(format!(
+        "Unknowns `z` in order: {}; equations in order: {}.",
+        k.unknowns
+            .iter()
+            .map(|&(j, order)| format!("`{}`", jet_name(model, j as u16, order)))
+            .collect::<Vec<_>>()
+            .join(", "),
+        k.equations
+            .iter()
+            .map(|&(i, order)| {
+                let equation = if i < n {
+                    format!("dynamics of `{}`", model.coords[i])
+                } else {
+                    format!("constraint `{}`", model.constraints[i - n].name)
+                };
+                if order == 0 {
+                    equation
+                } else {
+                    format!("{equation} (derivative {order})")
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+    quote! {
+        #lints
+        impl __crane_runtime::DummyDerivatives<#n_lit, #m_lit, #a_lit, #j_lit> for #name {
+            const OFFSETS: &'static [u8] = &[#(#offsets),*];
+            const PATH_ORDER: usize = #path_order;
+
+            /// The residual of the dummy-derivative system and its Jacobian
+            /// `d residual / d z`.
+            ///
+            #layout
+            fn dummy_derivative_system(
+                &self,
+                #gamma: &[#sv<f64, #a_lit>],
+                #z: &#sv<f64, #j_lit>,
+            ) -> (#sv<f64, #j_lit>, #sm<f64, #j_lit, #j_lit>) {
+                #(#reads)*
+                #statements
+                (#res_var, #jac_var)
+            }
+        }
+    }
+}

@@ -1,0 +1,432 @@
+//! The servo problem of a flat crane reduced by dummy derivatives
+//! ([`DummyDerivatives`]), as a [`Problem`] on the stepper seam.
+//!
+//! Eqs. (22a-d) differentiated by Pryce's offsets, every derivative an
+//! algebraic unknown: at each step time `t` one square system
+//! ```text
+//! F(z, gamma(t), gamma'(t), ..., gamma^(PATH_ORDER)(t)) = 0,
+//! z = [p^(0..=c_p); lambda^(0..=c_lambda); u^(0..=c_u)]
+//! ```
+//! whose Jacobian is block triangular with Pryce's system Jacobian on the
+//! diagonal. Nothing is discretised: the scheme's history has no
+//! coordinates (`K = 0`), the inputs are the exact inverse dynamics at `t`
+//! up to Newton's tolerance and round-off, whatever the time step, and a
+//! crane whose inputs need `gamma^(6)` (a double pendulum, a drive with an
+//! elastic belt, the 3D crane with pulley mass) is solved as accurately as
+//! one that needs `gamma''''`. Newton starts from the quadratic through the
+//! last three steps' unknowns.
+//!
+//! ```
+//! use crane_runtime::{Options, Stepper, init, trajectory::Poly9, nalgebra::vector};
+//! use crane_runtime::dummy_derivative::DummyDerivative;
+//! # crane_macros::crane_model! {
+//! #     #[crane(runtime = crane_runtime)]
+//! #     #[crane(no_self_test)]
+//! #     pub struct Gantry {
+//! #         params { m_t = 50.0, m_l = 200.0, J = 0.05, r = 0.1, g = 9.81 }
+//! #         robot [s, L] load [x, z] inputs [u1, u2]
+//! #         kinetic = 0.5*m_t*dot(s)^2 + 0.5*J/r^2*dot(L)^2 + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+//! #         forces { s: u1, L: u2/r, z: -m_l*g }
+//! #         constraints { #[rope(N = L)] rope: 0.5*((x - s)^2 + z^2 - L^2), }
+//! #     }
+//! # }
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let crane = Gantry::default();
+//! let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0])?;
+//! let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0])?;
+//! // the same time step and scheme vocabulary as every other problem
+//! let options = Options::stepping(0.5)?;
+//! let mut stepper = Stepper::new(DummyDerivative::new(&crane, &path), &start, &options)?;
+//! for _ in 0..10 {
+//!     stepper.step()?;
+//! }
+//! // at rest at the end: the trolley under the load, u1 = 0, u2 = -r m_l g
+//! let state = stepper.state();
+//! assert!((state.q[0] - 4.0).abs() < 1e-9 && state.u[0].abs() < 1e-7);
+//! assert!((state.u[1] + 0.1 * 200.0 * 9.81).abs() < 1e-7);
+//! # Ok(())
+//! # }
+//! ```
+
+use std::ops::{Deref, Range};
+
+use nalgebra::{DMatrix, DVector, SVector};
+
+use crate::driver::record;
+use crate::error::Error;
+use crate::init;
+use crate::minimal::degenerate;
+use crate::model::DummyDerivatives;
+use crate::newton::{NonlinearSystem, normalised_residual};
+use crate::options::Options;
+use crate::problem::{Accepted, Follow, Predictor, Problem, Start};
+use crate::redundant::Redundant;
+use crate::scheme::{Method, StepFormula};
+use crate::solution::{Solution, State};
+use crate::stepper::{Advance, StepReport, Stepper};
+use crate::trajectory::Trajectory;
+
+/// The highest derivative of the load path a [`PathJets`] holds.
+pub const MAX_PATH_ORDER: usize = 10;
+
+/// The load path's derivatives `gamma^(k)(t)`, `k = 0 ..= MAX_PATH_ORDER`
+/// (those above the crane's path order are not read).
+pub type PathJets<const A: usize> = [SVector<f64, A>; MAX_PATH_ORDER + 1];
+
+/// The dummy-derivative system of one time, as a [`Problem`] in its jets
+/// `z`, for the crane behind the handle `H` (`&Mdl`, `Box<Mdl>`,
+/// `Arc<Mdl>`) on the path `Tr`; see the module docs.
+#[derive(Clone)]
+pub struct DummyDerivative<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> {
+    model: H,
+    trajectory: Tr,
+    gamma: PathJets<A>,
+    /// The slot in `z` of jet 0 of each unknown of `[q, lambda, u]` (the
+    /// load coordinates' slots are unused).
+    slots: Vec<usize>,
+    /// One relative stopping test for all of `z` (the residual test decides
+    /// for the small jets).
+    blocks: Vec<Range<usize>>,
+    /// The jets of the last accepted step.
+    last: DVector<f64>,
+}
+
+impl<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> DummyDerivative<H, Tr, N, M, A, J>
+where
+    H: Deref<Target: DummyDerivatives<N, M, A, J> + Sized>,
+    Tr: Trajectory<A>,
+{
+    const P: usize = N - A;
+
+    /// The reduced servo problem of the crane behind `model` on `trajectory`.
+    pub fn new(model: H, trajectory: Tr) -> Self {
+        let offsets = <H::Target as DummyDerivatives<N, M, A, J>>::OFFSETS;
+        let mut slots = vec![0; N + M + A];
+        let mut next = 0;
+        for (j, slot) in slots.iter_mut().enumerate() {
+            if (Self::P..N).contains(&j) {
+                continue;
+            }
+            *slot = next;
+            next += usize::from(offsets.get(j).copied().unwrap_or(0)) + 1;
+        }
+        Self {
+            model,
+            trajectory,
+            gamma: [SVector::zeros(); MAX_PATH_ORDER + 1],
+            slots,
+            blocks: vec![0..J],
+            last: DVector::zeros(J),
+        }
+    }
+
+    /// The load path.
+    pub fn trajectory(&self) -> &Tr {
+        &self.trajectory
+    }
+
+    /// The slot in `z` of derivative `order` of unknown `j` of `[q, lambda, u]`.
+    fn slot(&self, j: usize, order: usize) -> usize {
+        self.slots[j] + order
+    }
+
+    /// The jets of order 0 and 1 of `state` (coordinates, velocities,
+    /// multipliers, inputs) into `z`; the higher jets are left as they are.
+    fn write_state(&self, state: &State<N, M, A>, z: &mut DVector<f64>) {
+        let offsets = <H::Target as DummyDerivatives<N, M, A, J>>::OFFSETS;
+        for i in 0..Self::P {
+            z[self.slot(i, 0)] = state.q[i];
+            if offsets[i] >= 1 {
+                z[self.slot(i, 1)] = state.v[i];
+            }
+        }
+        for l in 0..M {
+            z[self.slot(N + l, 0)] = state.lambda[l];
+        }
+        for r in 0..A {
+            z[self.slot(N + M + r, 0)] = state.u[r];
+        }
+    }
+
+    /// The crane's state at `t` from the jets `z`.
+    fn state(&self, t: f64, z: &DVector<f64>) -> State<N, M, A> {
+        let p = Self::P;
+        let q = SVector::from_fn(|i, _| {
+            if i < p {
+                z[self.slot(i, 0)]
+            } else {
+                self.gamma[0][i - p]
+            }
+        });
+        let v = SVector::from_fn(|i, _| {
+            if i < p {
+                z[self.slot(i, 1)]
+            } else {
+                self.gamma[1][i - p]
+            }
+        });
+        let lambda = SVector::from_fn(|l, _| z[self.slot(N + l, 0)]);
+        let u = SVector::from_fn(|r, _| z[self.slot(N + M + r, 0)]);
+        State { t, q, v, u, lambda }
+    }
+}
+
+impl<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> NonlinearSystem
+    for DummyDerivative<H, Tr, N, M, A, J>
+where
+    H: Deref<Target: DummyDerivatives<N, M, A, J> + Sized>,
+    Tr: Trajectory<A>,
+{
+    fn dim(&self) -> usize {
+        J
+    }
+
+    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
+        let jets = SVector::<f64, J>::from_fn(|i, _| z[i]);
+        let (residual, jacobian) = self.model.dummy_derivative_system(&self.gamma, &jets);
+        r.copy_from(&residual);
+        jac.copy_from(&jacobian);
+        normalised_residual(r, jac, z, |_| 0.0)
+    }
+
+    fn blocks(&self) -> &[Range<usize>] {
+        &self.blocks
+    }
+}
+
+impl<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> Problem<N, M, A, 0>
+    for DummyDerivative<H, Tr, N, M, A, J>
+where
+    H: Deref<Target: DummyDerivatives<N, M, A, J> + Sized>,
+    Tr: Trajectory<A>,
+{
+    type Model = H::Target;
+    type Drive = PathJets<A>;
+
+    /// The jets range from metres to N/s^6: equilibrate.
+    const EQUILIBRATED: bool = true;
+
+    fn model(&self) -> &H::Target {
+        &self.model
+    }
+
+    /// The crane's own path order: the reduction is complete.
+    fn path_order_covered(&self) -> Option<usize> {
+        Some(<H::Target as DummyDerivatives<N, M, A, J>>::PATH_ORDER)
+    }
+
+    /// Jets are smooth in time: the quadratic through the last three steps.
+    fn predictor(&self) -> Predictor {
+        Predictor::Extrapolation
+    }
+
+    fn drive(&self, t: f64) -> PathJets<A> {
+        let order = <H::Target as DummyDerivatives<N, M, A, J>>::PATH_ORDER.min(MAX_PATH_ORDER);
+        std::array::from_fn(|k| {
+            if k <= order {
+                self.trajectory.derivative(t, k)
+            } else {
+                SVector::zeros()
+            }
+        })
+    }
+
+    fn check_drive(&self, gamma: &PathJets<A>, t: f64) -> Result<(), Error> {
+        if gamma.iter().all(|x| x.iter().all(|v| v.is_finite())) {
+            Ok(())
+        } else {
+            Err(Error::NonFinite {
+                quantity: "load path derivatives gamma^(k)(t)",
+                t,
+            })
+        }
+    }
+
+    /// The start's coordinates, velocities, multipliers and inputs as jets
+    /// of order 0 and 1; higher jets 0 (exact for a crane at rest).
+    fn start(&mut self, start: &State<N, M, A>, _dt: f64, z: &mut DVector<f64>) -> Result<Start<0>, Error> {
+        let order = <H::Target as DummyDerivatives<N, M, A, J>>::PATH_ORDER;
+        if order > MAX_PATH_ORDER {
+            return Err(Error::PathOrderTooHigh {
+                order,
+                max: MAX_PATH_ORDER,
+            });
+        }
+        z.fill(0.0);
+        self.write_state(start, z);
+        self.last.copy_from(z);
+        Ok(Start {
+            y0: SVector::zeros(),
+            v0: SVector::zeros(),
+            at_rest: init::at_rest(&self.trajectory, start),
+        })
+    }
+
+    fn prepare(&mut self, gamma: &PathJets<A>, _formula: StepFormula<0>) {
+        self.gamma = *gamma;
+    }
+
+    fn accept(&mut self, t: f64, z: &DVector<f64>) -> Result<Accepted<N, M, A, 0>, Error> {
+        self.last.copy_from(z);
+        Ok(Accepted {
+            state: self.state(t, z),
+            y: SVector::zeros(),
+            v: SVector::zeros(),
+        })
+    }
+}
+
+impl<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> Follow<N, M, A, 0>
+    for DummyDerivative<H, Tr, N, M, A, J>
+where
+    H: Deref<Target: DummyDerivatives<N, M, A, J> + Sized>,
+    Tr: Trajectory<A>,
+{
+    /// Always: the system needs no history.
+    fn can_take_over(&self, _state: &State<N, M, A>) -> bool {
+        true
+    }
+
+    /// The state's jets of order 0 and 1, the higher ones of the last
+    /// accepted step (Newton's start of the next step).
+    fn follow(
+        &mut self,
+        state: &State<N, M, A>,
+        _last: &SVector<f64, 0>,
+        _formula: StepFormula<0>,
+        z: &mut DVector<f64>,
+    ) -> Result<(SVector<f64, 0>, SVector<f64, 0>), Error> {
+        z.copy_from(&self.last);
+        self.write_state(state, z);
+        self.last.copy_from(z);
+        Ok((SVector::zeros(), SVector::zeros()))
+    }
+}
+
+/// The reduced servo problem one step at a time, on the scheme `S`.
+///
+/// Every step is the [`DummyDerivative`] problem's where its Newton
+/// converges. At a degenerate state (a rope whose tension is below
+/// [`DEGENERATE_TENSION_RATIO`](crate::minimal::DEGENERATE_TENSION_RATIO) of the largest, as at the paper's starts
+/// with a slack rope, where the jets of the massless pulley are fixed only
+/// to a few digits: equilibrated condition number 3.5e13 on `navy-3d` at
+/// t = 0.01 s) where it does not, the step is the redundant problem's
+/// (eqs. 22a-d on `S`), whose history follows every reduced step exactly;
+/// [`fallback_steps`](Self::fallback_steps) counts them. A step does not
+/// allocate.
+pub struct DummyDerivativeStepper<H, Tr, S: Method, const N: usize, const M: usize, const A: usize, const J: usize> {
+    reduced: Stepper<DummyDerivative<H, Tr, N, M, A, J>, S, N, M, A, 0>,
+    fallback: Stepper<Redundant<H, Tr, N, M, A>, S, N, M, A, N>,
+    fallback_steps: usize,
+}
+
+impl<H, Tr, S, const N: usize, const M: usize, const A: usize, const J: usize>
+    DummyDerivativeStepper<H, Tr, S, N, M, A, J>
+where
+    H: Deref<Target: DummyDerivatives<N, M, A, J> + Sized> + Clone,
+    Tr: Trajectory<A> + Clone,
+    S: Method,
+{
+    /// A stepper for the crane behind `model` on `trajectory` from the
+    /// consistent `start`, with the step, scheme and tolerances of `options`.
+    pub fn new(model: H, trajectory: Tr, start: &State<N, M, A>, options: &Options<S>) -> Result<Self, Error> {
+        let fallback = Stepper::new(Redundant::new(model.clone(), trajectory.clone()), start, options)?;
+        let reduced = Stepper::new(DummyDerivative::new(model, trajectory), start, options)?;
+        Ok(Self {
+            reduced,
+            fallback,
+            fallback_steps: 0,
+        })
+    }
+
+    /// The state after the last step (the start before the first).
+    pub fn state(&self) -> &State<N, M, A> {
+        self.reduced.state()
+    }
+
+    /// The time step.
+    pub fn dt(&self) -> f64 {
+        self.reduced.dt()
+    }
+
+    /// How many steps were the redundant problem's.
+    pub fn fallback_steps(&self) -> usize {
+        self.fallback_steps
+    }
+
+    /// Advance one step with the path's derivatives from the problem's path.
+    pub fn step(&mut self) -> Result<StepReport, Error> {
+        let t = self.reduced.next_time();
+        let jets = self.reduced.problem().drive(t);
+        self.step_to(t, &jets)
+    }
+
+    /// Advance one step to `t` (`t_n + dt`) with the given path derivatives.
+    pub fn step_to(&mut self, t: f64, jets: &PathJets<A>) -> Result<StepReport, Error> {
+        match self.reduced.step_to(t, jets) {
+            Ok(report) => {
+                self.fallback.follow(self.reduced.state())?;
+                Ok(report)
+            }
+            Err(error @ (Error::NewtonNotConverged { .. } | Error::SingularIterationMatrix { .. }))
+                if degenerate(self.reduced.problem().model(), self.reduced.state()) =>
+            {
+                let target = [jets[0], jets[1], jets[2]];
+                let report = self.fallback.step_to(t, &target).map_err(|_| error)?;
+                self.reduced.follow(self.fallback.state())?;
+                self.fallback_steps += 1;
+                Ok(report)
+            }
+            Err(error) => Err(error),
+        }
+    }
+}
+
+impl<H, Tr, S, const N: usize, const M: usize, const A: usize, const J: usize> Advance<N, M, A>
+    for DummyDerivativeStepper<H, Tr, S, N, M, A, J>
+where
+    H: Deref<Target: DummyDerivatives<N, M, A, J> + Sized> + Clone,
+    Tr: Trajectory<A> + Clone,
+    S: Method,
+{
+    type Model = H::Target;
+    fn model(&self) -> &H::Target {
+        self.reduced.problem().model()
+    }
+    fn step(&mut self) -> Result<StepReport, Error> {
+        DummyDerivativeStepper::step(self)
+    }
+    fn state(&self) -> &State<N, M, A> {
+        DummyDerivativeStepper::state(self)
+    }
+    fn dt(&self) -> f64 {
+        DummyDerivativeStepper::dt(self)
+    }
+    fn scheme_name(&self) -> &'static str {
+        Advance::scheme_name(&self.reduced)
+    }
+    fn path_order_covered(&self) -> Option<usize> {
+        self.reduced.problem().path_order_covered()
+    }
+}
+
+/// Solve the reduced servo problem at every step time from `start` to
+/// `options.tf()` ([`DummyDerivativeStepper`]), calling `progress(step,
+/// steps)` after every step; the step loop does not allocate.
+pub fn simulate_dummy_derivative<Mdl, Tr, S, const N: usize, const M: usize, const A: usize, const J: usize>(
+    model: &Mdl,
+    trajectory: Tr,
+    start: &State<N, M, A>,
+    options: &Options<S>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Solution<N, M, A>, Error>
+where
+    Mdl: DummyDerivatives<N, M, A, J>,
+    Tr: Trajectory<A> + Clone,
+    S: Method,
+{
+    let mut stepper = DummyDerivativeStepper::new(model, trajectory, start, options)?;
+    let mut solution = record(&mut stepper, options.tf(), progress)?;
+    solution.redundant_start_steps = stepper.fallback_steps();
+    Ok(solution)
+}
