@@ -544,9 +544,15 @@ fn scenario_keys_take_effect() {
         "smooth",
     );
     let paper = run_ok("navy-3d-pulley", &["--dt", "0.1"], dir.path(), "paper");
+    // (its default formulation: dummy derivatives, the inputs need gamma^(6))
     let case = navy_3d_pulley::PaperCase::smooth(navy_3d_pulley::TF).unwrap();
     let api = case
-        .simulate(&case.start().unwrap(), &Options::new(0.1, case.tf()).unwrap())
+        .simulate_dummy_derivative(
+            &case.start().unwrap(),
+            &Options::new(0.1, case.tf()).unwrap(),
+            &mut |_, _| {},
+        )
+        .unwrap()
         .unwrap();
     assert_eq!(
         u_column(&smooth, "u4"),
@@ -952,18 +958,38 @@ fn sweep_writes_a_row_per_point_and_survives_a_failure() {
 
 /// A crane whose inputs need the path's 6th derivative run through the
 /// paper's formulation (which covers the 4th) is warned of, its summary says
-/// so, and `--strict` fails on it (the results are still written).
+/// so, and `--strict` fails on it (the results are still written); in its
+/// default formulation (dummy derivatives) none of this happens.
 #[test]
 fn a_crane_beyond_the_formulation_is_warned_of_and_strict_fails() {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("smooth.toml");
     std::fs::write(&file, "dt = 0.1\ntrajectory = \"smooth-three-phase\"\n").unwrap();
+    let reduced = dir.path().join("reduced");
+    let default = crane(&[
+        "run",
+        "navy-3d-pulley",
+        "--scenario",
+        file.to_str().unwrap(),
+        "--quiet",
+        "--strict",
+        "--out",
+        reduced.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&default.stderr);
+    assert!(default.status.success() && !stderr.contains("covers order"), "{stderr}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(reduced.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["formulation"], "dummy-derivative");
+    assert_eq!(summary["internal_dynamics"]["path_order"]["covered"], 6);
     let out = dir.path().join("smooth");
     let args = [
         "run",
         "navy-3d-pulley",
         "--scenario",
         file.to_str().unwrap(),
+        "--formulation",
+        "redundant",
         "--quiet",
         "--out",
         out.to_str().unwrap(),

@@ -154,6 +154,17 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
         C::simulate_minimal(&self.model, &self.path, start, options, progress)
     }
 
+    /// The run of the servo problem reduced by dummy derivatives from
+    /// `start`, if the crane has no internal dynamics; `None` if it has.
+    pub fn simulate_dummy_derivative(
+        &self,
+        start: &State<N, M, A>,
+        options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Option<Result<Solution<N, M, A>, Error>> {
+        C::simulate_dummy_derivative(&self.model, &self.path, start, options, progress)
+    }
+
     /// Names of the derived outputs.
     pub fn derived_outputs(&self) -> &'static [&'static str] {
         C::derived_outputs()

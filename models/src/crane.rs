@@ -35,6 +35,9 @@ pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
     const HAS_REFERENCE: bool = false;
     /// Whether [`simulate_minimal`](Self::simulate_minimal) runs.
     const HAS_MINIMAL_MAP: bool = false;
+    /// Whether [`simulate_dummy_derivative`](Self::simulate_dummy_derivative)
+    /// runs (every crane without internal dynamics).
+    const HAS_DUMMY_DERIVATIVES: bool = false;
 
     /// The default manoeuvre.
     fn maneuver() -> Maneuver<A>;
@@ -49,6 +52,21 @@ pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
     /// The run in minimal coordinates (eqs. 24a-e) from `start`, if the crane
     /// declares a minimal map (with its rough guess of `mu` at the start).
     fn simulate_minimal(
+        model: &Self::Model,
+        path: &Path<A>,
+        start: &State<N, M, A>,
+        options: &Options,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Option<Result<Solution<N, M, A>, Error>> {
+        let _ = (model, path, start, options, progress);
+        None
+    }
+
+    /// The run of the servo problem reduced by dummy derivatives
+    /// ([`crane_runtime::dummy_derivative`]: exact at every step time for a
+    /// flat crane, whatever the path order) from `start`, if the crane has
+    /// no internal dynamics.
+    fn simulate_dummy_derivative(
         model: &Self::Model,
         path: &Path<A>,
         start: &State<N, M, A>,
@@ -110,3 +128,32 @@ macro_rules! minimal_run {
     };
 }
 pub(crate) use minimal_run;
+
+/// [`Crane::HAS_DUMMY_DERIVATIVES`] and [`Crane::simulate_dummy_derivative`]
+/// of a flat crane: `dummy_derivative_run!((N, M, A, J));` inside its `impl
+/// Crane`, with `J` the size of its dummy-derivative system (the `J` of the
+/// model's `DummyDerivatives` implementation).
+macro_rules! dummy_derivative_run {
+    (($n:literal, $m:literal, $a:literal, $j:literal)) => {
+        const HAS_DUMMY_DERIVATIVES: bool = true;
+
+        fn simulate_dummy_derivative(
+            model: &Self::Model,
+            path: &$crate::path::Path<$a>,
+            start: &crane_runtime::State<$n, $m, $a>,
+            options: &crane_runtime::Options,
+            progress: &mut dyn FnMut(usize, usize),
+        ) -> Option<Result<crane_runtime::Solution<$n, $m, $a>, crane_runtime::Error>> {
+            Some(crane_runtime::dummy_derivative::simulate_dummy_derivative::<
+                _,
+                _,
+                _,
+                $n,
+                $m,
+                $a,
+                $j,
+            >(model, path, start, options, progress))
+        }
+    };
+}
+pub(crate) use dummy_derivative_run;

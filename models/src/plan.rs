@@ -264,7 +264,8 @@ pub fn with_duration<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
 /// The run of `case` (its own duration and model) under `settings`: the
 /// largest step at most `settings.dt` that divides the run, the start
 /// from `p0` (or, where the parameters moved it, the static equilibrium
-/// from it).
+/// from it), in the crane's default formulation
+/// ([`Formulation::default_for`](crate::study::Formulation::default_for)).
 pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
     settings: &Settings,
@@ -280,7 +281,9 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let options = Options::new(dt, tf)
         .map_err(|e| e.to_string())?
         .with_scheme(settings.scheme);
-    case.simulate(&start, &options).map_err(|e| e.to_string())
+    crate::study::Formulation::default_for::<C, N, M, A>()
+        .simulate(case, &start, &options, &mut |_, _| {})
+        .map_err(|e| e.to_string())
 }
 
 /// The extremum of the parabola through three equally spaced samples

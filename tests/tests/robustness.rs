@@ -87,6 +87,7 @@ fn assert_descriptive(error: &Error) {
         Error::NonPositiveParameter { name, .. } => message.contains(&format!("`{name}`")),
         Error::NonPositiveRopeLength { rope, .. } => message.contains(&format!("`{rope}`")),
         Error::TooManySteps { .. } => message.contains("steps cannot be held"),
+        Error::PathOrderTooHigh { .. } => message.contains("derivative of order"),
         Error::MinimalStartNotFound { .. } | Error::EquilibriumNotFound { .. } => message.contains("residual"),
     };
     assert!(ok, "undescriptive error message: {message}");

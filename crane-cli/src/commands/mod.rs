@@ -35,9 +35,11 @@ pub fn scheme_help(default: Scheme) -> String {
 /// The help of a `--formulation` flag, from the one list of formulations.
 pub fn formulation_help() -> String {
     format!(
-        "Formulation: {} (default {})",
+        "Formulation: {} (default {}; {} for a crane without internal dynamics whose inputs need more than the \
+         path's 4th derivative)",
         Formulation::help(),
-        Formulation::default()
+        Formulation::default(),
+        Formulation::DummyDerivative
     )
 }
 

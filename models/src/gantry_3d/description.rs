@@ -27,6 +27,7 @@ impl Crane<6, 1, 3> for Description {
     type Model = Gantry3d;
     const NAME: &'static str = "gantry-3d";
     const DESCRIPTION: &'static str = "3D gantry crane: bridge, trolley, hoist winch, one rope";
+    crate::crane::dummy_derivative_run!((6, 1, 3, 15));
     const HAS_REFERENCE: bool = true;
     const HAS_MINIMAL_MAP: bool = true;
 

@@ -52,6 +52,7 @@ impl Crane<11, 4, 3> for Description {
     type Model = Navy3d;
     const NAME: &'static str = "navy-3d";
     const DESCRIPTION: &'static str = "3D US Navy crane, massless pulley, slewing (paper sect. 6.1)";
+    crate::crane::dummy_derivative_run!((11, 4, 3, 37));
     const HAS_REFERENCE: bool = true;
 
     /// Eqs. (82)-(86): from `gamma0 = (5 sqrt 3, 0, -10)` at `t0 = 0`

@@ -31,6 +31,7 @@ impl Crane<7, 3, 2> for Description {
     type Model = NavyPlanar;
     const NAME: &'static str = "navy-planar";
     const DESCRIPTION: &'static str = "planar US Navy crane, massless pulley (paper sect. 5.1)";
+    crate::crane::dummy_derivative_run!((7, 3, 2, 26));
     const HAS_REFERENCE: bool = true;
     const HAS_MINIMAL_MAP: bool = true;
 

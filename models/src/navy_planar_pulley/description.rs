@@ -32,6 +32,7 @@ impl Crane<8, 4, 3> for Description {
     type Model = NavyPlanarPulley;
     const NAME: &'static str = "navy-planar-pulley";
     const DESCRIPTION: &'static str = "planar US Navy crane with pulley mass (paper sect. 5.2)";
+    crate::crane::dummy_derivative_run!((8, 4, 3, 24));
     const HAS_REFERENCE: bool = true;
     const HAS_MINIMAL_MAP: bool = true;
 

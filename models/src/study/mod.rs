@@ -29,7 +29,7 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use crane_runtime::internal::{diagnose, path_smoothness};
-use crane_runtime::{Options, Scheme, Solution, State};
+use crane_runtime::{CraneModel, Options, Scheme, Solution, State};
 
 use crate::case::Case;
 use crate::crane::Crane;
@@ -38,25 +38,49 @@ pub use spec::{RunSpec, SpecError};
 pub use summary::{PathSmoothnessSummary, Summary, below_floor, infeasibilities};
 pub use warnings::Warning;
 
-/// Which index-3 formulation a run integrates.
+/// Which formulation of the servo problem a run solves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Formulation {
-    /// Redundant coordinates, eqs. (22a-d) (the default).
+    /// Redundant coordinates, eqs. (22a-d) (the default where the inputs
+    /// need at most the path's 4th derivative).
     #[default]
     Redundant,
     /// Minimal coordinates, eqs. (24a-e), for a crane with a minimal map.
     Minimal,
+    /// Eqs. (22a-d) reduced by dummy derivatives
+    /// ([`crane_runtime::dummy_derivative`]), for a crane without internal
+    /// dynamics: exact at every step time whatever the path order (the
+    /// default where the inputs need more than the path's 4th derivative).
+    DummyDerivative,
 }
 
 impl Formulation {
     /// Both, in order.
-    pub const ALL: [Formulation; 2] = [Formulation::Redundant, Formulation::Minimal];
+    pub const ALL: [Formulation; 3] = [
+        Formulation::Redundant,
+        Formulation::Minimal,
+        Formulation::DummyDerivative,
+    ];
+
+    /// The default of crane `C`: [`DummyDerivative`](Self::DummyDerivative)
+    /// where its inputs need more than the path's 4th derivative (beyond
+    /// what eqs. 22 and 24 reduce) and it has no internal dynamics, else
+    /// [`Redundant`](Self::Redundant).
+    pub fn default_for<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Self {
+        let path_order = <C::Model as CraneModel<N, M, A>>::STRUCTURE.map(|s| s.path_order(A));
+        if C::HAS_DUMMY_DERIVATIVES && path_order.is_some_and(|order| order > 4) {
+            Formulation::DummyDerivative
+        } else {
+            Formulation::Redundant
+        }
+    }
 
     /// The name in scenario files, on the command line and in `summary.json`.
     pub fn name(self) -> &'static str {
         match self {
             Formulation::Redundant => "redundant",
             Formulation::Minimal => "minimal",
+            Formulation::DummyDerivative => "dummy-derivative",
         }
     }
 
@@ -65,13 +89,17 @@ impl Formulation {
         match self {
             Formulation::Redundant => "redundant coordinates, eqs. (22a-d)",
             Formulation::Minimal => "minimal coordinates, eqs. (24a-e)",
+            Formulation::DummyDerivative => {
+                "eqs. (22a-d) reduced by dummy derivatives, exact for flat cranes of any path order"
+            }
         }
     }
 
-    /// The names, "redundant or minimal".
+    /// The names, "redundant, minimal or dummy-derivative".
     pub fn names() -> String {
         let names: Vec<&str> = Self::ALL.iter().map(|f| f.name()).collect();
-        names.join(" or ")
+        let (last, first) = names.split_last().expect("formulations");
+        format!("{} or {last}", first.join(", "))
     }
 
     /// The choices as one line of help.
@@ -97,6 +125,9 @@ impl Formulation {
             Formulation::Minimal => Ok(case
                 .simulate_minimal_with_progress(start, options, progress)
                 .ok_or_else(|| StudyError::NoMinimalMap(C::NAME.to_string()))??),
+            Formulation::DummyDerivative => Ok(case
+                .simulate_dummy_derivative(start, options, progress)
+                .ok_or_else(|| StudyError::NoDummyDerivatives(C::NAME.to_string()))??),
         }
     }
 }
@@ -107,7 +138,7 @@ impl fmt::Display for Formulation {
     }
 }
 
-/// A formulation name that is neither `redundant` nor `minimal`.
+/// A formulation name that is not one of [`Formulation::ALL`].
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("unknown formulation `{0}`; expected {names}", names = Formulation::names())]
 pub struct UnknownFormulation(pub String);
@@ -139,6 +170,11 @@ pub enum StudyError {
     /// The minimal formulation of a crane without a minimal map.
     #[error("model `{0}` declares no minimal-coordinate map; use the redundant formulation")]
     NoMinimalMap(String),
+    /// The dummy-derivative formulation of a crane with internal dynamics.
+    #[error(
+        "model `{0}` has internal dynamics, which the dummy-derivative formulation does not reduce; use the redundant formulation"
+    )]
+    NoDummyDerivatives(String),
     /// The convergence study cannot measure its error.
     #[error("{0}")]
     Convergence(String),

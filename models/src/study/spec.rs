@@ -98,7 +98,7 @@ pub enum SpecError {
 impl<const A: usize> RunSpec<A> {
     /// The default manoeuvre of crane `C` with its default parameters, run
     /// to the end of the motion at `dt = 0.01 s` with backward Euler in
-    /// redundant coordinates (what `crane run MODEL` does).
+    /// its default formulation ([`Formulation::default_for`]; what `crane run MODEL` does).
     pub fn default_for<C: Crane<N, M, A>, const N: usize, const M: usize>() -> Self {
         let maneuver = C::maneuver();
         Self {
@@ -108,7 +108,7 @@ impl<const A: usize> RunSpec<A> {
             p0: maneuver.p0,
             dt: DEFAULT_DT,
             scheme: Scheme::default(),
-            formulation: Formulation::default(),
+            formulation: Formulation::default_for::<C, N, M, A>(),
             limits: Vec::new(),
             plant: Vec::new(),
         }

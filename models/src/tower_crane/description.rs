@@ -31,6 +31,7 @@ impl Crane<8, 3, 3> for Description {
     type Model = TowerCrane;
     const NAME: &'static str = "tower-crane";
     const DESCRIPTION: &'static str = "rotary tower crane: slewing jib, trolley, hoist winch, one rope";
+    crate::crane::dummy_derivative_run!((8, 3, 3, 23));
     const HAS_MINIMAL_MAP: bool = true;
 
     /// Poly9 (eqs. 41-45) from `(10, 0, 5)` to `(6, 12, 10)` in [`TF`]; the

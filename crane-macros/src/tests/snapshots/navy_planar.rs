@@ -931,4 +931,328 @@ const _: () = {
             }
         }
     }
+    #[allow(
+        non_snake_case,
+        unused_variables,
+        clippy::too_many_lines,
+        clippy::unreadable_literal
+    )]
+    impl __crane_runtime::DummyDerivatives<7, 3, 2, 26> for NavyPlanar {
+        const OFFSETS: &'static [u8] = &[2, 2, 2, 2, 2, 4, 4, 2, 2, 2, 0, 0];
+        const PATH_ORDER: usize = 4;
+        /// The residual of the dummy-derivative system and its Jacobian
+        /// `d residual / d z`.
+        ///
+        /// Unknowns `z` in order: `L1_d0`, `L1_d1`, `L1_d2`, `L2_d0`, `L2_d1`, `L2_d2`, `L0_d0`, `L0_d1`, `L0_d2`, `x0_d0`, `x0_d1`, `x0_d2`, `z0_d0`, `z0_d1`, `z0_d2`, `lambda_rope1_d0`, `lambda_rope1_d1`, `lambda_rope1_d2`, `lambda_rope0_d0`, `lambda_rope0_d1`, `lambda_rope0_d2`, `lambda_hoist_d0`, `lambda_hoist_d1`, `lambda_hoist_d2`, `u1_d0`, `u2_d0`; equations in order: dynamics of `L1`, dynamics of `L2`, dynamics of `L0`, dynamics of `L0` (derivative 1), dynamics of `L0` (derivative 2), dynamics of `x0`, dynamics of `x0` (derivative 1), dynamics of `x0` (derivative 2), dynamics of `z0`, dynamics of `z0` (derivative 1), dynamics of `z0` (derivative 2), dynamics of `x`, dynamics of `x` (derivative 1), dynamics of `x` (derivative 2), dynamics of `z`, dynamics of `z` (derivative 1), dynamics of `z` (derivative 2), constraint `rope1`, constraint `rope1` (derivative 1), constraint `rope1` (derivative 2), constraint `rope0`, constraint `rope0` (derivative 1), constraint `rope0` (derivative 2), constraint `hoist`, constraint `hoist` (derivative 1), constraint `hoist` (derivative 2).
+        fn dummy_derivative_system(
+            &self,
+            gamma: &[__crane_runtime::nalgebra::SVector<f64, 2>],
+            z: &__crane_runtime::nalgebra::SVector<f64, 26>,
+        ) -> (
+            __crane_runtime::nalgebra::SVector<f64, 26>,
+            __crane_runtime::nalgebra::SMatrix<f64, 26, 26>,
+        ) {
+            let L1_d0 = z[0];
+            let L1_d1 = z[1];
+            let L1_d2 = z[2];
+            let L2_d0 = z[3];
+            let L2_d1 = z[4];
+            let L2_d2 = z[5];
+            let L0_d0 = z[6];
+            let L0_d1 = z[7];
+            let L0_d2 = z[8];
+            let x0_d0 = z[9];
+            let x0_d1 = z[10];
+            let x0_d2 = z[11];
+            let z0_d0 = z[12];
+            let z0_d1 = z[13];
+            let z0_d2 = z[14];
+            let x_d0 = gamma[0][0];
+            let x_d1 = gamma[1][0];
+            let x_d2 = gamma[2][0];
+            let x_d3 = gamma[3][0];
+            let x_d4 = gamma[4][0];
+            let z_d0 = gamma[0][1];
+            let z_d1 = gamma[1][1];
+            let z_d2 = gamma[2][1];
+            let z_d3 = gamma[3][1];
+            let z_d4 = gamma[4][1];
+            let lambda_rope1_d0 = z[15];
+            let lambda_rope1_d1 = z[16];
+            let lambda_rope1_d2 = z[17];
+            let lambda_rope0_d0 = z[18];
+            let lambda_rope0_d1 = z[19];
+            let lambda_rope0_d2 = z[20];
+            let lambda_hoist_d0 = z[21];
+            let lambda_hoist_d1 = z[22];
+            let lambda_hoist_d2 = z[23];
+            let u1_d0 = z[24];
+            let u2_d0 = z[25];
+            let m_l = self.m_l;
+            let J1 = self.J1;
+            let J2 = self.J2;
+            let r1 = self.r1;
+            let r2 = self.r2;
+            let alpha = self.alpha;
+            let l = self.l;
+            let g = self.g;
+            let t0 = r1.powi(-2);
+            let t1 = r2.powi(-2);
+            let t2 = L0_d0 - L2_d0;
+            let t3 = L2_d0 - L0_d0;
+            let t4 = l * alpha.sin() + x0_d0;
+            let t5 = x0_d0 - x_d0;
+            let t6 = l * alpha.cos() + z0_d0;
+            let t7 = z0_d0 - z_d0;
+            let t8 = x_d0 - x0_d0;
+            let t9 = z_d0 - z0_d0;
+            let t10 = -lambda_rope0_d0 - lambda_hoist_d0;
+            let t11 = -lambda_rope0_d1 - lambda_hoist_d1;
+            let t12 = L2_d1 - L0_d1;
+            let t13 = lambda_rope1_d0 + lambda_rope0_d0 + lambda_hoist_d0;
+            let t14 = lambda_rope0_d1 + lambda_hoist_d1 + lambda_rope1_d1;
+            let t15 = x0_d1 - x_d1;
+            let t16 = z0_d1 - z_d1;
+            let t17 = x_d1 - x0_d1;
+            let t18 = z_d1 - z0_d1;
+            let t19 = x0_d1.powi(2);
+            let t20 = z0_d1.powi(2);
+            let t21 = L0_d1 - L2_d1;
+            let t22 = lambda_hoist_d1 * 2.0;
+            let t23 = -lambda_hoist_d1 * 2.0;
+            let t24 = -L0_d1 * 2.0;
+            let t25 = L2_d2 - L0_d2;
+            let t26 = t24 + L2_d1 * 2.0;
+            let t27 = lambda_rope0_d2 + lambda_hoist_d2 + lambda_rope1_d2;
+            let t28 = t22 + lambda_rope0_d1 * 2.0 + lambda_rope1_d1 * 2.0;
+            let t29 = x0_d1 * 2.0;
+            let t30 = x0_d2 - x_d2;
+            let t31 = t29 - x_d1 * 2.0;
+            let t32 = z0_d1 * 2.0;
+            let t33 = z0_d2 - z_d2;
+            let t34 = t32 - z_d1 * 2.0;
+            let mut residual = __crane_runtime::nalgebra::SVector::<f64, 26>::zeros();
+            residual[0] = J1 * t0 * L1_d2 - u1_d0 / r1 - L1_d0 * lambda_rope1_d0;
+            residual[1] = J2 * t1 * L2_d2 - u2_d0 / r2 + lambda_hoist_d0 * t2;
+            residual[2] = lambda_hoist_d0 * t3 - L0_d0 * lambda_rope0_d0;
+            residual[3] = L2_d1 * lambda_hoist_d0 + L0_d1 * t10 - L0_d0 * lambda_rope0_d1
+                + t3 * lambda_hoist_d1;
+            residual[4] = L2_d1 * lambda_hoist_d1 + lambda_hoist_d0 * L2_d2 + L0_d1 * t11
+                + t10 * L0_d2 - L0_d1 * lambda_rope0_d1 - L0_d0 * lambda_rope0_d2
+                + lambda_hoist_d1 * t12 + t3 * lambda_hoist_d2;
+            residual[5] = lambda_rope1_d0 * t4 + x0_d0 * lambda_rope0_d0
+                + lambda_hoist_d0 * t5;
+            residual[6] = x0_d1 * t13 - x_d1 * lambda_hoist_d0 + t4 * lambda_rope1_d1
+                + x0_d0 * lambda_rope0_d1 + t5 * lambda_hoist_d1;
+            residual[7] = x0_d1 * t14 + t13 * x0_d2 - x_d1 * lambda_hoist_d1
+                - lambda_hoist_d0 * x_d2 + x0_d1 * lambda_rope1_d1 + t4 * lambda_rope1_d2
+                + x0_d1 * lambda_rope0_d1 + x0_d0 * lambda_rope0_d2
+                + lambda_hoist_d1 * t15 + t5 * lambda_hoist_d2;
+            residual[8] = lambda_rope1_d0 * t6 + z0_d0 * lambda_rope0_d0
+                + lambda_hoist_d0 * t7;
+            residual[9] = z0_d1 * t13 - z_d1 * lambda_hoist_d0 + t6 * lambda_rope1_d1
+                + z0_d0 * lambda_rope0_d1 + t7 * lambda_hoist_d1;
+            residual[10] = z0_d1 * t14 + t13 * z0_d2 - z_d1 * lambda_hoist_d1
+                - lambda_hoist_d0 * z_d2 + z0_d1 * lambda_rope1_d1 + t6 * lambda_rope1_d2
+                + z0_d1 * lambda_rope0_d1 + z0_d0 * lambda_rope0_d2
+                + lambda_hoist_d1 * t16 + t7 * lambda_hoist_d2;
+            residual[11] = m_l * x_d2 + lambda_hoist_d0 * t8;
+            residual[12] = x_d1 * lambda_hoist_d0 - x0_d1 * lambda_hoist_d0 + m_l * x_d3
+                + t8 * lambda_hoist_d1;
+            residual[13] = x_d1 * lambda_hoist_d1 + lambda_hoist_d0 * x_d2
+                - x0_d1 * lambda_hoist_d1 - lambda_hoist_d0 * x0_d2 + m_l * x_d4
+                + lambda_hoist_d1 * t17 + t8 * lambda_hoist_d2;
+            residual[14] = m_l * z_d2 + m_l * g + lambda_hoist_d0 * t9;
+            residual[15] = z_d1 * lambda_hoist_d0 - z0_d1 * lambda_hoist_d0 + m_l * z_d3
+                + t9 * lambda_hoist_d1;
+            residual[16] = z_d1 * lambda_hoist_d1 + lambda_hoist_d0 * z_d2
+                - z0_d1 * lambda_hoist_d1 - lambda_hoist_d0 * z0_d2 + m_l * z_d4
+                + lambda_hoist_d1 * t18 + t9 * lambda_hoist_d2;
+            residual[17] = (t4.powi(2) + t6.powi(2) - L1_d0.powi(2)) * 0.5;
+            residual[18] = x0_d1 * t4 - L1_d0 * L1_d1 + z0_d1 * t6;
+            residual[19] = t19 - L1_d1.powi(2) - L1_d0 * L1_d2 + t4 * x0_d2 + t20
+                + t6 * z0_d2;
+            residual[20] = (x0_d0.powi(2) + z0_d0.powi(2) - L0_d0.powi(2)) * 0.5;
+            residual[21] = x0_d0 * x0_d1 - L0_d0 * L0_d1 + z0_d0 * z0_d1;
+            residual[22] = t19 + t20 - L0_d1.powi(2) - L0_d0 * L0_d2 + x0_d0 * x0_d2
+                + z0_d0 * z0_d2;
+            residual[23] = (t8.powi(2) + t9.powi(2) - t3.powi(2)) * 0.5;
+            residual[24] = L2_d1 * t2 + L0_d1 * t3 + x0_d1 * t5 + z0_d1 * t7 + x_d1 * t8
+                + z_d1 * t9;
+            residual[25] = L2_d1 * t21 + L2_d2 * t2 + L0_d1 * t12 + t3 * L0_d2
+                + x0_d1 * t15 + t5 * x0_d2 + z0_d1 * t16 + t7 * z0_d2 + x_d1 * t17
+                + x_d2 * t8 + z_d1 * t18 + z_d2 * t9;
+            let mut jacobian = __crane_runtime::nalgebra::SMatrix::<
+                f64,
+                26,
+                26,
+            >::zeros();
+            jacobian[(0, 0)] = -lambda_rope1_d0;
+            jacobian[(0, 2)] = J1 * t0;
+            jacobian[(0, 15)] = -L1_d0;
+            jacobian[(0, 24)] = -r1.recip();
+            jacobian[(1, 3)] = -lambda_hoist_d0;
+            jacobian[(1, 5)] = J2 * t1;
+            jacobian[(1, 6)] = lambda_hoist_d0;
+            jacobian[(1, 21)] = t2;
+            jacobian[(1, 25)] = -r2.recip();
+            jacobian[(2, 3)] = lambda_hoist_d0;
+            jacobian[(2, 6)] = t10;
+            jacobian[(2, 18)] = -L0_d0;
+            jacobian[(2, 21)] = t3;
+            jacobian[(3, 3)] = lambda_hoist_d1;
+            jacobian[(3, 4)] = lambda_hoist_d0;
+            jacobian[(3, 6)] = t11;
+            jacobian[(3, 7)] = t10;
+            jacobian[(3, 18)] = -L0_d1;
+            jacobian[(3, 19)] = -L0_d0;
+            jacobian[(3, 21)] = t12;
+            jacobian[(3, 22)] = t3;
+            jacobian[(4, 3)] = lambda_hoist_d2;
+            jacobian[(4, 4)] = t22;
+            jacobian[(4, 5)] = lambda_hoist_d0;
+            jacobian[(4, 6)] = -lambda_rope0_d2 - lambda_hoist_d2;
+            jacobian[(4, 7)] = t23 - lambda_rope0_d1 * 2.0;
+            jacobian[(4, 8)] = t10;
+            jacobian[(4, 18)] = -L0_d2;
+            jacobian[(4, 19)] = t24;
+            jacobian[(4, 20)] = -L0_d0;
+            jacobian[(4, 21)] = t25;
+            jacobian[(4, 22)] = t26;
+            jacobian[(4, 23)] = t3;
+            jacobian[(5, 9)] = t13;
+            jacobian[(5, 15)] = t4;
+            jacobian[(5, 18)] = x0_d0;
+            jacobian[(5, 21)] = t5;
+            jacobian[(6, 9)] = t14;
+            jacobian[(6, 10)] = t13;
+            jacobian[(6, 15)] = x0_d1;
+            jacobian[(6, 16)] = t4;
+            jacobian[(6, 18)] = x0_d1;
+            jacobian[(6, 19)] = x0_d0;
+            jacobian[(6, 21)] = t15;
+            jacobian[(6, 22)] = t5;
+            jacobian[(7, 9)] = t27;
+            jacobian[(7, 10)] = t28;
+            jacobian[(7, 11)] = t13;
+            jacobian[(7, 15)] = x0_d2;
+            jacobian[(7, 16)] = t29;
+            jacobian[(7, 17)] = t4;
+            jacobian[(7, 18)] = x0_d2;
+            jacobian[(7, 19)] = t29;
+            jacobian[(7, 20)] = x0_d0;
+            jacobian[(7, 21)] = t30;
+            jacobian[(7, 22)] = t31;
+            jacobian[(7, 23)] = t5;
+            jacobian[(8, 12)] = t13;
+            jacobian[(8, 15)] = t6;
+            jacobian[(8, 18)] = z0_d0;
+            jacobian[(8, 21)] = t7;
+            jacobian[(9, 12)] = t14;
+            jacobian[(9, 13)] = t13;
+            jacobian[(9, 15)] = z0_d1;
+            jacobian[(9, 16)] = t6;
+            jacobian[(9, 18)] = z0_d1;
+            jacobian[(9, 19)] = z0_d0;
+            jacobian[(9, 21)] = t16;
+            jacobian[(9, 22)] = t7;
+            jacobian[(10, 12)] = t27;
+            jacobian[(10, 13)] = t28;
+            jacobian[(10, 14)] = t13;
+            jacobian[(10, 15)] = z0_d2;
+            jacobian[(10, 16)] = t32;
+            jacobian[(10, 17)] = t6;
+            jacobian[(10, 18)] = z0_d2;
+            jacobian[(10, 19)] = t32;
+            jacobian[(10, 20)] = z0_d0;
+            jacobian[(10, 21)] = t33;
+            jacobian[(10, 22)] = t34;
+            jacobian[(10, 23)] = t7;
+            jacobian[(11, 9)] = -lambda_hoist_d0;
+            jacobian[(11, 21)] = t8;
+            jacobian[(12, 9)] = -lambda_hoist_d1;
+            jacobian[(12, 10)] = -lambda_hoist_d0;
+            jacobian[(12, 21)] = t17;
+            jacobian[(12, 22)] = t8;
+            jacobian[(13, 9)] = -lambda_hoist_d2;
+            jacobian[(13, 10)] = t23;
+            jacobian[(13, 11)] = -lambda_hoist_d0;
+            jacobian[(13, 21)] = x_d2 - x0_d2;
+            jacobian[(13, 22)] = x_d1 * 2.0 - x0_d1 * 2.0;
+            jacobian[(13, 23)] = t8;
+            jacobian[(14, 12)] = -lambda_hoist_d0;
+            jacobian[(14, 21)] = t9;
+            jacobian[(15, 12)] = -lambda_hoist_d1;
+            jacobian[(15, 13)] = -lambda_hoist_d0;
+            jacobian[(15, 21)] = t18;
+            jacobian[(15, 22)] = t9;
+            jacobian[(16, 12)] = -lambda_hoist_d2;
+            jacobian[(16, 13)] = t23;
+            jacobian[(16, 14)] = -lambda_hoist_d0;
+            jacobian[(16, 21)] = z_d2 - z0_d2;
+            jacobian[(16, 22)] = z_d1 * 2.0 - z0_d1 * 2.0;
+            jacobian[(16, 23)] = t9;
+            jacobian[(17, 0)] = -L1_d0;
+            jacobian[(17, 9)] = t4;
+            jacobian[(17, 12)] = t6;
+            jacobian[(18, 0)] = -L1_d1;
+            jacobian[(18, 1)] = -L1_d0;
+            jacobian[(18, 9)] = x0_d1;
+            jacobian[(18, 10)] = t4;
+            jacobian[(18, 12)] = z0_d1;
+            jacobian[(18, 13)] = t6;
+            jacobian[(19, 0)] = -L1_d2;
+            jacobian[(19, 1)] = -L1_d1 * 2.0;
+            jacobian[(19, 2)] = -L1_d0;
+            jacobian[(19, 9)] = x0_d2;
+            jacobian[(19, 10)] = t29;
+            jacobian[(19, 11)] = t4;
+            jacobian[(19, 12)] = z0_d2;
+            jacobian[(19, 13)] = t32;
+            jacobian[(19, 14)] = t6;
+            jacobian[(20, 6)] = -L0_d0;
+            jacobian[(20, 9)] = x0_d0;
+            jacobian[(20, 12)] = z0_d0;
+            jacobian[(21, 6)] = -L0_d1;
+            jacobian[(21, 7)] = -L0_d0;
+            jacobian[(21, 9)] = x0_d1;
+            jacobian[(21, 10)] = x0_d0;
+            jacobian[(21, 12)] = z0_d1;
+            jacobian[(21, 13)] = z0_d0;
+            jacobian[(22, 6)] = -L0_d2;
+            jacobian[(22, 7)] = t24;
+            jacobian[(22, 8)] = -L0_d0;
+            jacobian[(22, 9)] = x0_d2;
+            jacobian[(22, 10)] = t29;
+            jacobian[(22, 11)] = x0_d0;
+            jacobian[(22, 12)] = z0_d2;
+            jacobian[(22, 13)] = t32;
+            jacobian[(22, 14)] = z0_d0;
+            jacobian[(23, 3)] = t2;
+            jacobian[(23, 6)] = t3;
+            jacobian[(23, 9)] = t5;
+            jacobian[(23, 12)] = t7;
+            jacobian[(24, 3)] = t21;
+            jacobian[(24, 4)] = t2;
+            jacobian[(24, 6)] = t12;
+            jacobian[(24, 7)] = t3;
+            jacobian[(24, 9)] = t15;
+            jacobian[(24, 10)] = t5;
+            jacobian[(24, 12)] = t16;
+            jacobian[(24, 13)] = t7;
+            jacobian[(25, 3)] = L0_d2 - L2_d2;
+            jacobian[(25, 4)] = L0_d1 * 2.0 - L2_d1 * 2.0;
+            jacobian[(25, 5)] = t2;
+            jacobian[(25, 6)] = t25;
+            jacobian[(25, 7)] = t26;
+            jacobian[(25, 8)] = t3;
+            jacobian[(25, 9)] = t30;
+            jacobian[(25, 10)] = t31;
+            jacobian[(25, 11)] = t5;
+            jacobian[(25, 12)] = t33;
+            jacobian[(25, 13)] = t34;
+            jacobian[(25, 14)] = t7;
+            (residual, jacobian)
+        }
+    }
 };
