@@ -32,6 +32,7 @@ pub mod registry;
 pub mod study;
 
 pub mod coupled_trolley;
+pub mod double_pendulum;
 pub mod gantry_3d;
 pub mod navy_3d;
 pub mod navy_3d_pulley;

@@ -112,6 +112,7 @@ registry! {
     gantry_3d::Gantry3d,
     tower_crane::TowerCrane,
     coupled_trolley::CoupledTrolley,
+    double_pendulum::DoublePendulum,
 }
 
 #[cfg(test)]
@@ -132,6 +133,6 @@ mod tests {
             assert!(CATALOG[..i].iter().all(|o| o.name != e.name), "duplicate {}", e.name);
             assert_eq!(visit(e.name, Sizes), Some((e.n, e.m, e.a, e.name)));
         }
-        assert_eq!(CATALOG.len(), 7);
+        assert_eq!(CATALOG.len(), 8);
     }
 }

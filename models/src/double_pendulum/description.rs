@@ -1,0 +1,86 @@
+//! The double-pendulum crane as a built-in crane: a rest-to-rest move of
+//! the load from `(0, -6)` to `(4, -5)` in 10 s on the three-phase profile
+//! with ramps continuous to the 6th derivative (the inputs need `x^(6)`),
+//! from hook and load hanging at rest below the trolley; its
+//! flatness-based reference and the drawing.
+
+use crane_runtime::State;
+use nalgebra::vector;
+
+use super::model::DoublePendulum;
+use super::reference::reference_at;
+use crate::case::Case;
+use crate::crane::{Crane, Maneuver, dummy_derivative_run, finite_state};
+use crate::drawing::{Drawing, Pose};
+use crate::path::{Path, PathSpec, Profile};
+
+/// The double-pendulum overhead crane: trolley, hoist, hook block, sling, load.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Description;
+
+/// The crane on its default move.
+pub type DefaultCase = Case<Description, 6, 2, 2>;
+
+/// End time of the default move, s.
+pub const TF: f64 = 10.0;
+
+/// Duration of the acceleration and deceleration ramps of the default move, s.
+pub const TAU0: f64 = 3.0;
+
+impl Crane<6, 2, 2> for Description {
+    type Model = DoublePendulum;
+    const NAME: &'static str = "double-pendulum";
+    const DESCRIPTION: &'static str = "double-pendulum overhead crane: trolley, hoist, hook block, load on a sling";
+    const HAS_REFERENCE: bool = true;
+    dummy_derivative_run!((6, 2, 2, 26));
+
+    /// The smooth three-phase profile (ramps of [`TAU0`], continuous to the
+    /// 6th derivative) from `(0, -6)` to `(4, -5)` in [`TF`]; the start
+    /// `p0 = [s, L, xh, zh] = [0, 4, 0, -4]`: hook and load at rest below
+    /// the trolley.
+    fn maneuver() -> Maneuver<2> {
+        Maneuver {
+            path: PathSpec {
+                profile: Profile::SmoothThreePhase { tau0: TAU0 },
+                t0: 0.0,
+                t1: TF,
+                start: vector![0.0, -6.0],
+                end: vector![4.0, -5.0],
+            },
+            p0: vec![0.0, 4.0, 0.0, -4.0],
+        }
+    }
+
+    /// The flatness-based solution of [`reference`](super::reference).
+    fn reference(model: &DoublePendulum, path: &Path<2>, t: f64) -> Option<State<6, 2, 2>> {
+        let r = reference_at(model, path, t);
+        finite_state(State {
+            t,
+            q: r.q,
+            v: r.v,
+            u: r.u,
+            lambda: r.lambda,
+        })
+    }
+
+    /// `q = [s, L, xh, zh | x, z]`: the rail at height 0, the trolley
+    /// `(s, 0)`, the hoist rope to the hook, the sling to the load.
+    fn drawing(_: &DoublePendulum) -> Option<Drawing> {
+        Some(Drawing {
+            spatial: false,
+            fixed: vec![("O", [0.0; 3])],
+            pose: Box::new(|q| {
+                let trolley = [q[0], 0.0, 0.0];
+                let hook = [q[2], 0.0, q[3]];
+                let load = [q[4], 0.0, q[5]];
+                Pose {
+                    boom: vec![[q[0] - 1.0, 0.0, 0.0], [q[0] + 1.0, 0.0, 0.0]],
+                    ropes: vec![[trolley, hook], [hook, load]],
+                    pulley: hook,
+                    load,
+                }
+            }),
+            ropes: "trolley B, hoist rope B-H (L), sling H-C (l_s)",
+        })
+    }
+}

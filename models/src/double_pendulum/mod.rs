@@ -1,0 +1,17 @@
+//! A double-pendulum overhead crane, beyond the paper: the hook hangs on the
+//! hoist rope and the load on a sling of fixed length below the hook (the
+//! most studied crane model in the anti-sway literature after the single
+//! pendulum). Its inputs need the load path's 6th derivative, beyond what
+//! the paper's minimal extension (eqs. 22, 24) reduces.
+//!
+//! - [`model`]: the crane declared with `crane_model!`, with its derivation;
+//! - [`reference`](mod@reference): its analytical flatness-based solution;
+//! - [`description`]: the crane as a built-in [`Crane`](crate::Crane): its
+//!   default move, the reference on any path, the drawing.
+
+pub mod description;
+pub mod model;
+pub mod reference;
+
+pub use description::{DefaultCase, Description, TAU0, TF};
+pub use model::DoublePendulum;
