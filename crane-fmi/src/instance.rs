@@ -1,5 +1,5 @@
-//! One FMU instance: the FMI 2.0 co-simulation state machine around a
-//! redundant-coordinate stepper, in safe Rust (the C entry points in
+//! One FMU instance: the FMI 2.0 co-simulation state machine around the
+//! stepper of the crane's default formulation, in safe Rust (the C entry points in
 //! `ffi` only translate pointers and statuses).
 //!
 //! `exit_initialization_mode` builds the crane from the parameters, the
@@ -7,12 +7,12 @@
 //! here); `do_step(t, h)` advances `h / dt` internal steps and writes the
 //! outputs, without allocating.
 
-use crane_models::study::{RunSpec, SpecError};
+use crane_models::study::{Formulation, RunSpec, SpecError};
 use crane_models::{Crane, Path, PathSpec, Profile};
 use crane_runtime::options::steps_in;
 use crane_runtime::problem::ServoTarget;
 use crane_runtime::redundant::{Redundant, RedundantStepper};
-use crane_runtime::{Advance, CraneModel, Options, Scheme, State, Stepper};
+use crane_runtime::{Advance, CraneModel, Options, Scheme, Stepper};
 use nalgebra::SVector;
 
 use crate::variables::{
@@ -85,9 +85,27 @@ fn hermite<const A: usize>(ta: f64, a: &ServoTarget<A>, tb: f64, b: &ServoTarget
     out
 }
 
-/// A running crane: the stepper, which owns its model.
+/// The stepper of a run, which owns its model: eqs. (22a-d), which also
+/// follow an external target, or the dummy-derivative formulation on a
+/// built-in move (the default of a crane whose inputs need more than the
+/// path's 4th derivative).
+enum Stepping<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> {
+    Redundant(RedundantStepper<Box<Mdl>, Path<A>, N, M, A>),
+    Reduced(Box<dyn Advance<N, M, A, Model = Mdl>>),
+}
+
+impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> Stepping<Mdl, N, M, A> {
+    fn advance(&self) -> &dyn Advance<N, M, A, Model = Mdl> {
+        match self {
+            Stepping::Redundant(stepper) => stepper,
+            Stepping::Reduced(stepper) => stepper.as_ref(),
+        }
+    }
+}
+
+/// A running crane.
 struct Run<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> {
-    stepper: RedundantStepper<Box<Mdl>, Path<A>, N, M, A>,
+    stepper: Stepping<Mdl, N, M, A>,
     /// The external target at the last state, if the path is external.
     external: Option<ServoTarget<A>>,
     /// Rope lengths (one per rope).
@@ -95,19 +113,12 @@ struct Run<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: us
 }
 
 impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> Run<Mdl, N, M, A> {
-    fn new(
-        model: Mdl,
-        path: Path<A>,
-        start: &State<N, M, A>,
-        options: &Options,
-        external: Option<ServoTarget<A>>,
-    ) -> Result<Self, String> {
-        let stepper = Stepper::new(Redundant::new(Box::new(model), path), start, options).map_err(|e| e.to_string())?;
-        Ok(Self {
+    fn new(stepper: Stepping<Mdl, N, M, A>, external: Option<ServoTarget<A>>) -> Self {
+        Self {
             stepper,
             external,
             lengths: vec![0.0; Mdl::INFO.ropes.len()],
-        })
+        }
     }
 }
 
@@ -267,14 +278,34 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         let start = case
             .consistent_start(self.start_time)
             .map_err(|e| format!("no consistent start at t = {}: {e}", self.start_time))?;
-        Run::new(case.model, case.path, &start, &options, external)
+        let stepper = match settings.formulation {
+            Formulation::DummyDerivative => {
+                if external.is_some() {
+                    let order = <C::Model as CraneModel<N, M, A>>::STRUCTURE.map_or(0, |s| s.path_order(A));
+                    return Err(format!(
+                        "path = {EXTERNAL_PATH} (external) gives gamma, gamma' and gamma'' only, but the inputs of {} \
+                         need the path's derivatives up to order {order}: use a built-in move",
+                        C::NAME
+                    ));
+                }
+                let stepper = C::dummy_derivative_stepper(Box::new(case.model), case.path, &start, &options)
+                    .ok_or_else(|| format!("{} has no dummy-derivative formulation", C::NAME))?;
+                Stepping::Reduced(stepper.map_err(|e| e.to_string())?)
+            }
+            _ => Stepping::Redundant(
+                Stepper::new(Redundant::new(Box::new(case.model), case.path), &start, &options)
+                    .map_err(|e| e.to_string())?,
+            ),
+        };
+        Ok(Run::new(stepper, external))
     }
 
     /// Copy the last state into the outputs.
     fn write_outputs(&mut self) {
         let Some(run) = self.run.as_mut() else { return };
-        let state = *run.stepper.state();
-        run.stepper.model().rope_lengths(&state.q, &mut run.lengths);
+        let stepper = run.stepper.advance();
+        let state = *stepper.state();
+        stepper.model().rope_lengths(&state.q, &mut run.lengths);
         let ropes = <C::Model as CraneModel<N, M, A>>::INFO.ropes;
         for v in &self.table {
             let value = match v.role {
@@ -296,12 +327,12 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
             .run
             .as_mut()
             .ok_or("fmi2DoStep before fmi2ExitInitializationMode")?;
-        let now = run.stepper.state().t;
+        let now = run.stepper.advance().state().t;
         let scale = 1.0f64.max(now.abs()).max(h.abs());
         if (t - now).abs() > 1e-9 * scale {
             return Err(format!("fmi2DoStep at t = {t}, but the instance is at t = {now}"));
         }
-        let dt = run.stepper.dt();
+        let dt = run.stepper.advance().dt();
         let k = match steps_in(h, dt) {
             Ok(k) => k,
             Err(_) => {
@@ -312,17 +343,18 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         };
         let tb = t + h;
         for i in 1..=k {
-            let result = match run.external {
-                None => run.stepper.step(),
-                Some(ref target_a) => {
-                    let ti = run.stepper.next_time();
+            let result = match (&mut run.stepper, &run.external) {
+                (Stepping::Redundant(stepper), Some(target_a)) => {
+                    let ti = stepper.next_time();
                     let target = if i == k {
                         target_b
                     } else {
                         hermite(t, target_a, tb, &target_b, ti)
                     };
-                    run.stepper.step_to(ti, &target)
+                    stepper.step_to(ti, &target)
                 }
+                (Stepping::Redundant(stepper), None) => stepper.step(),
+                (Stepping::Reduced(stepper), _) => stepper.step(),
             };
             result.map_err(|e| e.to_string())?;
         }
@@ -445,7 +477,9 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Componen
     }
 
     fn time(&self) -> f64 {
-        self.run.as_ref().map_or(self.start_time, |r| r.stepper.state().t)
+        self.run
+            .as_ref()
+            .map_or(self.start_time, |r| r.stepper.advance().state().t)
     }
 
     fn terminated(&self) -> bool {

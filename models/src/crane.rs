@@ -5,7 +5,7 @@
 //! the exports all reach a crane through this trait and the
 //! [`registry`](crate::registry).
 
-use crane_runtime::{CraneModel, Error, Options, Solution, State};
+use crane_runtime::{Advance, CraneModel, Error, Options, Solution, State};
 
 use crate::drawing::Drawing;
 use crate::path::{Path, PathSpec};
@@ -77,6 +77,20 @@ pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
         None
     }
 
+    /// A stepper of the dummy-derivative formulation that owns its model
+    /// and path (for long-lived runs such as an FMU instance), if the crane
+    /// has no internal dynamics.
+    #[allow(clippy::type_complexity)]
+    fn dummy_derivative_stepper(
+        model: Box<Self::Model>,
+        path: Path<A>,
+        start: &State<N, M, A>,
+        options: &Options,
+    ) -> Option<Result<Box<dyn Advance<N, M, A, Model = Self::Model>>, Error>> {
+        let _ = (model, path, start, options);
+        None
+    }
+
     /// Names of outputs derived from a state (e.g. the slewing angle `phi`);
     /// columns of `results.csv` after the tensions.
     fn derived_outputs() -> &'static [&'static str] {
@@ -129,7 +143,8 @@ macro_rules! minimal_run {
 }
 pub(crate) use minimal_run;
 
-/// [`Crane::HAS_DUMMY_DERIVATIVES`] and [`Crane::simulate_dummy_derivative`]
+/// [`Crane::HAS_DUMMY_DERIVATIVES`], [`Crane::simulate_dummy_derivative`] and
+/// [`Crane::dummy_derivative_stepper`]
 /// of a flat crane: `dummy_derivative_run!((N, M, A, J));` inside its `impl
 /// Crane`, with `J` the size of its dummy-derivative system (the `J` of the
 /// model's `DummyDerivatives` implementation).
@@ -153,6 +168,18 @@ macro_rules! dummy_derivative_run {
                 $a,
                 $j,
             >(model, path, start, options, progress))
+        }
+
+        fn dummy_derivative_stepper(
+            model: Box<Self::Model>,
+            path: $crate::path::Path<$a>,
+            start: &crane_runtime::State<$n, $m, $a>,
+            options: &crane_runtime::Options,
+        ) -> Option<Result<Box<dyn crane_runtime::Advance<$n, $m, $a, Model = Self::Model>>, crane_runtime::Error>> {
+            let stepper = crane_runtime::dummy_derivative::DummyDerivativeStepper::<_, _, _, $n, $m, $a, $j>::new(
+                model, path, start, options,
+            );
+            Some(stepper.map(|s| Box::new(s) as Box<dyn crane_runtime::Advance<$n, $m, $a, Model = Self::Model>>))
         }
     };
 }
