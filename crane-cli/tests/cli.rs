@@ -567,7 +567,7 @@ fn list_shows_the_registry() {
     let result = crane(&["list"]);
     assert!(result.status.success());
     let text = String::from_utf8_lossy(&result.stdout);
-    assert_eq!(crane_models::CATALOG.len(), 8);
+    assert_eq!(crane_models::CATALOG.len(), 9);
     for e in crane_models::CATALOG {
         let line = text
             .lines()

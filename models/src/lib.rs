@@ -33,6 +33,7 @@ pub mod study;
 
 pub mod coupled_trolley;
 pub mod double_pendulum;
+pub mod elastic_drive;
 pub mod gantry_3d;
 pub mod navy_3d;
 pub mod navy_3d_pulley;

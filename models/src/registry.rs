@@ -113,6 +113,7 @@ registry! {
     tower_crane::TowerCrane,
     coupled_trolley::CoupledTrolley,
     double_pendulum::DoublePendulum,
+    elastic_drive::ElasticDrive,
 }
 
 #[cfg(test)]
@@ -133,6 +134,6 @@ mod tests {
             assert!(CATALOG[..i].iter().all(|o| o.name != e.name), "duplicate {}", e.name);
             assert_eq!(visit(e.name, Sizes), Some((e.n, e.m, e.a, e.name)));
         }
-        assert_eq!(CATALOG.len(), 8);
+        assert_eq!(CATALOG.len(), 9);
     }
 }
