@@ -431,8 +431,9 @@ pub fn all<const N: usize, const M: usize, const A: usize>(
 /// error is at least 1e-7, 100 times the round-off floor of the index-3
 /// schemes (about 1e-9 at the smallest steps), so that it shows the
 /// scheme's slope rather than the floor; without such a step, through the
-/// coarsest.
-pub fn convergence(title: &str, rows: &[(f64, f64)], order: usize) -> Result<String, CliError> {
+/// coarsest. No guide for `order = None` (a formulation that discretises
+/// nothing). An error of exactly 0 is drawn at 1e-17, below round-off.
+pub fn convergence(title: &str, rows: &[(f64, f64)], order: Option<usize>) -> Result<String, CliError> {
     register_font();
     let failed = |e: String| CliError::Output {
         what: format!("plot '{title}'"),
@@ -441,7 +442,8 @@ pub fn convergence(title: &str, rows: &[(f64, f64)], order: usize) -> Result<Str
     let finite: Vec<(f64, f64)> = rows
         .iter()
         .copied()
-        .filter(|&(d, e)| d > 0.0 && e > 0.0 && e.is_finite())
+        .filter(|&(d, e)| d > 0.0 && e >= 0.0 && e.is_finite())
+        .map(|(d, e)| (d, e.max(1e-17)))
         .collect();
     let Some(&coarsest) = finite.first() else {
         return Err(failed("no positive finite errors to plot".into()));
@@ -452,10 +454,13 @@ pub fn convergence(title: &str, rows: &[(f64, f64)], order: usize) -> Result<Str
         .find(|&&(_, e)| e >= 1e-7)
         .copied()
         .unwrap_or(coarsest);
-    let guide: Vec<(f64, f64)> = finite
-        .iter()
-        .map(|&(d, _)| (d, e_anchor * (d / dt_anchor).powi(order as i32)))
-        .collect();
+    let guide: Vec<(f64, f64)> = match order {
+        Some(order) => finite
+            .iter()
+            .map(|&(d, _)| (d, e_anchor * (d / dt_anchor).powi(order as i32)))
+            .collect(),
+        None => Vec::new(),
+    };
     let (x_min, x_max) = finite
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(lo, hi), &(d, _)| (lo.min(d), hi.max(d)));
@@ -508,9 +513,11 @@ pub fn convergence(title: &str, rows: &[(f64, f64)], order: usize) -> Result<Str
                 ShapeStyle::from(&BLACK).stroke_width(1),
             ))
             .map_err(|e| failed(e.to_string()))?;
-        let guide_name = format!("order {order} (slope {order})");
-        let entries: [(&str, RGBColor, bool); 2] =
-            [("e_u at t = 1.5 s", color, false), (guide_name.as_str(), BLACK, true)];
+        let guide_name = order.map(|order| format!("order {order} (slope {order})"));
+        let mut entries: Vec<(&str, RGBColor, bool)> = vec![("e_u at t = 1.5 s", color, false)];
+        if let Some(name) = &guide_name {
+            entries.push((name.as_str(), BLACK, true));
+        }
         let mut y = 60;
         for (name, c, dashed) in entries {
             let style = ShapeStyle::from(&c).stroke_width(if dashed { 1 } else { 2 });

@@ -115,6 +115,17 @@ impl DenseSolver {
         largest
     }
 
+    /// The 2-norm condition number of `jac` after the scaling an
+    /// [`equilibrated`](Self::equilibrated) solver applies before its LU
+    /// (infinite if singular). A diagnostic: it allocates for an SVD.
+    pub fn equilibrated_condition(&mut self, jac: &DMatrix<f64>) -> f64 {
+        self.find_scales(jac);
+        let mut scaled = jac.clone();
+        self.write_scaled(jac, &mut scaled);
+        let singular = scaled.singular_values();
+        singular.max() / singular.min()
+    }
+
     /// Column scales, then row scales of the column-scaled matrix: powers of
     /// two that bring the largest entry of each near 1.
     fn find_scales(&mut self, jac: &DMatrix<f64>) {

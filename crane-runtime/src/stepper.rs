@@ -164,6 +164,12 @@ where
         &self.problem
     }
 
+    /// The unknowns of the last step (those the problem started from before
+    /// the first), in the problem's layout.
+    pub fn unknowns(&self) -> &DVector<f64> {
+        &self.z
+    }
+
     /// The time step.
     pub fn dt(&self) -> f64 {
         self.dt

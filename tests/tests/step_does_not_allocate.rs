@@ -3,10 +3,11 @@
 //! for every scheme, in redundant and in minimal coordinates, including the
 //! first steps from the degenerate start where Newton falls back to the
 //! minimum-norm solve (and the minimal stepper's retry from the last step);
-//! and the forward problem's stepper.
+//! the dummy-derivative stepper; and the forward problem's stepper.
 //! One test function, so that no other test allocates while one counts.
 
 use crane_models::navy_planar::{PaperCase, minimal_guess};
+use crane_runtime::dummy_derivative::DummyDerivativeStepper;
 use crane_runtime::forward::Forward;
 use crane_runtime::redundant::Redundant;
 use crane_runtime::{Advance, Options, Scheme, Stepper, minimal};
@@ -55,6 +56,12 @@ fn stepping_does_not_allocate() {
                 "minimal {scheme} dt = {dt}: {allocations} allocations in {steps} steps"
             );
             println!("minimal {scheme} dt = {dt}: {steps} steps, {min_norm} minimum-norm Newton steps, 0 allocations");
+            let mut reduced = DummyDerivativeStepper::new(case.model(), case.path(), &start, &options).unwrap();
+            let (allocations, _) = allocations_in(&mut reduced, steps);
+            assert_eq!(
+                allocations, 0,
+                "dummy-derivative {scheme} dt = {dt}: {allocations} allocations in {steps} steps"
+            );
             // the forward problem, driven by the inputs of the inverse run's last state
             let u = redundant.state().u;
             let end = *redundant.state();

@@ -14,6 +14,11 @@ pub const DTS: [f64; 6] = [0.1, 0.05, 0.02, 0.01, 0.005, 0.001];
 /// Time of the error measure (eq. 48), s.
 pub const T_ERROR: f64 = 1.5;
 
+/// An error at or below this is round-off (a few hundred ulps of `u`): no
+/// order is observed against it. The dummy-derivative formulation of a flat
+/// crane stays there at every step size (it discretises nothing).
+pub const ROUND_OFF: f64 = 1e-13;
+
 /// One time step of the study.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Row {
@@ -21,7 +26,8 @@ pub struct Row {
     pub dt: f64,
     /// `|u - u_ref| / |u_ref|` at [`T_ERROR`] (eq. 48).
     pub e_u: f64,
-    /// The observed order against the row before, if there is one.
+    /// The observed order against the row before, if there is one and
+    /// neither error is at [`ROUND_OFF`].
     pub order: Option<f64>,
 }
 
@@ -76,7 +82,10 @@ pub fn study<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             .find(|s| (s.t - T_ERROR).abs() < 0.5 * dt)
             .ok_or_else(|| StudyError::Convergence(format!("dt = {dt} s: no step at t = {T_ERROR} s")))?;
         let e_u = case.relative_input_error(state).ok_or_else(no_reference)?;
-        let order = rows.last().map(|last| observed_order(last.dt, last.e_u, dt, e_u));
+        let order = rows
+            .last()
+            .filter(|last| last.e_u > ROUND_OFF && e_u > ROUND_OFF)
+            .map(|last| observed_order(last.dt, last.e_u, dt, e_u));
         let row = Row { dt, e_u, order };
         observe(&row);
         rows.push(row);

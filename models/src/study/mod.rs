@@ -95,6 +95,14 @@ impl Formulation {
         }
     }
 
+    /// Whether the scheme discretises it: `false` for the dummy-derivative
+    /// formulation, whose system is algebraic at each step (every
+    /// derivative is an unknown of its own), so its results do not depend
+    /// on the scheme or the step size.
+    pub fn discretised(self) -> bool {
+        !matches!(self, Formulation::DummyDerivative)
+    }
+
     /// The names, "redundant, minimal or dummy-derivative".
     pub fn names() -> String {
         let names: Vec<&str> = Self::ALL.iter().map(|f| f.name()).collect();
