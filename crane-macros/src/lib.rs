@@ -134,6 +134,11 @@ fn expand(input: TokenStream) -> TokenStream {
                 return tokens;
             }
             let structure = structure::structure(&model, &kernels);
+            if let Some(block) = structure::singular_block(&model, &kernels) {
+                let mut tokens = syn::Error::new(model.name.span(), block.message(&model)).to_compile_error();
+                tokens.extend(codegen::stub(&decl));
+                return tokens;
+            }
             let dummy = dummy::DummyKernels::derive(&mut model, &kernels, &structure);
             codegen::generate(&model, &kernels, &structure, dummy.as_ref())
         }

@@ -189,6 +189,118 @@ pub fn structure(model: &Model, k: &Kernels) -> Structure {
     }
 }
 
+/// Where a structurally singular system fails: a set of unknowns (columns
+/// of `[q, lambda, u]`) that appear in fewer equations (rows of
+/// `[dynamics, constraints, servo]`) than they are, found by alternating
+/// paths from the unknowns a maximum matching leaves unmatched
+/// (the underdetermined part of the Dulmage-Mendelsohn decomposition).
+pub struct SingularBlock {
+    /// The unknowns.
+    pub unknowns: Vec<usize>,
+    /// Every equation they appear in.
+    pub equations: Vec<usize>,
+}
+
+/// The underdetermined block of a structurally singular model; `None` if a
+/// transversal exists.
+pub fn singular_block(model: &Model, k: &Kernels) -> Option<SingularBlock> {
+    let sigma = signature(model, k);
+    let size = sigma.len();
+    let present = |i: usize, j: usize| sigma[i][j] != ABSENT;
+    // maximum matching by augmenting paths: row_of[j] = the row matched to column j
+    let mut row_of: Vec<Option<usize>> = vec![None; size];
+    fn augment(
+        i: usize,
+        present: &dyn Fn(usize, usize) -> bool,
+        row_of: &mut Vec<Option<usize>>,
+        seen: &mut Vec<bool>,
+    ) -> bool {
+        for j in 0..row_of.len() {
+            if present(i, j) && !seen[j] {
+                seen[j] = true;
+                if row_of[j].is_none_or(|other| augment(other, present, row_of, seen)) {
+                    row_of[j] = Some(i);
+                    return true;
+                }
+            }
+        }
+        false
+    }
+    for i in 0..size {
+        augment(i, &present, &mut row_of, &mut vec![false; size]);
+    }
+    let mut column_of = vec![None; size];
+    for (j, row) in row_of.iter().enumerate() {
+        if let Some(i) = row {
+            column_of[*i] = Some(j);
+        }
+    }
+    let mut stack: Vec<usize> = (0..size).filter(|&j| row_of[j].is_none()).collect();
+    if stack.is_empty() {
+        return None;
+    }
+    let (mut columns, mut rows) = (vec![false; size], vec![false; size]);
+    while let Some(j) = stack.pop() {
+        if std::mem::replace(&mut columns[j], true) {
+            continue;
+        }
+        for i in (0..size).filter(|&i| present(i, j)) {
+            rows[i] = true;
+            if let Some(next) = column_of[i] {
+                stack.push(next);
+            }
+        }
+    }
+    let pick = |set: &[bool]| (0..size).filter(|&x| set[x]).collect();
+    Some(SingularBlock {
+        unknowns: pick(&columns),
+        equations: pick(&rows),
+    })
+}
+
+impl SingularBlock {
+    /// The compile error's message, in the declaration's names.
+    pub fn message(&self, model: &Model) -> String {
+        let (n, m) = (model.n(), model.m());
+        let unknown = |j: usize| {
+            if j < n {
+                format!("`{}`", model.coords[j])
+            } else if j < n + m {
+                format!("the multiplier of `{}`", model.constraints[j - n].name)
+            } else {
+                format!("`{}`", model.inputs[j - n - m])
+            }
+        };
+        let equation = |i: usize| {
+            if i < n {
+                format!("the dynamics of `{}`", model.coords[i])
+            } else if i < n + m {
+                format!("the constraint `{}`", model.constraints[i - n].name)
+            } else {
+                format!("the servo constraint of `{}`", model.coords[model.n_robot + i - n - m])
+            }
+        };
+        let list = |items: Vec<String>| items.join(", ");
+        let count =
+            |items: String, k: usize, noun: &str| format!("{items} ({k} {noun}{})", if k == 1 { "" } else { "s" });
+        format!(
+            "structurally singular: no load path determines the coordinates, multipliers and inputs, because {} \
+             appear only in {}; each input must drive a coordinate of its own that the load path reaches through \
+             the constraints",
+            count(
+                list(self.unknowns.iter().map(|&j| unknown(j)).collect()),
+                self.unknowns.len(),
+                "unknown"
+            ),
+            count(
+                list(self.equations.iter().map(|&i| equation(i)).collect()),
+                self.equations.len(),
+                "equation"
+            ),
+        )
+    }
+}
+
 impl Structure {
     /// The sentences for the generated docs (`a` servo constraints, the
     /// last equations).

@@ -710,3 +710,22 @@ fn sample_section_errors() {
         &["unknown `crane` option: expected `runtime = path::to::crane_runtime` or `no_self_test`"],
     );
 }
+
+/// Both inputs on one winch: `u1` and `u2` appear only in the dynamics of
+/// `L1`, so no load path fixes them (and nothing drives `L2`): a compile
+/// error naming those unknowns and equations, not a crane whose every run
+/// fails.
+#[test]
+fn a_structurally_singular_crane_names_its_unknowns_and_equations() {
+    let source = navy_with("forces { L1: u1/r1, L2: u2/r2,", "forces { L1: u1/r1 + u2/r2,");
+    let (messages, stub) = expand_errors(&source);
+    assert_eq!(
+        messages,
+        [
+            "structurally singular: no load path determines the coordinates, multipliers and inputs, because `u1`, `u2` \
+          (2 unknowns) appear only in the dynamics of `L1` (1 equation); each input must drive a coordinate of its own \
+          that the load path reaches through the constraints"
+        ]
+    );
+    assert!(stub);
+}
