@@ -7,8 +7,11 @@
 //! index reduction by minimal extension gives an index-3 DAE that backward
 //! Euler (the paper's scheme, the default) or BDF-k, k = 2..5
 //! ([`Scheme`](prelude::Scheme)), integrates (paper eqs. 22a-d in redundant
-//! coordinates, 24a-e in minimal coordinates). This crate carries the whole
-//! API; depend on it alone:
+//! coordinates, 24a-e in minimal coordinates). For a flat crane whose inputs
+//! need more derivatives of the path than the minimal extension reduces,
+//! the servo problem reduced by dummy derivatives is solved exactly at each
+//! step instead (below). This crate carries the whole API; depend on it
+//! alone:
 //!
 //! | module | what |
 //! |---|---|
@@ -101,6 +104,34 @@
 //! }
 //! let reference = case.reference(1.5).unwrap();
 //! assert!((stepper.state().u - reference.u).norm() < 1e-3 * reference.u.norm()); // BDF-2 at dt = 0.01
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! # Any path order: dummy derivatives
+//!
+//! The minimal extension of eqs. (22, 24) reduces cranes whose inputs need
+//! the load path's 4th derivative. For every flat crane it declares,
+//! `crane_model!` also generates the servo problem differentiated by
+//! Pryce's offsets with every derivative an unknown of its own
+//! ([`DummyDerivatives`](prelude::DummyDerivatives)): one algebraic system
+//! per time, which nothing discretises, so its inputs are exact at any step.
+//! The double pendulum's inputs need the path's 6th derivative; on it,
+//! eqs. (22) with BDF-4 diverge as dt shrinks, the reduced formulation
+//! matches the analytical reference to round-off at every step:
+//!
+//! ```
+//! use crane::models::double_pendulum::DefaultCase;
+//! use crane::prelude::*;
+//!
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let case = DefaultCase::maneuver()?;
+//! let start = case.start()?;
+//! let options = Options::new(0.05, case.tf())?; // 200 steps
+//! let run = simulate_dummy_derivative(case.model(), case.path(), &start, &options, &mut |_, _| {})?;
+//! for state in &run.states {
+//!     assert!(case.relative_input_error(state).unwrap() < 1e-12);
+//! }
 //! # Ok(())
 //! # }
 //! ```
@@ -230,10 +261,12 @@ pub mod prelude {
     pub use crane_models::{Case, Crane, Maneuver, Path, PathSpec, Profile, ProfileKind};
     pub use crane_runtime::check::{SampleBox, check_derivatives, check_minimal_map};
     pub use crane_runtime::nalgebra::{SMatrix, SVector};
-    pub use crane_runtime::trajectory::{FromFn, Poly9, ThreePhase, Trajectory};
+    pub use crane_runtime::dummy_derivative::{DummyDerivative, DummyDerivativeStepper, simulate_dummy_derivative};
+    pub use crane_runtime::trajectory::{FromFn, Poly9, SmoothThreePhase, ThreePhase, Trajectory};
     pub use crane_runtime::{
-        Advance, CraneModel, Error, ForwardStepper, Method, MinimalMap, MinimalStepper, Options, RedundantStepper,
-        Scheme, Solution, State, Stepper, forward, init, internal, minimal, redundant, simulate, simulate_minimal,
+        Advance, CraneModel, DummyDerivatives, Error, ForwardStepper, Method, MinimalMap, MinimalStepper, Options,
+        RedundantStepper, Scheme, Solution, State, Stepper, dummy_derivative, forward, init, internal, minimal,
+        redundant, simulate, simulate_minimal,
     };
     pub use crane_runtime::{forward::Forward, minimal::Minimal, redundant::Redundant};
 }

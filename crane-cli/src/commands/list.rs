@@ -1,27 +1,47 @@
 //! `crane list`: the built-in cranes with their sizes, reference, minimal
-//! map and internal dynamics at the start.
+//! map, the path derivative their inputs need with the formulation that
+//! reduces it by default, and their internal dynamics at the start.
 
 use crane_models::registry::{self, Visit};
+use crane_models::study::Formulation;
 use crane_models::{CATALOG, Case, Crane};
+use crane_runtime::CraneModel;
 
 use crate::CliError;
 
-/// The internal dynamics at the start of a crane's default manoeuvre:
-/// `0 (flat)`, `2 stable`, `2 unstable`, or `?` where the diagnosis cannot
-/// tell.
-struct InternalAtStart;
+/// What the table says of one crane beyond its catalogue entry.
+struct Row {
+    /// The path derivative the inputs need (`?` if not known).
+    path_order: String,
+    /// The default formulation.
+    formulation: &'static str,
+    /// `0 (flat)`, `2 stable`, `2 unstable`, or `?` where the diagnosis
+    /// cannot tell.
+    internal: String,
+}
 
-impl Visit for InternalAtStart {
-    type Output = String;
-    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> String {
+/// The [`Row`] of a crane, its internal dynamics at the start of its
+/// default manoeuvre.
+struct RowOf;
+
+impl Visit for RowOf {
+    type Output = Row;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Row {
         let diagnosis = Case::<C, N, M, A>::maneuver().ok().and_then(|case| {
             let start = case.start().ok()?;
             crane_runtime::internal::internal_dynamics(case.model(), &start).ok()
         });
-        match diagnosis {
+        let internal = match diagnosis {
             Some(d) if d.dimension == 0 => "0 (flat)".into(),
             Some(d) => format!("{} {}", d.dimension, if d.is_stable() { "stable" } else { "unstable" }),
             None => "?".into(),
+        };
+        let path_order = <C::Model as CraneModel<N, M, A>>::STRUCTURE
+            .map_or_else(|| "?".into(), |s| s.path_order(A).to_string());
+        Row {
+            path_order,
+            formulation: Formulation::default_for::<C, N, M, A>().name(),
+            internal,
         }
     }
 }
@@ -30,14 +50,16 @@ impl Visit for InternalAtStart {
 pub fn list() -> Result<(), CliError> {
     let width = CATALOG.iter().map(|e| e.name.len()).max().unwrap_or(5);
     println!(
-        "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} {:<10} description",
-        "model", "n", "m", "a", "f", "reference", "minimal", "internal"
+        "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} {:>5}  {:<16} {:<10} description",
+        "model", "n", "m", "a", "f", "reference", "minimal", "order", "formulation", "internal"
     );
     let yes = |b: bool| if b { "yes" } else { "no" };
     for e in CATALOG {
-        let internal = registry::visit(e.name, InternalAtStart).unwrap_or_else(|| "?".into());
+        let Some(row) = registry::visit(e.name, RowOf) else {
+            continue;
+        };
         println!(
-            "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} {:<10} {}",
+            "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} {:>5}  {:<16} {:<10} {}",
             e.name,
             e.n,
             e.m,
@@ -45,7 +67,9 @@ pub fn list() -> Result<(), CliError> {
             e.dof(),
             yes(e.reference),
             yes(e.minimal),
-            internal,
+            row.path_order,
+            row.formulation,
+            row.internal,
             e.description
         );
     }
