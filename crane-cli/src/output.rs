@@ -9,6 +9,7 @@ use crane_runtime::{Solution, State};
 
 use crate::CliError;
 use crate::plot;
+use crane_models::study::Formulation;
 use crane_models::study::Summary;
 
 /// Column names of `results.csv` (docs/numerics.md): `t`, the coordinates, the
@@ -141,7 +142,17 @@ pub fn write_all<const N: usize, const M: usize, const A: usize>(
         message: e.to_string(),
     })?;
     staged.text("summary.json", json + "\n")?;
-    for (name, svg) in plot::all(solution, references)?
+    // the scheme discretises nothing in the dummy-derivative formulation
+    let discretised = summary
+        .formulation
+        .parse::<Formulation>()
+        .is_ok_and(Formulation::discretised);
+    let method = if discretised {
+        format!("{}, {}", summary.formulation, solution.scheme)
+    } else {
+        summary.formulation.clone()
+    };
+    for (name, svg) in plot::all(solution, references, &method)?
         .into_iter()
         .chain(extra.iter().cloned())
     {

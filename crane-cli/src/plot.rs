@@ -357,13 +357,15 @@ pub fn heat_map(
     Ok(svg)
 }
 
-/// All plots of a run as `(file name, SVG text)`.
+/// All plots of a run as `(file name, SVG text)`; `method` (the
+/// formulation and scheme) goes into the titles.
 pub fn all<const N: usize, const M: usize, const A: usize>(
     solution: &Solution<N, M, A>,
     references: Option<&[State<N, M, A>]>,
+    method: &str,
 ) -> Result<Vec<(String, String)>, CliError> {
     let info = solution.info;
-    let title = |what: &str| format!("{} - {what} ({}, dt = {} s)", info.name, solution.scheme, solution.dt);
+    let title = |what: &str| format!("{} - {what} ({method}, dt = {} s)", info.name, solution.dt);
     let inputs: Vec<(String, usize)> = info
         .inputs
         .iter()

@@ -90,14 +90,14 @@ fn hermite<const A: usize>(ta: f64, a: &ServoTarget<A>, tb: f64, b: &ServoTarget
 /// built-in move (the default of a crane whose inputs need more than the
 /// path's 4th derivative).
 enum Stepping<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> {
-    Redundant(RedundantStepper<Box<Mdl>, Path<A>, N, M, A>),
+    Redundant(Box<RedundantStepper<Box<Mdl>, Path<A>, N, M, A>>),
     Reduced(Box<dyn Advance<N, M, A, Model = Mdl>>),
 }
 
 impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> Stepping<Mdl, N, M, A> {
     fn advance(&self) -> &dyn Advance<N, M, A, Model = Mdl> {
         match self {
-            Stepping::Redundant(stepper) => stepper,
+            Stepping::Redundant(stepper) => stepper.as_ref(),
             Stepping::Reduced(stepper) => stepper.as_ref(),
         }
     }
@@ -292,10 +292,10 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                     .ok_or_else(|| format!("{} has no dummy-derivative formulation", C::NAME))?;
                 Stepping::Reduced(stepper.map_err(|e| e.to_string())?)
             }
-            _ => Stepping::Redundant(
+            _ => Stepping::Redundant(Box::new(
                 Stepper::new(Redundant::new(Box::new(case.model), case.path), &start, &options)
                     .map_err(|e| e.to_string())?,
-            ),
+            )),
         };
         Ok(Run::new(stepper, external))
     }

@@ -116,7 +116,7 @@ where
             trajectory,
             gamma: [SVector::zeros(); MAX_PATH_ORDER + 1],
             slots,
-            blocks: vec![0..J],
+            blocks: vec![Range { start: 0, end: J }],
             last: DVector::zeros(J),
         }
     }

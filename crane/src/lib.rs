@@ -260,8 +260,8 @@ pub mod prelude {
     pub use crate::crane_model;
     pub use crane_models::{Case, Crane, Maneuver, Path, PathSpec, Profile, ProfileKind};
     pub use crane_runtime::check::{SampleBox, check_derivatives, check_minimal_map};
-    pub use crane_runtime::nalgebra::{SMatrix, SVector};
     pub use crane_runtime::dummy_derivative::{DummyDerivative, DummyDerivativeStepper, simulate_dummy_derivative};
+    pub use crane_runtime::nalgebra::{SMatrix, SVector};
     pub use crane_runtime::trajectory::{FromFn, Poly9, SmoothThreePhase, ThreePhase, Trajectory};
     pub use crane_runtime::{
         Advance, CraneModel, DummyDerivatives, Error, ForwardStepper, Method, MinimalMap, MinimalStepper, Options,

@@ -432,12 +432,43 @@ pub enum PlanError {
         /// Why it is infeasible.
         reason: String,
     },
+    /// The path is too rough for the crane: its inputs carry impulses.
+    #[error(
+        "the path is continuous only up to its derivative {continuous}, but the inputs of {crane} need derivative \
+         {needed}: they carry impulses where derivative {jump} jumps, which no torque limit admits (use a smoother \
+         profile, e.g. smooth-three-phase)",
+        jump = continuous + 1
+    )]
+    PathTooRough {
+        /// The crane.
+        crane: &'static str,
+        /// The derivative of the path its inputs need.
+        needed: usize,
+        /// The highest continuous derivative of the path.
+        continuous: usize,
+    },
     /// Even `duration` (the shortest tried) meets every limit.
     #[error("every duration down to {duration:.3e} s is feasible; the limits do not bind")]
     Unbounded {
         /// The shortest duration tried, s.
         duration: f64,
     },
+}
+
+/// Refuse a path continuous two or more derivatives below what the crane's
+/// inputs need: they carry impulses there (a path one derivative short
+/// gives finite jumps, which a limit can judge).
+fn impulses<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+) -> Result<(), PlanError> {
+    match crane_runtime::internal::path_smoothness::<C::Model, _, N, M, A>(case.path()) {
+        Some(s) if s.continuous + 2 <= s.needed => Err(PlanError::PathTooRough {
+            crane: C::NAME,
+            needed: s.needed,
+            continuous: s.continuous,
+        }),
+        _ => Ok(()),
+    }
 }
 
 /// Why an evaluation is infeasible, in words.
@@ -472,6 +503,7 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
             settings.tolerance, settings.dt
         )));
     }
+    impulses(case)?;
     let mut evaluations = 0;
     // one evaluation, kept: the last infeasible (`below`) and feasible
     // (`above`, with its run) ones end as the bracket's
@@ -659,7 +691,7 @@ pub fn sweep_point<C: Crane<N, M, A>, const N: usize, const M: usize, const A: u
     settings: &Settings,
 ) -> SweepPoint {
     let mut model = case.model().clone();
-    let mut error = None;
+    let mut error = impulses(case).err().map(|e| e.to_string());
     for ((name, _), &value) in params.iter().zip(values) {
         if let Err(e) = model.set_parameter(name, value) {
             error.get_or_insert(e.to_string());

@@ -95,6 +95,8 @@ fn the_built_in_cranes_are_flat_along_their_manoeuvres() {
     check(&crane_models::navy_3d_pulley::PaperCase::maneuver().unwrap());
     check(&crane_models::gantry_3d::DefaultCase::maneuver().unwrap());
     check(&crane_models::tower_crane::DefaultCase::maneuver().unwrap());
+    check(&crane_models::double_pendulum::DefaultCase::maneuver().unwrap());
+    check(&crane_models::elastic_drive::DefaultCase::maneuver().unwrap());
 }
 
 /// What the causal inverse does with the unstable coupled crane: the run
@@ -118,7 +120,7 @@ fn the_unstable_inverse_explodes() {
 /// The structural count the macro writes into every model
 /// (`CraneModel::INTERNAL_DIMENSION`, Pryce's signature method on eqs.
 /// 22a-d): the coupled crane leaves 2 states free (s and s', the ODE of its
-/// derivation), the paper's cranes and the new topologies none.
+/// derivation), the paper's cranes and the other built-ins none.
 #[test]
 fn the_declarations_state_their_structure() {
     use crane_runtime::CraneModel;
@@ -145,6 +147,14 @@ fn the_declarations_state_their_structure() {
             "tower-crane",
             dimension(&crane_models::tower_crane::TowerCrane::default()),
         ),
+        (
+            "double-pendulum",
+            dimension(&crane_models::double_pendulum::DoublePendulum::default()),
+        ),
+        (
+            "elastic-drive",
+            dimension(&crane_models::elastic_drive::ElasticDrive::default()),
+        ),
     ];
     println!("{built_in:?}");
     for (name, d) in built_in {
@@ -156,7 +166,8 @@ fn the_declarations_state_their_structure() {
 /// differentiated 4 times for the paper's cranes with a massless pulley
 /// (u needs the 4th derivative of the load path, the flatness result for a
 /// load on a rope), 6 times for navy-3d-pulley (the pulley's mass adds
-/// two), 2 for the coupled crane. The profiles: poly9 and three-phase are
+/// two), 6 for the double pendulum (the hook adds two) and the elastic
+/// drive (the belt adds two), 2 for the coupled crane. The profiles: poly9 and three-phase are
 /// continuous up to the 4th derivative, the smooth three-phase up to the 6th.
 #[test]
 fn the_structure_says_how_smooth_the_path_must_be() {
@@ -170,6 +181,8 @@ fn the_structure_says_how_smooth_the_path_must_be() {
     assert_eq!(order(&crane_models::navy_3d_pulley::Navy3dPulley::default()), 6);
     assert_eq!(order(&crane_models::gantry_3d::Gantry3d::default()), 4);
     assert_eq!(order(&crane_models::tower_crane::TowerCrane::default()), 4);
+    assert_eq!(order(&crane_models::double_pendulum::DoublePendulum::default()), 6);
+    assert_eq!(order(&crane_models::elastic_drive::ElasticDrive::default()), 6);
     assert_eq!(order(&Coupled::default()), 2);
     use crane_models::{Path, PathSpec, Profile};
     let path = |profile| {

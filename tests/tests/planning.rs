@@ -178,3 +178,40 @@ fn sweep_rows_are_single_runs_whatever_the_threads() {
     };
     assert!(peak(120.0, 4.0) > peak(100.0, 4.0) && peak(100.0, 4.0) > peak(80.0, 4.0));
 }
+
+/// A path two derivatives rougher than the crane needs gives inputs with
+/// impulses, which no torque limit admits: navy-3d-pulley (inputs need the
+/// 6th derivative) on the paper's three-phase profile (continuous to the
+/// 4th) is refused with the reason, in `fastest` and in every sweep point;
+/// on the smooth profile (continuous to the 6th) it is planned, and its
+/// answer meets the limit.
+#[test]
+fn planning_refuses_a_path_whose_inputs_carry_impulses() {
+    use crane_models::navy_3d_pulley::{Navy3dPulley, PaperCase, TF};
+    use crane_models::plan::PlanError;
+    let limits = Limits {
+        torque: vec![(3, 150.0)],
+        tension: vec![],
+    };
+    let settings = Settings::default();
+    let rough = PaperCase::maneuver().unwrap();
+    match fastest(&rough, &limits, &settings) {
+        Err(PlanError::PathTooRough { needed, continuous, .. }) => assert_eq!((needed, continuous), (6, 4)),
+        other => panic!("expected PathTooRough, got {:?}", other.map(|f| f.duration)),
+    }
+    let point = sweep_point(&rough, &[], &[], TF, &limits, &settings);
+    assert!(!point.feasible);
+    assert!(point.evaluation.error.unwrap().contains("impulses"));
+    let smooth = PaperCase::smooth(TF).unwrap();
+    let best = fastest(&smooth, &limits, &settings).unwrap();
+    println!(
+        "navy-3d-pulley, smooth profile, |u4| <= 150: T* = {:.4} s",
+        best.duration
+    );
+    assert!(
+        evaluate(&smooth, best.duration, &settings)
+            .0
+            .feasible::<Navy3dPulley, 12, 5, 4>(&limits)
+    );
+    assert_eq!(best.binding.name, "u4");
+}

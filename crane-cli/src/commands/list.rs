@@ -36,8 +36,8 @@ impl Visit for RowOf {
             Some(d) => format!("{} {}", d.dimension, if d.is_stable() { "stable" } else { "unstable" }),
             None => "?".into(),
         };
-        let path_order = <C::Model as CraneModel<N, M, A>>::STRUCTURE
-            .map_or_else(|| "?".into(), |s| s.path_order(A).to_string());
+        let path_order =
+            <C::Model as CraneModel<N, M, A>>::STRUCTURE.map_or_else(|| "?".into(), |s| s.path_order(A).to_string());
         Row {
             path_order,
             formulation: Formulation::default_for::<C, N, M, A>().name(),

@@ -102,10 +102,11 @@ mod tests {
     }
 
     /// The reference satisfies the declared crane's equations of motion
-    /// (the generated kernels): the constraint holds and `M q'' = f + B^T u
-    /// - G^T lambda` on every row, with `q''` from central differences of
-    /// the reference's `q'` (h = 1e-4: ~1e-8 of the accelerations; the
-    /// motor row's terms reach 1e4 N m through the belt, so 1e-4 absolute).
+    /// (the generated kernels): the constraint holds and
+    /// `M q'' = f + B^T u - G^T lambda` on every row, with `q''` from
+    /// central differences of the reference's `q'` (h = 1e-4: ~1e-8 of the
+    /// accelerations; the motor row's terms reach 1e4 N m through the belt,
+    /// so 1e-4 absolute).
     #[test]
     fn reference_satisfies_the_equations_of_motion() {
         let crane = ElasticDrive::default();
