@@ -1058,3 +1058,24 @@ fn a_path_too_rough_for_the_crane_is_reported() {
     assert_eq!(summary["path_smoothness"]["needed"], 6);
     assert_eq!(summary["path_smoothness"]["sufficient"], true);
 }
+
+/// A run that crosses t = 8192 s at dt = 0.001 (where an ulp of the time
+/// exceeds 1e-9 of the step) goes through: the move starts at 8191.5 s, so
+/// the crossing costs 1000 steps, not 8 million; its last row is at
+/// t1 = 8192.5 s.
+#[test]
+fn a_run_across_t_8192_goes_through() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("late.toml");
+    std::fs::write(&file, "t0 = 8191.5\nduration = 1.0\ndt = 0.001\n").unwrap();
+    let out = run_ok(
+        "navy-planar",
+        &["--scenario", file.to_str().unwrap()],
+        dir.path(),
+        "late",
+    );
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let last: f64 = csv.lines().last().unwrap().split(',').next().unwrap().parse().unwrap();
+    assert!((last - 8192.5).abs() < 1e-9, "{last}");
+    assert_eq!(csv.lines().count(), 1 + 1001);
+}

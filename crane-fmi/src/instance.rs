@@ -327,9 +327,17 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
             .run
             .as_mut()
             .ok_or("fmi2DoStep before fmi2ExitInitializationMode")?;
+        if !(t.is_finite() && h.is_finite()) {
+            return Err(format!(
+                "fmi2DoStep at t = {t} with h = {h}: the communication point and step must be finite"
+            ));
+        }
+        if !(h > 0.0) {
+            return Err(format!("communication step h = {h} s must be positive"));
+        }
         let now = run.stepper.advance().state().t;
         let scale = 1.0f64.max(now.abs()).max(h.abs());
-        if (t - now).abs() > 1e-9 * scale {
+        if !((t - now).abs() <= 1e-9 * scale) {
             return Err(format!("fmi2DoStep at t = {t}, but the instance is at t = {now}"));
         }
         let dt = run.stepper.advance().dt();

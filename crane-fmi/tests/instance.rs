@@ -259,3 +259,47 @@ fn a_newton_failure_is_an_error_of_its_step() {
     fmu.reset();
     assert!(fmu.setup_experiment(0.0).is_ok());
 }
+
+/// Long runs cross powers of two: past t = 8192 s an ulp of the time
+/// (1.8e-12 s) exceeds 1e-9 of dt = 0.001 s, and a host's `t + h` differs
+/// from the instance's `t0 + n dt` in its last bits. Started at 8191.9 s
+/// with dt = 0.001 and communication steps of 0.01 s (the host adding
+/// `h` to its own time), both the built-in move and the external target
+/// (whose internal steps go through `Stepper::step_to`) cross 8192 s; a NaN
+/// communication point and a non-positive step are errors.
+#[test]
+fn a_run_crosses_t_8192_and_odd_communication_points_are_errors() {
+    type D = navy_planar::Description;
+    let t0 = 8191.9;
+    for path in [0, 3] {
+        let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
+        fmu.setup_experiment(t0).unwrap();
+        fmu.enter_initialization_mode().unwrap();
+        fmu.set_real(&[vr::<D, 7, 3, 2>(Role::Dt)], &[0.001]).unwrap();
+        fmu.set_real(&[vr::<D, 7, 3, 2>(Role::T0)], &[t0]).unwrap();
+        fmu.set_integer(&[1], &[path]).unwrap();
+        fmu.exit_initialization_mode().unwrap();
+        if path == 3 {
+            // hold the load where it is: the target at rest
+            let refs: Vec<u32> = (0..2).map(|k| vr::<D, 7, 3, 2>(Role::Target(k, 0))).collect();
+            let mut at = vec![0.0; 2];
+            let coords: Vec<u32> = (5..7).map(|k| vr::<D, 7, 3, 2>(Role::Coordinate(k))).collect();
+            fmu.get_real(&coords, &mut at).unwrap();
+            fmu.set_real(&refs, &at).unwrap();
+        }
+        let mut t = t0;
+        for _ in 0..20 {
+            fmu.do_step(t, 0.01)
+                .unwrap_or_else(|e| panic!("path {path} at t = {t}: {e}"));
+            t += 0.01;
+        }
+        assert!(fmu.time() > 8192.09, "path {path}: {}", fmu.time());
+    }
+    let mut fmu = started::<D, 7, 3, 2>();
+    assert!(fmu.do_step(f64::NAN, 0.01).unwrap_err().contains("finite"));
+    let mut fmu2 = started::<D, 7, 3, 2>();
+    assert!(fmu2.do_step(0.0, 0.0).unwrap_err().contains("must be positive"));
+    let mut fmu3 = started::<D, 7, 3, 2>();
+    assert!(fmu3.do_step(0.0, -0.01).unwrap_err().contains("must be positive"));
+    fmu.reset();
+}

@@ -198,12 +198,15 @@ where
         self.advance(t, &drive)
     }
 
-    /// Advance one step to time `t`, which must be `t_n + dt`
-    /// ([`Error::WrongStepTime`] otherwise), with the given drive (the load
-    /// target `gamma, gamma', gamma''` at `t` for the servo problems).
+    /// Advance one step to time `t`, which must be
+    /// [`next_time`](Self::next_time) `= t0 + (n + 1) dt` to within 1e-9 of
+    /// the step and a few ulps of `t` ([`Error::WrongStepTime`] otherwise),
+    /// with the given drive (the load target `gamma, gamma', gamma''` at `t`
+    /// for the servo problems). The step is taken at `next_time`.
     pub fn step_to(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
-        check_step_time(t, self.state.t, self.dt)?;
-        self.advance(t, drive)
+        let expected = self.next_time();
+        check_step_time(t, expected, self.dt)?;
+        self.advance(expected, drive)
     }
 
     /// One step: the scheme's formula, the prediction, Newton, the state.
@@ -293,15 +296,15 @@ where
     }
 }
 
-/// Refuse a step to `t` that is not `t_n + dt` (to 1e-9 of the step).
-fn check_step_time(t: f64, t_prev: f64, dt: f64) -> Result<(), Error> {
-    if (t - (t_prev + dt)).abs() <= 1e-9 * dt {
+/// Refuse a step to `t` that is not `expected = t0 + (n + 1) dt`: to 1e-9
+/// of the step, plus four ulps of the time (past t = 8192 s an ulp is 1.8e-12
+/// s, more than 1e-9 of dt = 0.001 s, and a host's `t_n + dt` may differ from
+/// `t0 + (n + 1) dt` in its last bits).
+fn check_step_time(t: f64, expected: f64, dt: f64) -> Result<(), Error> {
+    if (t - expected).abs() <= 1e-9 * dt + 4.0 * f64::EPSILON * expected.abs() {
         Ok(())
     } else {
-        Err(Error::WrongStepTime {
-            t,
-            expected: t_prev + dt,
-        })
+        Err(Error::WrongStepTime { t, expected })
     }
 }
 
@@ -411,8 +414,9 @@ where
             return self.second.step_to(t, drive);
         };
         // the two start alike and step in lockstep: one check of the time
-        check_step_time(t, self.second.state.t, self.second.dt)?;
-        let report = first.advance(t, drive)?;
+        let t_next = self.second.next_time();
+        check_step_time(t, t_next, self.second.dt)?;
+        let report = first.advance(t_next, drive)?;
         let state = first.state;
         self.second.follow(&state)?;
         self.first_steps += 1;
@@ -448,5 +452,55 @@ where
     }
     fn path_order_covered(&self) -> Option<usize> {
         self.second.problem.path_order_covered()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::redundant::Redundant;
+    use crate::test_support::Gantry;
+    use crate::trajectory::FromFn;
+    use nalgebra::SVector;
+
+    /// A controller that adds `dt` to its own clock reaches `t_n + dt` only
+    /// to a few ulps of `t0 + (n + 1) dt`, more than 1e-9 of dt once t
+    /// passes 8192 s at dt = 0.001: `step_to` takes those times (and steps at
+    /// `t0 + (n + 1) dt`), and refuses one a tenth of a step off.
+    #[test]
+    fn step_to_takes_a_host_clock_across_a_power_of_two() {
+        let hold = FromFn(|_t: f64, k: usize| {
+            if k == 0 {
+                SVector::<f64, 2>::new(0.0, -5.0)
+            } else {
+                SVector::zeros()
+            }
+        });
+        let t0 = 8191.99;
+        let start = State {
+            t: t0,
+            q: SVector::from([0.0, 5.0, 0.0, -5.0]),
+            v: SVector::zeros(),
+            u: SVector::from([0.0, -0.1 * 200.0 * 9.81 / 0.5]),
+            lambda: SVector::from([200.0 * 9.81 / 5.0]),
+        };
+        let options = Options::stepping(0.001).unwrap();
+        let mut stepper = Stepper::new(Redundant::new(&Gantry, &hold), &start, &options).unwrap();
+        let mut clock = t0;
+        let mut off_by = 0.0f64;
+        for _ in 0..20 {
+            clock += 0.001;
+            off_by = off_by.max((clock - stepper.next_time()).abs());
+            let target = [0, 1, 2].map(|k| hold.0(clock, k));
+            stepper.step_to(clock, &target).unwrap();
+        }
+        assert!(
+            off_by > 1e-12,
+            "the clock drifted by {off_by:e}: the test needs more than 1e-9 dt"
+        );
+        assert!((stepper.state().t - (t0 + 0.02)).abs() < 1e-9);
+        let target = [0, 1, 2].map(|k| hold.0(clock, k));
+        let wrong = stepper.step_to(clock + 0.0011, &target);
+        assert!(matches!(wrong, Err(Error::WrongStepTime { .. })), "{wrong:?}");
     }
 }
