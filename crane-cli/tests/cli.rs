@@ -1079,3 +1079,40 @@ fn a_run_across_t_8192_goes_through() {
     assert!((last - 8192.5).abs() < 1e-9, "{last}");
     assert_eq!(csv.lines().count(), 1 + 1001);
 }
+
+/// The relative error of eq. (48) is reported only where a step lands at
+/// t = 1.5 s: at dt = 0.8 (steps at 0.8, 1.6, ...) the run says so and
+/// summary.json has null, at dt = 0.5 it is there.
+#[test]
+fn the_error_at_1_5_s_needs_a_step_there() {
+    let dir = tempfile::tempdir().unwrap();
+    for (dt, expected) in [("0.8", false), ("0.5", true)] {
+        let out = dir.path().join(dt);
+        let result = crane(&["run", "navy-planar", "--dt", dt, "--out", out.to_str().unwrap()]);
+        assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+        let stdout = String::from_utf8_lossy(&result.stdout);
+        assert_eq!(
+            stdout.contains("relative error of u at t = 1.5 s"),
+            expected,
+            "{stdout}"
+        );
+        assert_eq!(stdout.contains("no step lands at t = 1.5 s"), !expected, "{stdout}");
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        assert_eq!(summary["reference"]["e_u_at_1_5s"].is_null(), !expected);
+    }
+}
+
+/// Gravity points down in every built-in crane's frame (z up, forces
+/// `-m g`): each declares `g` positive, so a flipped sign is refused before
+/// a run, not reported as slack ropes with 148 % error.
+#[test]
+fn gravity_with_the_wrong_sign_is_refused() {
+    for e in crane_models::CATALOG {
+        expect_error(
+            e.name,
+            "[parameters]\ng = -9.81\n",
+            &["`parameters.g` = -9.81 must be positive"],
+        );
+    }
+}

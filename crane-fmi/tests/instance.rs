@@ -303,3 +303,17 @@ fn a_run_crosses_t_8192_and_odd_communication_points_are_errors() {
     assert!(fmu3.do_step(0.0, -0.01).unwrap_err().contains("must be positive"));
     fmu.reset();
 }
+
+/// `g = -9.81` is refused at initialisation (every built-in declares `g`
+/// positive), with the parameter named.
+#[test]
+fn gravity_with_the_wrong_sign_is_an_fmi_error() {
+    type D = navy_planar::Description;
+    let g = crane_runtime::CraneModel::<7, 3, 2>::parameter_values(&navy_planar::NavyPlanar::default()).len() - 1;
+    let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
+    fmu.setup_experiment(0.0).unwrap();
+    fmu.enter_initialization_mode().unwrap();
+    fmu.set_real(&[vr::<D, 7, 3, 2>(Role::Parameter(g))], &[-9.81]).unwrap();
+    let error = fmu.exit_initialization_mode().unwrap_err();
+    assert!(error.contains("`g`") && error.contains("positive"), "{error}");
+}

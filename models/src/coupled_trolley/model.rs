@@ -31,7 +31,7 @@ crane_model! {
     /// A planar trolley crane with a constant trolley-load coupling c in the
     /// kinetic energy (not flat: unstable internal dynamics).
     pub struct CoupledTrolley {
-        params { mt: positive = 10.0, m: positive = 100.0, c = 2.0, g = 9.81 }
+        params { mt: positive = 10.0, m: positive = 100.0, c = 2.0, g: positive = 9.81 }
         robot  [s, L]
         load   [x, z]
         inputs [u1, u2]

@@ -46,7 +46,7 @@ crane_model! {
             /// Sling length from the hook to the load, m.
             l_s: positive = 2.0,
             /// Gravity, m/s^2.
-            g = 9.81,
+            g: positive = 9.81,
         }
         robot  [s, L, xh, zh]
         load   [x, z]

@@ -47,7 +47,7 @@ crane_model! {
             /// Load mass, kg.
             m_l: positive = 200.0,
             /// Gravity, m/s^2.
-            g = 9.81,
+            g: positive = 9.81,
         }
         robot  [phi, s, L]
         load   [x, z]

@@ -29,7 +29,7 @@ use crane_macros::crane_model;
 crane_model! {
     /// 3D gantry crane: bridge (X), trolley (Y), hoist winch (L), load on one rope.
     pub struct Gantry3d {
-        params { m_b: positive = 400.0, m_t: positive = 100.0, m_l: positive = 500.0, J: positive = 0.05, r: positive = 0.1, g = 9.81 }
+        params { m_b: positive = 400.0, m_t: positive = 100.0, m_l: positive = 500.0, J: positive = 0.05, r: positive = 0.1, g: positive = 9.81 }
         robot  [X, Y, L]
         load   [x, y, z]
         inputs [u1, u2, u3]

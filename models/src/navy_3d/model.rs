@@ -65,7 +65,7 @@ crane_model! {
             /// Position of winch 1 on the boom, `A = beta1 P` (sect. 6.1).
             beta1 = 0.5,
             /// Gravity, m/s^2 (docs/errata.md: implicit, 9.81 throughout).
-            g = 9.81
+            g: positive = 9.81
         }
         robot  [L1, L2, L0, x0, y0, z0, x2, y2]   // p, eq. (68)
         load   [x, y, z]                          // x, eq. (69)

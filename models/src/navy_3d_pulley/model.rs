@@ -73,7 +73,7 @@ crane_model! {
             /// docs/errata.md: `beta2 = 3/2`, so `|PS| = s = 5 m`).
             beta2 = 1.5,
             /// Gravity, m/s^2 (docs/errata.md: implicit, 9.81 throughout).
-            g = 9.81,
+            g: positive = 9.81,
         }
         robot  [L1, L2, L3, L0, x0, y0, x3, y3]   // p, eq. (89)
         load   [x, y, z, z0]                      // x, eq. (90)

@@ -24,7 +24,7 @@ crane_model! {
     /// from P to the pulley (eqs. 25-35).
     pub struct NavyPlanar {
         params { m_l: positive = 100.0, J1: positive = 0.1, J2: positive = 0.1, r1: positive = 0.1, r2: positive = 0.1,
-                 alpha = PI / 3.0, l: positive = 10.0, g = 9.81 }
+                 alpha = PI / 3.0, l: positive = 10.0, g: positive = 9.81 }
         robot  [L1, L2, L0, x0, z0]      // p: the first n-a coordinates
         load   [x, z]                    // x: outputs, prescribed by gamma(t)
         inputs [u1, u2]

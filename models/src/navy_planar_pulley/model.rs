@@ -75,7 +75,7 @@ crane_model! {
             /// Distance `s: positive = |SP|` between winches 2 and 3 on the boom, in m.
             s = 5.0,
             /// Gravitational acceleration, in m/s^2.
-            g = 9.81,
+            g: positive = 9.81,
         }
         robot  [L1, L2, L3, L0, x0]      // p (eq. 49)
         load   [x, z, z0]                // x: flat outputs (eq. 50)

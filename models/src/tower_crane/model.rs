@@ -39,7 +39,7 @@ crane_model! {
     /// Rotary tower crane: slewing jib, trolley on the jib, hoist winch, load on one rope.
     pub struct TowerCrane {
         params { J_jib: positive = 2.0e5, R: positive = 30.0, H: positive = 20.0, m_t: positive = 200.0, J_w: positive = 1.0, r_w: positive = 0.2,
-                 m_l: positive = 1000.0, g = 9.81 }
+                 m_l: positive = 1000.0, g: positive = 9.81 }
         robot  [x1, y1, xt, yt, L]
         load   [x, y, z]
         inputs [u1, u2, u3]
