@@ -19,6 +19,10 @@ pub enum CliError {
     NoRepeats,
     #[error("--plant `{0}`: expected NAME=VALUE, e.g. --plant m_l=110")]
     Plant(String),
+    #[error("--settle {0}: the settling window must be a positive number of seconds")]
+    Settle(f64),
+    #[error("the scenario's [plant] table ({0}) applies only to a replay: add --replay")]
+    PlantWithoutReplay(String),
     #[error("--feedback `{0}`: {1}")]
     Feedback(String, crane_models::study::replay::BadFeedback),
     #[error(transparent)]

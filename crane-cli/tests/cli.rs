@@ -1116,3 +1116,36 @@ fn gravity_with_the_wrong_sign_is_refused() {
         );
     }
 }
+
+/// The replay's options do nothing without `--replay`, so they are refused
+/// without it (the scenario's `[plant]` too), and a settling window must be
+/// positive; a negative number after a flag is a value to check, not a flag.
+#[test]
+fn replay_options_without_replay_and_negative_values_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x");
+    let out = out.to_str().unwrap();
+    let stderr = |args: &[&str]| {
+        let result = crane(&[&["run", "navy-planar", "--quiet", "--out", out], args].concat());
+        assert!(!result.status.success(), "{args:?} was accepted");
+        String::from_utf8_lossy(&result.stderr).to_string()
+    };
+    for args in [
+        &["--plant", "m_l=110"][..],
+        &["--settle", "5"],
+        &["--feedback", "default"],
+    ] {
+        assert!(stderr(args).contains("--replay"), "{args:?}");
+    }
+    for settle in ["-5", "0", "inf"] {
+        assert!(
+            stderr(&["--replay", "--settle", settle]).contains("the settling window must be a positive number"),
+            "{settle}"
+        );
+    }
+    let file = dir.path().join("plant.toml");
+    std::fs::write(&file, "[plant]\nm_l = 110\n").unwrap();
+    assert!(stderr(&["--scenario", file.to_str().unwrap()]).contains("[plant] table (m_l) applies only to a replay"));
+    assert!(stderr(&["--dt", "-0.01"]).contains("must be a positive number of seconds, got -0.01"));
+    assert!(!std::path::Path::new(out).join("results.csv").exists());
+}

@@ -14,6 +14,8 @@ use crate::scenario::{self, Overrides};
 
 /// The flags of `crane bench`.
 #[derive(clap::Args, Debug)]
+// a negative number is a value to check ("--dt -0.01"), not a flag
+#[command(allow_negative_numbers = true)]
 pub struct BenchArgs {
     /// Model name (see `crane list`).
     model: String,

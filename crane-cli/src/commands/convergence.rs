@@ -17,6 +17,8 @@ use crate::{CliError, plot};
 
 /// The flags of `crane convergence`.
 #[derive(clap::Args, Debug)]
+// a negative number is a value to check ("--dt -0.01"), not a flag
+#[command(allow_negative_numbers = true)]
 pub struct ConvergenceArgs {
     /// Model name (see `crane list`); it needs an analytical reference.
     model: String,

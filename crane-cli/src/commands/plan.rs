@@ -42,6 +42,8 @@ pub struct PlanFlags {
 
 /// The flags of `crane fastest`.
 #[derive(clap::Args, Debug)]
+// a negative number is a value to check, not a flag
+#[command(allow_negative_numbers = true)]
 pub struct FastestArgs {
     /// Model name (see `crane list`).
     model: String,
@@ -57,6 +59,8 @@ pub struct FastestArgs {
 
 /// The flags of `crane sweep`.
 #[derive(clap::Args, Debug)]
+// a negative number is a value to check, not a flag
+#[command(allow_negative_numbers = true)]
 pub struct SweepArgs {
     /// Model name (see `crane list`).
     model: String,

@@ -17,6 +17,8 @@ use crate::{CliError, output, plot, progress, snapshots};
 
 /// The flags of `crane run`.
 #[derive(clap::Args, Debug)]
+// a negative number is a value to check ("--dt -0.01"), not a flag
+#[command(allow_negative_numbers = true)]
 pub struct RunArgs {
     /// Model name (see `crane list`).
     model: String,
@@ -52,17 +54,17 @@ pub struct RunArgs {
     replay: bool,
     /// With --replay: a plant parameter that differs from the planner's,
     /// NAME=VALUE (repeatable; adds to the scenario's [plant] table).
-    #[arg(long = "plant", value_name = "NAME=VALUE")]
+    #[arg(long = "plant", value_name = "NAME=VALUE", requires = "replay")]
     plant: Vec<String>,
     /// With --replay: the settling window in s (default: twice the longest
     /// rope pendulum period 2 pi sqrt(L/g) at the end).
-    #[arg(long, value_name = "SECONDS")]
+    #[arg(long, value_name = "SECONDS", requires = "replay")]
     settle: Option<f64>,
     /// With --replay: add a PD law on the robot coordinates about the
     /// planned p(t): `default` (gains from the model) or `KP,KD` (the same
     /// stiffness and damping on every robot coordinate); the replay runs
     /// open loop too and replay.svg shows both.
-    #[arg(long, value_name = "default|KP,KD")]
+    #[arg(long, value_name = "default|KP,KD", requires = "replay")]
     feedback: Option<String>,
 }
 
@@ -90,6 +92,11 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
                 .map_err(|e| CliError::Feedback(text.to_string(), e))
         })
         .transpose()?;
+    if let Some(settle) = args.settle
+        && !(settle > 0.0 && settle.is_finite())
+    {
+        return Err(CliError::Settle(settle));
+    }
     let replay = args.replay.then_some(ReplayRequest {
         plant,
         settle: args.settle,
@@ -127,6 +134,10 @@ impl Visit for Run<'_> {
     type Output = Result<Summary, CliError>;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
         let (case, settings) = scenario::build::<C, N, M, A>(self.file, &self.overrides)?;
+        if self.replay.is_none() && !settings.plant.is_empty() {
+            let names: Vec<&str> = settings.plant.iter().map(|(name, _)| name.as_str()).collect();
+            return Err(CliError::PlantWithoutReplay(names.join(", ")));
+        }
         let replay = self.replay.map(|request| ReplayRequest {
             plant: settings.plant.iter().cloned().chain(request.plant).collect(),
             ..request
