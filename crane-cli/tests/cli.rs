@@ -1149,3 +1149,31 @@ fn replay_options_without_replay_and_negative_values_are_refused() {
     assert!(stderr(&["--dt", "-0.01"]).contains("must be a positive number of seconds, got -0.01"));
     assert!(!std::path::Path::new(out).join("results.csv").exists());
 }
+
+/// `crane fmu --library` takes only an FMU's shared library: an empty file
+/// or another program is refused and no .fmu is written.
+#[test]
+fn an_fmu_needs_an_fmu_library() {
+    let dir = tempfile::tempdir().unwrap();
+    let empty = dir.path().join("empty.so");
+    std::fs::write(&empty, b"").unwrap();
+    let not_fmu = dir.path().join("text.so");
+    std::fs::write(&not_fmu, b"\x7fELF but nothing else").unwrap();
+    for (library, needle) in [
+        (&empty, "the file is empty"),
+        (&not_fmu, "does not export the FMI 2.0 functions"),
+    ] {
+        let out = dir.path().join("crane.fmu");
+        let result = crane(&[
+            "fmu",
+            "navy-planar",
+            "--library",
+            library.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(!result.status.success() && stderr.contains(needle), "{stderr}");
+        assert!(!out.exists());
+    }
+}

@@ -25,6 +25,14 @@ pub enum PackageError {
         /// The error.
         source: std::io::Error,
     },
+    /// The library is not an FMU's shared library.
+    #[error("{path} is not an FMU library: {reason}")]
+    NotALibrary {
+        /// The file given.
+        path: PathBuf,
+        /// What it lacks.
+        reason: &'static str,
+    },
     /// The zip writer.
     #[error("writing {path}: {source}")]
     Zip {
@@ -48,7 +56,29 @@ pub fn package<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
 ) -> Result<(), PackageError> {
     let (xml, _) = model_description::<C, N, M, A>()?;
     let binary = std::fs::read(library).map_err(io(format!("reading the FMU library {}", library.display())))?;
+    check_library(&binary).map_err(|reason| PackageError::NotALibrary {
+        path: library.to_path_buf(),
+        reason,
+    })?;
     write_archive(&xml, &model_identifier(C::NAME), &binary, out)
+}
+
+/// Why `binary` cannot be an FMU's shared library for linux64, if it cannot:
+/// an ELF file that names the FMI 2.0 entry points (their symbol names are
+/// in its dynamic symbol table).
+fn check_library(binary: &[u8]) -> Result<(), &'static str> {
+    if !binary.starts_with(b"\x7fELF") {
+        return Err(if binary.is_empty() {
+            "the file is empty"
+        } else {
+            "not an ELF shared library"
+        });
+    }
+    let names = |symbol: &[u8]| binary.windows(symbol.len()).any(|w| w == symbol);
+    if !(names(b"fmi2Instantiate") && names(b"fmi2DoStep")) {
+        return Err("it does not export the FMI 2.0 functions (fmi2Instantiate, fmi2DoStep)");
+    }
+    Ok(())
 }
 
 /// Zip `xml` and `binary` into `out` (through a temporary file).
