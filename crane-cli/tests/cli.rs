@@ -1177,3 +1177,35 @@ fn an_fmu_needs_an_fmu_library() {
         assert!(!out.exists());
     }
 }
+
+/// Planning that could not end is refused up front: a sweep larger than
+/// `plan::MAX_SWEEP_POINTS` (one axis or the product), a parameter swept
+/// twice, and a bisection tolerance below what f64 durations resolve.
+#[test]
+fn planning_that_cannot_end_is_refused() {
+    let stderr = |args: &[&str]| {
+        let result = crane(args);
+        assert!(!result.status.success(), "{args:?} was accepted");
+        String::from_utf8_lossy(&result.stderr).to_string()
+    };
+    assert!(stderr(&["sweep", "navy-planar", "--param", "m_l=1:2:100000000"]).contains("1 <= COUNT <= 1000000"));
+    assert!(
+        stderr(&[
+            "sweep",
+            "navy-planar",
+            "--param",
+            "m_l=1:2:1000",
+            "--param",
+            "l=5:10:1001"
+        ])
+        .contains("the sweep has 1001000 points")
+    );
+    assert!(stderr(&["sweep", "navy-planar", "--param", "m_l=1:2:3", "--param", "m_l=2:3:3"]).contains("given twice"));
+    for tolerance in ["1e-300", "1e-16"] {
+        assert!(
+            stderr(&["fastest", "navy-planar", "--limit", "u2=150", "--tolerance", tolerance])
+                .contains("below what the bisection resolves"),
+            "{tolerance}"
+        );
+    }
+}

@@ -346,6 +346,10 @@ pub fn evaluate<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
     evaluate_model(case, case.model().clone(), duration, settings)
 }
 
+/// The most points a sweep may have (each is a run of the inverse
+/// dynamics; a million take about a quarter of an hour on two cores).
+pub const MAX_SWEEP_POINTS: usize = 1_000_000;
+
 /// Evaluate `case` with `model` instead of its own, scaled to `duration`.
 fn evaluate_model<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
@@ -503,6 +507,17 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
             settings.tolerance, settings.dt
         )));
     }
+    let spec = case.path().spec();
+    let own = spec.t1 - spec.t0;
+    // below this the bracket cannot shrink (durations are f64): the
+    // bisection would not end
+    let resolvable = 1e-12 * own.abs();
+    if !(settings.tolerance >= resolvable) {
+        return Err(PlanError::Settings(format!(
+            "tolerance {:e} s is below what the bisection resolves on a {own} s move: give at least {resolvable:e} s",
+            settings.tolerance
+        )));
+    }
     impulses(case)?;
     let mut evaluations = 0;
     // one evaluation, kept: the last infeasible (`below`) and feasible
@@ -513,8 +528,6 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
         let ok = evaluation.feasible::<C::Model, N, M, A>(limits);
         (ok, evaluation, solution)
     };
-    let spec = case.path().spec();
-    let own = spec.t1 - spec.t0;
     // bracket: (infeasible lo, feasible hi)
     let (mut lo, mut hi, mut below, mut above) = match probe(own) {
         (true, evaluation, solution) => {

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use crane_models::plan::{self, Limits, Settings};
+use crane_models::plan::{self, Limits, MAX_SWEEP_POINTS, Settings};
 use crane_models::registry::Visit;
 use crane_models::{Case, Crane};
 use crane_runtime::{CraneModel, Options, Scheme};
@@ -166,6 +166,21 @@ impl Visit for Sweep<'_> {
             .iter()
             .map(|p| range("--param", p))
             .collect::<Result<Vec<_>, _>>()?;
+        for (i, (name, _)) in params.iter().enumerate() {
+            if params[..i].iter().any(|(other, _)| other == name) {
+                return Err(CliError::Planning(format!(
+                    "--param `{name}` is given twice: sweep each parameter once"
+                )));
+            }
+        }
+        let points =
+            params.iter().map(|(_, values)| values.len() as f64).product::<f64>() * self.durations.len().max(1) as f64;
+        if points > plan::MAX_SWEEP_POINTS as f64 {
+            return Err(CliError::Planning(format!(
+                "the sweep has {points:.0} points, each a run; at most {} can be held",
+                plan::MAX_SWEEP_POINTS
+            )));
+        }
         grid(
             &case,
             &params,
@@ -185,7 +200,8 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
     let durations = match args.duration.as_deref() {
         Some(spec) => values(spec).filter(|d| d.iter().all(|&x| x > 0.0)).ok_or_else(|| {
             CliError::Planning(format!(
-                "--duration `{spec}`: expected LOW:HIGH:COUNT of positive durations, e.g. 3:5:5"
+                "--duration `{spec}`: expected LOW:HIGH:COUNT of positive durations, 1 <= COUNT <= {}, e.g. 3:5:5",
+                plan::MAX_SWEEP_POINTS
             ))
         })?,
         None => Vec::new(),
@@ -242,7 +258,8 @@ fn limits<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usi
 fn range(flag: &str, item: &str) -> Result<(String, Vec<f64>), CliError> {
     let bad = || {
         CliError::Planning(format!(
-            "{flag} `{item}`: expected NAME=LOW:HIGH:COUNT with COUNT >= 1, e.g. {flag} m_l=80:120:5"
+            "{flag} `{item}`: expected NAME=LOW:HIGH:COUNT with 1 <= COUNT <= {}, e.g. {flag} m_l=80:120:5",
+            plan::MAX_SWEEP_POINTS
         ))
     };
     let (name, spec) = item.split_once('=').ok_or_else(bad)?;
@@ -255,7 +272,7 @@ fn values(spec: &str) -> Option<Vec<f64>> {
     let [low, high, count] = parts[..] else { return None };
     let (low, high): (f64, f64) = (low.trim().parse().ok()?, high.trim().parse().ok()?);
     let count: usize = count.trim().parse().ok()?;
-    if count == 0 || !low.is_finite() || !high.is_finite() {
+    if count == 0 || count > MAX_SWEEP_POINTS || !low.is_finite() || !high.is_finite() {
         return None;
     }
     Some(
