@@ -833,8 +833,9 @@ fn unstable_internal_dynamics_are_reported_and_strict_fails_on_them() {
 #[test]
 fn fmu_packages_the_description_and_the_library() {
     let dir = tempfile::tempdir().unwrap();
+    // a stand-in with what the packager checks: ELF magic and the FMI names
     let library = dir.path().join("libfake.so");
-    std::fs::write(&library, b"not really a library").unwrap();
+    std::fs::write(&library, b"\x7fELF stand-in naming fmi2Instantiate and fmi2DoStep").unwrap();
     let out = dir.path().join("fmus").join("gantry-3d.fmu");
     let result = crane(&[
         "fmu",
@@ -1208,4 +1209,51 @@ fn planning_that_cannot_end_is_refused() {
             "{tolerance}"
         );
     }
+}
+
+/// A load path through the pulley (navy-planar to `end = [-3, 5]`, above
+/// the boom tip) drives ropes to negative lengths: the run warns naming
+/// each rope, its length and the time, summary.json has the shortest
+/// lengths, and `--strict` fails; the default run's ropes stay positive
+/// and its round-off tension of -2.6e-13 N prints as 0.000.
+#[test]
+fn a_rope_of_non_positive_length_is_reported_and_infeasible() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("through.toml");
+    std::fs::write(&file, "end = [-3, 5]\n").unwrap();
+    let out = dir.path().join("through");
+    let args = [
+        "run",
+        "navy-planar",
+        "--scenario",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let result = crane(&args);
+    assert!(result.status.success());
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        stderr.contains("rope N1 of navy-planar (constraint `rope1`) has the length -4.3333 m at t = 2.79 s"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("rope N2 of navy-planar (constraint `hoist`) has the length -11.6243 m"),
+        "{stderr}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(summary["ropes"][0]["min_length"].as_f64().unwrap() < 0.0);
+    let strict = crane(&[&args[..], &["--strict", "--quiet"]].concat());
+    assert!(!strict.status.success());
+    assert!(String::from_utf8_lossy(&strict.stderr).contains("rope N1 has the non-positive length -4.333 m"));
+    let default = crane(&[
+        "run",
+        "navy-planar",
+        "--out",
+        dir.path().join("default").to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&default.stdout);
+    assert!(stdout.contains("rope N1 stays taut: min tension 0.000 N"), "{stdout}");
+    assert!(!String::from_utf8_lossy(&default.stderr).contains("length"));
 }

@@ -404,6 +404,7 @@ mod tests {
             tensions: vec![],
             min_norm_steps: 0,
             path_order_covered: None,
+            shortest_ropes: vec![],
             redundant_start_steps: 0,
         };
         let inputs = InterpolatedInputs::new(&run, 4);

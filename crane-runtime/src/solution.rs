@@ -43,6 +43,10 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     /// ([`Problem::path_order_covered`](crate::problem::Problem::path_order_covered));
     /// `None` if not a servo problem's run.
     pub path_order_covered: Option<usize>,
+    /// The shortest length of each rope over the run and when, `(L, t)` in
+    /// the order of `info.ropes` (a length at or below 0 is outside the
+    /// crane's workspace: the path asks for what no crane can do).
+    pub shortest_ropes: Vec<(f64, f64)>,
     /// Of a minimal-coordinate run: how many of the first steps were taken
     /// in redundant coordinates because a rope was (nearly) slack at the
     /// start ([`crate::minimal::DEGENERATE_TENSION_RATIO`]); 0 otherwise.
@@ -68,6 +72,7 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
             tensions: Vec::new(),
             min_norm_steps: 0,
             path_order_covered: None,
+            shortest_ropes: vec![(f64::INFINITY, f64::NAN); ropes],
             redundant_start_steps: 0,
         };
         solution.states.try_reserve_exact(states).map_err(|_| too_many())?;
@@ -82,9 +87,9 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         Ok(solution)
     }
 
-    /// Append a state with its Newton counts and rope tensions `N = lambda L`
-    /// (`lengths` is scratch space, one entry per rope). Does not allocate
-    /// within the reserved capacity.
+    /// Append a state with its Newton counts and rope tensions `N = lambda L`,
+    /// and keep the ropes' shortest lengths (`lengths` is scratch space, one
+    /// entry per rope). Does not allocate within the reserved capacity.
     pub fn push<Mdl: CraneModel<N, M, A>>(
         &mut self,
         model: &Mdl,
@@ -97,8 +102,11 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         self.newton_iterations.push(iterations);
         self.min_norm_steps += min_norm_steps;
         model.rope_lengths(&state.q, lengths);
-        for (rope, length) in self.info.ropes.iter().zip(lengths.iter()) {
+        for ((rope, &length), shortest) in self.info.ropes.iter().zip(lengths.iter()).zip(&mut self.shortest_ropes) {
             self.tensions.push(state.lambda[rope.constraint] * length);
+            if !(length >= shortest.0) {
+                *shortest = (length, state.t);
+            }
         }
     }
 

@@ -290,14 +290,24 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
         ));
     }
     for r in &summary.ropes {
+        if !(r.min_length > 0.0) {
+            lines.push(format!(
+                "WARNING: rope {} has the non-positive length {:.3} m at t = {:.3} s",
+                r.name, r.min_length, r.t_min_length
+            ));
+            continue;
+        }
         match r.first_slack {
             Some(t) => lines.push(format!(
                 "WARNING: rope {} goes slack at t = {t:.3} s (min tension {:.3e} N)",
                 r.name, r.min_tension
             )),
+            // round-off below the printed digits is no negative tension
             None => lines.push(format!(
                 "rope {} stays taut: min tension {:.3} N at t = {:.3} s",
-                r.name, r.min_tension, r.t_min
+                r.name,
+                if r.min_tension.abs() < 5e-4 { 0.0 } else { r.min_tension },
+                r.t_min
             )),
         }
     }

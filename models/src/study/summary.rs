@@ -29,6 +29,13 @@ pub struct RopeSummary {
     /// First time the rope is slack ([`below_floor`] 0; ropes only pull, a
     /// negative tension is infeasible).
     pub first_slack: Option<f64>,
+    /// The name of the rope's constraint, e.g. `hoist`.
+    pub constraint: String,
+    /// The rope's shortest length over the run, m (at or below 0: the path
+    /// leaves the crane's workspace).
+    pub min_length: f64,
+    /// When, s.
+    pub t_min_length: f64,
 }
 
 /// Errors against the analytical reference.
@@ -267,11 +274,15 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
             let (t_min, min_tension) = series()
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .unwrap_or((f64::NAN, f64::NAN));
+            let (min_length, t_min_length) = solution.shortest_ropes.get(r).copied().unwrap_or((f64::NAN, f64::NAN));
             RopeSummary {
                 name: rope.tension.to_string(),
                 min_tension,
                 t_min,
                 first_slack: first_slack(solution, r),
+                constraint: info.constraints.get(rope.constraint).copied().unwrap_or("").to_string(),
+                min_length,
+                t_min_length,
             }
         })
         .collect();
@@ -344,11 +355,18 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
     let mut out: Vec<String> = summary
         .ropes
         .iter()
-        .filter_map(|r| {
-            r.first_slack
-                .map(|t| format!("rope {} goes slack at t = {t:.3} s", r.name))
+        .filter(|r| !(r.min_length > 0.0))
+        .map(|r| {
+            format!(
+                "rope {} has the non-positive length {:.3} m at t = {:.3} s (outside the crane's workspace)",
+                r.name, r.min_length, r.t_min_length
+            )
         })
         .collect();
+    out.extend(summary.ropes.iter().filter_map(|r| {
+        r.first_slack
+            .map(|t| format!("rope {} goes slack at t = {t:.3} s", r.name))
+    }));
     out.extend(summary.torque_limits.iter().filter_map(|l| {
         l.first_violation
             .map(|t| format!("|{}| exceeds its limit {} N m at t = {t:.3} s", l.name, l.limit))

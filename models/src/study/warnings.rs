@@ -42,6 +42,21 @@ pub enum Warning {
         /// The path order the formulation covers.
         covered: usize,
     },
+    /// A rope's length reaches zero or below during the run: the path leaves
+    /// the crane's workspace (the start refuses such a state; along the
+    /// run the equations still solve, on the mirror side of the rope).
+    NonPositiveRopeLength {
+        /// The crane's name.
+        model: String,
+        /// The rope's tension name, e.g. `N2`.
+        rope: String,
+        /// Its constraint's name.
+        constraint: String,
+        /// Its shortest length, m.
+        length: f64,
+        /// When, s.
+        at: f64,
+    },
     /// An input exceeds [`RUNAWAY_FACTOR`](crane_runtime::internal::RUNAWAY_FACTOR)
     /// times its size at the start.
     Runaway {
@@ -78,6 +93,18 @@ impl fmt::Display for Warning {
                  derivative {} jumps, and the computed ones grow there as dt shrinks (use a smoother path, e.g. \
                  trajectory = \"smooth-three-phase\")",
                 continuous + 1
+            ),
+            Warning::NonPositiveRopeLength {
+                model,
+                rope,
+                constraint,
+                length,
+                at,
+            } => write!(
+                f,
+                "rope {rope} of {model} (constraint `{constraint}`) has the length {length:.4} m at t = {} s: the \
+                 path leaves the crane's workspace, and the computed motion is not one the crane can make",
+                Seconds(*at)
             ),
             Warning::BeyondFormulation { model, needed, covered } => write!(
                 f,
@@ -121,6 +148,15 @@ pub fn warnings(summary: &Summary) -> Vec<Warning> {
             model: model.clone(),
             needed: smooth.needed,
             continuous: smooth.continuous,
+        });
+    }
+    for r in summary.ropes.iter().filter(|r| !(r.min_length > 0.0)) {
+        out.push(Warning::NonPositiveRopeLength {
+            model: model.clone(),
+            rope: r.name.clone(),
+            constraint: r.constraint.clone(),
+            length: r.min_length,
+            at: r.t_min_length,
         });
     }
     if let Some(at) = internal.runaway_at {
