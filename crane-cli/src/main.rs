@@ -66,6 +66,7 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    output::remove_partials_on_signals();
     let result = match cli.command {
         Command::List => commands::list::list(),
         Command::Run(args) => commands::run::run(args),

@@ -72,28 +72,77 @@ fn write_csv<const N: usize, const M: usize, const A: usize>(
 
 /// The files of one command's output, written under temporary names
 /// (`.NAME.partial`) and renamed together by [`commit`](Self::commit): an
-/// error before the commit removes them, so no partial file ever looks like
-/// a result. Every file `crane` writes goes through one of these.
+/// error before the commit, or SIGINT/SIGTERM ([`remove_partials_on_signals`]),
+/// removes them, so no partial file ever looks like a result. Every file
+/// `crane` writes goes through one of these.
+///
+/// A folder holds one run's output: the writer holds an exclusive lock on
+/// `DIR/.crane.lock` from [`new`](Self::new) to the end (a second `crane`
+/// writing into the same folder waits for it), and the commit removes the
+/// files an earlier run wrote there (listed in `DIR/.crane-outputs`) that
+/// this one does not, so a replay.csv or sweep.svg of another kind of run
+/// cannot stay beside this run's summary. Other files are left alone.
 pub struct Staged {
     dir: PathBuf,
     files: Vec<(PathBuf, PathBuf)>,
     committed: bool,
+    /// Held for the lock's lifetime.
+    _lock: fs::File,
+}
+
+/// The lock file of an output folder.
+const LOCK: &str = ".crane.lock";
+
+/// The list of the files the last run wrote into an output folder.
+const MANIFEST: &str = ".crane-outputs";
+
+/// The partial files of every [`Staged`] not yet committed, for the signal
+/// handler.
+static PARTIALS: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Remove every partial file and exit with 130 on SIGINT or SIGTERM (called
+/// once, at start-up).
+pub fn remove_partials_on_signals() {
+    let installed = ctrlc::set_handler(|| {
+        if let Ok(partials) = PARTIALS.lock() {
+            for path in partials.iter() {
+                let _ = fs::remove_file(path);
+            }
+        }
+        eprintln!("interrupted: no partial output left behind");
+        std::process::exit(130);
+    });
+    // without a handler (another one is installed) a signal still stops the run
+    let _ = installed;
 }
 
 impl Staged {
-    /// Output into `dir` (created if missing).
+    /// Output into `dir` (created if missing), once its lock is ours.
     pub fn new(dir: &Path) -> Result<Self, CliError> {
         fs::create_dir_all(dir).map_err(io_error(format!("creating {}", dir.display())))?;
+        let lock_path = dir.join(LOCK);
+        let lock = fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&lock_path)
+            .map_err(io_error(format!("opening {}", lock_path.display())))?;
+        lock.lock()
+            .map_err(io_error(format!("locking {}", lock_path.display())))?;
         Ok(Self {
             dir: dir.to_path_buf(),
             files: Vec::new(),
             committed: false,
+            _lock: lock,
         })
     }
 
     /// The temporary path to write `name` to.
     pub fn path(&mut self, name: &str) -> PathBuf {
         let temporary = self.dir.join(format!(".{name}.partial"));
+        if let Ok(mut partials) = PARTIALS.lock() {
+            partials.push(temporary.clone());
+        }
         self.files.push((temporary.clone(), self.dir.join(name)));
         temporary
     }
@@ -104,22 +153,47 @@ impl Staged {
         fs::write(&path, text).map_err(io_error(format!("writing {}", path.display())))
     }
 
-    /// Rename every file to its final name.
+    /// Rename every file to its final name, remove what an earlier run left
+    /// that this one does not write, and list this run's files.
     pub fn commit(mut self) -> Result<(), CliError> {
         self.committed = true;
         for (temporary, final_path) in &self.files {
             fs::rename(temporary, final_path).map_err(io_error(format!("renaming to {}", final_path.display())))?;
         }
-        Ok(())
+        self.forget_partials();
+        let names: Vec<String> = self
+            .files
+            .iter()
+            .filter_map(|(_, path)| path.file_name().map(|n| n.to_string_lossy().into_owned()))
+            .collect();
+        let manifest = self.dir.join(MANIFEST);
+        if let Ok(earlier) = fs::read_to_string(&manifest) {
+            for stale in earlier.lines().filter(|name| !names.iter().any(|n| n == name)) {
+                // only plain names this tool wrote, never a path elsewhere
+                if !stale.is_empty() && !stale.contains('/') && !stale.starts_with('.') {
+                    let _ = fs::remove_file(self.dir.join(stale));
+                }
+            }
+        }
+        fs::write(&manifest, names.join("\n") + "\n").map_err(io_error(format!("writing {}", manifest.display())))
+    }
+
+    /// Drop this writer's partial files from the signal handler's list.
+    fn forget_partials(&self) {
+        if let Ok(mut partials) = PARTIALS.lock() {
+            partials.retain(|p| !self.files.iter().any(|(temporary, _)| temporary == p));
+        }
     }
 }
 
 impl Drop for Staged {
+    /// Without a commit (an error on the way), remove the partial files.
     fn drop(&mut self) {
         if !self.committed {
             for (temporary, _) in &self.files {
                 let _ = fs::remove_file(temporary);
             }
+            self.forget_partials();
         }
     }
 }

@@ -1257,3 +1257,104 @@ fn a_rope_of_non_positive_length_is_reported_and_infeasible() {
     assert!(stdout.contains("rope N1 stays taut: min tension 0.000 N"), "{stdout}");
     assert!(!String::from_utf8_lossy(&default.stderr).contains("length"));
 }
+
+/// A folder holds one run's complete output: two runs into the same `--out`
+/// at once both finish (the second waits for the folder's lock) and leave
+/// a results.csv and a summary.json of the same run, no partial file; a run
+/// of another kind removes what the earlier one wrote and it does not
+/// (replay.csv, replay.svg), and leaves other files alone.
+#[test]
+fn an_output_folder_holds_one_runs_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("shared");
+    let out_str = out.to_str().unwrap().to_string();
+    let spawn = |dt: &str| {
+        Command::new(env!("CARGO_BIN_EXE_crane"))
+            .args([
+                "run",
+                "navy-planar",
+                "--tf",
+                "40",
+                "--dt",
+                dt,
+                "--quiet",
+                "--out",
+                &out_str,
+            ])
+            .spawn()
+            .unwrap()
+    };
+    let (mut a, mut b) = (spawn("0.001"), spawn("0.002"));
+    assert!(a.wait().unwrap().success() && b.wait().unwrap().success());
+    let rows = std::fs::read_to_string(out.join("results.csv"))
+        .unwrap()
+        .lines()
+        .count()
+        - 1;
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(
+        rows as u64,
+        summary["steps"].as_u64().unwrap() + 1,
+        "results.csv and summary.json of one run"
+    );
+    let partial = |dir: &Path| {
+        std::fs::read_dir(dir)
+            .unwrap()
+            .any(|e| e.unwrap().file_name().to_string_lossy().ends_with(".partial"))
+    };
+    assert!(!partial(&out));
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    assert!(
+        crane(&["run", "navy-planar", "--replay", "--quiet", "--out", &out_str])
+            .status
+            .success()
+    );
+    assert!(out.join("replay.csv").exists());
+    assert!(
+        crane(&["run", "navy-planar", "--quiet", "--out", &out_str])
+            .status
+            .success()
+    );
+    assert!(!out.join("replay.csv").exists() && !out.join("replay.svg").exists());
+    assert!(out.join("notes.txt").exists() && out.join("results.csv").exists());
+}
+
+/// SIGINT at any moment of a run (computing, or writing a 60 MB
+/// results.csv) ends it with status 130 and no partial file left.
+#[test]
+fn an_interrupted_run_leaves_no_partial_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut interrupted = 0;
+    for (k, delay) in [200u64, 500, 800, 1000, 1200].into_iter().enumerate() {
+        let out = dir.path().join(format!("run{k}"));
+        let mut child = Command::new(env!("CARGO_BIN_EXE_crane"))
+            .args([
+                "run",
+                "navy-planar",
+                "--tf",
+                "100",
+                "--dt",
+                "0.0005",
+                "--quiet",
+                "--out",
+            ])
+            .arg(&out)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(delay));
+        let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+        let status = child.wait().unwrap();
+        assert!(status.success() || status.code() == Some(130), "{delay} ms: {status:?}");
+        interrupted += usize::from(status.code() == Some(130));
+        if out.exists() {
+            for entry in std::fs::read_dir(&out).unwrap() {
+                let name = entry.unwrap().file_name().to_string_lossy().to_string();
+                assert!(!name.ends_with(".partial"), "{delay} ms: {name} left behind");
+            }
+        }
+    }
+    assert!(interrupted > 0, "no run was interrupted: the test tested nothing");
+}
