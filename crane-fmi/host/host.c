@@ -5,7 +5,11 @@
  *
  *   host LIBRARY.so GUID STOP_TIME STEP VR...        run, print t,VR...
  *   host LIBRARY.so GUID --bad VR VALUE              expect fmi2Error from
- *                                                     fmi2ExitInitializationMode
+ *                                                     fmi2ExitInitializationMode,
+ *                                                     fmi2DoStep after it, and
+ *                                                     fmi2DoStep after
+ *                                                     fmi2FreeInstance (and no
+ *                                                     crash on a second free)
  *
  * Build: cc -O2 -o host host.c -ldl -lm
  */
@@ -92,8 +96,12 @@ int main(int argc, char **argv) {
         /* the instance must still answer after the error */
         fmi2Status again = do_step(c, 0.0, 0.01, 1);
         free_instance(c);
-        printf("fmi2ExitInitializationMode: %d, fmi2DoStep after it: %d\n", status, again);
-        return (status == 3 && again == 3) ? 0 : 1;
+        /* a host's misuse after the free: an error status, not a crash */
+        fmi2Status freed = do_step(c, 0.0, 0.01, 1);
+        free_instance(c);
+        printf("fmi2ExitInitializationMode: %d, fmi2DoStep after it: %d, fmi2DoStep and fmi2FreeInstance after "
+               "fmi2FreeInstance: %d\n", status, again, freed);
+        return (status == 3 && again == 3 && freed == 3) ? 0 : 1;
     }
     if (exit_init(c) != 0) {
         fprintf(stderr, "host: fmi2ExitInitializationMode failed\n");

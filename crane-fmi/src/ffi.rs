@@ -44,6 +44,18 @@ impl Entry {
     }
 }
 
+/// The addresses of the instances `instantiate` made and `free_instance`
+/// has not freed: every entry point checks its component against it, so a
+/// host that frees an instance twice or steps a freed one gets `fmi2Error`
+/// instead of a crash (FMI 2.0 leaves that undefined; a new instance at a
+/// freed one's address is not told apart).
+static LIVE: std::sync::Mutex<Vec<usize>> = std::sync::Mutex::new(Vec::new());
+
+/// Whether `c` is a live instance.
+fn live(c: RawComponent) -> bool {
+    !c.is_null() && LIVE.lock().is_ok_and(|live| live.contains(&(c as usize)))
+}
+
 /// What the host's `fmi2Component` points to.
 struct Slave {
     component: Box<dyn Component>,
@@ -91,7 +103,7 @@ unsafe fn text<'a>(s: FmiString) -> Option<&'a str> {
 /// Run `f` on the slave behind `c`; failures and panics are logged and
 /// become `fmi2Error`.
 unsafe fn with_slave(c: RawComponent, what: &str, f: impl FnOnce(&mut dyn Component) -> Result<(), String>) -> Status {
-    if c.is_null() {
+    if !live(c) {
         return Status::Error;
     }
     // SAFETY: `c` came from `instantiate` and was not freed (FMI 2.0)
@@ -188,7 +200,11 @@ pub unsafe fn instantiate(
                 callbacks,
                 logging: logging_on != 0,
             });
-            Box::into_raw(slave).cast()
+            let c: RawComponent = Box::into_raw(slave).cast();
+            if let Ok(mut live) = LIVE.lock() {
+                live.push(c as usize);
+            }
+            c
         }
         Ok(Err(message)) => {
             log(
@@ -218,7 +234,16 @@ pub unsafe fn instantiate(
 /// # Safety
 /// `c` from [`instantiate`], not freed before.
 pub unsafe fn free_instance(c: RawComponent) {
-    if !c.is_null() {
+    let was_live = LIVE
+        .lock()
+        .is_ok_and(|mut live| match live.iter().position(|&a| a == c as usize) {
+            Some(k) => {
+                live.swap_remove(k);
+                true
+            }
+            None => false,
+        });
+    if was_live {
         // SAFETY: made by `Box::into_raw` in `instantiate`
         let slave = unsafe { Box::from_raw(c.cast::<Slave>()) };
         let _ = catch_unwind(AssertUnwindSafe(move || drop(slave)));
@@ -231,7 +256,7 @@ pub unsafe fn free_instance(c: RawComponent) {
 /// # Safety
 /// `c` from [`instantiate`].
 pub unsafe fn set_debug_logging(c: RawComponent, logging_on: Boolean) -> Status {
-    if c.is_null() {
+    if !live(c) {
         return Status::Error;
     }
     // SAFETY: as `with_slave`
