@@ -436,6 +436,19 @@ pub enum PlanError {
         /// Why it is infeasible.
         reason: String,
     },
+    /// No limit binds before the inverse dynamics itself fails: below
+    /// `duration` the runs fail, so the answer would be the solver's limit,
+    /// not the crane's.
+    #[error(
+        "no limit binds down to {duration:.4} s, where the inverse dynamics stops: {error}; the limits do not \
+         decide the fastest move (tighten them, or check the crane's parameters)"
+    )]
+    RunFailsFirst {
+        /// The shortest duration whose run succeeded, s.
+        duration: f64,
+        /// Why the run just below it failed.
+        error: String,
+    },
     /// The path is too rough for the crane: its inputs carry impulses.
     #[error(
         "the path is continuous only up to its derivative {continuous}, but the inputs of {crane} need derivative \
@@ -580,22 +593,17 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
             below = evaluation;
         }
     }
+    if let Some(error) = &below.error {
+        return Err(PlanError::RunFailsFirst {
+            duration: hi,
+            error: error.clone(),
+        });
+    }
     let (answer, solution) = above;
     let at_answer = answer.bindings::<C::Model, N, M, A>(limits);
     // the limit most violated just below the answer, with its value at the
     // answer and the time it is violated just below it
-    let violated = match &below.error {
-        Some(error) => Some(Binding {
-            name: format!("the run itself ({error})"),
-            limit: f64::NAN,
-            value: f64::NAN,
-            at: f64::NAN,
-            excess: f64::INFINITY,
-            allowance: 0.0,
-            tension: false,
-        }),
-        None => below.bindings::<C::Model, N, M, A>(limits).into_iter().next(),
-    };
+    let violated = below.bindings::<C::Model, N, M, A>(limits).into_iter().next();
     let binding = match violated {
         Some(b) => {
             let value = at_answer

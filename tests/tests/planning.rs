@@ -215,3 +215,24 @@ fn planning_refuses_a_path_whose_inputs_carry_impulses() {
     );
     assert_eq!(best.binding.name, "u4");
 }
+
+/// Limits that never bind (|u2| <= 1e9 N m, ropes allowed to push with
+/// 1e12 N) leave the bisection only the durations where the inverse
+/// dynamics fails: that is an error naming the failure, not a fastest move
+/// "bound by the run itself".
+#[test]
+fn limits_that_do_not_bind_before_the_runs_fail_are_an_error() {
+    use crane_models::plan::PlanError;
+    let case = navy_planar::PaperCase::maneuver().unwrap();
+    let limits = Limits {
+        torque: vec![(1, 1e9)],
+        tension: vec![(0, -1e12), (1, -1e12)],
+    };
+    match fastest(&case, &limits, &Settings::default()) {
+        Err(PlanError::RunFailsFirst { duration, error }) => {
+            println!("runs fail below {duration:.4} s: {error}");
+            assert!(duration > 0.0 && duration < 4.0 && error.contains("Newton"));
+        }
+        other => panic!("expected RunFailsFirst, got {:?}", other.map(|f| f.duration)),
+    }
+}
