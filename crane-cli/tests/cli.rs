@@ -1358,3 +1358,27 @@ fn an_interrupted_run_leaves_no_partial_file() {
     }
     assert!(interrupted > 0, "no run was interrupted: the test tested nothing");
 }
+
+/// Messages that name the real problem: a start beyond 1e100 m (whose
+/// squares overflow), a scenario start that the crane's default `p0` does
+/// not fit (said so, with that p0), `--min-tension` with an example of a
+/// rope, a step below a microsecond.
+#[test]
+fn messages_name_the_real_problem() {
+    expect_error(
+        "navy-planar",
+        "start = [1e308, -10]\n",
+        &["`x` = 1e308 is beyond 1e100"],
+    );
+    expect_error(
+        "navy-planar",
+        "start = [1, -10]\n",
+        &["constraint `hoist`", "the scenario gives no `p0`", "default p0 = [8.66"],
+    );
+    let result = crane(&["fastest", "navy-planar", "--min-tension", "garbage"]);
+    assert!(String::from_utf8_lossy(&result.stderr).contains("e.g. --min-tension N1=10"));
+    let result = crane(&["run", "navy-planar", "--dt", "1e-300"]);
+    assert!(
+        String::from_utf8_lossy(&result.stderr).contains("`dt` = 1e-300 s is below the smallest time step, 1e-6 s")
+    );
+}

@@ -317,3 +317,19 @@ fn gravity_with_the_wrong_sign_is_an_fmi_error() {
     let error = fmu.exit_initialization_mode().unwrap_err();
     assert!(error.contains("`g`") && error.contains("positive"), "{error}");
 }
+
+/// `dt = 1e-300` is refused at initialisation naming `dt` (it used to reach
+/// Newton as a singular iteration matrix).
+#[test]
+fn a_tiny_dt_is_an_fmi_error_naming_dt() {
+    type D = navy_planar::Description;
+    let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
+    fmu.setup_experiment(0.0).unwrap();
+    fmu.enter_initialization_mode().unwrap();
+    fmu.set_real(&[vr::<D, 7, 3, 2>(Role::Dt)], &[1e-300]).unwrap();
+    let error = fmu.exit_initialization_mode().unwrap_err();
+    assert!(
+        error.starts_with("`dt`") && error.contains("at least 1e-6 s"),
+        "{error}"
+    );
+}

@@ -33,8 +33,17 @@ pub enum Error {
         /// Time of the step.
         t: f64,
     },
+    /// A coordinate of the start is so large that the constraints (squares
+    /// of lengths) cannot be evaluated in f64.
+    #[error("the start's coordinate `{coordinate}` = {value:e} is beyond 1e100: its square would overflow")]
+    StartOutOfRange {
+        /// The coordinate's name.
+        coordinate: &'static str,
+        /// Its value.
+        value: f64,
+    },
     /// The time step is not a finite positive number.
-    #[error("invalid time step dt = {dt}: it must be finite and positive")]
+    #[error("invalid time step dt = {dt:?}: it must be finite and at least 1e-6 s")]
     InvalidTimeStep {
         /// The rejected value.
         dt: f64,

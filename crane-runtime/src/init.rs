@@ -91,7 +91,14 @@ where
         });
     }
 
-    // g = 0 (eq. 22d); g carries a factor 1/2 of squared lengths
+    // g = 0 (eq. 22d); g carries a factor 1/2 of squared lengths, which
+    // overflow past 1e154 (and the tolerance with them)
+    if let Some(i) = q.iter().position(|x| x.abs() > 1e100) {
+        return Err(Error::StartOutOfRange {
+            coordinate: info.coordinates[i],
+            value: q[i],
+        });
+    }
     let scale = q.amax().max(1.0);
     let g = model.constraints(&q);
     worst_row(g.as_slice(), CONSISTENCY_TOLERANCE * scale * scale, |i| {

@@ -29,7 +29,8 @@ pub struct Options<S: Method = Scheme> {
 impl Options<Scheme> {
     /// A run with step `dt` to `tf`, backward Euler (the paper's scheme) and
     /// default Newton tolerances; [`Error::InvalidTimeStep`] unless `dt` is
-    /// finite and positive, [`Error::InvalidEndTime`] unless `tf` is finite.
+    /// finite and at least [`MIN_DT`], [`Error::InvalidEndTime`] unless `tf`
+    /// is finite.
     pub fn new(dt: f64, tf: f64) -> Result<Self, Error> {
         if !tf.is_finite() {
             return Err(Error::InvalidEndTime { tf });
@@ -101,9 +102,15 @@ impl<S: Method> Options<S> {
     }
 }
 
-/// Refuse a time step that is not a finite positive number.
+/// The smallest time step, s. The servo problems solve for `dt^2 u` and
+/// `dt^2 lambda`; below a microsecond these approach Newton's absolute
+/// tolerance (1e-14), which would then accept iterates that are not
+/// converged (and near 1e-154 s `dt^2` underflows to 0).
+pub const MIN_DT: f64 = 1e-6;
+
+/// Refuse a time step that is not finite or below [`MIN_DT`].
 fn check_step_size(dt: f64) -> Result<(), Error> {
-    if dt.is_finite() && dt > 0.0 {
+    if dt.is_finite() && dt >= MIN_DT {
         Ok(())
     } else {
         Err(Error::InvalidTimeStep { dt })

@@ -103,8 +103,10 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
     /// the static equilibrium from it (parameters or a later start time
     /// moved it).
     pub fn consistent_start(&self, t0: f64) -> Result<State<N, M, A>, Error> {
-        init::check_start(&self.model, &self.path, t0, &self.p0, None)
-            .or_else(|_| init::static_equilibrium(&self.model, &self.path, t0, &self.p0))
+        init::check_start(&self.model, &self.path, t0, &self.p0, None).or_else(|e| match e {
+            Error::StartOutOfRange { .. } => Err(e),
+            _ => init::static_equilibrium(&self.model, &self.path, t0, &self.p0),
+        })
     }
 
     /// The analytical reference at `t`, if the crane has one.

@@ -88,6 +88,7 @@ fn assert_descriptive(error: &Error) {
         Error::NonPositiveRopeLength { rope, .. } => message.contains(&format!("`{rope}`")),
         Error::TooManySteps { .. } => message.contains("steps cannot be held"),
         Error::PathOrderTooHigh { .. } => message.contains("derivative of order"),
+        Error::StartOutOfRange { coordinate, .. } => message.contains(&format!("`{coordinate}`")),
         Error::MinimalStartNotFound { .. } | Error::EquilibriumNotFound { .. } => message.contains("residual"),
     };
     assert!(ok, "undescriptive error message: {message}");

@@ -234,7 +234,6 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
     }
 }
 
-/// `NAME=VALUE` of a `--limit` or `--min-tension`.
 /// The limits of the scenario (`[limits]`, by input index) and of the flags
 /// `--limit NAME=VALUE` and `--min-tension NAME=VALUE` (a rope without one
 /// must stay taut), checked against crane `Mdl`.
@@ -243,11 +242,18 @@ fn limits<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usi
     torque: &[String],
     tension: &[String],
 ) -> Result<Limits, CliError> {
-    let parse = |flag: &str, items: &[String]| -> Result<Vec<(String, f64)>, CliError> {
-        let bad = |item: &str| CliError::Planning(format!("{flag} `{item}`: expected NAME=VALUE, e.g. {flag} u2=150"));
+    // the example names what the flag takes: an input of the crane, a rope
+    let input = Mdl::INFO.inputs.first().copied().unwrap_or("u1");
+    let rope = Mdl::INFO.ropes.first().map_or("N1", |r| r.tension);
+    let parse = |flag: &str, example: String, items: &[String]| -> Result<Vec<(String, f64)>, CliError> {
+        let bad =
+            |item: &str| CliError::Planning(format!("{flag} `{item}`: expected NAME=VALUE, e.g. {flag} {example}"));
         items.iter().map(|item| name_value(item, || bad(item))).collect()
     };
-    let (torque, tension) = (parse("--limit", torque)?, parse("--min-tension", tension)?);
+    let (torque, tension) = (
+        parse("--limit", format!("{input}=150"), torque)?,
+        parse("--min-tension", format!("{rope}=10"), tension)?,
+    );
     Limits::by_name::<Mdl, N, M, A>(scenario, &torque, &tension).map_err(|e| match e {
         plan::PlanError::TensionFloor(message) => CliError::Planning(format!("--min-tension {message}")),
         other => CliError::Planning(format!("--limit {other}")),

@@ -5,6 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use crane_models::registry::Visit;
+use crane_models::study::StudyError;
 use crane_models::study::replay::{FeedbackSpec, ReplayOutcome};
 use crane_models::study::{self, Formulation, ReplayRequest, Summary};
 use crane_models::{Case, Crane};
@@ -120,6 +121,26 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// An inconsistent start the scenario did not give: say that the crane's
+/// default `p0` was checked, and how to give one.
+fn default_start_hint<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    error: StudyError,
+    file: Option<&ScenarioFile>,
+) -> CliError {
+    let defaulted = file.is_some_and(|f| f.p0.is_none());
+    match error {
+        StudyError::Runtime(e @ crane_runtime::Error::InconsistentStart { .. }) if defaulted => {
+            CliError::Planning(format!(
+                "{e}; the scenario gives no `p0`, so the start was checked with {}'s default p0 = {:?}, which \
+                 fits its default manoeuvre: give `p0` for this start",
+                C::NAME,
+                C::maneuver().p0
+            ))
+        }
+        other => other.into(),
+    }
+}
+
 /// `crane run` on one crane.
 struct Run<'a> {
     file: Option<&'a ScenarioFile>,
@@ -145,7 +166,7 @@ impl Visit for Run<'_> {
         let mut progress = progress::Progress::new(C::NAME, self.quiet);
         let outcome = study::run(&case, &settings, &mut |step, steps| progress.tick(step, steps));
         progress.finish();
-        let mut outcome = outcome?;
+        let mut outcome = outcome.map_err(|e| default_start_hint::<C, N, M, A>(e, self.file))?;
         for warning in &outcome.warnings {
             eprintln!("warning: {warning}");
         }

@@ -14,8 +14,10 @@ pub enum ScenarioError {
     Parse { path: String, message: String },
     #[error("scenario: `model` is \"{given}\" but the command runs {running}")]
     WrongModel { given: String, running: String },
-    #[error("scenario: `{key}` must be a positive number of seconds, got {value}")]
+    #[error("scenario: `{key}` must be a positive number of seconds, got {value:?}")]
     NotPositiveTime { key: &'static str, value: f64 },
+    #[error("scenario: `dt` = {0:?} s is below the smallest time step, 1e-6 s")]
+    StepTooSmall(f64),
     #[error("scenario: `{key}` must be finite, got {value}")]
     NotFinite { key: String, value: f64 },
     #[error("scenario: `t1` and `duration` both given; give one")]
@@ -74,6 +76,7 @@ impl ScenarioError {
             Read { .. } | Parse { .. } | EndTwice => None,
             WrongModel { .. } => Some("model".into()),
             NotPositiveTime { key, .. } | WrongCount { key, .. } | EntryNotFinite { key, .. } => Some(key.to_string()),
+            StepTooSmall(_) => Some("dt".to_string()),
             NotFinite { key, .. } => Some(key.clone()),
             EndBeforeStart { .. } => Some("tf".into()),
             MotionEndsBeforeStart { .. } => Some("t1".into()),

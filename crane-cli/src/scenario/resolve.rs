@@ -173,6 +173,9 @@ fn by_key<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(err
             found,
         },
         SpecError::EndBeforeStart { tf, t0 } => ScenarioError::EndBeforeStart { tf, t0 },
+        SpecError::Time(crane_runtime::Error::InvalidTimeStep { dt }) if dt > 0.0 && dt.is_finite() => {
+            ScenarioError::StepTooSmall(dt)
+        }
         SpecError::Time(crane_runtime::Error::InvalidTimeStep { dt }) => {
             ScenarioError::NotPositiveTime { key: "dt", value: dt }
         }
