@@ -348,9 +348,21 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
     }
 }
 
-/// What makes a run infeasible (for `--strict`): slack ropes, violated
-/// torque limits, a crane beyond its formulation's path order, unstable
-/// internal dynamics, a runaway input.
+/// Whether Newton met an iteration matrix singular to working precision
+/// (and fell back on the minimum-norm step) in more than 1 % of the steps
+/// and more than two: the paper's degenerate start costs one, a path along
+/// which a rope stays without tension (the load straight below the boom
+/// tip for a long time) leaves a coordinate free at every step, and the
+/// inputs there are whatever round-off makes them.
+pub fn singular_steps(summary: &Summary) -> bool {
+    let count = summary.newton.min_norm_steps;
+    count > 2 && count * 100 > summary.steps
+}
+
+/// What makes a run infeasible (for `--strict`): ropes of non-positive
+/// length, slack ropes, violated torque limits, many singular steps, a
+/// crane beyond its formulation's path order, unstable internal dynamics,
+/// a runaway input.
 pub fn infeasibilities(summary: &Summary) -> Vec<String> {
     let mut out: Vec<String> = summary
         .ropes
@@ -367,6 +379,7 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
         r.first_slack
             .map(|t| format!("rope {} goes slack at t = {t:.3} s", r.name))
     }));
+
     out.extend(summary.torque_limits.iter().filter_map(|l| {
         l.first_violation
             .map(|t| format!("|{}| exceeds its limit {} N m at t = {t:.3} s", l.name, l.limit))
@@ -390,6 +403,12 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
             "an input exceeds {:e} times its size at the start from t = {} s",
             RUNAWAY_FACTOR,
             Seconds(t)
+        ));
+    }
+    if singular_steps(summary) {
+        out.push(format!(
+            "{} of {} steps met a singular iteration matrix: the path does not determine the inputs there",
+            summary.newton.min_norm_steps, summary.steps
         ));
     }
     out

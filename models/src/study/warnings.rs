@@ -57,6 +57,15 @@ pub enum Warning {
         /// When, s.
         at: f64,
     },
+    /// Many steps met a singular iteration matrix ([`singular_steps`](super::summary::singular_steps)).
+    SingularSteps {
+        /// The crane's name.
+        model: String,
+        /// Steps with a minimum-norm Newton update.
+        count: usize,
+        /// All steps.
+        steps: usize,
+    },
     /// An input exceeds [`RUNAWAY_FACTOR`](crane_runtime::internal::RUNAWAY_FACTOR)
     /// times its size at the start.
     Runaway {
@@ -105,6 +114,12 @@ impl fmt::Display for Warning {
                 "rope {rope} of {model} (constraint `{constraint}`) has the length {length:.4} m at t = {} s: the \
                  path leaves the crane's workspace, and the computed motion is not one the crane can make",
                 Seconds(*at)
+            ),
+            Warning::SingularSteps { model, count, steps } => write!(
+                f,
+                "{count} of {steps} steps of {model} met an iteration matrix singular to working precision (a rope \
+                 without tension leaves a coordinate free, as when the load hangs straight below the boom tip): \
+                 the path does not determine the inputs there, and they are not a reliable result"
             ),
             Warning::BeyondFormulation { model, needed, covered } => write!(
                 f,
@@ -160,7 +175,17 @@ pub fn warnings(summary: &Summary) -> Vec<Warning> {
         });
     }
     if let Some(at) = internal.runaway_at {
-        out.push(Warning::Runaway { model, at });
+        out.push(Warning::Runaway {
+            model: model.clone(),
+            at,
+        });
+    }
+    if super::summary::singular_steps(summary) {
+        out.push(Warning::SingularSteps {
+            model,
+            count: summary.newton.min_norm_steps,
+            steps: summary.steps,
+        });
     }
     out
 }
