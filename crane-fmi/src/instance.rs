@@ -365,6 +365,17 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                 (Stepping::Reduced(stepper), _) => stepper.step(),
             };
             result.map_err(|e| e.to_string())?;
+            // a rope of non-positive length: the path left the crane's workspace
+            let stepper = run.stepper.advance();
+            let state = stepper.state();
+            stepper.model().rope_lengths(&state.q, &mut run.lengths);
+            if let Some(r) = run.lengths.iter().position(|length| !(*length > 0.0)) {
+                let ropes = <C::Model as CraneModel<N, M, A>>::INFO.ropes;
+                return Err(format!(
+                    "rope {} has the non-positive length {:.4} m at t = {} s: the path leaves the crane's workspace",
+                    ropes[r].tension, run.lengths[r], state.t
+                ));
+            }
         }
         if run.external.is_some() {
             run.external = Some(target_b);

@@ -333,3 +333,22 @@ fn a_tiny_dt_is_an_fmi_error_naming_dt() {
         "{error}"
     );
 }
+
+/// A built-in move through the pulley (navy-planar to (-3, 5), above the
+/// boom tip) drives its ropes to negative lengths (the hoist rope N2 first,
+/// at t = 1.68 s): `fmi2DoStep` fails there naming the rope, instead of
+/// returning a motion no crane can make.
+#[test]
+fn a_rope_of_non_positive_length_is_an_fmi_error() {
+    type D = navy_planar::Description;
+    let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
+    fmu.setup_experiment(0.0).unwrap();
+    fmu.enter_initialization_mode().unwrap();
+    let end: Vec<u32> = (0..2).map(|k| vr::<D, 7, 3, 2>(Role::End(k))).collect();
+    fmu.set_real(&end, &[-3.0, 5.0]).unwrap();
+    fmu.exit_initialization_mode().unwrap();
+    let error = (0..400)
+        .find_map(|i| fmu.do_step(i as f64 * 0.01, 0.01).err())
+        .expect("a step fails");
+    assert!(error.contains("rope N2 has the non-positive length"), "{error}");
+}
