@@ -103,6 +103,18 @@ pub(crate) fn servo_target<const A: usize>(trajectory: &impl Trajectory<A>, t: f
     [0, 1, 2].map(|k| trajectory.derivative(t, k))
 }
 
+/// The unknowns `[p; dt^2 u; dt^2 lambda]` of `state` at step `dt`, into `z`.
+fn write_unknowns<const N: usize, const M: usize, const A: usize>(
+    state: &State<N, M, A>,
+    dt: f64,
+    z: &mut DVector<f64>,
+) {
+    let (p, dt2) = (N - A, dt * dt);
+    z.rows_mut(0, p).copy_from(&state.q.rows(0, p));
+    z.rows_mut(p, A).copy_from(&(state.u * dt2));
+    z.rows_mut(N, M).copy_from(&(state.lambda * dt2));
+}
+
 /// Refuse a NaN or infinite load target.
 pub(crate) fn check_target<const A: usize>(target: &ServoTarget<A>, t: f64) -> Result<(), Error> {
     if target.iter().all(|x| x.iter().all(|v| v.is_finite())) {
@@ -197,10 +209,7 @@ where
     }
 
     fn start(&mut self, start: &State<N, M, A>, dt: f64, z: &mut DVector<f64>) -> Result<Start<N>, Error> {
-        let (p, dt2) = (Self::P, dt * dt);
-        z.rows_mut(0, p).copy_from(&start.q.rows(0, p));
-        z.rows_mut(p, A).copy_from(&(start.u * dt2));
-        z.rows_mut(N, M).copy_from(&(start.lambda * dt2));
+        write_unknowns(start, dt, z);
         Ok(Start {
             y0: start.q,
             v0: start.v,
@@ -244,10 +253,7 @@ where
         formula: StepFormula<N>,
         z: &mut DVector<f64>,
     ) -> Result<(SVector<f64, N>, SVector<f64, N>), Error> {
-        let (p, dt2) = (Self::P, formula.dt * formula.dt);
-        z.rows_mut(0, p).copy_from(&state.q.rows(0, p));
-        z.rows_mut(p, A).copy_from(&(state.u * dt2));
-        z.rows_mut(N, M).copy_from(&(state.lambda * dt2));
+        write_unknowns(state, formula.dt, z);
         Ok((state.q, state.v))
     }
 }
