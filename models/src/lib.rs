@@ -31,6 +31,9 @@ pub mod plan;
 pub mod registry;
 pub mod study;
 
+#[cfg(test)]
+mod test_support;
+
 pub mod coupled_trolley;
 pub mod double_pendulum;
 pub mod elastic_drive;

@@ -311,7 +311,7 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
         ));
     }
     for r in &summary.ropes {
-        if !(r.min_length > 0.0) {
+        if r.leaves_workspace() {
             lines.push(format!(
                 "WARNING: rope {} has the non-positive length {:.3} m at t = {:.3} s",
                 r.name, r.min_length, r.t_min_length

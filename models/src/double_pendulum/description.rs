@@ -53,14 +53,7 @@ impl Crane<6, 2, 2> for Description {
 
     /// The flatness-based solution of [`reference`](super::reference).
     fn reference(model: &DoublePendulum, path: &Path<2>, t: f64) -> Option<State<6, 2, 2>> {
-        let r = reference_at(model, path, t);
-        finite_state(State {
-            t,
-            q: r.q,
-            v: r.v,
-            u: r.u,
-            lambda: r.lambda,
-        })
+        finite_state(reference_at(model, path, t).state(t))
     }
 
     /// `q = [s, L, xh, zh | x, z]`: the rail at height 0, the trolley

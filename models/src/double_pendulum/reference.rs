@@ -26,7 +26,7 @@
 //! finite differences.
 
 use super::model::DoublePendulum;
-use crane_runtime::{Scalar, Trajectory};
+use crane_runtime::{Scalar, State, Trajectory};
 use nalgebra::SVector;
 use num_dual::Dual2;
 
@@ -65,6 +65,19 @@ pub struct ReferenceState {
     pub lambda: SVector<f64, 2>,
     /// `[N1, N2]`.
     pub tensions: [f64; 2],
+}
+
+impl ReferenceState {
+    /// As the crane's state at `t`.
+    pub fn state(&self, t: f64) -> State<6, 2, 2> {
+        State {
+            t,
+            q: self.q,
+            v: self.v,
+            u: self.u,
+            lambda: self.lambda,
+        }
+    }
 }
 
 /// The flatness-based reference from the load path's derivatives
@@ -106,42 +119,17 @@ pub fn reference_at(params: &DoublePendulum, path: &impl Trajectory<2>, t: f64) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crane_runtime::CraneModel;
-
-    /// A load path with nonzero derivatives of every order up to 6 (so
-    /// every term of the reference counts): `x = 1 + 0.3 sin(1.3 t)`,
-    /// `z = -6 + 0.2 cos(0.7 t)`.
-    struct Wave;
-
-    impl Trajectory<2> for Wave {
-        fn derivative(&self, t: f64, k: usize) -> SVector<f64, 2> {
-            let d_sin = |w: f64| w.powi(k as i32) * (w * t + k as f64 * std::f64::consts::FRAC_PI_2).sin();
-            let d_cos = |w: f64| w.powi(k as i32) * (w * t + k as f64 * std::f64::consts::FRAC_PI_2).cos();
-            let (x0, z0) = if k == 0 { (1.0, -6.0) } else { (0.0, 0.0) };
-            SVector::from([x0 + 0.3 * d_sin(1.3), z0 + 0.2 * d_cos(0.7)])
-        }
-    }
+    use crate::test_support::{Wave, assert_satisfies_equations_of_motion};
 
     /// The reference satisfies the declared crane's equations of motion
-    /// (the generated kernels, an independent derivation): the constraints
-    /// hold and `M q'' = f + B^T u - G^T lambda` on every row, with `q''`
-    /// from central differences of the reference's `q'` (h = 1e-4: error
-    /// ~1e-8 of the accelerations, ~1e-5 N in forces of ~1e4 N).
+    /// (the generated kernels, an independent derivation), on a path with
+    /// every derivative nonzero: forces of ~1e4 N, central differences of
+    /// ~1e-8 of the accelerations, so 1e-4 N (and q' to 1e-7).
     #[test]
     fn reference_satisfies_the_equations_of_motion() {
         let crane = DoublePendulum::default();
-        for t in [0.3, 1.1, 2.7] {
-            let r = reference_at(&crane, &Wave, t);
-            let h = 1e-4;
-            let a = (reference_at(&crane, &Wave, t + h).v - reference_at(&crane, &Wave, t - h).v) / (2.0 * h);
-            let g = crane.constraints(&r.q);
-            assert!(g.amax() < 1e-12, "g = {g}");
-            let residual = crane.mass_matrix::<f64>() * a - crane.forces(&r.q, &r.v) - crane.input_matrix(&r.q) * r.u
-                + crane.constraint_jacobian(&r.q).transpose() * r.lambda;
-            assert!(residual.amax() < 1e-4, "t = {t}: {residual}");
-            // the velocities are the derivatives of the positions
-            let dq = (reference_at(&crane, &Wave, t + h).q - reference_at(&crane, &Wave, t - h).q) / (2.0 * h);
-            assert!((dq - r.v).amax() < 1e-7, "t = {t}: {}", dq - r.v);
-        }
+        let path = Wave { z0: -6.0 };
+        let state = |t: f64| reference_at(&crane, &path, t).state(t);
+        assert_satisfies_equations_of_motion(&crane, state, 1e-7);
     }
 }

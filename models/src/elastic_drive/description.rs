@@ -52,14 +52,7 @@ impl Crane<5, 1, 2> for Description {
 
     /// The flatness-based solution of [`reference`](super::reference).
     fn reference(model: &ElasticDrive, path: &Path<2>, t: f64) -> Option<State<5, 1, 2>> {
-        let r = reference_at(model, path, t);
-        finite_state(State {
-            t,
-            q: r.q,
-            v: r.v,
-            u: r.u,
-            lambda: r.lambda,
-        })
+        finite_state(reference_at(model, path, t).state(t))
     }
 
     /// `q = [phi, s, L | x, z]`: the rail at height 0 from the motor at the

@@ -22,7 +22,7 @@
 //! inputs exactly, no finite differences.
 
 use super::model::ElasticDrive;
-use crane_runtime::{Scalar, Trajectory};
+use crane_runtime::{Scalar, State, Trajectory};
 use nalgebra::SVector;
 use num_dual::{Dual2, DualNum};
 
@@ -44,6 +44,19 @@ pub struct ReferenceState {
     pub u: SVector<f64, 2>,
     /// `[lambda] = [N / L]`.
     pub lambda: SVector<f64, 1>,
+}
+
+impl ReferenceState {
+    /// As the crane's state at `t`.
+    pub fn state(&self, t: f64) -> State<5, 1, 2> {
+        State {
+            t,
+            q: self.q,
+            v: self.v,
+            u: self.u,
+            lambda: self.lambda,
+        }
+    }
 }
 
 /// The flatness-based reference from the load path's derivatives
@@ -84,43 +97,18 @@ pub fn reference_at(params: &ElasticDrive, path: &impl Trajectory<2>, t: f64) ->
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crane_runtime::CraneModel;
-
-    /// A load path with nonzero derivatives of every order up to 6:
-    /// `x = 1 + 0.3 sin(1.3 t)`, `z = -5 + 0.2 cos(0.7 t)`.
-    struct Wave;
-
-    impl Trajectory<2> for Wave {
-        fn derivative(&self, t: f64, k: usize) -> SVector<f64, 2> {
-            let phase = k as f64 * std::f64::consts::FRAC_PI_2;
-            let (x0, z0) = if k == 0 { (1.0, -5.0) } else { (0.0, 0.0) };
-            SVector::from([
-                x0 + 0.3 * 1.3f64.powi(k as i32) * (1.3 * t + phase).sin(),
-                z0 + 0.2 * 0.7f64.powi(k as i32) * (0.7 * t + phase).cos(),
-            ])
-        }
-    }
+    use crate::test_support::{Wave, assert_satisfies_equations_of_motion};
 
     /// The reference satisfies the declared crane's equations of motion
-    /// (the generated kernels): the constraint holds and
-    /// `M q'' = f + B^T u - G^T lambda` on every row, with `q''` from
-    /// central differences of the reference's `q'` (h = 1e-4: ~1e-8 of the
-    /// accelerations; the motor row's terms reach 1e4 N m through the belt,
-    /// so 1e-4 absolute).
+    /// (the generated kernels), on a path with every derivative nonzero:
+    /// the motor row's terms reach 1e4 N m through the belt, central
+    /// differences are ~1e-8 of the accelerations, so 1e-4 absolute (and q'
+    /// to 1e-6).
     #[test]
     fn reference_satisfies_the_equations_of_motion() {
         let crane = ElasticDrive::default();
-        for t in [0.3, 1.1, 2.7] {
-            let r = reference_at(&crane, &Wave, t);
-            let h = 1e-4;
-            let (after, before) = (reference_at(&crane, &Wave, t + h), reference_at(&crane, &Wave, t - h));
-            let a = (after.v - before.v) / (2.0 * h);
-            assert!(crane.constraints(&r.q).amax() < 1e-12);
-            let residual = crane.mass_matrix::<f64>() * a - crane.forces(&r.q, &r.v) - crane.input_matrix(&r.q) * r.u
-                + crane.constraint_jacobian(&r.q).transpose() * r.lambda;
-            assert!(residual.amax() < 1e-4, "t = {t}: {residual}");
-            let dq = (after.q - before.q) / (2.0 * h);
-            assert!((dq - r.v).amax() < 1e-6, "t = {t}: {}", dq - r.v);
-        }
+        let path = Wave { z0: -5.0 };
+        let state = |t: f64| reference_at(&crane, &path, t).state(t);
+        assert_satisfies_equations_of_motion(&crane, state, 1e-6);
     }
 }

@@ -38,6 +38,14 @@ pub struct RopeSummary {
     pub t_min_length: f64,
 }
 
+impl RopeSummary {
+    /// Whether the rope's length reached zero or below: the path left the
+    /// crane's workspace.
+    pub fn leaves_workspace(&self) -> bool {
+        !(self.min_length > 0.0)
+    }
+}
+
 /// Errors against the analytical reference.
 #[derive(Debug, Clone, Serialize)]
 pub struct ReferenceErrors {
@@ -367,7 +375,7 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
     let mut out: Vec<String> = summary
         .ropes
         .iter()
-        .filter(|r| !(r.min_length > 0.0))
+        .filter(|r| r.leaves_workspace())
         .map(|r| {
             format!(
                 "rope {} has the non-positive length {:.3} m at t = {:.3} s (outside the crane's workspace)",

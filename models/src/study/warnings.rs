@@ -165,7 +165,7 @@ pub fn warnings(summary: &Summary) -> Vec<Warning> {
             continuous: smooth.continuous,
         });
     }
-    for r in summary.ropes.iter().filter(|r| !(r.min_length > 0.0)) {
+    for r in summary.ropes.iter().filter(|r| r.leaves_workspace()) {
         out.push(Warning::NonPositiveRopeLength {
             model: model.clone(),
             rope: r.name.clone(),
