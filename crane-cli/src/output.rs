@@ -44,6 +44,7 @@ pub struct Derived<'a, const N: usize, const M: usize, const A: usize> {
 
 fn write_csv<const N: usize, const M: usize, const A: usize>(
     path: &Path,
+    file: fs::File,
     solution: &Solution<N, M, A>,
     derived: &Derived<N, M, A>,
 ) -> Result<(), CliError> {
@@ -51,7 +52,7 @@ fn write_csv<const N: usize, const M: usize, const A: usize>(
         what: path.display().to_string(),
         message: e.to_string(),
     };
-    let mut writer = csv::Writer::from_path(path).map_err(failed)?;
+    let mut writer = csv::Writer::from_writer(file);
     writer.write_record(header(solution, derived)).map_err(failed)?;
     let mut row: Vec<String> = Vec::new();
     for (i, s) in solution.states.iter().enumerate() {
@@ -97,17 +98,25 @@ const LOCK: &str = ".crane.lock";
 const MANIFEST: &str = ".crane-outputs";
 
 /// The partial files of every [`Staged`] not yet committed, for the signal
-/// handler.
+/// handler. The lock is held while a partial file is created and while a
+/// commit renames, and the handler exits holding it: a signal comes either
+/// before a file exists (it is never created) or after it is registered (it
+/// is removed), and either before a commit (nothing renamed) or after it.
 static PARTIALS: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// The list of partial files, also after a panic elsewhere held the lock.
+fn partials() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    PARTIALS.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
 
 /// Remove every partial file and exit with 130 on SIGINT or SIGTERM (called
 /// once, at start-up).
 pub fn remove_partials_on_signals() {
     let installed = ctrlc::set_handler(|| {
-        if let Ok(partials) = PARTIALS.lock() {
-            for path in partials.iter() {
-                let _ = fs::remove_file(path);
-            }
+        // held until the process ends: no partial file is created after this
+        let partials = partials();
+        for path in partials.iter() {
+            let _ = fs::remove_file(path);
         }
         eprintln!("interrupted: no partial output left behind");
         std::process::exit(130);
@@ -137,30 +146,36 @@ impl Staged {
         })
     }
 
-    /// The temporary path to write `name` to.
-    pub fn path(&mut self, name: &str) -> PathBuf {
+    /// Create the temporary file for `name`, registered for the signal
+    /// handler in the same critical section; returns its path and handle.
+    pub fn create(&mut self, name: &str) -> Result<(PathBuf, fs::File), CliError> {
         let temporary = self.dir.join(format!(".{name}.partial"));
-        if let Ok(mut partials) = PARTIALS.lock() {
-            partials.push(temporary.clone());
-        }
+        let mut partials = partials();
+        partials.push(temporary.clone());
         self.files.push((temporary.clone(), self.dir.join(name)));
-        temporary
+        let file = fs::File::create(&temporary).map_err(io_error(format!("creating {}", temporary.display())))?;
+        drop(partials);
+        Ok((temporary, file))
     }
 
     /// Write `name` with `text`.
     pub fn text(&mut self, name: &str, text: impl AsRef<[u8]>) -> Result<(), CliError> {
-        let path = self.path(name);
-        fs::write(&path, text).map_err(io_error(format!("writing {}", path.display())))
+        let (path, mut file) = self.create(name)?;
+        std::io::Write::write_all(&mut file, text.as_ref()).map_err(io_error(format!("writing {}", path.display())))
     }
 
     /// Rename every file to its final name, remove what an earlier run left
     /// that this one does not write, and list this run's files.
     pub fn commit(mut self) -> Result<(), CliError> {
-        self.committed = true;
-        for (temporary, final_path) in &self.files {
-            fs::rename(temporary, final_path).map_err(io_error(format!("renaming to {}", final_path.display())))?;
+        {
+            // all renamed or none: the signal handler waits for this
+            let mut partials = partials();
+            for (temporary, final_path) in &self.files {
+                fs::rename(temporary, final_path).map_err(io_error(format!("renaming to {}", final_path.display())))?;
+            }
+            partials.retain(|p| !self.files.iter().any(|(temporary, _)| temporary == p));
+            self.committed = true;
         }
-        self.forget_partials();
         let names: Vec<String> = self
             .files
             .iter()
@@ -180,9 +195,7 @@ impl Staged {
 
     /// Drop this writer's partial files from the signal handler's list.
     fn forget_partials(&self) {
-        if let Ok(mut partials) = PARTIALS.lock() {
-            partials.retain(|p| !self.files.iter().any(|(temporary, _)| temporary == p));
-        }
+        partials().retain(|p| !self.files.iter().any(|(temporary, _)| temporary == p));
     }
 }
 
@@ -209,8 +222,8 @@ pub fn write_all<const N: usize, const M: usize, const A: usize>(
     extra: &[(String, String)],
 ) -> Result<(), CliError> {
     let mut staged = Staged::new(out)?;
-    let csv = staged.path("results.csv");
-    write_csv(&csv, solution, derived)?;
+    let (csv, file) = staged.create("results.csv")?;
+    write_csv(&csv, file, solution, derived)?;
     let json = serde_json::to_string_pretty(summary).map_err(|e| CliError::Output {
         what: "summary.json".into(),
         message: e.to_string(),

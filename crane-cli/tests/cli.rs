@@ -1320,13 +1320,18 @@ fn an_output_folder_holds_one_runs_output() {
     assert!(out.join("notes.txt").exists() && out.join("results.csv").exists());
 }
 
-/// SIGINT at any moment of a run (computing, or writing a 60 MB
-/// results.csv) ends it with status 130 and no partial file left.
+/// SIGINT at any moment of a run (computing, writing a 60 MB results.csv,
+/// or the plots after it) ends it with status 130 and no partial file left;
+/// a signal while the handler removes files must not race a file being
+/// created (seen once at 800 ms: `.inputs.svg.partial` left behind).
 #[test]
 fn an_interrupted_run_leaves_no_partial_file() {
     let dir = tempfile::tempdir().unwrap();
     let mut interrupted = 0;
-    for (k, delay) in [200u64, 500, 800, 1000, 1200].into_iter().enumerate() {
+    for (k, delay) in [200u64, 500, 700, 800, 900, 1000, 1100, 1200, 1400]
+        .into_iter()
+        .enumerate()
+    {
         let out = dir.path().join(format!("run{k}"));
         let mut child = Command::new(env!("CARGO_BIN_EXE_crane"))
             .args([
