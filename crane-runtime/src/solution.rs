@@ -126,6 +126,13 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         (0..self.states.len()).fold(0.0f64, |m, i| m.max(self.tensions_at(i)[r].abs()))
     }
 
+    /// The largest `|N|` of any rope over the run (0 without ropes): the
+    /// scale of the round-off in every tension, which comes from one solve
+    /// for all multipliers.
+    pub fn largest_tension(&self) -> f64 {
+        self.tensions.iter().fold(0.0f64, |m, n| m.max(n.abs()))
+    }
+
     /// Mean Newton iterations per step.
     pub fn mean_newton_iterations(&self) -> f64 {
         let steps = self.steps().max(1);

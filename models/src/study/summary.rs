@@ -171,32 +171,35 @@ pub struct ReplaySummary {
 
 /// The one slack rule of every study (`--strict`, planning, replay): a
 /// rope tension `n` is below its floor (0: taut) when `n < floor -
-/// SLACK_TOLERANCE * max(peak, |floor|)`, `peak` the largest `|N|` of that
-/// rope over the run. Above it, a value under the floor is round-off around
-/// a rope that carries no load (as at the paper's start, where N1 = 0
-/// exactly and evaluates to about -1e-13 N).
+/// SLACK_TOLERANCE * max(peak, |floor|)`, `peak` the largest `|N|` of any
+/// rope over the run ([`Solution::largest_tension`]: the multipliers come
+/// from one solve, so their round-off scales with the largest force the
+/// crane carries). Above it, a value under the floor is round-off around a
+/// rope that carries no load (as at the paper's start, where N1 = 0 exactly
+/// and evaluates to about -2.6e-13 N; on a slow move N1 stays below 1e-6 N
+/// for seconds, and its own peak is no scale for that round-off).
 pub const SLACK_TOLERANCE: f64 = 1e-9;
 
-/// How far below `floor` a tension may be and still count as at it, for a
-/// rope whose largest `|N|` over the run is `peak` (see [`SLACK_TOLERANCE`]).
+/// How far below `floor` a tension may be and still count as at it, in a
+/// run whose largest rope tension is `peak` (see [`SLACK_TOLERANCE`]).
 pub fn slack_allowance(floor: f64, peak: f64) -> f64 {
     SLACK_TOLERANCE * peak.max(floor.abs())
 }
 
 /// The first time rope `r` of `solution` is slack ([`below_floor`] 0, with
-/// the rope's own peak over the run), if ever.
+/// the largest tension of the run), if ever.
 pub fn first_slack<const N: usize, const M: usize, const A: usize>(
     solution: &Solution<N, M, A>,
     r: usize,
 ) -> Option<f64> {
-    let peak = solution.peak_tension(r);
+    let peak = solution.largest_tension();
     (0..solution.states.len())
         .find(|&i| below_floor(solution.tensions_at(i)[r], 0.0, peak))
         .map(|i| solution.states[i].t)
 }
 
-/// Whether the tension `n` is below `floor` beyond round-off, for a rope
-/// whose largest `|N|` over the run is `peak` (see [`SLACK_TOLERANCE`]).
+/// Whether the tension `n` is below `floor` beyond round-off, in a run
+/// whose largest rope tension is `peak` (see [`SLACK_TOLERANCE`]).
 pub fn below_floor(n: f64, floor: f64, peak: f64) -> bool {
     n < floor - slack_allowance(floor, peak)
 }
