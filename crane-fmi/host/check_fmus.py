@@ -5,7 +5,11 @@ For each model of `crane list`: `crane fmu MODEL`, FMPy's validate_fmu
 output interval = dt = 0.01 s against `crane run MODEL --dt 0.01`
 (inputs and coordinates, 1e-9 relative to each column's largest value),
 a negative mass (must be an FMI error, the process must live on), a
-communication step that is not a multiple of dt (an FMI error), and the
+communication step that is not a multiple of dt (an FMI error), a host's
+misuse through FMPy's FMU2Slave (gravity of the wrong sign, a time step
+below a microsecond, a NaN or infinite communication point, a step size
+of zero or below: each an FMI error status naming the problem, and the
+instance can still be freed), and the
 C host (host.c) loading the FMU's shared library directly, against the same
 run. Prints the time per doStep of the C host and of FMPy next to the
 native stepper's (`crane bench`).
@@ -78,6 +82,41 @@ def fmpy_do_step(fmu, md, stop):
     return sorted(times)[len(times) // 2]
 
 
+def misuse(fmu, md):
+    """A host's mistakes through FMPy's FMU2Slave: each must end in an FMI
+    error status (FMPy raises FMICallException) and leave an instance that
+    can still be terminated and freed; returns the cases checked."""
+    unzipped = fmpy.extract(str(fmu))
+    refs = {v.name: v.valueReference for v in md.modelVariables}
+    cases = []
+
+    def expect_error(name, parameters, steps):
+        slave = fmpy.fmi2.FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
+        slave.instantiate()
+        try:
+            slave.setupExperiment(startTime=0.0)
+            slave.enterInitializationMode()
+            for variable, value in parameters.items():
+                slave.setReal([refs[variable]], [value])
+            slave.exitInitializationMode()
+            for t, h in steps:
+                slave.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+        except fmpy.fmi1.FMICallException:
+            cases.append(name)
+        else:
+            raise SystemExit(f"{md.modelName}: {name} was accepted")
+        finally:
+            slave.freeInstance()
+
+    expect_error("g = -9.81", {"g": -9.81}, [(0.0, DT)])
+    expect_error("dt = 1e-300", {"dt": 1e-300}, [(0.0, DT)])
+    expect_error("doStep at t = NaN", {}, [(0.0, DT), (float("nan"), DT)])
+    expect_error("doStep at t = inf", {}, [(float("inf"), DT)])
+    expect_error("doStep with h = 0", {}, [(0.0, 0.0)])
+    expect_error("doStep with h = -0.01", {}, [(0.0, -DT)])
+    return cases
+
+
 def check_user(fmu, reference_csv):
     """A user's FMU against the API's run of its default move."""
     problems = validate_fmu(fmu)
@@ -127,6 +166,7 @@ def main():
             raise SystemExit(f"{model}: a step of 0.015 s with dt = 0.01 s was accepted")
         except fmpy.fmi1.FMICallException:
             pass
+        misused = misuse(fmu, md)
 
         # the C host on the FMU's own binary
         binary = out / f"{model}-binary"
@@ -145,7 +185,7 @@ def main():
         native = json.loads(run(crane, "bench", model, "--dt", str(DT), "--repeat", "5", "--json"))["median_step_s"]
         report.append((model, len(result) - 1, worst_fmpy, worst_host, native, host_step, fmpy_step))
         print(f"{model}: validated; FMPy and C host agree with crane run to {worst_fmpy:.1e} and {worst_host:.1e} (relative); "
-              f"{mass} = -1: {bad_mass.strip()}", flush=True)
+              f"{mass} = -1: {bad_mass.strip()}; FMI errors for {', '.join(misused)}", flush=True)
 
     print("\nper step (dt = 0.01 s): native stepper (crane bench, median) | C host fmi2DoStep (median) | FMPy doStep (median, through ctypes)")
     for model, steps, _, _, native, host_step, fmpy_step in report:
