@@ -173,7 +173,7 @@ impl Staged {
             for (temporary, final_path) in &self.files {
                 fs::rename(temporary, final_path).map_err(io_error(format!("renaming to {}", final_path.display())))?;
             }
-            partials.retain(|p| !self.files.iter().any(|(temporary, _)| temporary == p));
+            self.forget(&mut partials);
             self.committed = true;
         }
         let names: Vec<String> = self
@@ -194,8 +194,8 @@ impl Staged {
     }
 
     /// Drop this writer's partial files from the signal handler's list.
-    fn forget_partials(&self) {
-        partials().retain(|p| !self.files.iter().any(|(temporary, _)| temporary == p));
+    fn forget(&self, partials: &mut Vec<PathBuf>) {
+        partials.retain(|p| !self.files.iter().any(|(temporary, _)| temporary == p));
     }
 }
 
@@ -206,7 +206,7 @@ impl Drop for Staged {
             for (temporary, _) in &self.files {
                 let _ = fs::remove_file(temporary);
             }
-            self.forget_partials();
+            self.forget(&mut partials());
         }
     }
 }

@@ -63,9 +63,9 @@ def agree(name, expected, found):
     return worst
 
 
-def fmpy_do_step(fmu, md, stop):
-    """Median time of FMPy's doStep on the default move (FMU2Slave)."""
-    unzipped = fmpy.extract(str(fmu))
+def fmpy_do_step(unzipped, md, stop):
+    """Median time of FMPy's doStep on the default move (FMU2Slave, on the
+    FMU extracted into `unzipped`)."""
     slave = fmpy.fmi2.FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier, instanceName="timing")
     slave.instantiate()
     slave.setupExperiment(startTime=0.0)
@@ -82,11 +82,11 @@ def fmpy_do_step(fmu, md, stop):
     return sorted(times)[len(times) // 2]
 
 
-def misuse(fmu, md):
-    """A host's mistakes through FMPy's FMU2Slave: each must end in an FMI
-    error status (FMPy raises FMICallException) and leave an instance that
-    can still be terminated and freed; returns the cases checked."""
-    unzipped = fmpy.extract(str(fmu))
+def misuse(unzipped, md):
+    """A host's mistakes through FMPy's FMU2Slave (on the FMU extracted into
+    `unzipped`): each must end in an FMI error status (FMPy raises
+    FMICallException) and leave an instance that can still be freed;
+    returns the cases checked."""
     refs = {v.name: v.valueReference for v in md.modelVariables}
     cases = []
 
@@ -150,7 +150,8 @@ def main():
         reference = columns(Path(run(crane, "run", model, "--dt", str(DT), "--quiet", "--out", str(out / model)).split("wrote ")[-1].strip()) / "results.csv")
 
         result = fmpy.simulate_fmu(str(fmu), stop_time=stop, output_interval=DT, step_size=DT, output=compared)
-        fmpy_step = fmpy_do_step(fmu, md, stop)
+        unzipped = fmpy.extract(str(fmu))
+        fmpy_step = fmpy_do_step(unzipped, md, stop)
         worst_fmpy = max(agree(f"{model} FMPy {name}", reference[name], list(result[name])) for name in compared if name in reference)
 
         # a negative mass: an FMI error, reported, and the process lives on
@@ -166,7 +167,7 @@ def main():
             raise SystemExit(f"{model}: a step of 0.015 s with dt = 0.01 s was accepted")
         except fmpy.fmi1.FMICallException:
             pass
-        misused = misuse(fmu, md)
+        misused = misuse(unzipped, md)
 
         # the C host on the FMU's own binary
         binary = out / f"{model}-binary"

@@ -121,11 +121,6 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         &self.tensions[i * r..(i + 1) * r]
     }
 
-    /// The largest `|N|` of rope `r` over the run.
-    pub fn peak_tension(&self, r: usize) -> f64 {
-        (0..self.states.len()).fold(0.0f64, |m, i| m.max(self.tensions_at(i)[r].abs()))
-    }
-
     /// The largest `|N|` of any rope over the run (0 without ropes): the
     /// scale of the round-off in every tension, which comes from one solve
     /// for all multipliers.

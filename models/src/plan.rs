@@ -81,7 +81,7 @@ pub struct Evaluation {
     pub min_tension: Vec<(f64, f64)>,
     /// The largest `|N|` of any rope over the run (the scale of the
     /// tensions' round-off, [`below_floor`](crate::study::below_floor)).
-    pub peak_tension: f64,
+    pub largest_tension: f64,
     /// The run's error, if it failed (then infeasible).
     pub error: Option<String>,
 }
@@ -203,7 +203,7 @@ impl Evaluation {
         }
         for &(r, floor) in &limits.tension {
             if let Some(&(value, at)) = self.min_tension.get(r) {
-                let peak = self.peak_tension;
+                let peak = self.largest_tension;
                 let scale = floor.abs().max(1.0);
                 out.push(Binding {
                     name: info.ropes[r].tension.to_string(),
@@ -327,12 +327,11 @@ pub fn peaks<const N: usize, const M: usize, const A: usize>(duration: f64, run:
             (-value, at)
         })
         .collect();
-    let peak_tension = run.largest_tension();
     Evaluation {
         duration,
         peak_u,
         min_tension,
-        peak_tension,
+        largest_tension: run.largest_tension(),
         error: None,
     }
 }
@@ -363,7 +362,7 @@ fn evaluate_model<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
                 duration,
                 peak_u: Vec::new(),
                 min_tension: Vec::new(),
-                peak_tension: 0.0,
+                largest_tension: 0.0,
                 error: Some(error),
             },
             None,
@@ -723,7 +722,7 @@ pub fn sweep_point<C: Crane<N, M, A>, const N: usize, const M: usize, const A: u
             duration,
             peak_u: Vec::new(),
             min_tension: Vec::new(),
-            peak_tension: 0.0,
+            largest_tension: 0.0,
             error: Some(e),
         },
         None => evaluate_model(case, model, duration, settings).0,
