@@ -9,7 +9,7 @@ use proc_macro2::{Ident, TokenStream};
 use quote::{ToTokens, quote};
 
 use super::printer::{Mode, Printer, minimal_coordinate, velocity_name};
-use super::{index, internal};
+use super::{index, internal, local};
 use crate::expr::{Arena, Id, Node, Sym};
 use crate::model::Model;
 
@@ -109,14 +109,15 @@ fn reads(model: &Model, mode: Mode, reachable: &[Id]) -> TokenStream {
     for s in syms {
         statements.extend(match s {
             Sym::Param(i) => {
-                let name = &model.params[i as usize].name;
+                let field = &model.params[i as usize].name;
+                let name = local(field);
                 match mode {
-                    Mode::Generic => quote!(let #name = T::from(self.#name);),
-                    Mode::F64 => quote!(let #name = self.#name;),
+                    Mode::Generic => quote!(let #name = T::from(self.#field);),
+                    Mode::F64 => quote!(let #name = self.#field;),
                 }
             }
             Sym::Coord(i) => {
-                let name = &model.coords[i as usize];
+                let name = local(&model.coords[i as usize]);
                 let i = index(i as usize);
                 quote!(let #name = #q[#i];)
             }
@@ -126,7 +127,7 @@ fn reads(model: &Model, mode: Mode, reachable: &[Id]) -> TokenStream {
                 quote!(let #name = #v[#i];)
             }
             Sym::Input(k) => {
-                let name = &model.inputs[k as usize];
+                let name = local(&model.inputs[k as usize]);
                 let k = index(k as usize);
                 quote!(let #name = #u[#k];)
             }
@@ -134,7 +135,7 @@ fn reads(model: &Model, mode: Mode, reachable: &[Id]) -> TokenStream {
             // by the dummy-derivative system's own reads
             Sym::Lambda(_) | Sym::Jet(..) => quote!(),
             Sym::Mu(k) => {
-                let name = minimal_coordinate(model, k);
+                let name = local(minimal_coordinate(model, k));
                 let k = index(k as usize);
                 quote!(let #name = #mu[#k];)
             }
@@ -164,7 +165,7 @@ fn common_subexpressions(model: &Model, printer: &mut Printer<'_>, bound_order: 
         let value = printer.print_node(id);
         let value = printer.value(value);
         let name = match let_names.get(&id) {
-            Some(&name) => name.clone(),
+            Some(&name) => local(name),
             None => {
                 temporaries += 1;
                 internal(&format!("t{}", temporaries - 1))

@@ -6,7 +6,7 @@ use proc_macro2::TokenStream;
 use quote::{ToTokens, quote};
 
 use super::body::{Output, body};
-use super::printer::{Mode, jet_name};
+use super::printer::{Mode, jet_label, jet_name};
 use super::{index, internal};
 use crate::dummy::DummyKernels;
 use crate::expr::{Node, Sym};
@@ -78,7 +78,7 @@ pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &To
         "Unknowns `z` in order: {}; equations in order: {}.",
         k.unknowns
             .iter()
-            .map(|&(j, order)| format!("`{}`", jet_name(model, j as u16, order)))
+            .map(|&(j, order)| format!("`{}`", jet_label(model, j as u16, order)))
             .collect::<Vec<_>>()
             .join(", "),
         k.equations

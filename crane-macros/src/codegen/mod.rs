@@ -1,17 +1,21 @@
 //! Code generation: a checked [`Model`] and its [`Kernels`] → Rust items.
 //!
 //! Only printing happens here. Each generated function reads the parameters
-//! and coordinates it needs into locals named as declared
-//! (`let m_l = T::from(self.m_l);`, `let L1 = q[0];`), binds every
-//! subexpression used more than once to a `let tN` (common-subexpression
+//! and coordinates it needs into locals named as declared behind a `__`
+//! (`let __m_l = T::from(self.m_l);`, `let __L1 = __q[0];`), binds every
+//! subexpression used more than once to a `let __tN` (common-subexpression
 //! elimination, read off the hash-consed graph), starts its outputs from
 //! zeros and writes only the nonzero entries.
 //!
 //! The code is generic over `T: ::crane_runtime::Scalar`, which supports
 //! `T op T` and `T op f64` but not `f64 op T`; the printer therefore keeps
 //! numeric constants to the right (`x * 2.0`, `x - 1.0`, `r.recip()`).
-//! Internal names (`q`, `v`, `lambda`, `mu`, `mu_dot`, `out`, `tN`, `dot_x`)
-//! are `Span::mixed_site()` so they cannot collide with the user's names.
+//! No name of the user's scope can reach a generated local: every local and
+//! argument starts with `__`, so a constant `J` or a unit struct `L` beside
+//! the declaration cannot turn `let __J` into a pattern. Internal names
+//! (`__q`, `__v`, `__lambda`, `__mu`, `__mu_dot`, `__out`, `__tN`,
+//! `__dot_x`) are `Span::mixed_site()`, so they cannot collide with the
+//! declared ones either (a coordinate `q` is `__q` at the call site).
 //! A common subexpression that is the value of a `let` of a `minimal` block
 //! is bound under the user's name instead of a `tN`.
 //!
@@ -47,8 +51,21 @@ use self_test::self_test;
 
 pub use stub::stub;
 
+/// An internal name of the generated code (`q`, `out`, `t3` → `__q`,
+/// `__out`, `__t3`, mixed-site): the prefix keeps any item of the user's
+/// scope from capturing it, the span keeps it apart from [`local`]s.
 fn internal(name: &str) -> Ident {
-    Ident::new(name, Span::mixed_site())
+    Ident::new(&format!("__{name}"), Span::mixed_site())
+}
+
+/// The local holding a declared name (parameter, coordinate, input, minimal
+/// coordinate, `let` of a `minimal` block): `J` → `__J`, with the
+/// declaration's span. A constant, static or unit struct `J` of the
+/// user's scope would turn `let J = ...` into a pattern against itself;
+/// `__J` is out of its reach.
+fn local(name: &Ident) -> Ident {
+    let text = name.to_string();
+    Ident::new(&format!("__{}", text.trim_start_matches("r#")), name.span())
 }
 
 fn index(i: usize) -> Literal {

@@ -4,10 +4,10 @@
 
 use std::collections::HashMap;
 
-use proc_macro2::{Ident, Literal, Span, TokenStream};
+use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{ToTokens, format_ident, quote};
 
-use super::{index, internal};
+use super::{index, internal, local};
 use crate::expr::{Arena, Id, Node, Sym};
 use crate::model::Model;
 
@@ -168,16 +168,16 @@ impl Printer<'_> {
 
     fn symbol(&self, s: Sym) -> TokenStream {
         match s {
-            Sym::Param(i) => self.model.params[i as usize].name.to_token_stream(),
-            Sym::Coord(i) => self.model.coords[i as usize].to_token_stream(),
+            Sym::Param(i) => local(&self.model.params[i as usize].name).to_token_stream(),
+            Sym::Coord(i) => local(&self.model.coords[i as usize]).to_token_stream(),
             Sym::Vel(i) => velocity_name(&self.model.coords[i as usize]).to_token_stream(),
-            Sym::Input(k) => self.model.inputs[k as usize].to_token_stream(),
+            Sym::Input(k) => local(&self.model.inputs[k as usize]).to_token_stream(),
             Sym::Lambda(k) => {
                 let lambda = internal("lambda");
                 let k = index(k as usize);
                 quote!(#lambda[#k])
             }
-            Sym::Mu(k) => minimal_coordinate(self.model, k).to_token_stream(),
+            Sym::Mu(k) => local(minimal_coordinate(self.model, k)).to_token_stream(),
             Sym::MuDot(k) => velocity_name(minimal_coordinate(self.model, k)).to_token_stream(),
             Sym::Jet(j, k) => jet_name(self.model, j, k).to_token_stream(),
         }
@@ -343,12 +343,17 @@ fn divisor(c: f64) -> Option<f64> {
 }
 
 pub(super) fn velocity_name(coord: &Ident) -> Ident {
-    Ident::new(&format!("dot_{coord}"), Span::mixed_site())
+    internal(&format!("dot_{}", coord.to_string().trim_start_matches("r#")))
 }
 
 /// The local holding derivative `k` of unknown `j` of `[q, lambda, u]`:
-/// `L1_d2`, `lambda_rope_d4`, `u1_d0`.
+/// `__L1_d2`, `__lambda_rope_d4`, `__u1_d0`.
 pub(super) fn jet_name(model: &Model, j: u16, k: u8) -> Ident {
+    internal(&jet_label(model, j, k))
+}
+
+/// The declared name of derivative `k` of unknown `j` (`L1_d2`), for messages.
+pub(super) fn jet_label(model: &Model, j: u16, k: u8) -> String {
     let (j, n, m) = (j as usize, model.n(), model.m());
     let base = if j < n {
         model.coords[j].to_string()
@@ -357,7 +362,7 @@ pub(super) fn jet_name(model: &Model, j: u16, k: u8) -> Ident {
     } else {
         model.inputs[j - n - m].to_string()
     };
-    Ident::new(&format!("{base}_d{k}"), Span::mixed_site())
+    format!("{}_d{k}", base.trim_start_matches("r#"))
 }
 
 /// The name of the minimal coordinate `mu_k`.

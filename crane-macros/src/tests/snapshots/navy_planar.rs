@@ -66,126 +66,127 @@ const _: () = {
         /// Constraint functions `g(q)` (eq. 1b).
         pub fn g<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
         ) -> __crane_runtime::nalgebra::SVector<T, 3> {
-            let alpha = T::from(self.alpha);
-            let l = T::from(self.l);
-            let L1 = q[0];
-            let L2 = q[1];
-            let L0 = q[2];
-            let x0 = q[3];
-            let z0 = q[4];
-            let x = q[5];
-            let z = q[6];
-            let mut out = __crane_runtime::nalgebra::SVector::<T, 3>::zeros();
-            out[0] = ((x0 + l * alpha.sin()).powi(2) + (z0 + l * alpha.cos()).powi(2)
-                - L1.powi(2)) * 0.5;
-            out[1] = (x0.powi(2) + z0.powi(2) - L0.powi(2)) * 0.5;
-            out[2] = ((x - x0).powi(2) + (z - z0).powi(2) - (L2 - L0).powi(2)) * 0.5;
-            out
+            let __alpha = T::from(self.alpha);
+            let __l = T::from(self.l);
+            let __L1 = __q[0];
+            let __L2 = __q[1];
+            let __L0 = __q[2];
+            let __x0 = __q[3];
+            let __z0 = __q[4];
+            let __x = __q[5];
+            let __z = __q[6];
+            let mut __out = __crane_runtime::nalgebra::SVector::<T, 3>::zeros();
+            __out[0] = ((__x0 + __l * __alpha.sin()).powi(2)
+                + (__z0 + __l * __alpha.cos()).powi(2) - __L1.powi(2)) * 0.5;
+            __out[1] = (__x0.powi(2) + __z0.powi(2) - __L0.powi(2)) * 0.5;
+            __out[2] = ((__x - __x0).powi(2) + (__z - __z0).powi(2)
+                - (__L2 - __L0).powi(2)) * 0.5;
+            __out
         }
         /// `G1 = dg/dp`, the robot block of the constraint Jacobian `G = [G1 G2]`
         /// (eq. 3).
         pub fn G1<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 3, 5> {
-            let alpha = T::from(self.alpha);
-            let l = T::from(self.l);
-            let L1 = q[0];
-            let L2 = q[1];
-            let L0 = q[2];
-            let x0 = q[3];
-            let z0 = q[4];
-            let x = q[5];
-            let z = q[6];
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 3, 5>::zeros();
-            out[(0, 0)] = -L1;
-            out[(0, 3)] = x0 + l * alpha.sin();
-            out[(0, 4)] = z0 + l * alpha.cos();
-            out[(1, 2)] = -L0;
-            out[(1, 3)] = x0;
-            out[(1, 4)] = z0;
-            out[(2, 1)] = L0 - L2;
-            out[(2, 2)] = L2 - L0;
-            out[(2, 3)] = x0 - x;
-            out[(2, 4)] = z0 - z;
-            out
+            let __alpha = T::from(self.alpha);
+            let __l = T::from(self.l);
+            let __L1 = __q[0];
+            let __L2 = __q[1];
+            let __L0 = __q[2];
+            let __x0 = __q[3];
+            let __z0 = __q[4];
+            let __x = __q[5];
+            let __z = __q[6];
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 3, 5>::zeros();
+            __out[(0, 0)] = -__L1;
+            __out[(0, 3)] = __x0 + __l * __alpha.sin();
+            __out[(0, 4)] = __z0 + __l * __alpha.cos();
+            __out[(1, 2)] = -__L0;
+            __out[(1, 3)] = __x0;
+            __out[(1, 4)] = __z0;
+            __out[(2, 1)] = __L0 - __L2;
+            __out[(2, 2)] = __L2 - __L0;
+            __out[(2, 3)] = __x0 - __x;
+            __out[(2, 4)] = __z0 - __z;
+            __out
         }
         /// `G2 = dg/dx`, the load block of the constraint Jacobian `G = [G1 G2]`
         /// (eq. 3).
         pub fn G2<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 3, 2> {
-            let x0 = q[3];
-            let z0 = q[4];
-            let x = q[5];
-            let z = q[6];
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 3, 2>::zeros();
-            out[(2, 0)] = x - x0;
-            out[(2, 1)] = z - z0;
-            out
+            let __x0 = __q[3];
+            let __z0 = __q[4];
+            let __x = __q[5];
+            let __z = __q[6];
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 3, 2>::zeros();
+            __out[(2, 0)] = __x - __x0;
+            __out[(2, 1)] = __z - __z0;
+            __out
         }
         /// Robot block `M1` of the constant mass matrix (eq. 11a), from the kinetic energy `T = 1/2 q'^T M q'` (eq. 28).
         /// `M` is block diagonal, `M = diag(M1, M2)`.
         pub fn M1<T: __crane_runtime::Scalar>(
             &self,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 5, 5> {
-            let J1 = T::from(self.J1);
-            let J2 = T::from(self.J2);
-            let r1 = T::from(self.r1);
-            let r2 = T::from(self.r2);
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 5, 5>::zeros();
-            out[(0, 0)] = J1 / r1.powi(2);
-            out[(1, 1)] = J2 / r2.powi(2);
-            out
+            let __J1 = T::from(self.J1);
+            let __J2 = T::from(self.J2);
+            let __r1 = T::from(self.r1);
+            let __r2 = T::from(self.r2);
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 5, 5>::zeros();
+            __out[(0, 0)] = __J1 / __r1.powi(2);
+            __out[(1, 1)] = __J2 / __r2.powi(2);
+            __out
         }
         /// Load block `M2` of the constant mass matrix (eq. 11a).
         /// `M` is block diagonal, `M = diag(M1, M2)`.
         pub fn M2<T: __crane_runtime::Scalar>(
             &self,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 2, 2> {
-            let m_l = T::from(self.m_l);
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
-            out[(0, 0)] = m_l;
-            out[(1, 1)] = m_l;
-            out
+            let __m_l = T::from(self.m_l);
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
+            __out[(0, 0)] = __m_l;
+            __out[(1, 1)] = __m_l;
+            __out
         }
         /// Applied forces on the robot coordinates without the inputs, `f1(q, q')`
         /// (eq. 11b).
         pub fn f1<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
-            v: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __v: &__crane_runtime::nalgebra::SVector<T, 7>,
         ) -> __crane_runtime::nalgebra::SVector<T, 5> {
             __crane_runtime::nalgebra::SVector::<T, 5>::zeros()
         }
         /// Applied forces on the load coordinates, `f2(q, q')` (eq. 11b).
         pub fn f2<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
-            v: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __v: &__crane_runtime::nalgebra::SVector<T, 7>,
         ) -> __crane_runtime::nalgebra::SVector<T, 2> {
-            let m_l = T::from(self.m_l);
-            let g = T::from(self.g);
-            let mut out = __crane_runtime::nalgebra::SVector::<T, 2>::zeros();
-            out[1] = -m_l * g;
-            out
+            let __m_l = T::from(self.m_l);
+            let __g = T::from(self.g);
+            let mut __out = __crane_runtime::nalgebra::SVector::<T, 2>::zeros();
+            __out[1] = -__m_l * __g;
+            __out
         }
         /// Input matrix `B1^T(q)`: generalized force on the robot coordinates per
         /// unit input (eq. 11c).
         /// The load rows of `B^T = [B1^T; 0]` are zero.
         pub fn B1T<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 5, 2> {
-            let r1 = T::from(self.r1);
-            let r2 = T::from(self.r2);
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 5, 2>::zeros();
-            out[(0, 0)] = r1.recip();
-            out[(1, 1)] = r2.recip();
-            out
+            let __r1 = T::from(self.r1);
+            let __r2 = T::from(self.r2);
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 5, 2>::zeros();
+            __out[(0, 0)] = __r1.recip();
+            __out[(1, 1)] = __r2.recip();
+            __out
         }
     }
     #[allow(
@@ -253,129 +254,129 @@ const _: () = {
         }
         fn constraints<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
         ) -> __crane_runtime::nalgebra::SVector<T, 3> {
-            self.g(q)
+            self.g(__q)
         }
         fn constraint_jacobian<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 3, 7> {
-            let alpha = T::from(self.alpha);
-            let l = T::from(self.l);
-            let L1 = q[0];
-            let L2 = q[1];
-            let L0 = q[2];
-            let x0 = q[3];
-            let z0 = q[4];
-            let x = q[5];
-            let z = q[6];
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 3, 7>::zeros();
-            out[(0, 0)] = -L1;
-            out[(0, 3)] = x0 + l * alpha.sin();
-            out[(0, 4)] = z0 + l * alpha.cos();
-            out[(1, 2)] = -L0;
-            out[(1, 3)] = x0;
-            out[(1, 4)] = z0;
-            out[(2, 1)] = L0 - L2;
-            out[(2, 2)] = L2 - L0;
-            out[(2, 3)] = x0 - x;
-            out[(2, 4)] = z0 - z;
-            out[(2, 5)] = x - x0;
-            out[(2, 6)] = z - z0;
-            out
+            let __alpha = T::from(self.alpha);
+            let __l = T::from(self.l);
+            let __L1 = __q[0];
+            let __L2 = __q[1];
+            let __L0 = __q[2];
+            let __x0 = __q[3];
+            let __z0 = __q[4];
+            let __x = __q[5];
+            let __z = __q[6];
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 3, 7>::zeros();
+            __out[(0, 0)] = -__L1;
+            __out[(0, 3)] = __x0 + __l * __alpha.sin();
+            __out[(0, 4)] = __z0 + __l * __alpha.cos();
+            __out[(1, 2)] = -__L0;
+            __out[(1, 3)] = __x0;
+            __out[(1, 4)] = __z0;
+            __out[(2, 1)] = __L0 - __L2;
+            __out[(2, 2)] = __L2 - __L0;
+            __out[(2, 3)] = __x0 - __x;
+            __out[(2, 4)] = __z0 - __z;
+            __out[(2, 5)] = __x - __x0;
+            __out[(2, 6)] = __z - __z0;
+            __out
         }
         fn constraint_hessian<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
-            lambda: &__crane_runtime::nalgebra::SVector<T, 3>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __lambda: &__crane_runtime::nalgebra::SVector<T, 3>,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 7> {
-            let t0 = lambda[0] + lambda[1] + lambda[2];
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
-            out[(0, 0)] = -lambda[0];
-            out[(1, 1)] = -lambda[2];
-            out[(1, 2)] = lambda[2];
-            out[(2, 1)] = lambda[2];
-            out[(2, 2)] = -lambda[2] - lambda[1];
-            out[(3, 3)] = t0;
-            out[(3, 5)] = -lambda[2];
-            out[(4, 4)] = t0;
-            out[(4, 6)] = -lambda[2];
-            out[(5, 3)] = -lambda[2];
-            out[(5, 5)] = lambda[2];
-            out[(6, 4)] = -lambda[2];
-            out[(6, 6)] = lambda[2];
-            out
+            let __t0 = __lambda[0] + __lambda[1] + __lambda[2];
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
+            __out[(0, 0)] = -__lambda[0];
+            __out[(1, 1)] = -__lambda[2];
+            __out[(1, 2)] = __lambda[2];
+            __out[(2, 1)] = __lambda[2];
+            __out[(2, 2)] = -__lambda[2] - __lambda[1];
+            __out[(3, 3)] = __t0;
+            __out[(3, 5)] = -__lambda[2];
+            __out[(4, 4)] = __t0;
+            __out[(4, 6)] = -__lambda[2];
+            __out[(5, 3)] = -__lambda[2];
+            __out[(5, 5)] = __lambda[2];
+            __out[(6, 4)] = -__lambda[2];
+            __out[(6, 6)] = __lambda[2];
+            __out
         }
         fn mass_matrix<T: __crane_runtime::Scalar>(
             &self,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 7> {
-            let m_l = T::from(self.m_l);
-            let J1 = T::from(self.J1);
-            let J2 = T::from(self.J2);
-            let r1 = T::from(self.r1);
-            let r2 = T::from(self.r2);
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
-            out[(0, 0)] = J1 / r1.powi(2);
-            out[(1, 1)] = J2 / r2.powi(2);
-            out[(5, 5)] = m_l;
-            out[(6, 6)] = m_l;
-            out
+            let __m_l = T::from(self.m_l);
+            let __J1 = T::from(self.J1);
+            let __J2 = T::from(self.J2);
+            let __r1 = T::from(self.r1);
+            let __r2 = T::from(self.r2);
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
+            __out[(0, 0)] = __J1 / __r1.powi(2);
+            __out[(1, 1)] = __J2 / __r2.powi(2);
+            __out[(5, 5)] = __m_l;
+            __out[(6, 6)] = __m_l;
+            __out
         }
         fn forces<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
-            v: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __v: &__crane_runtime::nalgebra::SVector<T, 7>,
         ) -> __crane_runtime::nalgebra::SVector<T, 7> {
-            let m_l = T::from(self.m_l);
-            let g = T::from(self.g);
-            let mut out = __crane_runtime::nalgebra::SVector::<T, 7>::zeros();
-            out[6] = -m_l * g;
-            out
+            let __m_l = T::from(self.m_l);
+            let __g = T::from(self.g);
+            let mut __out = __crane_runtime::nalgebra::SVector::<T, 7>::zeros();
+            __out[6] = -__m_l * __g;
+            __out
         }
         fn force_jacobians<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
-            v: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __v: &__crane_runtime::nalgebra::SVector<T, 7>,
         ) -> (
             __crane_runtime::nalgebra::SMatrix<T, 7, 7>,
             __crane_runtime::nalgebra::SMatrix<T, 7, 7>,
         ) {
-            let df_dq = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
-            let df_dv = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
-            (df_dq, df_dv)
+            let __df_dq = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
+            let __df_dv = __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros();
+            (__df_dq, __df_dv)
         }
         fn input_matrix<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 2> {
-            let r1 = T::from(self.r1);
-            let r2 = T::from(self.r2);
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 7, 2>::zeros();
-            out[(0, 0)] = r1.recip();
-            out[(1, 1)] = r2.recip();
-            out
+            let __r1 = T::from(self.r1);
+            let __r2 = T::from(self.r2);
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 7, 2>::zeros();
+            __out[(0, 0)] = __r1.recip();
+            __out[(1, 1)] = __r2.recip();
+            __out
         }
         fn input_jacobian<T: __crane_runtime::Scalar>(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<T, 7>,
-            u: &__crane_runtime::nalgebra::SVector<T, 2>,
+            __q: &__crane_runtime::nalgebra::SVector<T, 7>,
+            __u: &__crane_runtime::nalgebra::SVector<T, 2>,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 7> {
             __crane_runtime::nalgebra::SMatrix::<T, 7, 7>::zeros()
         }
         fn rope_lengths(
             &self,
-            q: &__crane_runtime::nalgebra::SVector<f64, 7>,
-            out: &mut [f64],
+            __q: &__crane_runtime::nalgebra::SVector<f64, 7>,
+            __out: &mut [f64],
         ) {
             ::core::assert_eq!(
-                out.len(), 2, "rope_lengths: `out` must have one entry per rope (2)"
+                __out.len(), 2, "rope_lengths: `out` must have one entry per rope (2)"
             );
-            let L1 = q[0];
-            let L2 = q[1];
-            let L0 = q[2];
-            out[0] = L1;
-            out[1] = L2 - L0;
+            let __L1 = __q[0];
+            let __L2 = __q[1];
+            let __L0 = __q[2];
+            __out[0] = __L1;
+            __out[1] = __L2 - __L0;
         }
     }
     #[allow(
@@ -390,135 +391,141 @@ const _: () = {
         /// Robot part `phi_p(mu)` of the map `q = phi(mu)` (eq. 6): `L1`, `L2`, `L0`, `x0`, `z0` as functions of the minimal coordinates `mu` = `beta`, `gamma`, `theta`, `L`.
         pub fn phi_p<T: __crane_runtime::Scalar>(
             &self,
-            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu: &__crane_runtime::nalgebra::SVector<T, 4>,
         ) -> __crane_runtime::nalgebra::SVector<T, 5> {
-            let alpha = T::from(self.alpha);
-            let l = T::from(self.l);
-            let beta = mu[0];
-            let gamma = mu[1];
-            let L = mu[3];
-            let t0 = (gamma - beta).sin();
-            let t1 = gamma.sin();
-            let d = l * t0 / t1;
-            let t2 = alpha - beta;
-            let mut out = __crane_runtime::nalgebra::SVector::<T, 5>::zeros();
-            out[0] = l * beta.sin() / t1;
-            out[1] = d + L;
-            out[2] = d;
-            out[3] = -l * t0 * t2.sin() / t1;
-            out[4] = -l * t0 * t2.cos() / t1;
-            out
+            let __alpha = T::from(self.alpha);
+            let __l = T::from(self.l);
+            let __beta = __mu[0];
+            let __gamma = __mu[1];
+            let __L = __mu[3];
+            let __t0 = (__gamma - __beta).sin();
+            let __t1 = __gamma.sin();
+            let __d = __l * __t0 / __t1;
+            let __t2 = __alpha - __beta;
+            let mut __out = __crane_runtime::nalgebra::SVector::<T, 5>::zeros();
+            __out[0] = __l * __beta.sin() / __t1;
+            __out[1] = __d + __L;
+            __out[2] = __d;
+            __out[3] = -__l * __t0 * __t2.sin() / __t1;
+            __out[4] = -__l * __t0 * __t2.cos() / __t1;
+            __out
         }
         /// Load part `phi_x(mu)` of the map `q = phi(mu)` (eq. 6): `x`, `z`; the servo constraints read `phi_x(mu) = gamma(t)` (eq. 10b).
         pub fn phi_x<T: __crane_runtime::Scalar>(
             &self,
-            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu: &__crane_runtime::nalgebra::SVector<T, 4>,
         ) -> __crane_runtime::nalgebra::SVector<T, 2> {
-            let alpha = T::from(self.alpha);
-            let l = T::from(self.l);
-            let beta = mu[0];
-            let gamma = mu[1];
-            let theta = mu[2];
-            let L = mu[3];
-            let t0 = (gamma - beta).sin();
-            let t1 = gamma.sin();
-            let t2 = alpha - beta;
-            let mut out = __crane_runtime::nalgebra::SVector::<T, 2>::zeros();
-            out[0] = L * theta.sin() - l * t0 * t2.sin() / t1;
-            out[1] = -l * t0 * t2.cos() / t1 - L * theta.cos();
-            out
+            let __alpha = T::from(self.alpha);
+            let __l = T::from(self.l);
+            let __beta = __mu[0];
+            let __gamma = __mu[1];
+            let __theta = __mu[2];
+            let __L = __mu[3];
+            let __t0 = (__gamma - __beta).sin();
+            let __t1 = __gamma.sin();
+            let __t2 = __alpha - __beta;
+            let mut __out = __crane_runtime::nalgebra::SVector::<T, 2>::zeros();
+            __out[0] = __L * __theta.sin() - __l * __t0 * __t2.sin() / __t1;
+            __out[1] = -__l * __t0 * __t2.cos() / __t1 - __L * __theta.cos();
+            __out
         }
         /// `D1 phi_x = d phi_x / d mu1` (eqs. 15-16): the load rows of `P = D phi` in
         /// the columns of `mu1`.
         pub fn D1_phi_x<T: __crane_runtime::Scalar>(
             &self,
-            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu: &__crane_runtime::nalgebra::SVector<T, 4>,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 2, 2> {
-            let alpha = T::from(self.alpha);
-            let l = T::from(self.l);
-            let beta = mu[0];
-            let gamma = mu[1];
-            let t0 = gamma - beta;
-            let t1 = t0.sin();
-            let t2 = gamma.sin();
-            let t3 = alpha - beta;
-            let t4 = t3.sin();
-            let t5 = t3.cos();
-            let t6 = gamma.cos();
-            let t7 = t2.powi(-2);
-            let t8 = t0.cos();
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
-            out[(0, 0)] = l * t1 * t5 / t2 + l * t4 * t8 / t2;
-            out[(0, 1)] = l * t1 * t4 * t6 * t7 - l * t4 * t8 / t2;
-            out[(1, 0)] = l * t5 * t8 / t2 - l * t1 * t4 / t2;
-            out[(1, 1)] = l * t1 * t5 * t6 * t7 - l * t5 * t8 / t2;
-            out
+            let __alpha = T::from(self.alpha);
+            let __l = T::from(self.l);
+            let __beta = __mu[0];
+            let __gamma = __mu[1];
+            let __t0 = __gamma - __beta;
+            let __t1 = __t0.sin();
+            let __t2 = __gamma.sin();
+            let __t3 = __alpha - __beta;
+            let __t4 = __t3.sin();
+            let __t5 = __t3.cos();
+            let __t6 = __gamma.cos();
+            let __t7 = __t2.powi(-2);
+            let __t8 = __t0.cos();
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
+            __out[(0, 0)] = __l * __t1 * __t5 / __t2 + __l * __t4 * __t8 / __t2;
+            __out[(0, 1)] = __l * __t1 * __t4 * __t6 * __t7 - __l * __t4 * __t8 / __t2;
+            __out[(1, 0)] = __l * __t5 * __t8 / __t2 - __l * __t1 * __t4 / __t2;
+            __out[(1, 1)] = __l * __t1 * __t5 * __t6 * __t7 - __l * __t5 * __t8 / __t2;
+            __out
         }
         /// `D2 phi_x = d phi_x / d mu2` (eqs. 12, 15-16): the load rows of `P = D phi`
         /// in the columns of `mu2`; must be regular.
         pub fn D2_phi_x<T: __crane_runtime::Scalar>(
             &self,
-            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu: &__crane_runtime::nalgebra::SVector<T, 4>,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 2, 2> {
-            let theta = mu[2];
-            let L = mu[3];
-            let t0 = theta.sin();
-            let t1 = theta.cos();
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
-            out[(0, 0)] = L * t1;
-            out[(0, 1)] = t0;
-            out[(1, 0)] = L * t0;
-            out[(1, 1)] = -t1;
-            out
+            let __theta = __mu[2];
+            let __L = __mu[3];
+            let __t0 = __theta.sin();
+            let __t1 = __theta.cos();
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 2, 2>::zeros();
+            __out[(0, 0)] = __L * __t1;
+            __out[(0, 1)] = __t0;
+            __out[(1, 0)] = __L * __t0;
+            __out[(1, 1)] = -__t1;
+            __out
         }
         /// `w = d/dt[D1 phi_x] mu1' + d/dt[D2 phi_x] mu2^` (eq. 17), with
         /// `mu_dot = [mu1'; mu2^]`: the load rows of `P'(mu, mu') mu'`, the second
         /// directional derivative of `phi_x` along `mu'`.
         pub fn w<T: __crane_runtime::Scalar>(
             &self,
-            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
-            mu_dot: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu_dot: &__crane_runtime::nalgebra::SVector<T, 4>,
         ) -> __crane_runtime::nalgebra::SVector<T, 2> {
-            let alpha = T::from(self.alpha);
-            let l = T::from(self.l);
-            let beta = mu[0];
-            let gamma = mu[1];
-            let theta = mu[2];
-            let L = mu[3];
-            let dot_beta = mu_dot[0];
-            let dot_gamma = mu_dot[1];
-            let dot_theta = mu_dot[2];
-            let dot_L = mu_dot[3];
-            let t0 = gamma - beta;
-            let t1 = t0.sin();
-            let t2 = gamma.sin();
-            let t3 = alpha - beta;
-            let t4 = t3.sin();
-            let t5 = t3.cos();
-            let t6 = theta.sin();
-            let t7 = theta.cos();
-            let t8 = gamma.cos();
-            let t9 = t2.powi(-2);
-            let t10 = t0.cos();
-            let t11 = t2.powi(-3);
-            let t12 = t8.powi(2);
-            let t13 = dot_beta.powi(2);
-            let t14 = dot_gamma.powi(2);
-            let t15 = dot_theta.powi(2);
-            let mut out = __crane_runtime::nalgebra::SVector::<T, 2>::zeros();
-            out[0] = (l * t1 * t4 * 2.0 / t2 - l * t5 * t10 * 2.0 / t2) * t13
-                + dot_beta * dot_gamma
-                    * (l * t5 * t10 / t2 - l * t1 * t4 / t2 - l * t1 * t5 * t8 * t9
-                        - l * t4 * t8 * t9 * t10) * 2.0
-                + (l * t4 * t8 * t9 * t10 * 2.0 - l * t1 * t4 * t11 * t12 * 2.0) * t14
-                - L * t6 * t15 + t7 * dot_theta * dot_L * 2.0;
-            out[1] = (l * t1 * t5 * 2.0 / t2 + l * t4 * t10 * 2.0 / t2) * t13
-                + dot_beta * dot_gamma
-                    * (l * t1 * t4 * t8 * t9 - l * t1 * t5 / t2 - l * t4 * t10 / t2
-                        - l * t5 * t8 * t9 * t10) * 2.0
-                + (l * t5 * t8 * t9 * t10 * 2.0 - l * t1 * t5 * t11 * t12 * 2.0) * t14
-                + L * t7 * t15 + t6 * dot_theta * dot_L * 2.0;
-            out
+            let __alpha = T::from(self.alpha);
+            let __l = T::from(self.l);
+            let __beta = __mu[0];
+            let __gamma = __mu[1];
+            let __theta = __mu[2];
+            let __L = __mu[3];
+            let __dot_beta = __mu_dot[0];
+            let __dot_gamma = __mu_dot[1];
+            let __dot_theta = __mu_dot[2];
+            let __dot_L = __mu_dot[3];
+            let __t0 = __gamma - __beta;
+            let __t1 = __t0.sin();
+            let __t2 = __gamma.sin();
+            let __t3 = __alpha - __beta;
+            let __t4 = __t3.sin();
+            let __t5 = __t3.cos();
+            let __t6 = __theta.sin();
+            let __t7 = __theta.cos();
+            let __t8 = __gamma.cos();
+            let __t9 = __t2.powi(-2);
+            let __t10 = __t0.cos();
+            let __t11 = __t2.powi(-3);
+            let __t12 = __t8.powi(2);
+            let __t13 = __dot_beta.powi(2);
+            let __t14 = __dot_gamma.powi(2);
+            let __t15 = __dot_theta.powi(2);
+            let mut __out = __crane_runtime::nalgebra::SVector::<T, 2>::zeros();
+            __out[0] = (__l * __t1 * __t4 * 2.0 / __t2 - __l * __t5 * __t10 * 2.0 / __t2)
+                * __t13
+                + __dot_beta * __dot_gamma
+                    * (__l * __t5 * __t10 / __t2 - __l * __t1 * __t4 / __t2
+                        - __l * __t1 * __t5 * __t8 * __t9
+                        - __l * __t4 * __t8 * __t9 * __t10) * 2.0
+                + (__l * __t4 * __t8 * __t9 * __t10 * 2.0
+                    - __l * __t1 * __t4 * __t11 * __t12 * 2.0) * __t14
+                - __L * __t6 * __t15 + __t7 * __dot_theta * __dot_L * 2.0;
+            __out[1] = (__l * __t1 * __t5 * 2.0 / __t2 + __l * __t4 * __t10 * 2.0 / __t2)
+                * __t13
+                + __dot_beta * __dot_gamma
+                    * (__l * __t1 * __t4 * __t8 * __t9 - __l * __t1 * __t5 / __t2
+                        - __l * __t4 * __t10 / __t2 - __l * __t5 * __t8 * __t9 * __t10)
+                    * 2.0
+                + (__l * __t5 * __t8 * __t9 * __t10 * 2.0
+                    - __l * __t1 * __t5 * __t11 * __t12 * 2.0) * __t14
+                + __L * __t7 * __t15 + __t6 * __dot_theta * __dot_L * 2.0;
+            __out
         }
     }
     #[allow(
@@ -548,386 +555,413 @@ const _: () = {
         /// ```
         fn phi<T: __crane_runtime::Scalar>(
             &self,
-            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu: &__crane_runtime::nalgebra::SVector<T, 4>,
         ) -> __crane_runtime::nalgebra::SVector<T, 7> {
-            let alpha = T::from(self.alpha);
-            let l = T::from(self.l);
-            let beta = mu[0];
-            let gamma = mu[1];
-            let theta = mu[2];
-            let L = mu[3];
-            let t0 = (gamma - beta).sin();
-            let t1 = gamma.sin();
-            let d = l * t0 / t1;
-            let t2 = alpha - beta;
-            let t3 = -l * t0 * t2.sin() / t1;
-            let t4 = -l * t0 * t2.cos() / t1;
-            let mut out = __crane_runtime::nalgebra::SVector::<T, 7>::zeros();
-            out[0] = l * beta.sin() / t1;
-            out[1] = d + L;
-            out[2] = d;
-            out[3] = t3;
-            out[4] = t4;
-            out[5] = t3 + L * theta.sin();
-            out[6] = t4 - L * theta.cos();
-            out
+            let __alpha = T::from(self.alpha);
+            let __l = T::from(self.l);
+            let __beta = __mu[0];
+            let __gamma = __mu[1];
+            let __theta = __mu[2];
+            let __L = __mu[3];
+            let __t0 = (__gamma - __beta).sin();
+            let __t1 = __gamma.sin();
+            let __d = __l * __t0 / __t1;
+            let __t2 = __alpha - __beta;
+            let __t3 = -__l * __t0 * __t2.sin() / __t1;
+            let __t4 = -__l * __t0 * __t2.cos() / __t1;
+            let mut __out = __crane_runtime::nalgebra::SVector::<T, 7>::zeros();
+            __out[0] = __l * __beta.sin() / __t1;
+            __out[1] = __d + __L;
+            __out[2] = __d;
+            __out[3] = __t3;
+            __out[4] = __t4;
+            __out[5] = __t3 + __L * __theta.sin();
+            __out[6] = __t4 - __L * __theta.cos();
+            __out
         }
         /// `P = D phi(mu)` (eq. 8).
         fn null_space<T: __crane_runtime::Scalar>(
             &self,
-            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu: &__crane_runtime::nalgebra::SVector<T, 4>,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 4> {
-            let alpha = T::from(self.alpha);
-            let l = T::from(self.l);
-            let beta = mu[0];
-            let gamma = mu[1];
-            let theta = mu[2];
-            let L = mu[3];
-            let t0 = gamma - beta;
-            let t1 = t0.sin();
-            let t2 = gamma.sin();
-            let t3 = alpha - beta;
-            let t4 = t3.sin();
-            let t5 = t3.cos();
-            let t6 = theta.sin();
-            let t7 = theta.cos();
-            let t8 = gamma.cos();
-            let t9 = t2.powi(-2);
-            let t10 = t0.cos();
-            let t11 = -l * t10 / t2;
-            let t12 = l * t10 / t2 - l * t1 * t8 * t9;
-            let t13 = l * t1 * t5 / t2 + l * t4 * t10 / t2;
-            let t14 = l * t1 * t4 * t8 * t9 - l * t4 * t10 / t2;
-            let t15 = l * t5 * t10 / t2 - l * t1 * t4 / t2;
-            let t16 = l * t1 * t5 * t8 * t9 - l * t5 * t10 / t2;
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 7, 4>::zeros();
-            out[(0, 0)] = l * beta.cos() / t2;
-            out[(0, 1)] = -l * beta.sin() * t8 * t9;
-            out[(1, 0)] = t11;
-            out[(1, 1)] = t12;
-            out[(1, 3)] = T::from(1.0);
-            out[(2, 0)] = t11;
-            out[(2, 1)] = t12;
-            out[(3, 0)] = t13;
-            out[(3, 1)] = t14;
-            out[(4, 0)] = t15;
-            out[(4, 1)] = t16;
-            out[(5, 0)] = t13;
-            out[(5, 1)] = t14;
-            out[(5, 2)] = L * t7;
-            out[(5, 3)] = t6;
-            out[(6, 0)] = t15;
-            out[(6, 1)] = t16;
-            out[(6, 2)] = L * t6;
-            out[(6, 3)] = -t7;
-            out
+            let __alpha = T::from(self.alpha);
+            let __l = T::from(self.l);
+            let __beta = __mu[0];
+            let __gamma = __mu[1];
+            let __theta = __mu[2];
+            let __L = __mu[3];
+            let __t0 = __gamma - __beta;
+            let __t1 = __t0.sin();
+            let __t2 = __gamma.sin();
+            let __t3 = __alpha - __beta;
+            let __t4 = __t3.sin();
+            let __t5 = __t3.cos();
+            let __t6 = __theta.sin();
+            let __t7 = __theta.cos();
+            let __t8 = __gamma.cos();
+            let __t9 = __t2.powi(-2);
+            let __t10 = __t0.cos();
+            let __t11 = -__l * __t10 / __t2;
+            let __t12 = __l * __t10 / __t2 - __l * __t1 * __t8 * __t9;
+            let __t13 = __l * __t1 * __t5 / __t2 + __l * __t4 * __t10 / __t2;
+            let __t14 = __l * __t1 * __t4 * __t8 * __t9 - __l * __t4 * __t10 / __t2;
+            let __t15 = __l * __t5 * __t10 / __t2 - __l * __t1 * __t4 / __t2;
+            let __t16 = __l * __t1 * __t5 * __t8 * __t9 - __l * __t5 * __t10 / __t2;
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 7, 4>::zeros();
+            __out[(0, 0)] = __l * __beta.cos() / __t2;
+            __out[(0, 1)] = -__l * __beta.sin() * __t8 * __t9;
+            __out[(1, 0)] = __t11;
+            __out[(1, 1)] = __t12;
+            __out[(1, 3)] = T::from(1.0);
+            __out[(2, 0)] = __t11;
+            __out[(2, 1)] = __t12;
+            __out[(3, 0)] = __t13;
+            __out[(3, 1)] = __t14;
+            __out[(4, 0)] = __t15;
+            __out[(4, 1)] = __t16;
+            __out[(5, 0)] = __t13;
+            __out[(5, 1)] = __t14;
+            __out[(5, 2)] = __L * __t7;
+            __out[(5, 3)] = __t6;
+            __out[(6, 0)] = __t15;
+            __out[(6, 1)] = __t16;
+            __out[(6, 2)] = __L * __t6;
+            __out[(6, 3)] = -__t7;
+            __out
         }
         /// `P' = sum_k dP/dmu_k mu_k'` (eq. 9).
         fn null_space_rate<T: __crane_runtime::Scalar>(
             &self,
-            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
-            mu_dot: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu_dot: &__crane_runtime::nalgebra::SVector<T, 4>,
         ) -> __crane_runtime::nalgebra::SMatrix<T, 7, 4> {
-            let alpha = T::from(self.alpha);
-            let l = T::from(self.l);
-            let beta = mu[0];
-            let gamma = mu[1];
-            let theta = mu[2];
-            let L = mu[3];
-            let dot_beta = mu_dot[0];
-            let dot_gamma = mu_dot[1];
-            let dot_theta = mu_dot[2];
-            let dot_L = mu_dot[3];
-            let t0 = gamma - beta;
-            let t1 = t0.sin();
-            let t2 = gamma.sin();
-            let t3 = beta.sin();
-            let t4 = alpha - beta;
-            let t5 = t4.sin();
-            let t6 = t4.cos();
-            let t7 = theta.sin();
-            let t8 = theta.cos();
-            let t9 = gamma.cos();
-            let t10 = beta.cos();
-            let t11 = t2.powi(-2);
-            let t12 = t0.cos();
-            let t13 = t2.powi(-3);
-            let t14 = t9.powi(2);
-            let t15 = l * t1 / t2 + l * t9 * t11 * t12;
-            let t16 = dot_gamma * t15 - l * t1 * dot_beta / t2;
-            let t17 = dot_beta * t15
-                + dot_gamma * (l * t1 * t13 * t14 * 2.0 - l * t9 * t11 * t12 * 2.0);
-            let t18 = l * t6 * t12 / t2 - l * t1 * t5 / t2 - l * t1 * t6 * t9 * t11
-                - l * t5 * t9 * t11 * t12;
-            let t19 = dot_beta * (l * t1 * t5 * 2.0 / t2 - l * t6 * t12 * 2.0 / t2)
-                + dot_gamma * t18;
-            let t20 = dot_beta * t18
-                + dot_gamma
-                    * (l * t5 * t9 * t11 * t12 * 2.0 - l * t1 * t5 * t13 * t14 * 2.0);
-            let t21 = l * t1 * t5 * t9 * t11 - l * t1 * t6 / t2 - l * t5 * t12 / t2
-                - l * t6 * t9 * t11 * t12;
-            let t22 = dot_beta * (l * t1 * t6 * 2.0 / t2 + l * t5 * t12 * 2.0 / t2)
-                + dot_gamma * t21;
-            let t23 = dot_beta * t21
-                + dot_gamma
-                    * (l * t6 * t9 * t11 * t12 * 2.0 - l * t1 * t6 * t13 * t14 * 2.0);
-            let mut out = __crane_runtime::nalgebra::SMatrix::<T, 7, 4>::zeros();
-            out[(0, 0)] = -l * t3 * dot_beta / t2 - l * t9 * t10 * t11 * dot_gamma;
-            out[(0, 1)] = dot_gamma * (l * t3 / t2 + l * t3 * t13 * t14 * 2.0)
-                - l * t9 * t10 * t11 * dot_beta;
-            out[(1, 0)] = t16;
-            out[(1, 1)] = t17;
-            out[(2, 0)] = t16;
-            out[(2, 1)] = t17;
-            out[(3, 0)] = t19;
-            out[(3, 1)] = t20;
-            out[(4, 0)] = t22;
-            out[(4, 1)] = t23;
-            out[(5, 0)] = t19;
-            out[(5, 1)] = t20;
-            out[(5, 2)] = t8 * dot_L - L * t7 * dot_theta;
-            out[(5, 3)] = t8 * dot_theta;
-            out[(6, 0)] = t22;
-            out[(6, 1)] = t23;
-            out[(6, 2)] = L * t8 * dot_theta + t7 * dot_L;
-            out[(6, 3)] = t7 * dot_theta;
-            out
+            let __alpha = T::from(self.alpha);
+            let __l = T::from(self.l);
+            let __beta = __mu[0];
+            let __gamma = __mu[1];
+            let __theta = __mu[2];
+            let __L = __mu[3];
+            let __dot_beta = __mu_dot[0];
+            let __dot_gamma = __mu_dot[1];
+            let __dot_theta = __mu_dot[2];
+            let __dot_L = __mu_dot[3];
+            let __t0 = __gamma - __beta;
+            let __t1 = __t0.sin();
+            let __t2 = __gamma.sin();
+            let __t3 = __beta.sin();
+            let __t4 = __alpha - __beta;
+            let __t5 = __t4.sin();
+            let __t6 = __t4.cos();
+            let __t7 = __theta.sin();
+            let __t8 = __theta.cos();
+            let __t9 = __gamma.cos();
+            let __t10 = __beta.cos();
+            let __t11 = __t2.powi(-2);
+            let __t12 = __t0.cos();
+            let __t13 = __t2.powi(-3);
+            let __t14 = __t9.powi(2);
+            let __t15 = __l * __t1 / __t2 + __l * __t9 * __t11 * __t12;
+            let __t16 = __dot_gamma * __t15 - __l * __t1 * __dot_beta / __t2;
+            let __t17 = __dot_beta * __t15
+                + __dot_gamma
+                    * (__l * __t1 * __t13 * __t14 * 2.0
+                        - __l * __t9 * __t11 * __t12 * 2.0);
+            let __t18 = __l * __t6 * __t12 / __t2 - __l * __t1 * __t5 / __t2
+                - __l * __t1 * __t6 * __t9 * __t11 - __l * __t5 * __t9 * __t11 * __t12;
+            let __t19 = __dot_beta
+                * (__l * __t1 * __t5 * 2.0 / __t2 - __l * __t6 * __t12 * 2.0 / __t2)
+                + __dot_gamma * __t18;
+            let __t20 = __dot_beta * __t18
+                + __dot_gamma
+                    * (__l * __t5 * __t9 * __t11 * __t12 * 2.0
+                        - __l * __t1 * __t5 * __t13 * __t14 * 2.0);
+            let __t21 = __l * __t1 * __t5 * __t9 * __t11 - __l * __t1 * __t6 / __t2
+                - __l * __t5 * __t12 / __t2 - __l * __t6 * __t9 * __t11 * __t12;
+            let __t22 = __dot_beta
+                * (__l * __t1 * __t6 * 2.0 / __t2 + __l * __t5 * __t12 * 2.0 / __t2)
+                + __dot_gamma * __t21;
+            let __t23 = __dot_beta * __t21
+                + __dot_gamma
+                    * (__l * __t6 * __t9 * __t11 * __t12 * 2.0
+                        - __l * __t1 * __t6 * __t13 * __t14 * 2.0);
+            let mut __out = __crane_runtime::nalgebra::SMatrix::<T, 7, 4>::zeros();
+            __out[(0, 0)] = -__l * __t3 * __dot_beta / __t2
+                - __l * __t9 * __t10 * __t11 * __dot_gamma;
+            __out[(0, 1)] = __dot_gamma
+                * (__l * __t3 / __t2 + __l * __t3 * __t13 * __t14 * 2.0)
+                - __l * __t9 * __t10 * __t11 * __dot_beta;
+            __out[(1, 0)] = __t16;
+            __out[(1, 1)] = __t17;
+            __out[(2, 0)] = __t16;
+            __out[(2, 1)] = __t17;
+            __out[(3, 0)] = __t19;
+            __out[(3, 1)] = __t20;
+            __out[(4, 0)] = __t22;
+            __out[(4, 1)] = __t23;
+            __out[(5, 0)] = __t19;
+            __out[(5, 1)] = __t20;
+            __out[(5, 2)] = __t8 * __dot_L - __L * __t7 * __dot_theta;
+            __out[(5, 3)] = __t8 * __dot_theta;
+            __out[(6, 0)] = __t22;
+            __out[(6, 1)] = __t23;
+            __out[(6, 2)] = __L * __t8 * __dot_theta + __t7 * __dot_L;
+            __out[(6, 3)] = __t7 * __dot_theta;
+            __out
         }
         /// `phi`, `P`, `dP/dmu_k` and `d(P' mu')/dmu` in one pass, sharing
         /// their subexpressions: what the minimal Newton matrix needs.
         fn map_derivatives<T: __crane_runtime::Scalar>(
             &self,
-            mu: &__crane_runtime::nalgebra::SVector<T, 4>,
-            mu_dot: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu: &__crane_runtime::nalgebra::SVector<T, 4>,
+            __mu_dot: &__crane_runtime::nalgebra::SVector<T, 4>,
         ) -> __crane_runtime::MapDerivatives<T, 7, 4> {
-            let alpha = T::from(self.alpha);
-            let l = T::from(self.l);
-            let beta = mu[0];
-            let gamma = mu[1];
-            let theta = mu[2];
-            let L = mu[3];
-            let dot_beta = mu_dot[0];
-            let dot_gamma = mu_dot[1];
-            let dot_theta = mu_dot[2];
-            let dot_L = mu_dot[3];
-            let t0 = gamma - beta;
-            let t1 = t0.sin();
-            let t2 = gamma.sin();
-            let d = l * t1 / t2;
-            let t3 = beta.sin();
-            let t4 = l * t3 / t2;
-            let t5 = -l * t1 / t2;
-            let t6 = alpha - beta;
-            let t7 = t6.sin();
-            let t8 = -l * t1 * t7 / t2;
-            let t9 = t6.cos();
-            let t10 = -l * t1 * t9 / t2;
-            let t11 = theta.sin();
-            let t12 = L * t11;
-            let t13 = theta.cos();
-            let t14 = L * t13;
-            let t15 = gamma.cos();
-            let t16 = beta.cos();
-            let t17 = l * t16 / t2;
-            let t18 = t2.powi(-2);
-            let t19 = t0.cos();
-            let t20 = -l * t19 / t2;
-            let t21 = l * t19 / t2 - l * t1 * t15 * t18;
-            let t22 = l * t1 * t9 / t2 + l * t7 * t19 / t2;
-            let t23 = -l * t7 * t19 / t2;
-            let t24 = l * t1 * t7 * t15 * t18;
-            let t25 = t23 + t24;
-            let t26 = l * t9 * t19 / t2;
-            let t27 = t8 + t26;
-            let t28 = l * t1 * t9 * t15 * t18 - l * t9 * t19 / t2;
-            let t29 = -l * t15 * t16 * t18;
-            let t30 = t2.powi(-3);
-            let t31 = t15.powi(2);
-            let t32 = d + l * t15 * t18 * t19;
-            let t33 = l * t1 * t30 * t31 * 2.0 - l * t15 * t18 * t19 * 2.0;
-            let t34 = -l * t9 * t19 * 2.0 / t2;
-            let t35 = l * t1 * t7 * 2.0 / t2 + t34;
-            let t36 = t8 + t26 - l * t1 * t9 * t15 * t18 - l * t7 * t15 * t18 * t19;
-            let t37 = -l * t1 * t7 * t30 * t31 * 2.0;
-            let t38 = l * t7 * t15 * t18 * t19 * 2.0;
-            let t39 = t37 + t38;
-            let t40 = l * t1 * t9 * 2.0 / t2;
-            let t41 = l * t7 * t19 * 2.0 / t2;
-            let t42 = t40 + t41;
-            let t43 = t10 + t23 + t24 - l * t9 * t15 * t18 * t19;
-            let t44 = l * t9 * t15 * t18 * t19 * 2.0;
-            let t45 = t44 - l * t1 * t9 * t30 * t31 * 2.0;
-            let t46 = dot_theta.powi(2);
-            let t47 = l * t3 * t15 * t18 * dot_beta;
-            let t48 = t2.powi(-4);
-            let t49 = t15.powi(3);
-            let t50 = t20 + l * t1 * t15 * t18;
-            let t51 = -l * t1 * t15 * t18 * 2.0;
-            let t52 = t51 - l * t19 * t30 * t31 * 2.0;
-            let t53 = dot_gamma * t52;
-            let t54 = dot_beta * (l * t19 * dot_beta / t2 + dot_gamma * t50)
-                + dot_gamma * (dot_beta * t50 + t53);
-            let t55 = dot_beta
-                * (t53 - l * t19 * dot_beta / t2 + l * t1 * t15 * t18 * dot_beta)
-                + dot_gamma
-                    * (dot_beta * t52
-                        + dot_gamma
-                            * (t51 - l * t1 * t48 * t49 * 6.0 + l * t19 * 2.0 / t2
-                                + l * t19 * t30 * t31 * 6.0));
-            let t56 = t40 + t41 + t44 - l * t1 * t7 * t15 * t18 * 2.0;
-            let t57 = l * t1 * t7 * t15 * t18 * 2.0;
-            let t58 = l * t7 * t19 * t30 * t31 * 2.0 + l * t1 * t9 * t30 * t31 * 2.0
-                - l * t9 * t15 * t18 * t19 * 2.0 + t57;
-            let t59 = dot_beta * t56 + dot_gamma * t58;
-            let t60 = dot_beta
-                * (dot_beta * (-l * t7 * t19 * 4.0 / t2 - l * t1 * t9 * 4.0 / t2)
-                    + dot_gamma * t56) + dot_gamma * t59;
-            let t61 = dot_beta * t59
-                + dot_gamma
-                    * (dot_beta * t58
-                        + dot_gamma
-                            * (t57 - l * t7 * t19 * 2.0 / t2
-                                + l * t1 * t7 * t48 * t49 * 6.0
-                                - l * t7 * t19 * t30 * t31 * 6.0));
-            let t62 = l * t9 * t19 * 2.0 / t2 - l * t1 * t7 * 2.0 / t2
-                - l * t1 * t9 * t15 * t18 * 2.0 - l * t7 * t15 * t18 * t19 * 2.0;
-            let t63 = l * t1 * t9 * t15 * t18 * 2.0;
-            let t64 = t37 + t38 + l * t9 * t19 * t30 * t31 * 2.0 + t63;
-            let t65 = dot_beta * t62 + dot_gamma * t64;
-            let t66 = dot_beta
-                * (dot_beta * (l * t1 * t7 * 4.0 / t2 - l * t9 * t19 * 4.0 / t2)
-                    + dot_gamma * t62) + dot_gamma * t65;
-            let t67 = dot_beta * t65
-                + dot_gamma
-                    * (dot_beta * t64
-                        + dot_gamma
-                            * (t34 + t63 + l * t1 * t9 * t48 * t49 * 6.0
-                                - l * t9 * t19 * t30 * t31 * 6.0));
-            let mut phi = __crane_runtime::nalgebra::SVector::<T, 7>::zeros();
-            phi[0] = t4;
-            phi[1] = d + L;
-            phi[2] = d;
-            phi[3] = t8;
-            phi[4] = t10;
-            phi[5] = t8 + t12;
-            phi[6] = t10 - L * t13;
-            let mut null_space = __crane_runtime::nalgebra::SMatrix::<T, 7, 4>::zeros();
-            null_space[(0, 0)] = t17;
-            null_space[(0, 1)] = -l * t3 * t15 * t18;
-            null_space[(1, 0)] = t20;
-            null_space[(1, 1)] = t21;
-            null_space[(1, 3)] = T::from(1.0);
-            null_space[(2, 0)] = t20;
-            null_space[(2, 1)] = t21;
-            null_space[(3, 0)] = t22;
-            null_space[(3, 1)] = t25;
-            null_space[(4, 0)] = t27;
-            null_space[(4, 1)] = t28;
-            null_space[(5, 0)] = t22;
-            null_space[(5, 1)] = t25;
-            null_space[(5, 2)] = t14;
-            null_space[(5, 3)] = t11;
-            null_space[(6, 0)] = t27;
-            null_space[(6, 1)] = t28;
-            null_space[(6, 2)] = t12;
-            null_space[(6, 3)] = -t13;
-            let mut curvature_jacobian = __crane_runtime::nalgebra::SMatrix::<
+            let __alpha = T::from(self.alpha);
+            let __l = T::from(self.l);
+            let __beta = __mu[0];
+            let __gamma = __mu[1];
+            let __theta = __mu[2];
+            let __L = __mu[3];
+            let __dot_beta = __mu_dot[0];
+            let __dot_gamma = __mu_dot[1];
+            let __dot_theta = __mu_dot[2];
+            let __dot_L = __mu_dot[3];
+            let __t0 = __gamma - __beta;
+            let __t1 = __t0.sin();
+            let __t2 = __gamma.sin();
+            let __d = __l * __t1 / __t2;
+            let __t3 = __beta.sin();
+            let __t4 = __l * __t3 / __t2;
+            let __t5 = -__l * __t1 / __t2;
+            let __t6 = __alpha - __beta;
+            let __t7 = __t6.sin();
+            let __t8 = -__l * __t1 * __t7 / __t2;
+            let __t9 = __t6.cos();
+            let __t10 = -__l * __t1 * __t9 / __t2;
+            let __t11 = __theta.sin();
+            let __t12 = __L * __t11;
+            let __t13 = __theta.cos();
+            let __t14 = __L * __t13;
+            let __t15 = __gamma.cos();
+            let __t16 = __beta.cos();
+            let __t17 = __l * __t16 / __t2;
+            let __t18 = __t2.powi(-2);
+            let __t19 = __t0.cos();
+            let __t20 = -__l * __t19 / __t2;
+            let __t21 = __l * __t19 / __t2 - __l * __t1 * __t15 * __t18;
+            let __t22 = __l * __t1 * __t9 / __t2 + __l * __t7 * __t19 / __t2;
+            let __t23 = -__l * __t7 * __t19 / __t2;
+            let __t24 = __l * __t1 * __t7 * __t15 * __t18;
+            let __t25 = __t23 + __t24;
+            let __t26 = __l * __t9 * __t19 / __t2;
+            let __t27 = __t8 + __t26;
+            let __t28 = __l * __t1 * __t9 * __t15 * __t18 - __l * __t9 * __t19 / __t2;
+            let __t29 = -__l * __t15 * __t16 * __t18;
+            let __t30 = __t2.powi(-3);
+            let __t31 = __t15.powi(2);
+            let __t32 = __d + __l * __t15 * __t18 * __t19;
+            let __t33 = __l * __t1 * __t30 * __t31 * 2.0
+                - __l * __t15 * __t18 * __t19 * 2.0;
+            let __t34 = -__l * __t9 * __t19 * 2.0 / __t2;
+            let __t35 = __l * __t1 * __t7 * 2.0 / __t2 + __t34;
+            let __t36 = __t8 + __t26 - __l * __t1 * __t9 * __t15 * __t18
+                - __l * __t7 * __t15 * __t18 * __t19;
+            let __t37 = -__l * __t1 * __t7 * __t30 * __t31 * 2.0;
+            let __t38 = __l * __t7 * __t15 * __t18 * __t19 * 2.0;
+            let __t39 = __t37 + __t38;
+            let __t40 = __l * __t1 * __t9 * 2.0 / __t2;
+            let __t41 = __l * __t7 * __t19 * 2.0 / __t2;
+            let __t42 = __t40 + __t41;
+            let __t43 = __t10 + __t23 + __t24 - __l * __t9 * __t15 * __t18 * __t19;
+            let __t44 = __l * __t9 * __t15 * __t18 * __t19 * 2.0;
+            let __t45 = __t44 - __l * __t1 * __t9 * __t30 * __t31 * 2.0;
+            let __t46 = __dot_theta.powi(2);
+            let __t47 = __l * __t3 * __t15 * __t18 * __dot_beta;
+            let __t48 = __t2.powi(-4);
+            let __t49 = __t15.powi(3);
+            let __t50 = __t20 + __l * __t1 * __t15 * __t18;
+            let __t51 = -__l * __t1 * __t15 * __t18 * 2.0;
+            let __t52 = __t51 - __l * __t19 * __t30 * __t31 * 2.0;
+            let __t53 = __dot_gamma * __t52;
+            let __t54 = __dot_beta
+                * (__l * __t19 * __dot_beta / __t2 + __dot_gamma * __t50)
+                + __dot_gamma * (__dot_beta * __t50 + __t53);
+            let __t55 = __dot_beta
+                * (__t53 - __l * __t19 * __dot_beta / __t2
+                    + __l * __t1 * __t15 * __t18 * __dot_beta)
+                + __dot_gamma
+                    * (__dot_beta * __t52
+                        + __dot_gamma
+                            * (__t51 - __l * __t1 * __t48 * __t49 * 6.0
+                                + __l * __t19 * 2.0 / __t2
+                                + __l * __t19 * __t30 * __t31 * 6.0));
+            let __t56 = __t40 + __t41 + __t44 - __l * __t1 * __t7 * __t15 * __t18 * 2.0;
+            let __t57 = __l * __t1 * __t7 * __t15 * __t18 * 2.0;
+            let __t58 = __l * __t7 * __t19 * __t30 * __t31 * 2.0
+                + __l * __t1 * __t9 * __t30 * __t31 * 2.0
+                - __l * __t9 * __t15 * __t18 * __t19 * 2.0 + __t57;
+            let __t59 = __dot_beta * __t56 + __dot_gamma * __t58;
+            let __t60 = __dot_beta
+                * (__dot_beta
+                    * (-__l * __t7 * __t19 * 4.0 / __t2 - __l * __t1 * __t9 * 4.0 / __t2)
+                    + __dot_gamma * __t56) + __dot_gamma * __t59;
+            let __t61 = __dot_beta * __t59
+                + __dot_gamma
+                    * (__dot_beta * __t58
+                        + __dot_gamma
+                            * (__t57 - __l * __t7 * __t19 * 2.0 / __t2
+                                + __l * __t1 * __t7 * __t48 * __t49 * 6.0
+                                - __l * __t7 * __t19 * __t30 * __t31 * 6.0));
+            let __t62 = __l * __t9 * __t19 * 2.0 / __t2 - __l * __t1 * __t7 * 2.0 / __t2
+                - __l * __t1 * __t9 * __t15 * __t18 * 2.0
+                - __l * __t7 * __t15 * __t18 * __t19 * 2.0;
+            let __t63 = __l * __t1 * __t9 * __t15 * __t18 * 2.0;
+            let __t64 = __t37 + __t38 + __l * __t9 * __t19 * __t30 * __t31 * 2.0 + __t63;
+            let __t65 = __dot_beta * __t62 + __dot_gamma * __t64;
+            let __t66 = __dot_beta
+                * (__dot_beta
+                    * (__l * __t1 * __t7 * 4.0 / __t2 - __l * __t9 * __t19 * 4.0 / __t2)
+                    + __dot_gamma * __t62) + __dot_gamma * __t65;
+            let __t67 = __dot_beta * __t65
+                + __dot_gamma
+                    * (__dot_beta * __t64
+                        + __dot_gamma
+                            * (__t34 + __t63 + __l * __t1 * __t9 * __t48 * __t49 * 6.0
+                                - __l * __t9 * __t19 * __t30 * __t31 * 6.0));
+            let mut __phi = __crane_runtime::nalgebra::SVector::<T, 7>::zeros();
+            __phi[0] = __t4;
+            __phi[1] = __d + __L;
+            __phi[2] = __d;
+            __phi[3] = __t8;
+            __phi[4] = __t10;
+            __phi[5] = __t8 + __t12;
+            __phi[6] = __t10 - __L * __t13;
+            let mut __null_space = __crane_runtime::nalgebra::SMatrix::<
                 T,
                 7,
                 4,
             >::zeros();
-            curvature_jacobian[(0, 0)] = dot_beta
-                * (l * t3 * t15 * t18 * dot_gamma - l * t16 * dot_beta / t2)
-                + dot_gamma * (t47 + dot_gamma * (t17 + l * t16 * t30 * t31 * 2.0));
-            curvature_jacobian[(0, 1)] = dot_beta
-                * (t47 + l * t16 * dot_gamma / t2
-                    + l * t16 * dot_gamma * t30 * t31 * 2.0)
-                + dot_gamma
-                    * (l * t16 * dot_beta / t2 + l * t16 * dot_beta * t30 * t31 * 2.0
-                        + dot_gamma
-                            * (-l * t3 * t48 * t49 * 6.0 - l * t3 * t15 * t18 * 5.0));
-            curvature_jacobian[(1, 0)] = t54;
-            curvature_jacobian[(1, 1)] = t55;
-            curvature_jacobian[(2, 0)] = t54;
-            curvature_jacobian[(2, 1)] = t55;
-            curvature_jacobian[(3, 0)] = t60;
-            curvature_jacobian[(3, 1)] = t61;
-            curvature_jacobian[(4, 0)] = t66;
-            curvature_jacobian[(4, 1)] = t67;
-            curvature_jacobian[(5, 0)] = t60;
-            curvature_jacobian[(5, 1)] = t61;
-            curvature_jacobian[(5, 2)] = dot_theta * (-L * t13 * dot_theta - t11 * dot_L)
-                - t11 * dot_theta * dot_L;
-            curvature_jacobian[(5, 3)] = -t11 * t46;
-            curvature_jacobian[(6, 0)] = t66;
-            curvature_jacobian[(6, 1)] = t67;
-            curvature_jacobian[(6, 2)] = t13 * dot_theta * dot_L
-                + dot_theta * (t13 * dot_L - L * t11 * dot_theta);
-            curvature_jacobian[(6, 3)] = t13 * t46;
-            let mut d_null_space_0 = __crane_runtime::nalgebra::SMatrix::<
+            __null_space[(0, 0)] = __t17;
+            __null_space[(0, 1)] = -__l * __t3 * __t15 * __t18;
+            __null_space[(1, 0)] = __t20;
+            __null_space[(1, 1)] = __t21;
+            __null_space[(1, 3)] = T::from(1.0);
+            __null_space[(2, 0)] = __t20;
+            __null_space[(2, 1)] = __t21;
+            __null_space[(3, 0)] = __t22;
+            __null_space[(3, 1)] = __t25;
+            __null_space[(4, 0)] = __t27;
+            __null_space[(4, 1)] = __t28;
+            __null_space[(5, 0)] = __t22;
+            __null_space[(5, 1)] = __t25;
+            __null_space[(5, 2)] = __t14;
+            __null_space[(5, 3)] = __t11;
+            __null_space[(6, 0)] = __t27;
+            __null_space[(6, 1)] = __t28;
+            __null_space[(6, 2)] = __t12;
+            __null_space[(6, 3)] = -__t13;
+            let mut __curvature_jacobian = __crane_runtime::nalgebra::SMatrix::<
                 T,
                 7,
                 4,
             >::zeros();
-            d_null_space_0[(0, 0)] = -l * t3 / t2;
-            d_null_space_0[(0, 1)] = t29;
-            d_null_space_0[(1, 0)] = t5;
-            d_null_space_0[(1, 1)] = t32;
-            d_null_space_0[(2, 0)] = t5;
-            d_null_space_0[(2, 1)] = t32;
-            d_null_space_0[(3, 0)] = t35;
-            d_null_space_0[(3, 1)] = t36;
-            d_null_space_0[(4, 0)] = t42;
-            d_null_space_0[(4, 1)] = t43;
-            d_null_space_0[(5, 0)] = t35;
-            d_null_space_0[(5, 1)] = t36;
-            d_null_space_0[(6, 0)] = t42;
-            d_null_space_0[(6, 1)] = t43;
-            let mut d_null_space_1 = __crane_runtime::nalgebra::SMatrix::<
+            __curvature_jacobian[(0, 0)] = __dot_beta
+                * (__l * __t3 * __t15 * __t18 * __dot_gamma
+                    - __l * __t16 * __dot_beta / __t2)
+                + __dot_gamma
+                    * (__t47
+                        + __dot_gamma * (__t17 + __l * __t16 * __t30 * __t31 * 2.0));
+            __curvature_jacobian[(0, 1)] = __dot_beta
+                * (__t47 + __l * __t16 * __dot_gamma / __t2
+                    + __l * __t16 * __dot_gamma * __t30 * __t31 * 2.0)
+                + __dot_gamma
+                    * (__l * __t16 * __dot_beta / __t2
+                        + __l * __t16 * __dot_beta * __t30 * __t31 * 2.0
+                        + __dot_gamma
+                            * (-__l * __t3 * __t48 * __t49 * 6.0
+                                - __l * __t3 * __t15 * __t18 * 5.0));
+            __curvature_jacobian[(1, 0)] = __t54;
+            __curvature_jacobian[(1, 1)] = __t55;
+            __curvature_jacobian[(2, 0)] = __t54;
+            __curvature_jacobian[(2, 1)] = __t55;
+            __curvature_jacobian[(3, 0)] = __t60;
+            __curvature_jacobian[(3, 1)] = __t61;
+            __curvature_jacobian[(4, 0)] = __t66;
+            __curvature_jacobian[(4, 1)] = __t67;
+            __curvature_jacobian[(5, 0)] = __t60;
+            __curvature_jacobian[(5, 1)] = __t61;
+            __curvature_jacobian[(5, 2)] = __dot_theta
+                * (-__L * __t13 * __dot_theta - __t11 * __dot_L)
+                - __t11 * __dot_theta * __dot_L;
+            __curvature_jacobian[(5, 3)] = -__t11 * __t46;
+            __curvature_jacobian[(6, 0)] = __t66;
+            __curvature_jacobian[(6, 1)] = __t67;
+            __curvature_jacobian[(6, 2)] = __t13 * __dot_theta * __dot_L
+                + __dot_theta * (__t13 * __dot_L - __L * __t11 * __dot_theta);
+            __curvature_jacobian[(6, 3)] = __t13 * __t46;
+            let mut __d_null_space_0 = __crane_runtime::nalgebra::SMatrix::<
                 T,
                 7,
                 4,
             >::zeros();
-            d_null_space_1[(0, 0)] = t29;
-            d_null_space_1[(0, 1)] = t4 + l * t3 * t30 * t31 * 2.0;
-            d_null_space_1[(1, 0)] = t32;
-            d_null_space_1[(1, 1)] = t33;
-            d_null_space_1[(2, 0)] = t32;
-            d_null_space_1[(2, 1)] = t33;
-            d_null_space_1[(3, 0)] = t36;
-            d_null_space_1[(3, 1)] = t39;
-            d_null_space_1[(4, 0)] = t43;
-            d_null_space_1[(4, 1)] = t45;
-            d_null_space_1[(5, 0)] = t36;
-            d_null_space_1[(5, 1)] = t39;
-            d_null_space_1[(6, 0)] = t43;
-            d_null_space_1[(6, 1)] = t45;
-            let mut d_null_space_2 = __crane_runtime::nalgebra::SMatrix::<
+            __d_null_space_0[(0, 0)] = -__l * __t3 / __t2;
+            __d_null_space_0[(0, 1)] = __t29;
+            __d_null_space_0[(1, 0)] = __t5;
+            __d_null_space_0[(1, 1)] = __t32;
+            __d_null_space_0[(2, 0)] = __t5;
+            __d_null_space_0[(2, 1)] = __t32;
+            __d_null_space_0[(3, 0)] = __t35;
+            __d_null_space_0[(3, 1)] = __t36;
+            __d_null_space_0[(4, 0)] = __t42;
+            __d_null_space_0[(4, 1)] = __t43;
+            __d_null_space_0[(5, 0)] = __t35;
+            __d_null_space_0[(5, 1)] = __t36;
+            __d_null_space_0[(6, 0)] = __t42;
+            __d_null_space_0[(6, 1)] = __t43;
+            let mut __d_null_space_1 = __crane_runtime::nalgebra::SMatrix::<
                 T,
                 7,
                 4,
             >::zeros();
-            d_null_space_2[(5, 2)] = -L * t11;
-            d_null_space_2[(5, 3)] = t13;
-            d_null_space_2[(6, 2)] = t14;
-            d_null_space_2[(6, 3)] = t11;
-            let mut d_null_space_3 = __crane_runtime::nalgebra::SMatrix::<
+            __d_null_space_1[(0, 0)] = __t29;
+            __d_null_space_1[(0, 1)] = __t4 + __l * __t3 * __t30 * __t31 * 2.0;
+            __d_null_space_1[(1, 0)] = __t32;
+            __d_null_space_1[(1, 1)] = __t33;
+            __d_null_space_1[(2, 0)] = __t32;
+            __d_null_space_1[(2, 1)] = __t33;
+            __d_null_space_1[(3, 0)] = __t36;
+            __d_null_space_1[(3, 1)] = __t39;
+            __d_null_space_1[(4, 0)] = __t43;
+            __d_null_space_1[(4, 1)] = __t45;
+            __d_null_space_1[(5, 0)] = __t36;
+            __d_null_space_1[(5, 1)] = __t39;
+            __d_null_space_1[(6, 0)] = __t43;
+            __d_null_space_1[(6, 1)] = __t45;
+            let mut __d_null_space_2 = __crane_runtime::nalgebra::SMatrix::<
                 T,
                 7,
                 4,
             >::zeros();
-            d_null_space_3[(5, 2)] = t13;
-            d_null_space_3[(6, 2)] = t11;
+            __d_null_space_2[(5, 2)] = -__L * __t11;
+            __d_null_space_2[(5, 3)] = __t13;
+            __d_null_space_2[(6, 2)] = __t14;
+            __d_null_space_2[(6, 3)] = __t11;
+            let mut __d_null_space_3 = __crane_runtime::nalgebra::SMatrix::<
+                T,
+                7,
+                4,
+            >::zeros();
+            __d_null_space_3[(5, 2)] = __t13;
+            __d_null_space_3[(6, 2)] = __t11;
             __crane_runtime::MapDerivatives {
-                phi: phi,
-                null_space: null_space,
+                phi: __phi,
+                null_space: __null_space,
                 null_space_derivatives: [
-                    d_null_space_0,
-                    d_null_space_1,
-                    d_null_space_2,
-                    d_null_space_3,
+                    __d_null_space_0,
+                    __d_null_space_1,
+                    __d_null_space_2,
+                    __d_null_space_3,
                 ],
-                curvature_jacobian: curvature_jacobian,
+                curvature_jacobian: __curvature_jacobian,
             }
         }
     }
@@ -946,313 +980,321 @@ const _: () = {
         /// Unknowns `z` in order: `L1_d0`, `L1_d1`, `L1_d2`, `L2_d0`, `L2_d1`, `L2_d2`, `L0_d0`, `L0_d1`, `L0_d2`, `x0_d0`, `x0_d1`, `x0_d2`, `z0_d0`, `z0_d1`, `z0_d2`, `lambda_rope1_d0`, `lambda_rope1_d1`, `lambda_rope1_d2`, `lambda_rope0_d0`, `lambda_rope0_d1`, `lambda_rope0_d2`, `lambda_hoist_d0`, `lambda_hoist_d1`, `lambda_hoist_d2`, `u1_d0`, `u2_d0`; equations in order: dynamics of `L1`, dynamics of `L2`, dynamics of `L0`, dynamics of `L0` (derivative 1), dynamics of `L0` (derivative 2), dynamics of `x0`, dynamics of `x0` (derivative 1), dynamics of `x0` (derivative 2), dynamics of `z0`, dynamics of `z0` (derivative 1), dynamics of `z0` (derivative 2), dynamics of `x`, dynamics of `x` (derivative 1), dynamics of `x` (derivative 2), dynamics of `z`, dynamics of `z` (derivative 1), dynamics of `z` (derivative 2), constraint `rope1`, constraint `rope1` (derivative 1), constraint `rope1` (derivative 2), constraint `rope0`, constraint `rope0` (derivative 1), constraint `rope0` (derivative 2), constraint `hoist`, constraint `hoist` (derivative 1), constraint `hoist` (derivative 2).
         fn dummy_derivative_system(
             &self,
-            gamma: &[__crane_runtime::nalgebra::SVector<f64, 2>],
-            z: &__crane_runtime::nalgebra::SVector<f64, 26>,
+            __gamma: &[__crane_runtime::nalgebra::SVector<f64, 2>],
+            __z: &__crane_runtime::nalgebra::SVector<f64, 26>,
         ) -> (
             __crane_runtime::nalgebra::SVector<f64, 26>,
             __crane_runtime::nalgebra::SMatrix<f64, 26, 26>,
         ) {
-            let L1_d0 = z[0];
-            let L1_d1 = z[1];
-            let L1_d2 = z[2];
-            let L2_d0 = z[3];
-            let L2_d1 = z[4];
-            let L2_d2 = z[5];
-            let L0_d0 = z[6];
-            let L0_d1 = z[7];
-            let L0_d2 = z[8];
-            let x0_d0 = z[9];
-            let x0_d1 = z[10];
-            let x0_d2 = z[11];
-            let z0_d0 = z[12];
-            let z0_d1 = z[13];
-            let z0_d2 = z[14];
-            let x_d0 = gamma[0][0];
-            let x_d1 = gamma[1][0];
-            let x_d2 = gamma[2][0];
-            let x_d3 = gamma[3][0];
-            let x_d4 = gamma[4][0];
-            let z_d0 = gamma[0][1];
-            let z_d1 = gamma[1][1];
-            let z_d2 = gamma[2][1];
-            let z_d3 = gamma[3][1];
-            let z_d4 = gamma[4][1];
-            let lambda_rope1_d0 = z[15];
-            let lambda_rope1_d1 = z[16];
-            let lambda_rope1_d2 = z[17];
-            let lambda_rope0_d0 = z[18];
-            let lambda_rope0_d1 = z[19];
-            let lambda_rope0_d2 = z[20];
-            let lambda_hoist_d0 = z[21];
-            let lambda_hoist_d1 = z[22];
-            let lambda_hoist_d2 = z[23];
-            let u1_d0 = z[24];
-            let u2_d0 = z[25];
-            let m_l = self.m_l;
-            let J1 = self.J1;
-            let J2 = self.J2;
-            let r1 = self.r1;
-            let r2 = self.r2;
-            let alpha = self.alpha;
-            let l = self.l;
-            let g = self.g;
-            let t0 = r1.powi(-2);
-            let t1 = r2.powi(-2);
-            let t2 = L0_d0 - L2_d0;
-            let t3 = L2_d0 - L0_d0;
-            let t4 = l * alpha.sin() + x0_d0;
-            let t5 = x0_d0 - x_d0;
-            let t6 = l * alpha.cos() + z0_d0;
-            let t7 = z0_d0 - z_d0;
-            let t8 = x_d0 - x0_d0;
-            let t9 = z_d0 - z0_d0;
-            let t10 = -lambda_rope0_d0 - lambda_hoist_d0;
-            let t11 = -lambda_rope0_d1 - lambda_hoist_d1;
-            let t12 = L2_d1 - L0_d1;
-            let t13 = lambda_rope1_d0 + lambda_rope0_d0 + lambda_hoist_d0;
-            let t14 = lambda_rope0_d1 + lambda_hoist_d1 + lambda_rope1_d1;
-            let t15 = x0_d1 - x_d1;
-            let t16 = z0_d1 - z_d1;
-            let t17 = x_d1 - x0_d1;
-            let t18 = z_d1 - z0_d1;
-            let t19 = x0_d1.powi(2);
-            let t20 = z0_d1.powi(2);
-            let t21 = L0_d1 - L2_d1;
-            let t22 = lambda_hoist_d1 * 2.0;
-            let t23 = -lambda_hoist_d1 * 2.0;
-            let t24 = -L0_d1 * 2.0;
-            let t25 = L2_d2 - L0_d2;
-            let t26 = t24 + L2_d1 * 2.0;
-            let t27 = lambda_rope0_d2 + lambda_hoist_d2 + lambda_rope1_d2;
-            let t28 = t22 + lambda_rope0_d1 * 2.0 + lambda_rope1_d1 * 2.0;
-            let t29 = x0_d1 * 2.0;
-            let t30 = x0_d2 - x_d2;
-            let t31 = t29 - x_d1 * 2.0;
-            let t32 = z0_d1 * 2.0;
-            let t33 = z0_d2 - z_d2;
-            let t34 = t32 - z_d1 * 2.0;
-            let mut residual = __crane_runtime::nalgebra::SVector::<f64, 26>::zeros();
-            residual[0] = J1 * t0 * L1_d2 - u1_d0 / r1 - L1_d0 * lambda_rope1_d0;
-            residual[1] = J2 * t1 * L2_d2 - u2_d0 / r2 + lambda_hoist_d0 * t2;
-            residual[2] = lambda_hoist_d0 * t3 - L0_d0 * lambda_rope0_d0;
-            residual[3] = L2_d1 * lambda_hoist_d0 + L0_d1 * t10 - L0_d0 * lambda_rope0_d1
-                + t3 * lambda_hoist_d1;
-            residual[4] = L2_d1 * lambda_hoist_d1 + lambda_hoist_d0 * L2_d2 + L0_d1 * t11
-                + t10 * L0_d2 - L0_d1 * lambda_rope0_d1 - L0_d0 * lambda_rope0_d2
-                + lambda_hoist_d1 * t12 + t3 * lambda_hoist_d2;
-            residual[5] = lambda_rope1_d0 * t4 + x0_d0 * lambda_rope0_d0
-                + lambda_hoist_d0 * t5;
-            residual[6] = x0_d1 * t13 - x_d1 * lambda_hoist_d0 + t4 * lambda_rope1_d1
-                + x0_d0 * lambda_rope0_d1 + t5 * lambda_hoist_d1;
-            residual[7] = x0_d1 * t14 + t13 * x0_d2 - x_d1 * lambda_hoist_d1
-                - lambda_hoist_d0 * x_d2 + x0_d1 * lambda_rope1_d1 + t4 * lambda_rope1_d2
-                + x0_d1 * lambda_rope0_d1 + x0_d0 * lambda_rope0_d2
-                + lambda_hoist_d1 * t15 + t5 * lambda_hoist_d2;
-            residual[8] = lambda_rope1_d0 * t6 + z0_d0 * lambda_rope0_d0
-                + lambda_hoist_d0 * t7;
-            residual[9] = z0_d1 * t13 - z_d1 * lambda_hoist_d0 + t6 * lambda_rope1_d1
-                + z0_d0 * lambda_rope0_d1 + t7 * lambda_hoist_d1;
-            residual[10] = z0_d1 * t14 + t13 * z0_d2 - z_d1 * lambda_hoist_d1
-                - lambda_hoist_d0 * z_d2 + z0_d1 * lambda_rope1_d1 + t6 * lambda_rope1_d2
-                + z0_d1 * lambda_rope0_d1 + z0_d0 * lambda_rope0_d2
-                + lambda_hoist_d1 * t16 + t7 * lambda_hoist_d2;
-            residual[11] = m_l * x_d2 + lambda_hoist_d0 * t8;
-            residual[12] = x_d1 * lambda_hoist_d0 - x0_d1 * lambda_hoist_d0 + m_l * x_d3
-                + t8 * lambda_hoist_d1;
-            residual[13] = x_d1 * lambda_hoist_d1 + lambda_hoist_d0 * x_d2
-                - x0_d1 * lambda_hoist_d1 - lambda_hoist_d0 * x0_d2 + m_l * x_d4
-                + lambda_hoist_d1 * t17 + t8 * lambda_hoist_d2;
-            residual[14] = m_l * z_d2 + m_l * g + lambda_hoist_d0 * t9;
-            residual[15] = z_d1 * lambda_hoist_d0 - z0_d1 * lambda_hoist_d0 + m_l * z_d3
-                + t9 * lambda_hoist_d1;
-            residual[16] = z_d1 * lambda_hoist_d1 + lambda_hoist_d0 * z_d2
-                - z0_d1 * lambda_hoist_d1 - lambda_hoist_d0 * z0_d2 + m_l * z_d4
-                + lambda_hoist_d1 * t18 + t9 * lambda_hoist_d2;
-            residual[17] = (t4.powi(2) + t6.powi(2) - L1_d0.powi(2)) * 0.5;
-            residual[18] = x0_d1 * t4 - L1_d0 * L1_d1 + z0_d1 * t6;
-            residual[19] = t19 - L1_d1.powi(2) - L1_d0 * L1_d2 + t4 * x0_d2 + t20
-                + t6 * z0_d2;
-            residual[20] = (x0_d0.powi(2) + z0_d0.powi(2) - L0_d0.powi(2)) * 0.5;
-            residual[21] = x0_d0 * x0_d1 - L0_d0 * L0_d1 + z0_d0 * z0_d1;
-            residual[22] = t19 + t20 - L0_d1.powi(2) - L0_d0 * L0_d2 + x0_d0 * x0_d2
-                + z0_d0 * z0_d2;
-            residual[23] = (t8.powi(2) + t9.powi(2) - t3.powi(2)) * 0.5;
-            residual[24] = L2_d1 * t2 + L0_d1 * t3 + x0_d1 * t5 + z0_d1 * t7 + x_d1 * t8
-                + z_d1 * t9;
-            residual[25] = L2_d1 * t21 + L2_d2 * t2 + L0_d1 * t12 + t3 * L0_d2
-                + x0_d1 * t15 + t5 * x0_d2 + z0_d1 * t16 + t7 * z0_d2 + x_d1 * t17
-                + x_d2 * t8 + z_d1 * t18 + z_d2 * t9;
-            let mut jacobian = __crane_runtime::nalgebra::SMatrix::<
+            let __L1_d0 = __z[0];
+            let __L1_d1 = __z[1];
+            let __L1_d2 = __z[2];
+            let __L2_d0 = __z[3];
+            let __L2_d1 = __z[4];
+            let __L2_d2 = __z[5];
+            let __L0_d0 = __z[6];
+            let __L0_d1 = __z[7];
+            let __L0_d2 = __z[8];
+            let __x0_d0 = __z[9];
+            let __x0_d1 = __z[10];
+            let __x0_d2 = __z[11];
+            let __z0_d0 = __z[12];
+            let __z0_d1 = __z[13];
+            let __z0_d2 = __z[14];
+            let __x_d0 = __gamma[0][0];
+            let __x_d1 = __gamma[1][0];
+            let __x_d2 = __gamma[2][0];
+            let __x_d3 = __gamma[3][0];
+            let __x_d4 = __gamma[4][0];
+            let __z_d0 = __gamma[0][1];
+            let __z_d1 = __gamma[1][1];
+            let __z_d2 = __gamma[2][1];
+            let __z_d3 = __gamma[3][1];
+            let __z_d4 = __gamma[4][1];
+            let __lambda_rope1_d0 = __z[15];
+            let __lambda_rope1_d1 = __z[16];
+            let __lambda_rope1_d2 = __z[17];
+            let __lambda_rope0_d0 = __z[18];
+            let __lambda_rope0_d1 = __z[19];
+            let __lambda_rope0_d2 = __z[20];
+            let __lambda_hoist_d0 = __z[21];
+            let __lambda_hoist_d1 = __z[22];
+            let __lambda_hoist_d2 = __z[23];
+            let __u1_d0 = __z[24];
+            let __u2_d0 = __z[25];
+            let __m_l = self.m_l;
+            let __J1 = self.J1;
+            let __J2 = self.J2;
+            let __r1 = self.r1;
+            let __r2 = self.r2;
+            let __alpha = self.alpha;
+            let __l = self.l;
+            let __g = self.g;
+            let __t0 = __r1.powi(-2);
+            let __t1 = __r2.powi(-2);
+            let __t2 = __L0_d0 - __L2_d0;
+            let __t3 = __L2_d0 - __L0_d0;
+            let __t4 = __l * __alpha.sin() + __x0_d0;
+            let __t5 = __x0_d0 - __x_d0;
+            let __t6 = __l * __alpha.cos() + __z0_d0;
+            let __t7 = __z0_d0 - __z_d0;
+            let __t8 = __x_d0 - __x0_d0;
+            let __t9 = __z_d0 - __z0_d0;
+            let __t10 = -__lambda_rope0_d0 - __lambda_hoist_d0;
+            let __t11 = -__lambda_rope0_d1 - __lambda_hoist_d1;
+            let __t12 = __L2_d1 - __L0_d1;
+            let __t13 = __lambda_rope1_d0 + __lambda_rope0_d0 + __lambda_hoist_d0;
+            let __t14 = __lambda_rope0_d1 + __lambda_hoist_d1 + __lambda_rope1_d1;
+            let __t15 = __x0_d1 - __x_d1;
+            let __t16 = __z0_d1 - __z_d1;
+            let __t17 = __x_d1 - __x0_d1;
+            let __t18 = __z_d1 - __z0_d1;
+            let __t19 = __x0_d1.powi(2);
+            let __t20 = __z0_d1.powi(2);
+            let __t21 = __L0_d1 - __L2_d1;
+            let __t22 = __lambda_hoist_d1 * 2.0;
+            let __t23 = -__lambda_hoist_d1 * 2.0;
+            let __t24 = -__L0_d1 * 2.0;
+            let __t25 = __L2_d2 - __L0_d2;
+            let __t26 = __t24 + __L2_d1 * 2.0;
+            let __t27 = __lambda_rope0_d2 + __lambda_hoist_d2 + __lambda_rope1_d2;
+            let __t28 = __t22 + __lambda_rope0_d1 * 2.0 + __lambda_rope1_d1 * 2.0;
+            let __t29 = __x0_d1 * 2.0;
+            let __t30 = __x0_d2 - __x_d2;
+            let __t31 = __t29 - __x_d1 * 2.0;
+            let __t32 = __z0_d1 * 2.0;
+            let __t33 = __z0_d2 - __z_d2;
+            let __t34 = __t32 - __z_d1 * 2.0;
+            let mut __residual = __crane_runtime::nalgebra::SVector::<f64, 26>::zeros();
+            __residual[0] = __J1 * __t0 * __L1_d2 - __u1_d0 / __r1
+                - __L1_d0 * __lambda_rope1_d0;
+            __residual[1] = __J2 * __t1 * __L2_d2 - __u2_d0 / __r2
+                + __lambda_hoist_d0 * __t2;
+            __residual[2] = __lambda_hoist_d0 * __t3 - __L0_d0 * __lambda_rope0_d0;
+            __residual[3] = __L2_d1 * __lambda_hoist_d0 + __L0_d1 * __t10
+                - __L0_d0 * __lambda_rope0_d1 + __t3 * __lambda_hoist_d1;
+            __residual[4] = __L2_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __L2_d2
+                + __L0_d1 * __t11 + __t10 * __L0_d2 - __L0_d1 * __lambda_rope0_d1
+                - __L0_d0 * __lambda_rope0_d2 + __lambda_hoist_d1 * __t12
+                + __t3 * __lambda_hoist_d2;
+            __residual[5] = __lambda_rope1_d0 * __t4 + __x0_d0 * __lambda_rope0_d0
+                + __lambda_hoist_d0 * __t5;
+            __residual[6] = __x0_d1 * __t13 - __x_d1 * __lambda_hoist_d0
+                + __t4 * __lambda_rope1_d1 + __x0_d0 * __lambda_rope0_d1
+                + __t5 * __lambda_hoist_d1;
+            __residual[7] = __x0_d1 * __t14 + __t13 * __x0_d2
+                - __x_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __x_d2
+                + __x0_d1 * __lambda_rope1_d1 + __t4 * __lambda_rope1_d2
+                + __x0_d1 * __lambda_rope0_d1 + __x0_d0 * __lambda_rope0_d2
+                + __lambda_hoist_d1 * __t15 + __t5 * __lambda_hoist_d2;
+            __residual[8] = __lambda_rope1_d0 * __t6 + __z0_d0 * __lambda_rope0_d0
+                + __lambda_hoist_d0 * __t7;
+            __residual[9] = __z0_d1 * __t13 - __z_d1 * __lambda_hoist_d0
+                + __t6 * __lambda_rope1_d1 + __z0_d0 * __lambda_rope0_d1
+                + __t7 * __lambda_hoist_d1;
+            __residual[10] = __z0_d1 * __t14 + __t13 * __z0_d2
+                - __z_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __z_d2
+                + __z0_d1 * __lambda_rope1_d1 + __t6 * __lambda_rope1_d2
+                + __z0_d1 * __lambda_rope0_d1 + __z0_d0 * __lambda_rope0_d2
+                + __lambda_hoist_d1 * __t16 + __t7 * __lambda_hoist_d2;
+            __residual[11] = __m_l * __x_d2 + __lambda_hoist_d0 * __t8;
+            __residual[12] = __x_d1 * __lambda_hoist_d0 - __x0_d1 * __lambda_hoist_d0
+                + __m_l * __x_d3 + __t8 * __lambda_hoist_d1;
+            __residual[13] = __x_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __x_d2
+                - __x0_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __x0_d2
+                + __m_l * __x_d4 + __lambda_hoist_d1 * __t17 + __t8 * __lambda_hoist_d2;
+            __residual[14] = __m_l * __z_d2 + __m_l * __g + __lambda_hoist_d0 * __t9;
+            __residual[15] = __z_d1 * __lambda_hoist_d0 - __z0_d1 * __lambda_hoist_d0
+                + __m_l * __z_d3 + __t9 * __lambda_hoist_d1;
+            __residual[16] = __z_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __z_d2
+                - __z0_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __z0_d2
+                + __m_l * __z_d4 + __lambda_hoist_d1 * __t18 + __t9 * __lambda_hoist_d2;
+            __residual[17] = (__t4.powi(2) + __t6.powi(2) - __L1_d0.powi(2)) * 0.5;
+            __residual[18] = __x0_d1 * __t4 - __L1_d0 * __L1_d1 + __z0_d1 * __t6;
+            __residual[19] = __t19 - __L1_d1.powi(2) - __L1_d0 * __L1_d2 + __t4 * __x0_d2
+                + __t20 + __t6 * __z0_d2;
+            __residual[20] = (__x0_d0.powi(2) + __z0_d0.powi(2) - __L0_d0.powi(2)) * 0.5;
+            __residual[21] = __x0_d0 * __x0_d1 - __L0_d0 * __L0_d1 + __z0_d0 * __z0_d1;
+            __residual[22] = __t19 + __t20 - __L0_d1.powi(2) - __L0_d0 * __L0_d2
+                + __x0_d0 * __x0_d2 + __z0_d0 * __z0_d2;
+            __residual[23] = (__t8.powi(2) + __t9.powi(2) - __t3.powi(2)) * 0.5;
+            __residual[24] = __L2_d1 * __t2 + __L0_d1 * __t3 + __x0_d1 * __t5
+                + __z0_d1 * __t7 + __x_d1 * __t8 + __z_d1 * __t9;
+            __residual[25] = __L2_d1 * __t21 + __L2_d2 * __t2 + __L0_d1 * __t12
+                + __t3 * __L0_d2 + __x0_d1 * __t15 + __t5 * __x0_d2 + __z0_d1 * __t16
+                + __t7 * __z0_d2 + __x_d1 * __t17 + __x_d2 * __t8 + __z_d1 * __t18
+                + __z_d2 * __t9;
+            let mut __jacobian = __crane_runtime::nalgebra::SMatrix::<
                 f64,
                 26,
                 26,
             >::zeros();
-            jacobian[(0, 0)] = -lambda_rope1_d0;
-            jacobian[(0, 2)] = J1 * t0;
-            jacobian[(0, 15)] = -L1_d0;
-            jacobian[(0, 24)] = -r1.recip();
-            jacobian[(1, 3)] = -lambda_hoist_d0;
-            jacobian[(1, 5)] = J2 * t1;
-            jacobian[(1, 6)] = lambda_hoist_d0;
-            jacobian[(1, 21)] = t2;
-            jacobian[(1, 25)] = -r2.recip();
-            jacobian[(2, 3)] = lambda_hoist_d0;
-            jacobian[(2, 6)] = t10;
-            jacobian[(2, 18)] = -L0_d0;
-            jacobian[(2, 21)] = t3;
-            jacobian[(3, 3)] = lambda_hoist_d1;
-            jacobian[(3, 4)] = lambda_hoist_d0;
-            jacobian[(3, 6)] = t11;
-            jacobian[(3, 7)] = t10;
-            jacobian[(3, 18)] = -L0_d1;
-            jacobian[(3, 19)] = -L0_d0;
-            jacobian[(3, 21)] = t12;
-            jacobian[(3, 22)] = t3;
-            jacobian[(4, 3)] = lambda_hoist_d2;
-            jacobian[(4, 4)] = t22;
-            jacobian[(4, 5)] = lambda_hoist_d0;
-            jacobian[(4, 6)] = -lambda_rope0_d2 - lambda_hoist_d2;
-            jacobian[(4, 7)] = t23 - lambda_rope0_d1 * 2.0;
-            jacobian[(4, 8)] = t10;
-            jacobian[(4, 18)] = -L0_d2;
-            jacobian[(4, 19)] = t24;
-            jacobian[(4, 20)] = -L0_d0;
-            jacobian[(4, 21)] = t25;
-            jacobian[(4, 22)] = t26;
-            jacobian[(4, 23)] = t3;
-            jacobian[(5, 9)] = t13;
-            jacobian[(5, 15)] = t4;
-            jacobian[(5, 18)] = x0_d0;
-            jacobian[(5, 21)] = t5;
-            jacobian[(6, 9)] = t14;
-            jacobian[(6, 10)] = t13;
-            jacobian[(6, 15)] = x0_d1;
-            jacobian[(6, 16)] = t4;
-            jacobian[(6, 18)] = x0_d1;
-            jacobian[(6, 19)] = x0_d0;
-            jacobian[(6, 21)] = t15;
-            jacobian[(6, 22)] = t5;
-            jacobian[(7, 9)] = t27;
-            jacobian[(7, 10)] = t28;
-            jacobian[(7, 11)] = t13;
-            jacobian[(7, 15)] = x0_d2;
-            jacobian[(7, 16)] = t29;
-            jacobian[(7, 17)] = t4;
-            jacobian[(7, 18)] = x0_d2;
-            jacobian[(7, 19)] = t29;
-            jacobian[(7, 20)] = x0_d0;
-            jacobian[(7, 21)] = t30;
-            jacobian[(7, 22)] = t31;
-            jacobian[(7, 23)] = t5;
-            jacobian[(8, 12)] = t13;
-            jacobian[(8, 15)] = t6;
-            jacobian[(8, 18)] = z0_d0;
-            jacobian[(8, 21)] = t7;
-            jacobian[(9, 12)] = t14;
-            jacobian[(9, 13)] = t13;
-            jacobian[(9, 15)] = z0_d1;
-            jacobian[(9, 16)] = t6;
-            jacobian[(9, 18)] = z0_d1;
-            jacobian[(9, 19)] = z0_d0;
-            jacobian[(9, 21)] = t16;
-            jacobian[(9, 22)] = t7;
-            jacobian[(10, 12)] = t27;
-            jacobian[(10, 13)] = t28;
-            jacobian[(10, 14)] = t13;
-            jacobian[(10, 15)] = z0_d2;
-            jacobian[(10, 16)] = t32;
-            jacobian[(10, 17)] = t6;
-            jacobian[(10, 18)] = z0_d2;
-            jacobian[(10, 19)] = t32;
-            jacobian[(10, 20)] = z0_d0;
-            jacobian[(10, 21)] = t33;
-            jacobian[(10, 22)] = t34;
-            jacobian[(10, 23)] = t7;
-            jacobian[(11, 9)] = -lambda_hoist_d0;
-            jacobian[(11, 21)] = t8;
-            jacobian[(12, 9)] = -lambda_hoist_d1;
-            jacobian[(12, 10)] = -lambda_hoist_d0;
-            jacobian[(12, 21)] = t17;
-            jacobian[(12, 22)] = t8;
-            jacobian[(13, 9)] = -lambda_hoist_d2;
-            jacobian[(13, 10)] = t23;
-            jacobian[(13, 11)] = -lambda_hoist_d0;
-            jacobian[(13, 21)] = x_d2 - x0_d2;
-            jacobian[(13, 22)] = x_d1 * 2.0 - x0_d1 * 2.0;
-            jacobian[(13, 23)] = t8;
-            jacobian[(14, 12)] = -lambda_hoist_d0;
-            jacobian[(14, 21)] = t9;
-            jacobian[(15, 12)] = -lambda_hoist_d1;
-            jacobian[(15, 13)] = -lambda_hoist_d0;
-            jacobian[(15, 21)] = t18;
-            jacobian[(15, 22)] = t9;
-            jacobian[(16, 12)] = -lambda_hoist_d2;
-            jacobian[(16, 13)] = t23;
-            jacobian[(16, 14)] = -lambda_hoist_d0;
-            jacobian[(16, 21)] = z_d2 - z0_d2;
-            jacobian[(16, 22)] = z_d1 * 2.0 - z0_d1 * 2.0;
-            jacobian[(16, 23)] = t9;
-            jacobian[(17, 0)] = -L1_d0;
-            jacobian[(17, 9)] = t4;
-            jacobian[(17, 12)] = t6;
-            jacobian[(18, 0)] = -L1_d1;
-            jacobian[(18, 1)] = -L1_d0;
-            jacobian[(18, 9)] = x0_d1;
-            jacobian[(18, 10)] = t4;
-            jacobian[(18, 12)] = z0_d1;
-            jacobian[(18, 13)] = t6;
-            jacobian[(19, 0)] = -L1_d2;
-            jacobian[(19, 1)] = -L1_d1 * 2.0;
-            jacobian[(19, 2)] = -L1_d0;
-            jacobian[(19, 9)] = x0_d2;
-            jacobian[(19, 10)] = t29;
-            jacobian[(19, 11)] = t4;
-            jacobian[(19, 12)] = z0_d2;
-            jacobian[(19, 13)] = t32;
-            jacobian[(19, 14)] = t6;
-            jacobian[(20, 6)] = -L0_d0;
-            jacobian[(20, 9)] = x0_d0;
-            jacobian[(20, 12)] = z0_d0;
-            jacobian[(21, 6)] = -L0_d1;
-            jacobian[(21, 7)] = -L0_d0;
-            jacobian[(21, 9)] = x0_d1;
-            jacobian[(21, 10)] = x0_d0;
-            jacobian[(21, 12)] = z0_d1;
-            jacobian[(21, 13)] = z0_d0;
-            jacobian[(22, 6)] = -L0_d2;
-            jacobian[(22, 7)] = t24;
-            jacobian[(22, 8)] = -L0_d0;
-            jacobian[(22, 9)] = x0_d2;
-            jacobian[(22, 10)] = t29;
-            jacobian[(22, 11)] = x0_d0;
-            jacobian[(22, 12)] = z0_d2;
-            jacobian[(22, 13)] = t32;
-            jacobian[(22, 14)] = z0_d0;
-            jacobian[(23, 3)] = t2;
-            jacobian[(23, 6)] = t3;
-            jacobian[(23, 9)] = t5;
-            jacobian[(23, 12)] = t7;
-            jacobian[(24, 3)] = t21;
-            jacobian[(24, 4)] = t2;
-            jacobian[(24, 6)] = t12;
-            jacobian[(24, 7)] = t3;
-            jacobian[(24, 9)] = t15;
-            jacobian[(24, 10)] = t5;
-            jacobian[(24, 12)] = t16;
-            jacobian[(24, 13)] = t7;
-            jacobian[(25, 3)] = L0_d2 - L2_d2;
-            jacobian[(25, 4)] = L0_d1 * 2.0 - L2_d1 * 2.0;
-            jacobian[(25, 5)] = t2;
-            jacobian[(25, 6)] = t25;
-            jacobian[(25, 7)] = t26;
-            jacobian[(25, 8)] = t3;
-            jacobian[(25, 9)] = t30;
-            jacobian[(25, 10)] = t31;
-            jacobian[(25, 11)] = t5;
-            jacobian[(25, 12)] = t33;
-            jacobian[(25, 13)] = t34;
-            jacobian[(25, 14)] = t7;
-            (residual, jacobian)
+            __jacobian[(0, 0)] = -__lambda_rope1_d0;
+            __jacobian[(0, 2)] = __J1 * __t0;
+            __jacobian[(0, 15)] = -__L1_d0;
+            __jacobian[(0, 24)] = -__r1.recip();
+            __jacobian[(1, 3)] = -__lambda_hoist_d0;
+            __jacobian[(1, 5)] = __J2 * __t1;
+            __jacobian[(1, 6)] = __lambda_hoist_d0;
+            __jacobian[(1, 21)] = __t2;
+            __jacobian[(1, 25)] = -__r2.recip();
+            __jacobian[(2, 3)] = __lambda_hoist_d0;
+            __jacobian[(2, 6)] = __t10;
+            __jacobian[(2, 18)] = -__L0_d0;
+            __jacobian[(2, 21)] = __t3;
+            __jacobian[(3, 3)] = __lambda_hoist_d1;
+            __jacobian[(3, 4)] = __lambda_hoist_d0;
+            __jacobian[(3, 6)] = __t11;
+            __jacobian[(3, 7)] = __t10;
+            __jacobian[(3, 18)] = -__L0_d1;
+            __jacobian[(3, 19)] = -__L0_d0;
+            __jacobian[(3, 21)] = __t12;
+            __jacobian[(3, 22)] = __t3;
+            __jacobian[(4, 3)] = __lambda_hoist_d2;
+            __jacobian[(4, 4)] = __t22;
+            __jacobian[(4, 5)] = __lambda_hoist_d0;
+            __jacobian[(4, 6)] = -__lambda_rope0_d2 - __lambda_hoist_d2;
+            __jacobian[(4, 7)] = __t23 - __lambda_rope0_d1 * 2.0;
+            __jacobian[(4, 8)] = __t10;
+            __jacobian[(4, 18)] = -__L0_d2;
+            __jacobian[(4, 19)] = __t24;
+            __jacobian[(4, 20)] = -__L0_d0;
+            __jacobian[(4, 21)] = __t25;
+            __jacobian[(4, 22)] = __t26;
+            __jacobian[(4, 23)] = __t3;
+            __jacobian[(5, 9)] = __t13;
+            __jacobian[(5, 15)] = __t4;
+            __jacobian[(5, 18)] = __x0_d0;
+            __jacobian[(5, 21)] = __t5;
+            __jacobian[(6, 9)] = __t14;
+            __jacobian[(6, 10)] = __t13;
+            __jacobian[(6, 15)] = __x0_d1;
+            __jacobian[(6, 16)] = __t4;
+            __jacobian[(6, 18)] = __x0_d1;
+            __jacobian[(6, 19)] = __x0_d0;
+            __jacobian[(6, 21)] = __t15;
+            __jacobian[(6, 22)] = __t5;
+            __jacobian[(7, 9)] = __t27;
+            __jacobian[(7, 10)] = __t28;
+            __jacobian[(7, 11)] = __t13;
+            __jacobian[(7, 15)] = __x0_d2;
+            __jacobian[(7, 16)] = __t29;
+            __jacobian[(7, 17)] = __t4;
+            __jacobian[(7, 18)] = __x0_d2;
+            __jacobian[(7, 19)] = __t29;
+            __jacobian[(7, 20)] = __x0_d0;
+            __jacobian[(7, 21)] = __t30;
+            __jacobian[(7, 22)] = __t31;
+            __jacobian[(7, 23)] = __t5;
+            __jacobian[(8, 12)] = __t13;
+            __jacobian[(8, 15)] = __t6;
+            __jacobian[(8, 18)] = __z0_d0;
+            __jacobian[(8, 21)] = __t7;
+            __jacobian[(9, 12)] = __t14;
+            __jacobian[(9, 13)] = __t13;
+            __jacobian[(9, 15)] = __z0_d1;
+            __jacobian[(9, 16)] = __t6;
+            __jacobian[(9, 18)] = __z0_d1;
+            __jacobian[(9, 19)] = __z0_d0;
+            __jacobian[(9, 21)] = __t16;
+            __jacobian[(9, 22)] = __t7;
+            __jacobian[(10, 12)] = __t27;
+            __jacobian[(10, 13)] = __t28;
+            __jacobian[(10, 14)] = __t13;
+            __jacobian[(10, 15)] = __z0_d2;
+            __jacobian[(10, 16)] = __t32;
+            __jacobian[(10, 17)] = __t6;
+            __jacobian[(10, 18)] = __z0_d2;
+            __jacobian[(10, 19)] = __t32;
+            __jacobian[(10, 20)] = __z0_d0;
+            __jacobian[(10, 21)] = __t33;
+            __jacobian[(10, 22)] = __t34;
+            __jacobian[(10, 23)] = __t7;
+            __jacobian[(11, 9)] = -__lambda_hoist_d0;
+            __jacobian[(11, 21)] = __t8;
+            __jacobian[(12, 9)] = -__lambda_hoist_d1;
+            __jacobian[(12, 10)] = -__lambda_hoist_d0;
+            __jacobian[(12, 21)] = __t17;
+            __jacobian[(12, 22)] = __t8;
+            __jacobian[(13, 9)] = -__lambda_hoist_d2;
+            __jacobian[(13, 10)] = __t23;
+            __jacobian[(13, 11)] = -__lambda_hoist_d0;
+            __jacobian[(13, 21)] = __x_d2 - __x0_d2;
+            __jacobian[(13, 22)] = __x_d1 * 2.0 - __x0_d1 * 2.0;
+            __jacobian[(13, 23)] = __t8;
+            __jacobian[(14, 12)] = -__lambda_hoist_d0;
+            __jacobian[(14, 21)] = __t9;
+            __jacobian[(15, 12)] = -__lambda_hoist_d1;
+            __jacobian[(15, 13)] = -__lambda_hoist_d0;
+            __jacobian[(15, 21)] = __t18;
+            __jacobian[(15, 22)] = __t9;
+            __jacobian[(16, 12)] = -__lambda_hoist_d2;
+            __jacobian[(16, 13)] = __t23;
+            __jacobian[(16, 14)] = -__lambda_hoist_d0;
+            __jacobian[(16, 21)] = __z_d2 - __z0_d2;
+            __jacobian[(16, 22)] = __z_d1 * 2.0 - __z0_d1 * 2.0;
+            __jacobian[(16, 23)] = __t9;
+            __jacobian[(17, 0)] = -__L1_d0;
+            __jacobian[(17, 9)] = __t4;
+            __jacobian[(17, 12)] = __t6;
+            __jacobian[(18, 0)] = -__L1_d1;
+            __jacobian[(18, 1)] = -__L1_d0;
+            __jacobian[(18, 9)] = __x0_d1;
+            __jacobian[(18, 10)] = __t4;
+            __jacobian[(18, 12)] = __z0_d1;
+            __jacobian[(18, 13)] = __t6;
+            __jacobian[(19, 0)] = -__L1_d2;
+            __jacobian[(19, 1)] = -__L1_d1 * 2.0;
+            __jacobian[(19, 2)] = -__L1_d0;
+            __jacobian[(19, 9)] = __x0_d2;
+            __jacobian[(19, 10)] = __t29;
+            __jacobian[(19, 11)] = __t4;
+            __jacobian[(19, 12)] = __z0_d2;
+            __jacobian[(19, 13)] = __t32;
+            __jacobian[(19, 14)] = __t6;
+            __jacobian[(20, 6)] = -__L0_d0;
+            __jacobian[(20, 9)] = __x0_d0;
+            __jacobian[(20, 12)] = __z0_d0;
+            __jacobian[(21, 6)] = -__L0_d1;
+            __jacobian[(21, 7)] = -__L0_d0;
+            __jacobian[(21, 9)] = __x0_d1;
+            __jacobian[(21, 10)] = __x0_d0;
+            __jacobian[(21, 12)] = __z0_d1;
+            __jacobian[(21, 13)] = __z0_d0;
+            __jacobian[(22, 6)] = -__L0_d2;
+            __jacobian[(22, 7)] = __t24;
+            __jacobian[(22, 8)] = -__L0_d0;
+            __jacobian[(22, 9)] = __x0_d2;
+            __jacobian[(22, 10)] = __t29;
+            __jacobian[(22, 11)] = __x0_d0;
+            __jacobian[(22, 12)] = __z0_d2;
+            __jacobian[(22, 13)] = __t32;
+            __jacobian[(22, 14)] = __z0_d0;
+            __jacobian[(23, 3)] = __t2;
+            __jacobian[(23, 6)] = __t3;
+            __jacobian[(23, 9)] = __t5;
+            __jacobian[(23, 12)] = __t7;
+            __jacobian[(24, 3)] = __t21;
+            __jacobian[(24, 4)] = __t2;
+            __jacobian[(24, 6)] = __t12;
+            __jacobian[(24, 7)] = __t3;
+            __jacobian[(24, 9)] = __t15;
+            __jacobian[(24, 10)] = __t5;
+            __jacobian[(24, 12)] = __t16;
+            __jacobian[(24, 13)] = __t7;
+            __jacobian[(25, 3)] = __L0_d2 - __L2_d2;
+            __jacobian[(25, 4)] = __L0_d1 * 2.0 - __L2_d1 * 2.0;
+            __jacobian[(25, 5)] = __t2;
+            __jacobian[(25, 6)] = __t25;
+            __jacobian[(25, 7)] = __t26;
+            __jacobian[(25, 8)] = __t3;
+            __jacobian[(25, 9)] = __t30;
+            __jacobian[(25, 10)] = __t31;
+            __jacobian[(25, 11)] = __t5;
+            __jacobian[(25, 12)] = __t33;
+            __jacobian[(25, 13)] = __t34;
+            __jacobian[(25, 14)] = __t7;
+            (__residual, __jacobian)
         }
     }
 };
