@@ -5,8 +5,8 @@ use crane_models::study::StudyError;
 /// Everything a command can fail with.
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
-    #[error("unknown model `{0}`; `crane list` shows the built-in models")]
-    UnknownModel(String),
+    #[error("unknown model `{name}`; `{program} list` shows the models")]
+    UnknownModel { name: String, program: String },
     #[error(transparent)]
     Runtime(#[from] crane_runtime::Error),
     #[error(transparent)]
@@ -31,7 +31,10 @@ pub enum CliError {
     Infeasible { problems: String, out: String },
     #[error("{0}")]
     Planning(String),
-    #[error("no FMU library at {0}: build it with `cargo build --release -p crane-fmu` or give --library")]
+    #[error(
+        "no FMU library at {0}: build it (the built-in cranes' with `cargo build --release -p crane-fmu`, a tool's \
+         own with `cargo build --release` of its crate, a `cdylib` that calls `export_fmu!`) or give --library"
+    )]
     NoFmuLibrary(String),
     #[error(transparent)]
     Package(#[from] crane_fmi::package::PackageError),

@@ -66,10 +66,10 @@ pub mod instance;
 pub mod package;
 pub mod variables;
 
-pub use crane_models::{Crane, Maneuver, PathSpec, Profile};
+pub use crane_models::{Crane, Maneuver, PathSpec, Profile, Registry};
 
-/// The entries of every built-in crane (from the registry).
-pub fn built_in() -> Vec<ffi::Entry> {
+/// The FMU entries of every crane of `registry`.
+pub fn entries<R: Registry>(registry: &R) -> Vec<ffi::Entry> {
     struct MakeEntry;
     impl crane_models::Visit for MakeEntry {
         type Output = ffi::Entry;
@@ -77,19 +77,33 @@ pub fn built_in() -> Vec<ffi::Entry> {
             ffi::Entry::of::<C, N, M, A>()
         }
     }
-    crane_models::CATALOG
+    registry
+        .entries()
         .iter()
-        .filter_map(|e| crane_models::registry::visit(e.name, MakeEntry))
+        .filter_map(|e| registry.visit(e.name, MakeEntry))
         .collect()
+}
+
+/// The FMU entries of every built-in crane.
+pub fn built_in() -> Vec<ffi::Entry> {
+    entries(&crane_models::BuiltIn)
 }
 
 /// Export the FMI 2.0 co-simulation functions (`fmi2Instantiate`,
 /// `fmi2DoStep`, ...) from a `cdylib` for the cranes listed
-/// (`export_fmu!(A, B)`, each a [`Crane`]) or for the entries a function
-/// returns (`export_fmu!(entries = crane_fmi::built_in)`). The host's GUID
-/// picks the crane.
+/// (`export_fmu!(A, B)`, each a [`Crane`]), for the cranes of a
+/// [`Registry`] (`export_fmu!(registry = MyCranes)`, the registry a tool's
+/// `fmu` command packages from) or for the entries a function returns
+/// (`export_fmu!(entries = crane_fmi::built_in)`). The host's GUID picks
+/// the crane.
 #[macro_export]
 macro_rules! export_fmu {
+    (registry = $registry:expr) => {
+        fn __crane_fmi_entries() -> ::std::vec::Vec<$crate::ffi::Entry> {
+            $crate::entries(&$registry)
+        }
+        $crate::export_fmu!(@functions __crane_fmi_entries);
+    };
     ($($crane:ty),+ $(,)?) => {
         fn __crane_fmi_entries() -> ::std::vec::Vec<$crate::ffi::Entry> {
             ::std::vec![$($crate::ffi::Entry::of::<$crane, _, _, _>()),+]

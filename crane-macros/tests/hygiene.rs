@@ -41,8 +41,41 @@ macro_rules! navy_planar {
     };
 }
 
+/// A planar gantry crane whose parameters `J`, `g` and coordinate `L` are
+/// common names of a user's constants, functions and types.
+macro_rules! gantry {
+    () => {
+        crane_macros::crane_model! {
+            /// Planar gantry crane: trolley, hoist winch, load on one rope.
+            pub struct Gantry {
+                params { m_t = 50.0, m_l = 200.0, J = 0.05, r = 0.1, g = 9.81 }
+                robot  [s, L]
+                load   [x, z]
+                inputs [u1, u2]
+                kinetic = 0.5*m_t*dot(s)^2 + 0.5*J/r^2*dot(L)^2 + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+                forces { s: u1, L: u2/r, z: -m_l*g }
+                constraints { #[rope(N = L)] rope: 0.5*((x - s)^2 + z^2 - L^2) }
+            }
+        }
+    };
+}
+
 mod clean {
     navy_planar!();
+    gantry!();
+}
+
+/// The names of the gantry's example: a constant `J`, a function `g`, a
+/// unit struct `L` (values unlike the model's, so that a capture could not
+/// hide in equal numbers).
+mod user {
+    const J: f64 = 7.0;
+    fn g() -> f64 {
+        1.0
+    }
+    struct L;
+
+    gantry!();
 }
 
 /// Every name of the declaration taken by an item of the user's.
@@ -90,6 +123,21 @@ mod hostile {
 }
 
 #[test]
+fn a_gantry_beside_a_constant_j_a_function_g_and_a_struct_l_gives_the_same_numbers() {
+    let (a, b) = (clean::Gantry::new(), user::Gantry::new());
+    assert_eq!(a.parameter_values(), b.parameter_values());
+    let q = SVector::<f64, 4>::from([0.3, 5.2, 1.1, -4.9]);
+    let v = SVector::<f64, 4>::from([0.1, -0.2, 0.3, 0.4]);
+    let lambda = SVector::<f64, 1>::from([-39.0]);
+    assert_eq!(a.constraints(&q), b.constraints(&q));
+    assert_eq!(a.constraint_jacobian(&q), b.constraint_jacobian(&q));
+    assert_eq!(a.constraint_hessian(&q, &lambda), b.constraint_hessian(&q, &lambda));
+    assert_eq!(a.mass_matrix::<f64>(), b.mass_matrix::<f64>());
+    assert_eq!(a.forces(&q, &v), b.forces(&q, &v));
+    assert_eq!(a.input_matrix(&q), b.input_matrix(&q));
+}
+
+#[test]
 fn a_crane_beside_items_of_its_names_gives_the_same_numbers() {
     let (a, b) = (clean::NavyPlanar::new(), hostile::NavyPlanar::new());
     assert_eq!(a.parameter_values(), b.parameter_values());
@@ -122,5 +170,8 @@ fn a_crane_beside_items_of_its_names_gives_the_same_numbers() {
         SVector::from([0.1, 0.3]),
     ];
     let jets = SVector::<f64, 26>::from_fn(|i, _| 0.5 + 0.1 * i as f64);
-    assert_eq!(a.dummy_derivative_system(&gamma, &jets), b.dummy_derivative_system(&gamma, &jets));
+    assert_eq!(
+        a.dummy_derivative_system(&gamma, &jets),
+        b.dummy_derivative_system(&gamma, &jets)
+    );
 }

@@ -21,7 +21,9 @@
 //! | [`study`] | what a run means: summary, feasibility, warnings, convergence, replay policy |
 //! | [`plan`] | the fastest feasible move, parameter sweeps |
 //! | [`replay`], [`forward`] | the computed torques on the forward dynamics (another plant, feedback) |
+//! | [`registry!`], [`registry`](mod@registry) | the cranes a tool knows, by name |
 //! | [`fmi`] (feature `fmu`, on by default) | any crane as an FMI 2.0 co-simulation FMU |
+//! | [`cli`] (feature `cli`, on by default) | the whole `crane` command line for a user's cranes |
 //!
 //! # Worked example: a planar gantry crane
 //!
@@ -198,9 +200,10 @@
 //!
 //! A `cdylib` crate declares its crane, describes its default move (a
 //! [`Crane`](models::Crane)) and exports the FMI functions with
-//! `crane::fmi::export_fmu!(MyCrane);`; `crane::fmi::package::package`
-//! writes the `.fmu` (see `examples/fmu-crane`). The state machine behind the
-//! C functions runs in Rust too:
+//! `crane::fmi::export_fmu!(MyCrane);` (or `export_fmu!(registry =
+//! MyCranes)`); `crane::fmi::package::package` writes the `.fmu`, as the
+//! `fmu` command of a tool of one's own does (below). The state machine
+//! behind the C functions runs in Rust too:
 //!
 //! ```
 //! # #[cfg(feature = "fmu")] {
@@ -215,6 +218,60 @@
 //! assert!((fmu.time() - 0.1).abs() < 1e-12);
 //! # }
 //! ```
+//!
+//! # A crane tool of your own: [`cli`]
+//!
+//! The whole `crane` command line (`list | run | bench | convergence |
+//! fastest | sweep | fmu`, with scenario files, outputs and plots) for the
+//! cranes of a [`registry!`]: the crane's one description is its
+//! [`Crane`](models::Crane) implementation (model, name and default
+//! manoeuvre required, the rest optional).
+//!
+//! ```no_run
+//! use crane::prelude::*;
+//!
+//! crane_model! {
+//!     /// Planar gantry crane: trolley, hoist winch, load on one rope.
+//!     pub struct Gantry {
+//!         params { m_t: positive = 50.0, m_l: positive = 200.0, J: positive = 0.05,
+//!                  r: positive = 0.1, g: positive = 9.81 }
+//!         robot  [s, L]
+//!         load   [x, z]
+//!         inputs [u1, u2]
+//!         kinetic = 0.5*m_t*dot(s)^2 + 0.5*J/r^2*dot(L)^2 + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+//!         forces { s: u1, L: u2/r, z: -m_l*g }
+//!         constraints { #[rope(N = L)] rope: 0.5*((x - s)^2 + z^2 - L^2) }
+//!     }
+//! }
+//!
+//! /// The crane and its default move: 4 m across and 2 m up in 5 s.
+//! pub struct PlanarGantry;
+//!
+//! impl Crane<4, 1, 2> for PlanarGantry {
+//!     type Model = Gantry;
+//!     const NAME: &'static str = "planar-gantry";
+//!     fn maneuver() -> Maneuver<2> {
+//!         let (start, end) = (SVector::from([0.0, -5.0]), SVector::from([4.0, -3.0]));
+//!         Maneuver {
+//!             path: PathSpec { profile: Profile::Poly9, t0: 0.0, t1: 5.0, start, end },
+//!             p0: vec![0.0, 5.0], // the start guess [s, L]
+//!         }
+//!     }
+//! }
+//!
+//! crane::registry! {
+//!     /// The cranes of this tool.
+//!     pub struct MyCranes { PlanarGantry }
+//! }
+//!
+//! // the user's crane first, then the built-in ones
+//! fn main() -> std::process::ExitCode {
+//!     crane::cli::Tool::new((MyCranes, BuiltIn)).main()
+//! }
+//! ```
+//!
+//! `examples/user-cli/` is such a crate, with its FMU exported from the
+//! same library.
 #![warn(missing_docs)]
 
 /// The runtime: traits, problems, schemes, the stepper, load paths,
@@ -240,6 +297,15 @@ pub use crane_runtime::forward;
 #[cfg(feature = "fmu")]
 pub use crane_fmi as fmi;
 
+/// The command line of a crane tool as a library (feature `cli`): a
+/// user's binary is `crane::cli::Tool::new(MyCranes).main()`.
+#[cfg(feature = "cli")]
+pub use crane_cli as cli;
+
+/// Registries of cranes by name, and the [`registry!`] macro that makes
+/// one of a user's cranes.
+pub use crane_models::registry;
+
 /// Declare a crane: see the crate docs and `crane_macros::crane_model!` for
 /// the DSL. Generated code refers to this crate's [`runtime`], so depending on
 /// `crane` alone is enough.
@@ -258,7 +324,7 @@ pub mod __private {
 /// Everything a typical program needs: `use crane::prelude::*;`.
 pub mod prelude {
     pub use crate::crane_model;
-    pub use crane_models::{Case, Crane, Maneuver, Path, PathSpec, Profile, ProfileKind};
+    pub use crane_models::{BuiltIn, Case, Crane, Maneuver, Path, PathSpec, Profile, ProfileKind, Registry};
     pub use crane_runtime::check::{SampleBox, check_derivatives, check_minimal_map};
     pub use crane_runtime::dummy_derivative::{DummyDerivative, DummyDerivativeStepper, simulate_dummy_derivative};
     pub use crane_runtime::nalgebra::{SMatrix, SVector};

@@ -1,9 +1,10 @@
-//! [`Crane`]: everything the tool knows about one built-in crane, in one
-//! place: the model, its default manoeuvre as data, its analytical reference
+//! [`Crane`]: everything the tool knows about one crane, built-in or a
+//! user's, in one place: the model, its default manoeuvre as data, its analytical reference
 //! on any path (where it has one), its minimal-coordinate run (where it has a
-//! map), derived outputs and its drawing. The command line, the tests and
-//! the exports all reach a crane through this trait and the
-//! [`registry`](crate::registry).
+//! map), derived outputs and its drawing. The command line, planning,
+//! replay, the FMU and the tests all reach a crane through this trait and a
+//! [`Registry`](crate::registry::Registry). Only the model, the name and
+//! the default manoeuvre are required; everything else has a default.
 
 use crane_runtime::{Advance, CraneModel, Error, Options, Solution, State};
 
@@ -20,8 +21,10 @@ pub struct Maneuver<const A: usize> {
     pub p0: Vec<f64>,
 }
 
-/// One built-in crane. Implemented by a unit type per model module
-/// (`navy_planar::Description`, ...), listed once in the registry.
+/// One crane: the only description the command line, planning, replay and
+/// the FMU need. Implemented by a unit type per crane
+/// (`navy_planar::Description`, ... for the built-ins), listed once in a
+/// [`Registry`](crate::registry::Registry).
 pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
     /// The crane declared with `crane_model!`; its `Default` has the paper's
     /// (or the example's) parameters.
@@ -29,8 +32,8 @@ pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
 
     /// The name on the command line, e.g. `navy-planar`.
     const NAME: &'static str;
-    /// One line on what it is.
-    const DESCRIPTION: &'static str;
+    /// One line on what it is (`list` shows it; empty if not given).
+    const DESCRIPTION: &'static str = "";
     /// Whether [`reference`](Self::reference) gives an analytical solution.
     const HAS_REFERENCE: bool = false;
     /// Whether [`simulate_minimal`](Self::simulate_minimal) runs.

@@ -6,7 +6,7 @@
 //! reading the parameters from the generated struct) and its
 //! [`Crane`] description (`description`: the default manoeuvre as data, the
 //! reference on any path, the minimal-coordinate run, derived outputs, the
-//! drawing). The [`registry`] lists them once; the `crane` command, the tests
+//! drawing). The [`registry`](mod@registry) lists them once; the `crane` command, the tests
 //! and the benchmarks reach every crane through it. A [`Case`] is a crane on
 //! a path from a start: the default manoeuvre, or what a scenario makes of it.
 //!
@@ -47,4 +47,4 @@ pub mod tower_crane;
 pub use case::Case;
 pub use crane::{Crane, Maneuver};
 pub use path::{Path, PathSpec, Profile, ProfileKind};
-pub use registry::{CATALOG, Entry, Visit};
+pub use registry::{BuiltIn, CATALOG, Entry, Registry, Visit};

@@ -3,21 +3,21 @@
 
 use std::time::Instant;
 
-use crane_models::registry::Visit;
+use crane_models::registry::{Registry, Visit};
 use crane_models::study::{DEFAULT_DT, Formulation};
 use crane_models::{Case, Crane};
 use crane_runtime::{Options, Scheme};
 
-use super::{dispatch, formulation_help, scheme_help};
-use crate::CliError;
+use super::{formulation_help, scheme_help};
 use crate::scenario::{self, Overrides};
+use crate::{CliError, Tool};
 
 /// The flags of `crane bench`.
 #[derive(clap::Args, Debug)]
 // a negative number is a value to check ("--dt -0.01"), not a flag
 #[command(allow_negative_numbers = true)]
 pub struct BenchArgs {
-    /// Model name (see `crane list`).
+    /// Model name (see `list`).
     model: String,
     /// Time step in s.
     #[arg(long, default_value_t = DEFAULT_DT)]
@@ -56,14 +56,14 @@ impl Visit for Bench {
 }
 
 /// Time the runs.
-pub fn bench(args: BenchArgs) -> Result<(), CliError> {
+pub fn bench<R: Registry>(tool: &Tool<R>, args: BenchArgs) -> Result<(), CliError> {
     let overrides = Overrides {
         dt: Some(args.dt),
         tf: None,
         formulation: args.formulation,
         scheme: args.scheme,
     };
-    dispatch(
+    tool.dispatch(
         &args.model,
         Bench {
             overrides,

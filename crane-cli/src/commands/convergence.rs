@@ -5,22 +5,22 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use crane_models::registry::Visit;
+use crane_models::registry::{Registry, Visit};
 use crane_models::study::Formulation;
 use crane_models::study::convergence::{DTS, T_ERROR, study};
 use crane_models::{Case, Crane};
 use crane_runtime::Scheme;
 
-use super::{dispatch, formulation_help, out_dir, scheme_help};
+use super::{formulation_help, out_dir, scheme_help};
 use crate::scenario::{self, Overrides, ScenarioFile};
-use crate::{CliError, plot};
+use crate::{CliError, Tool, plot};
 
 /// The flags of `crane convergence`.
 #[derive(clap::Args, Debug)]
 // a negative number is a value to check ("--dt -0.01"), not a flag
 #[command(allow_negative_numbers = true)]
 pub struct ConvergenceArgs {
-    /// Model name (see `crane list`); it needs an analytical reference.
+    /// Model name (see `list`); it needs an analytical reference.
     model: String,
     /// Scenario file (its dt is ignored).
     #[arg(long, value_name = "FILE.toml")]
@@ -49,7 +49,7 @@ impl Visit for Convergence<'_> {
 }
 
 /// Run the study.
-pub fn convergence(args: ConvergenceArgs) -> Result<(), CliError> {
+pub fn convergence<R: Registry>(tool: &Tool<R>, args: ConvergenceArgs) -> Result<(), CliError> {
     let file = args.scenario.as_deref().map(ScenarioFile::load).transpose()?;
     let out = out_dir(args.out.as_deref(), &args.model);
     let overrides = Overrides {
@@ -58,7 +58,7 @@ pub fn convergence(args: ConvergenceArgs) -> Result<(), CliError> {
         formulation: args.formulation,
         scheme: args.scheme,
     };
-    dispatch(
+    tool.dispatch(
         &args.model,
         Convergence {
             file: file.as_ref(),

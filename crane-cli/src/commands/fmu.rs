@@ -1,24 +1,23 @@
-//! `crane fmu`: package a built-in crane as an FMI 2.0 co-simulation FMU.
+//! `crane fmu`: package a crane as an FMI 2.0 co-simulation FMU.
 
 use std::path::{Path, PathBuf};
 
 use crane_models::Crane;
-use crane_models::registry::Visit;
+use crane_models::registry::{Registry, Visit};
 
-use super::dispatch;
-use crate::CliError;
+use crate::{CliError, Tool};
 
 /// The flags of `crane fmu`.
 #[derive(clap::Args, Debug)]
 pub struct FmuArgs {
-    /// Model name (see `crane list`).
+    /// Model name (see `list`).
     model: String,
     /// The FMU to write (default out/MODEL.fmu).
     #[arg(long, value_name = "FILE.fmu")]
     out: Option<PathBuf>,
-    /// The shared library of the built-in FMUs (default: libcrane_fmu.so
-    /// next to this executable, as `cargo build --release --workspace`
-    /// leaves it).
+    /// The shared library that exports the crane's FMI functions (default:
+    /// the tool's library next to this executable, libcrane_fmu.so for
+    /// `crane`, as `cargo build --release` leaves it).
     #[arg(long, value_name = "FILE.so")]
     library: Option<PathBuf>,
 }
@@ -37,8 +36,9 @@ impl Visit for Package<'_> {
 }
 
 /// Write the FMU.
-pub fn fmu(args: FmuArgs) -> Result<(), CliError> {
+pub fn fmu<R: Registry>(tool: &Tool<R>, args: FmuArgs) -> Result<(), CliError> {
     let FmuArgs { model, out, library } = args;
+    tool.entry(&model)?;
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("{model}.fmu")));
     let library = match library {
         Some(path) => path,
@@ -47,12 +47,12 @@ pub fn fmu(args: FmuArgs) -> Result<(), CliError> {
                 context: "locating the crane executable".into(),
                 source,
             })?
-            .with_file_name("libcrane_fmu.so"),
+            .with_file_name(tool.library_name()),
     };
     if !library.is_file() {
         return Err(CliError::NoFmuLibrary(library.display().to_string()));
     }
-    dispatch(
+    tool.dispatch(
         &model,
         Package {
             library: &library,

@@ -1,13 +1,13 @@
-//! `crane list`: the built-in cranes with their sizes, reference, minimal
+//! `crane list`: the cranes of the tool's registry with their sizes, reference, minimal
 //! map, the path derivative their inputs need with the formulation that
 //! reduces it by default, and their internal dynamics at the start.
 
-use crane_models::registry::{self, Visit};
+use crane_models::registry::{Registry, Visit};
 use crane_models::study::Formulation;
-use crane_models::{CATALOG, Case, Crane};
+use crane_models::{Case, Crane};
 use crane_runtime::CraneModel;
 
-use crate::CliError;
+use crate::{CliError, Tool};
 
 /// What the table says of one crane beyond its catalogue entry.
 struct Row {
@@ -47,15 +47,16 @@ impl Visit for RowOf {
 }
 
 /// Print the table.
-pub fn list() -> Result<(), CliError> {
-    let width = CATALOG.iter().map(|e| e.name.len()).max().unwrap_or(5);
+pub fn list<R: Registry>(tool: &Tool<R>) -> Result<(), CliError> {
+    let entries = tool.registry().entries();
+    let width = entries.iter().map(|e| e.name.len()).max().unwrap_or(5);
     println!(
         "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} {:>5}  {:<16} {:<10} description",
         "model", "n", "m", "a", "f", "reference", "minimal", "order", "formulation", "internal"
     );
     let yes = |b: bool| if b { "yes" } else { "no" };
-    for e in CATALOG {
-        let Some(row) = registry::visit(e.name, RowOf) else {
+    for e in &entries {
+        let Some(row) = tool.registry().visit(e.name, RowOf) else {
             continue;
         };
         println!(

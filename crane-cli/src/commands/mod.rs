@@ -1,6 +1,7 @@
 //! One module per command: its flags (`clap::Args`) and what it does with
-//! them. A command on one crane is a [`Visit`] that [`dispatch`] runs on
-//! the crane of that name with its sizes.
+//! them. A command on one crane is a [`Visit`](crane_models::Visit) that
+//! [`Tool::dispatch`](crate::Tool) runs on the crane of that name with its
+//! sizes.
 
 pub mod bench;
 pub mod convergence;
@@ -11,16 +12,10 @@ pub mod run;
 
 use std::path::{Path, PathBuf};
 
-use crane_models::registry::{self, Visit};
 use crane_models::study::Formulation;
 use crane_runtime::Scheme;
 
 use crate::CliError;
-
-/// Run `job` on the built-in crane `name`.
-pub fn dispatch<V: Visit<Output = Result<T, CliError>>, T>(name: &str, job: V) -> Result<T, CliError> {
-    registry::visit(name, job).unwrap_or_else(|| Err(CliError::UnknownModel(name.to_string())))
-}
 
 /// The output directory: `out` if given, else `out/MODEL`.
 pub fn out_dir(out: Option<&Path>, model: &str) -> PathBuf {

@@ -6,16 +6,16 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use crane_models::plan::{self, Limits, MAX_SWEEP_POINTS, Settings};
-use crane_models::registry::Visit;
+use crane_models::registry::{Registry, Visit};
 use crane_models::{Case, Crane};
 use crane_runtime::{CraneModel, Options, Scheme};
 use serde_json::json;
 
-use super::{dispatch, name_value, out_dir};
-use crate::CliError;
+use super::{name_value, out_dir};
 use crate::output::Staged;
 use crate::plot;
 use crate::scenario::{self, Overrides, ScenarioFile};
+use crate::{CliError, Tool};
 
 /// The flags `crane fastest` and `crane sweep` share.
 #[derive(clap::Args, Debug)]
@@ -45,7 +45,7 @@ pub struct PlanFlags {
 // a negative number is a value to check, not a flag
 #[command(allow_negative_numbers = true)]
 pub struct FastestArgs {
-    /// Model name (see `crane list`).
+    /// Model name (see `list`).
     model: String,
     #[command(flatten)]
     plan: PlanFlags,
@@ -62,7 +62,7 @@ pub struct FastestArgs {
 // a negative number is a value to check, not a flag
 #[command(allow_negative_numbers = true)]
 pub struct SweepArgs {
-    /// Model name (see `crane list`).
+    /// Model name (see `list`).
     model: String,
     /// A swept parameter, NAME=LOW:HIGH:COUNT (repeatable).
     #[arg(long = "param", value_name = "NAME=LOW:HIGH:COUNT")]
@@ -132,10 +132,10 @@ impl Visit for Fastest<'_> {
 }
 
 /// `crane fastest`.
-pub fn fastest(args: FastestArgs) -> Result<(), CliError> {
+pub fn fastest<R: Registry>(tool: &Tool<R>, args: FastestArgs) -> Result<(), CliError> {
     let (file, out) = args.plan.files(&args.model)?;
     let settings = args.plan.settings(Some(args.tolerance))?;
-    dispatch(
+    tool.dispatch(
         &args.model,
         Fastest {
             file: file.as_ref(),
@@ -194,7 +194,7 @@ impl Visit for Sweep<'_> {
 }
 
 /// `crane sweep`.
-pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
+pub fn sweep<R: Registry>(tool: &Tool<R>, args: SweepArgs) -> Result<(), CliError> {
     let (file, out) = args.plan.files(&args.model)?;
     let settings = args.plan.settings(None)?;
     let durations = match args.duration.as_deref() {
@@ -221,7 +221,7 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
             durations,
             quiet: args.quiet,
         };
-        dispatch(&args.model, job)
+        tool.dispatch(&args.model, job)
     };
     match args.threads {
         Some(0) => Err(CliError::Planning("--threads must be at least 1".into())),

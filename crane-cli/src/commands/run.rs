@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crane_models::registry::Visit;
+use crane_models::registry::{Registry, Visit};
 use crane_models::study::StudyError;
 use crane_models::study::replay::{FeedbackSpec, ReplayOutcome};
 use crane_models::study::{self, Formulation, ReplayRequest, Summary};
@@ -12,16 +12,16 @@ use crane_models::{Case, Crane};
 use crane_runtime::error::Seconds;
 use crane_runtime::{Scheme, State};
 
-use super::{dispatch, formulation_help, name_value, out_dir, scheme_help};
+use super::{formulation_help, name_value, out_dir, scheme_help};
 use crate::scenario::{self, Overrides, ScenarioFile};
-use crate::{CliError, output, plot, progress, snapshots};
+use crate::{CliError, Tool, output, plot, progress, snapshots};
 
 /// The flags of `crane run`.
 #[derive(clap::Args, Debug)]
 // a negative number is a value to check ("--dt -0.01"), not a flag
 #[command(allow_negative_numbers = true)]
 pub struct RunArgs {
-    /// Model name (see `crane list`).
+    /// Model name (see `list`).
     model: String,
     /// Scenario file (TOML): load path, times, parameters, start, torque limits
     /// (see examples/); flags given on the command line override it.
@@ -71,7 +71,7 @@ pub struct RunArgs {
 
 /// `crane run`: the run, its files, and under `--strict` an error if it is
 /// infeasible.
-pub fn run(args: RunArgs) -> Result<(), CliError> {
+pub fn run<R: Registry>(tool: &Tool<R>, args: RunArgs) -> Result<(), CliError> {
     let file = args.scenario.as_deref().map(ScenarioFile::load).transpose()?;
     let out = out_dir(args.out.as_deref(), &args.model);
     let overrides = Overrides {
@@ -110,7 +110,7 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
         quiet: args.quiet,
         replay,
     };
-    let summary = dispatch(&args.model, job)?;
+    let summary = tool.dispatch(&args.model, job)?;
     let problems = study::infeasibilities(&summary);
     if args.strict && !problems.is_empty() {
         return Err(CliError::Infeasible {
