@@ -1,12 +1,15 @@
-//! A planar gantry crane (trolley, hoist winch, load on one rope) as an
-//! FMI 2.0 co-simulation FMU: declare it, describe its default move, export.
+//! A planar gantry crane (trolley, hoist winch, load on one rope) with the
+//! whole tool: declared once, described once ([`PlanarGantry`]), listed in
+//! the registry [`MyCranes`] that the binary `my-cranes` runs and the FMU
+//! functions of this `cdylib` export.
 
 use crane::prelude::*;
 
 crane_model! {
     /// Planar gantry crane: trolley, hoist winch, load on one rope.
     pub struct Gantry {
-        params { m_t: positive = 50.0, m_l: positive = 200.0, J: positive = 0.05, r: positive = 0.1, g = 9.81 }
+        params { m_t: positive = 50.0, m_l: positive = 200.0, J: positive = 0.05, r: positive = 0.1,
+                 g: positive = 9.81 }
         robot  [s, L]
         load   [x, z]
         inputs [u1, u2]
@@ -19,6 +22,22 @@ crane_model! {
     }
 }
 
+// Names of this crate's own that the model's parameters `J`, `g` and its
+// coordinate `L` share: the generated code is out of their reach.
+
+/// The catalogue drum's inertia in kg m^2 (the model's `J` is a parameter
+/// of its own).
+pub const J: f64 = 0.05;
+
+/// Standard gravity in m/s^2.
+pub fn g() -> f64 {
+    9.80665
+}
+
+/// A marker type of this crate, named like the rope length `L`.
+#[derive(Debug)]
+pub struct L;
+
 /// The crane and its default move: 4 m across and 2 m up in 5 s.
 pub struct PlanarGantry;
 
@@ -29,11 +48,24 @@ impl Crane<4, 1, 2> for PlanarGantry {
 
     fn maneuver() -> Maneuver<2> {
         Maneuver {
-            path: PathSpec { profile: Profile::Poly9, t0: 0.0, t1: 5.0, start: SVector::from([0.0, -5.0]), end: SVector::from([4.0, -3.0]) },
+            path: PathSpec {
+                profile: Profile::Poly9,
+                t0: 0.0,
+                t1: 5.0,
+                start: SVector::from([0.0, -5.0]),
+                end: SVector::from([4.0, -3.0]),
+            },
             // the start guess [s, L]: at rest below the trolley
             p0: vec![0.0, 5.0],
         }
     }
 }
 
-crane::fmi::export_fmu!(PlanarGantry);
+crane::registry! {
+    /// The cranes of `my-cranes` (add `crane::models::BuiltIn` as a pair,
+    /// `(MyCranes, BuiltIn)`, in both places below to get the built-in
+    /// ones too).
+    pub struct MyCranes { PlanarGantry }
+}
+
+crane::fmi::export_fmu!(registry = MyCranes);
