@@ -1,7 +1,8 @@
 //! Newton's method with an exact iteration matrix for the square system of
 //! one step of any problem on any scheme (eqs. 22a-d, 24b-e, the forward
-//! dynamics), with a relative stopping test per block of unknowns and a
-//! minimum-norm step on a singular matrix.
+//! dynamics), with a relative stopping test per block of unknowns (on the
+//! update, or on the error it leaves estimated from the observed
+//! contraction) and a minimum-norm step on a singular matrix.
 
 use std::ops::Range;
 
@@ -56,7 +57,9 @@ pub fn normalised_residual(
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonOptions {
     /// Relative tolerance on each block's update: `|dz_B| <= rtol |z_B| + atol`
-    /// (infinity norms).
+    /// (infinity norms), or on the error the update leaves, estimated as
+    /// `theta / (1 - theta) |dz_B|` from the contraction `theta` of
+    /// successive updates.
     pub rtol: f64,
     /// Absolute floor of the update test, in the units of the scaled unknowns.
     pub atol: f64,
@@ -151,6 +154,8 @@ impl Newton {
         z: &mut DVector<f64>,
     ) -> Result<Converged, NewtonFailure> {
         let mut min_norm_steps = 0;
+        // the previous update in tolerance units (none before the first)
+        let mut last_w = f64::INFINITY;
         for iteration in 1..=self.options.max_iterations {
             let normalised = system.evaluate(z, &mut self.residual, &mut self.jac);
             if !normalised.is_finite() {
@@ -182,12 +187,33 @@ impl Newton {
                 return Err(NewtonFailure::NonFinite);
             }
             *z -= dz;
-            let converged = residual_converged
-                || system.blocks().iter().all(|block| {
+            // the update in units of the tolerance, the largest over blocks:
+            // `w <= 1` is `|dz_B| <= rtol |z_B| + atol` for every block
+            let w = system
+                .blocks()
+                .iter()
+                .map(|block| {
                     let step = dz.rows_range(block.clone()).amax();
                     let size = z.rows_range(block.clone()).amax();
-                    step <= self.options.rtol * size + self.options.atol
-                });
+                    step / (self.options.rtol * size + self.options.atol)
+                })
+                .fold(0.0, f64::max);
+            // after the first iteration, the error left by this update is
+            // estimated from the observed contraction theta = w_k / w_(k-1):
+            // |z_k - z*| <= theta / (1 - theta) |dz_k| (Hairer and Wanner,
+            // Solving ODEs II, IV.8), so a converged step is recognised
+            // without another evaluation and solve
+            let contraction = w / last_w;
+            // (not after a minimum-norm step: on a singular matrix the
+            // updates do not contract along the free direction, and their
+            // ratio says nothing about the error left there)
+            let left = if kind == SolveKind::Lu && last_w.is_finite() && contraction < 1.0 {
+                contraction / (1.0 - contraction) * w
+            } else {
+                f64::INFINITY
+            };
+            last_w = w;
+            let converged = residual_converged || w <= 1.0 || left <= 1.0;
             if converged {
                 return Ok(Converged {
                     iterations: iteration,

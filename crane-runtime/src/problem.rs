@@ -25,9 +25,12 @@ pub type ServoTarget<const A: usize> = [SVector<f64, A>; 3];
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Predictor {
     /// The scheme's extrapolation of the discretised coordinates
-    /// ([`History::predict`](crate::scheme::History::predict)) for the first
+    /// ([`History::predict`](crate::scheme::History::predict), one degree
+    /// above the scheme's after three regular steps) for the first
     /// `leading` unknowns (which are the first `leading` coordinates); the
-    /// other unknowns keep the last step's values.
+    /// other unknowns from the quadratic through the last three steps, or
+    /// the last step's values in the first steps and after a step on a
+    /// singular iteration matrix.
     Scheme {
         /// How many leading unknowns are discretised coordinates.
         leading: usize,

@@ -502,15 +502,19 @@ impl<const K: usize, S: Method> History<K, S> {
     }
 
     /// Predictor for the next value: the polynomial through the last
-    /// [`Method::predictor_points`] values, extrapolated one step (or
-    /// `y_n + dt y'_n` while only the start is known).
-    pub fn predict(&self, dt: f64) -> SVector<f64, K> {
+    /// [`Method::predictor_points`] values and `extra` more (at most the
+    /// known ones and [`MAX_STEPS`]), extrapolated one step (or
+    /// `y_n + dt y'_n` while only the start is known). One extra point
+    /// leaves an error `O(dt^(k + 2))` instead of `O(dt^(k + 1))`.
+    pub fn predict(&self, dt: f64, extra: usize) -> SVector<f64, K> {
         if self.known < 2 {
             return self.values[0] + self.rates[0] * dt;
         }
         // extrapolation through `points` equally spaced values:
         // y_{n+1} = sum_j (-1)^j C(points, j+1) y_{n-j}
-        let points = self.method.predictor_points(self.known);
+        let points = (self.method.predictor_points(self.known) + extra)
+            .min(self.known)
+            .min(MAX_STEPS);
         let mut prediction = SVector::zeros();
         let mut binomial = 1.0;
         for j in 0..points {
@@ -600,8 +604,15 @@ mod tests {
             let y = |t: f64| (0..=k).map(|i| t.powi(i as i32) / (i + 1) as f64).sum::<f64>();
             let past: Vec<_> = (0..MAX_STEPS).map(|j| vector![y(-(j as f64))]).collect();
             let history = History::<1>::from_past(scheme, &past, &past);
-            let p = history.predict(1.0)[0];
+            let p = history.predict(1.0, 0)[0];
             assert!((p - y(1.0)).abs() < 1e-9, "{scheme}: {p} vs {}", y(1.0));
+            // one extra point: exact for one degree more (up to the five values held)
+            let k = (scheme.order() + 1).min(MAX_STEPS - 1);
+            let y = |t: f64| (0..=k).map(|i| t.powi(i as i32) / (i + 1) as f64).sum::<f64>();
+            let past: Vec<_> = (0..MAX_STEPS).map(|j| vector![y(-(j as f64))]).collect();
+            let history = History::<1>::from_past(scheme, &past, &past);
+            let p = history.predict(1.0, 1)[0];
+            assert!((p - y(1.0)).abs() < 1e-9, "{scheme} + 1: {p} vs {}", y(1.0));
         }
     }
 

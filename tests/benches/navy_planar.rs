@@ -6,7 +6,12 @@
 //! target: generated code costs no more than hand-written code); per scheme
 //! (backward Euler, BDF-2..5) a full run and one step (`schemes/...`).
 //!
-//! Run with `cargo bench -p crane-tests`.
+//! `floor/...`: the project's backward-Euler run of navy-planar against the
+//! hand-written static-nalgebra solver of the same scheme, predictor and
+//! stopping rule (`crane_tests::floor`), with the ratio of their medians
+//! over interleaved rounds printed after criterion's lines.
+//!
+//! Run with `cargo bench -p crane-tests` (`-- floor` for that group alone).
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
@@ -15,6 +20,7 @@ use crane_models::{Case, Crane, navy_planar, navy_planar_pulley};
 use crane_runtime::nalgebra::SVector;
 use crane_runtime::redundant::Redundant;
 use crane_runtime::{CraneModel, MinimalMap, Options, Scheme, State, Stepper, minimal, simulate};
+use crane_tests::floor;
 use crane_tests::handwritten::HandNavyPlanar;
 
 /// Redundant runs and one step with `model` on the navy-planar maneuver.
@@ -159,5 +165,38 @@ fn benches(c: &mut Criterion) {
     one_step_each(c, "navy-planar-pulley", pulley.model(), pulley.path(), &start, &guess);
 }
 
-criterion_group!(navy_planar, benches, schemes);
+/// The project's run against the hand-written floor, navy-planar, backward
+/// Euler, dt = 0.01, 400 steps, the generated model in both.
+fn floor_group(c: &mut Criterion) {
+    let case = navy_planar::PaperCase::new(4.0).unwrap();
+    let start = case.start().unwrap();
+    let options = Options::new(0.01, 4.0).unwrap();
+    let project = || simulate(black_box(case.model()), case.path(), &start, &options).unwrap();
+    let hand = || floor::backward_euler(black_box(case.model()), case.path(), &start, 0.01, 400).unwrap();
+    c.bench_function("floor/navy-planar/project run dt=0.01", |b| b.iter(project));
+    c.bench_function("floor/navy-planar/hand-written 10x10 dt=0.01", |b| b.iter(hand));
+    // interleaved rounds: the ratio of the medians, measured side by side
+    let mut times = [Vec::new(), Vec::new()];
+    for _ in 0..300 {
+        let clock = std::time::Instant::now();
+        black_box(project());
+        times[0].push(clock.elapsed().as_secs_f64());
+        let clock = std::time::Instant::now();
+        black_box(hand());
+        times[1].push(clock.elapsed().as_secs_f64());
+    }
+    let [project_median, hand_median] = times.map(|mut t| {
+        t.sort_by(f64::total_cmp);
+        t[t.len() / 2]
+    });
+    println!(
+        "floor/navy-planar: project {:.3} ms, hand-written 10x10 {:.3} ms per run (medians of 300 interleaved \
+         rounds): ratio {:.2}",
+        project_median * 1e3,
+        hand_median * 1e3,
+        project_median / hand_median
+    );
+}
+
+criterion_group!(navy_planar, benches, schemes, floor_group);
 criterion_main!(navy_planar);
