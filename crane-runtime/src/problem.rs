@@ -35,9 +35,10 @@ pub enum Predictor {
         /// How many leading unknowns are discretised coordinates.
         leading: usize,
     },
-    /// The quadratic through the last three steps' unknowns (the last step's
-    /// before that); if Newton fails from it, a second solve from the last
-    /// step's unknowns.
+    /// The cubic through the last four steps' unknowns (the quadratic
+    /// through three, or the last step's, before that and after a step on a
+    /// singular iteration matrix); if Newton fails from it, a second solve
+    /// from the last step's unknowns.
     Extrapolation,
 }
 
