@@ -13,8 +13,8 @@
 //! up to Newton's tolerance and round-off, whatever the time step, and a
 //! crane whose inputs need `gamma^(6)` (a double pendulum, a drive with an
 //! elastic belt, the 3D crane with pulley mass) is solved as accurately as
-//! one that needs `gamma''''`. Newton starts from the quadratic through the
-//! last three steps' unknowns.
+//! one that needs `gamma''''`. Newton starts from the cubic through the
+//! last four steps' unknowns (the quadratic of three at first).
 //!
 //! ```
 //! use crane_runtime::{Options, Stepper, init, trajectory::Poly9, nalgebra::vector};
@@ -227,7 +227,7 @@ where
         Some(<H::Target as DummyDerivatives<N, M, A, J>>::PATH_ORDER)
     }
 
-    /// Jets are smooth in time: the quadratic through the last three steps.
+    /// Jets are smooth in time: the cubic through the last four steps.
     fn predictor(&self) -> Predictor {
         Predictor::Extrapolation
     }

@@ -34,8 +34,9 @@
 //!   carries [`DEGENERATE_TENSION_RATIO`] of the largest tension
 //!   ([`Solution::redundant_start_steps`] counts them), a [`Handover`].
 //!
-//! Newton starts from a quadratic extrapolation of the last three steps
-//! ([`Predictor::Extrapolation`]; docs/numerics.md: from the previous step
+//! Newton starts from the cubic extrapolation of the last four steps (the
+//! quadratic of three in the first steps and after a singular step;
+//! [`Predictor::Extrapolation`]; docs/numerics.md: from the previous step
 //! alone it fails near the degenerate start). Results are reported in
 //! redundant terms, `q = phi(mu)`, `q' = P mu'`, with the multipliers
 //! recovered from the redundant equations of motion by least squares,
