@@ -1441,3 +1441,36 @@ fn a_run_of_singular_steps_is_reported() {
     ]);
     assert!(default.status.success() && !String::from_utf8_lossy(&default.stderr).contains("singular"));
 }
+
+/// Each input is printed with the unit its crane declares: the 3D gantry's
+/// bridge and trolley forces in N, its winch torque in N m (summary.json
+/// carries the units too).
+#[test]
+fn inputs_are_printed_in_their_own_units() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("gantry");
+    let result = crane(&[
+        "run",
+        "gantry-3d",
+        "--dt",
+        "0.1",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    let line = |input: &str| {
+        stdout
+            .lines()
+            .find(|l| l.trim_start().starts_with(&format!("peak |{input}|")))
+            .unwrap_or_else(|| panic!("no peak line of {input}: {stdout}"))
+            .to_string()
+    };
+    assert!(line("u1").contains(" N at t ="), "{}", line("u1"));
+    assert!(line("u2").contains(" N at t ="), "{}", line("u2"));
+    assert!(line("u3").contains(" N m at t ="), "{}", line("u3"));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["input_units"], serde_json::json!(["N", "N", "N m"]));
+}

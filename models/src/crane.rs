@@ -94,6 +94,13 @@ pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
         None
     }
 
+    /// The unit of each input, in the model's order (`"N m"` for a winch or
+    /// slewing torque, `"N"` for a trolley force); empty if not given, and
+    /// then the command line prints the inputs without one.
+    fn input_units() -> &'static [&'static str] {
+        &[]
+    }
+
     /// Names of outputs derived from a state (e.g. the slewing angle `phi`);
     /// columns of `results.csv` after the tensions.
     fn derived_outputs() -> &'static [&'static str] {

@@ -304,9 +304,10 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
     let mut lines = Vec::new();
     for p in &summary.peak_torque {
         lines.push(format!(
-            "peak |{}| = {:.3} N m at t = {:.3} s",
+            "peak |{}| = {:.3}{} at t = {:.3} s",
             p.name,
             p.value.abs(),
+            summary.unit_suffix(&p.name),
             p.t
         ));
     }
@@ -335,12 +336,18 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
     for l in &summary.torque_limits {
         match l.first_violation {
             Some(t) => lines.push(format!(
-                "WARNING: |{}| exceeds its limit {} N m first at t = {t:.3} s (peak {:.3} N m)",
-                l.name, l.limit, l.peak
+                "WARNING: |{}| exceeds its limit {}{unit} first at t = {t:.3} s (peak {:.3}{unit})",
+                l.name,
+                l.limit,
+                l.peak,
+                unit = summary.unit_suffix(&l.name)
             )),
             None => lines.push(format!(
-                "|{}| stays within its limit {} N m (peak {:.3} N m)",
-                l.name, l.limit, l.peak
+                "|{}| stays within its limit {}{unit} (peak {:.3}{unit})",
+                l.name,
+                l.limit,
+                l.peak,
+                unit = summary.unit_suffix(&l.name)
             )),
         }
     }

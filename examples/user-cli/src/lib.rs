@@ -46,6 +46,11 @@ impl Crane<4, 1, 2> for PlanarGantry {
     const NAME: &'static str = "planar-gantry";
     const DESCRIPTION: &'static str = "planar gantry crane: trolley, hoist winch, one rope";
 
+    // the trolley force and the winch torque
+    fn input_units() -> &'static [&'static str] {
+        &["N", "N m"]
+    }
+
     fn maneuver() -> Maneuver<2> {
         Maneuver {
             path: PathSpec {

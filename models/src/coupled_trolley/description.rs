@@ -27,6 +27,10 @@ impl Crane<4, 1, 2> for Description {
     const DESCRIPTION: &'static str =
         "planar trolley crane, trolley-load coupling: NOT flat (unstable internal dynamics)";
 
+    fn input_units() -> &'static [&'static str] {
+        &["N", "N"]
+    }
+
     /// Poly9 (eqs. 41-45) from `(0, -5)` to `(4, -3)` in [`TF`]; the start
     /// `p0 = [s, L] = [0, 5]`: at rest below the trolley.
     fn maneuver() -> Maneuver<2> {

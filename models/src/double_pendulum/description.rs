@@ -34,6 +34,10 @@ impl Crane<6, 2, 2> for Description {
     const HAS_REFERENCE: bool = true;
     dummy_derivative_run!((6, 2, 2, 26));
 
+    fn input_units() -> &'static [&'static str] {
+        &["N", "N m"]
+    }
+
     /// The smooth three-phase profile (ramps of [`TAU0`], continuous to the
     /// 6th derivative) from `(0, -6)` to `(4, -5)` in [`TF`]; the start
     /// `p0 = [s, L, xh, zh] = [0, 4, 0, -4]`: hook and load at rest below

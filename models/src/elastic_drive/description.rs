@@ -34,6 +34,10 @@ impl Crane<5, 1, 2> for Description {
     const HAS_REFERENCE: bool = true;
     dummy_derivative_run!((5, 1, 2, 18));
 
+    fn input_units() -> &'static [&'static str] {
+        &["N m", "N m"]
+    }
+
     /// The smooth three-phase profile (ramps of [`TAU0`]) from `(0, -5)` to
     /// `(3, -4)` in [`TF`]; the start `p0 = [phi, s, L] = [0, 0, 5]`: the
     /// load at rest below the trolley, the belt unstretched.

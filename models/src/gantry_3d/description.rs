@@ -31,6 +31,10 @@ impl Crane<6, 1, 3> for Description {
     const HAS_REFERENCE: bool = true;
     const HAS_MINIMAL_MAP: bool = true;
 
+    fn input_units() -> &'static [&'static str] {
+        &["N", "N", "N m"]
+    }
+
     /// Poly9 (eqs. 41-45) from `(0, 0, -5)` to `(6, 3, -3)` in [`TF`]; the
     /// start `p0 = [X, Y, L] = [0, 0, 5]`: at rest below the trolley.
     fn maneuver() -> Maneuver<3> {

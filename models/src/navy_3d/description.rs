@@ -55,6 +55,10 @@ impl Crane<11, 4, 3> for Description {
     crate::crane::dummy_derivative_run!((11, 4, 3, 37));
     const HAS_REFERENCE: bool = true;
 
+    fn input_units() -> &'static [&'static str] {
+        &["N m", "N m", "N m"]
+    }
+
     /// Eqs. (82)-(86): from `gamma0 = (5 sqrt 3, 0, -10)` at `t0 = 0`
     /// (eq. 83) to `gammaf = (2, 5, -5)` at [`TF`] (eq. 84) on the
     /// three-phase profile with ramps of [`TAU0`] (eqs. 85-86 as corrected).

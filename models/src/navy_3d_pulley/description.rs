@@ -83,6 +83,10 @@ impl Crane<12, 5, 4> for Description {
     const DESCRIPTION: &'static str = "3D US Navy crane with pulley mass, slewing (paper sect. 6.2)";
     crate::crane::dummy_derivative_run!((12, 5, 4, 47));
 
+    fn input_units() -> &'static [&'static str] {
+        &["N m", "N m", "N m", "N m"]
+    }
+
     /// From `gamma0` (eq. 97) at `t0 = 0` to `gammaf` (eq. 98) at [`TF`] on
     /// the three-phase profile of eqs. (85)-(86) as corrected (ramps of
     /// [`TAU0`]; `tf >= 10 s`).

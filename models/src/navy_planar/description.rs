@@ -35,6 +35,10 @@ impl Crane<7, 3, 2> for Description {
     const HAS_REFERENCE: bool = true;
     const HAS_MINIMAL_MAP: bool = true;
 
+    fn input_units() -> &'static [&'static str] {
+        &["N m", "N m"]
+    }
+
     /// Eqs. (41)-(43): from `(0, -10)` at `t0 = 0` to `(-3, -14)` at 4 s
     /// (Figs. 5-8; 15 s in Fig. 9), from `p0` of eq. (46).
     fn maneuver() -> Maneuver<2> {

@@ -36,6 +36,10 @@ impl Crane<8, 4, 3> for Description {
     const HAS_REFERENCE: bool = true;
     const HAS_MINIMAL_MAP: bool = true;
 
+    fn input_units() -> &'static [&'static str] {
+        &["N m", "N m", "N m"]
+    }
+
     /// The flat outputs `[x, z, z0]` (eqs. 41, 44, 64, 65) from
     /// `(-5/2 sqrt 3, -17.5, -12.5)` at `t0 = 0` to `(-2, -16, -15)` at 4 s
     /// (15 s in Fig. 18).

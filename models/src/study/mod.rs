@@ -281,6 +281,9 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         &settings.limits,
         wall,
     );
+    for (unit, declared) in summary.input_units.iter_mut().zip(C::input_units()) {
+        *unit = declared.to_string();
+    }
     summary.internal_dynamics = diagnose(case.model(), &solution, 100);
     summary.path_smoothness =
         path_smoothness::<C::Model, _, N, M, A>(case.path()).map(|smooth| PathSmoothnessSummary {

@@ -114,6 +114,9 @@ pub struct Summary {
     pub wall_time_s: f64,
     /// Largest `|u|` per input.
     pub peak_torque: Vec<Extreme>,
+    /// Each input's unit as the crane declares it (`N m`, `N`), empty where
+    /// it declares none.
+    pub input_units: Vec<String>,
     /// Each rope's tension.
     pub ropes: Vec<RopeSummary>,
     /// Each limit's first violation.
@@ -258,6 +261,19 @@ impl<const K: usize> StreamingExtremes<K> {
     }
 }
 
+impl Summary {
+    /// `" N m"` for the input called `name` if the crane declares its unit,
+    /// else empty.
+    pub fn unit_suffix(&self, name: &str) -> String {
+        self.peak_torque
+            .iter()
+            .position(|p| p.name == name)
+            .and_then(|k| self.input_units.get(k))
+            .filter(|unit| !unit.is_empty())
+            .map_or_else(String::new, |unit| format!(" {unit}"))
+    }
+}
+
 /// The summary of a run; `references(t)` is the analytical reference at `t`
 /// where the model has one.
 pub fn summarize<const N: usize, const M: usize, const A: usize>(
@@ -350,6 +366,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         newton,
         wall_time_s,
         peak_torque,
+        input_units: vec![String::new(); A],
         ropes,
         torque_limits,
         reference,
@@ -392,8 +409,14 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
     }));
 
     out.extend(summary.torque_limits.iter().filter_map(|l| {
-        l.first_violation
-            .map(|t| format!("|{}| exceeds its limit {} N m at t = {t:.3} s", l.name, l.limit))
+        l.first_violation.map(|t| {
+            format!(
+                "|{}| exceeds its limit {}{} at t = {t:.3} s",
+                l.name,
+                l.limit,
+                summary.unit_suffix(&l.name)
+            )
+        })
     }));
     let internal = &summary.internal_dynamics;
     if let Some(p) = internal.path_order.filter(|p| !p.is_covered()) {

@@ -34,6 +34,10 @@ impl Crane<8, 3, 3> for Description {
     crate::crane::dummy_derivative_run!((8, 3, 3, 23));
     const HAS_MINIMAL_MAP: bool = true;
 
+    fn input_units() -> &'static [&'static str] {
+        &["N m", "N", "N m"]
+    }
+
     /// Poly9 (eqs. 41-45) from `(10, 0, 5)` to `(6, 12, 10)` in [`TF`]; the
     /// start `p0 = [x1, y1, xt, yt, L] = [30, 0, 10, 0, 15]`: the jib along
     /// `X`, the trolley at 10 m, the load 15 m below it.
