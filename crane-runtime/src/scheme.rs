@@ -510,20 +510,30 @@ impl<const K: usize, S: Method> History<K, S> {
         if self.known < 2 {
             return self.values[0] + self.rates[0] * dt;
         }
-        // extrapolation through `points` equally spaced values:
-        // y_{n+1} = sum_j (-1)^j C(points, j+1) y_{n-j}
         let points = (self.method.predictor_points(self.known) + extra)
             .min(self.known)
             .min(MAX_STEPS);
+        let weights = extrapolation_weights(points);
         let mut prediction = SVector::zeros();
-        let mut binomial = 1.0;
-        for j in 0..points {
-            binomial = binomial * (points - j) as f64 / (j + 1) as f64;
-            let sign = if j % 2 == 0 { 1.0 } else { -1.0 };
-            prediction += self.values[j] * (sign * binomial);
+        for (value, weight) in self.values.iter().zip(&weights[..points]) {
+            prediction += value * *weight;
         }
         prediction
     }
+}
+
+/// The weights of the extrapolation one step ahead through `points`
+/// (`1..=MAX_STEPS`) equally spaced values, newest first:
+/// `y_{n+1} = sum_j w_j y_{n-j}`, `w_j = (-1)^j C(points, j + 1)` (the
+/// polynomial of degree `points - 1`; one point: the last value).
+pub(crate) fn extrapolation_weights(points: usize) -> [f64; MAX_STEPS] {
+    let mut weights = [0.0; MAX_STEPS];
+    let mut binomial = 1.0;
+    for (j, weight) in weights.iter_mut().enumerate().take(points) {
+        binomial = binomial * (points - j) as f64 / (j + 1) as f64;
+        *weight = if j % 2 == 0 { binomial } else { -binomial };
+    }
+    weights
 }
 
 #[cfg(test)]
@@ -614,6 +624,16 @@ mod tests {
             let p = history.predict(1.0, 1)[0];
             assert!((p - y(1.0)).abs() < 1e-9, "{scheme} + 1: {p} vs {}", y(1.0));
         }
+    }
+
+    /// The weights are the ones written out: last value, linear,
+    /// quadratic, cubic.
+    #[test]
+    fn extrapolation_weights_are_the_binomial_ones() {
+        assert_eq!(extrapolation_weights(1), [1.0, 0.0, 0.0, 0.0, 0.0]);
+        assert_eq!(extrapolation_weights(2), [2.0, -1.0, 0.0, 0.0, 0.0]);
+        assert_eq!(extrapolation_weights(3), [3.0, -3.0, 1.0, 0.0, 0.0]);
+        assert_eq!(extrapolation_weights(4), [4.0, -6.0, 4.0, -1.0, 0.0]);
     }
 
     #[test]

@@ -44,7 +44,7 @@ use crate::model::check_parameters;
 use crate::newton::{Newton, NewtonFailure};
 use crate::options::Options;
 use crate::problem::{Accepted, Follow, Predictor, Problem};
-use crate::scheme::{History, Method};
+use crate::scheme::{History, Method, extrapolation_weights};
 use crate::solution::State;
 
 /// What one step reports.
@@ -270,10 +270,7 @@ where
                 let predicted = self.history.predict(self.dt, usize::from(smooth));
                 self.z.rows_mut(0, leading).copy_from(&predicted.rows(0, leading));
                 if smooth {
-                    let [h0, h1, h2, _] = &self.past;
-                    for i in leading..self.z.len() {
-                        self.z[i] = 3.0 * h0[i] - 3.0 * h1[i] + h2[i];
-                    }
+                    self.extrapolate(leading, 3);
                 }
             }
             // the cubic through the last four steps after a regular step,
@@ -288,18 +285,24 @@ where
             // dt = 0.01 against the quadratic's 2.85, with e_u(1.5 s) the
             // same at every dt of `crane convergence`)
             Predictor::Extrapolation => {
-                let smooth = !self.last_singular && self.known >= 4;
-                let [h0, h1, h2, h3] = &self.past;
-                for i in 0..self.z.len() {
-                    self.z[i] = if smooth {
-                        4.0 * h0[i] - 6.0 * h1[i] + 4.0 * h2[i] - h3[i]
-                    } else if self.known >= 3 {
-                        3.0 * h0[i] - 3.0 * h1[i] + h2[i]
-                    } else {
-                        h0[i]
-                    };
-                }
+                let points = if !self.last_singular && self.known >= 4 {
+                    4
+                } else if self.known >= 3 {
+                    3
+                } else {
+                    1
+                };
+                self.extrapolate(0, points);
             }
+        }
+    }
+
+    /// The unknowns from `first` on from the polynomial through the last
+    /// `points` steps' unknowns (`points <= known`).
+    fn extrapolate(&mut self, first: usize, points: usize) {
+        let weights = extrapolation_weights(points);
+        for i in first..self.z.len() {
+            self.z[i] = self.past.iter().zip(&weights).map(|(h, w)| w * h[i]).sum();
         }
     }
 
