@@ -74,9 +74,10 @@ enum Command {
 /// fastest | sweep | fmu` over the cranes of a [`Registry`], with the flags,
 /// scenario files, outputs and plots of `crane`.
 ///
-/// A user's binary (`src/bin/my-cranes.rs` of a crate whose library declares
-/// the cranes, lists them with `registry!` and exports them with
-/// `export_fmu!(registry = MyCranes)`):
+/// A user's binary (`src/main.rs` of a crate whose library declares the
+/// cranes, lists them with `registry!` and exports the same registry with
+/// `export_fmu!(registry = (MyCranes, BuiltIn))`, so that `fmu` packages a
+/// library that has every crane the binary lists):
 ///
 /// ```no_run
 /// use crane_models::{BuiltIn, gantry_3d};
@@ -150,20 +151,22 @@ impl<R: Registry> Tool<R> {
             .entries()
             .into_iter()
             .find(|e| e.name == name)
-            .ok_or_else(|| CliError::UnknownModel {
-                name: name.to_string(),
-                program: self.name(),
-            })
+            .ok_or_else(|| self.unknown(name))
     }
 
     /// Run `job` on the crane `name`.
     fn dispatch<V: Visit<Output = Result<T, CliError>>, T>(&self, name: &str, job: V) -> Result<T, CliError> {
-        self.registry.visit(name, job).unwrap_or_else(|| {
-            Err(CliError::UnknownModel {
-                name: name.to_string(),
-                program: self.name(),
-            })
-        })
+        self.registry
+            .visit(name, job)
+            .unwrap_or_else(|| Err(self.unknown(name)))
+    }
+
+    /// The error for a name the registry does not know.
+    fn unknown(&self, name: &str) -> CliError {
+        CliError::UnknownModel {
+            name: name.to_string(),
+            program: self.name(),
+        }
     }
 
     /// Parse the process's arguments, run the command, print its error:
