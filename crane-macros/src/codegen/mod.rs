@@ -64,8 +64,17 @@ fn internal(name: &str) -> Ident {
 /// user's scope would turn `let J = ...` into a pattern against itself;
 /// `__J` is out of its reach.
 fn local(name: &Ident) -> Ident {
+    Ident::new(&format!("__{}", bare(name)), name.span())
+}
+
+/// A declared name's text without a raw identifier's `r#`, to build other
+/// names from.
+fn bare(name: &Ident) -> String {
     let text = name.to_string();
-    Ident::new(&format!("__{}", text.trim_start_matches("r#")), name.span())
+    match text.strip_prefix("r#") {
+        Some(bare) => bare.to_string(),
+        None => text,
+    }
 }
 
 fn index(i: usize) -> Literal {

@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{ToTokens, format_ident, quote};
 
-use super::{index, internal, local};
+use super::{bare, index, internal, local};
 use crate::expr::{Arena, Id, Node, Sym};
 use crate::model::Model;
 
@@ -343,7 +343,7 @@ fn divisor(c: f64) -> Option<f64> {
 }
 
 pub(super) fn velocity_name(coord: &Ident) -> Ident {
-    internal(&format!("dot_{}", coord.to_string().trim_start_matches("r#")))
+    internal(&format!("dot_{}", bare(coord)))
 }
 
 /// The local holding derivative `k` of unknown `j` of `[q, lambda, u]`:
@@ -356,13 +356,13 @@ pub(super) fn jet_name(model: &Model, j: u16, k: u8) -> Ident {
 pub(super) fn jet_label(model: &Model, j: u16, k: u8) -> String {
     let (j, n, m) = (j as usize, model.n(), model.m());
     let base = if j < n {
-        model.coords[j].to_string()
+        bare(&model.coords[j])
     } else if j < n + m {
-        format!("lambda_{}", model.constraints[j - n].name)
+        format!("lambda_{}", bare(&model.constraints[j - n].name))
     } else {
-        model.inputs[j - n - m].to_string()
+        bare(&model.inputs[j - n - m])
     };
-    format!("{}_d{k}", base.trim_start_matches("r#"))
+    format!("{base}_d{k}")
 }
 
 /// The name of the minimal coordinate `mu_k`.
