@@ -23,7 +23,6 @@ import json
 import subprocess
 import sys
 import time
-import zipfile
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -151,11 +150,8 @@ def main():
             pass
         misused = misuse(unzipped, md)
 
-        # the C host on the FMU's own binary
-        binary = out / f"{model}-binary"
-        with zipfile.ZipFile(fmu) as z:
-            z.extractall(binary)
-        library = binary / "binaries" / "linux64" / f"{md.coSimulation.modelIdentifier}.so"
+        # the C host on the FMU's own binary (from the extraction above)
+        library = Path(unzipped) / "binaries" / "linux64" / f"{md.coSimulation.modelIdentifier}.so"
         refs = [str(v.valueReference) for v in outputs if v.name in compared]
         names = [v.name for v in outputs if v.name in compared]
         hosted = subprocess.run([host, str(library), md.guid, str(stop), str(DT), *refs], check=True, capture_output=True, text=True)
