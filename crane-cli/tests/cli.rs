@@ -552,7 +552,6 @@ fn scenario_keys_take_effect() {
             &Options::new(0.1, case.tf()).unwrap(),
             &mut |_, _| {},
         )
-        .unwrap()
         .unwrap();
     assert_eq!(
         u_column(&smooth, "u4"),

@@ -12,7 +12,7 @@ use crane_models::{Crane, Path, PathSpec, Profile};
 use crane_runtime::options::steps_in;
 use crane_runtime::problem::ServoTarget;
 use crane_runtime::redundant::{Redundant, RedundantStepper};
-use crane_runtime::{Advance, CraneModel, Options, Scheme, Stepper};
+use crane_runtime::{Advance, CraneModel, Options, Scheme, Stepper, dummy_derivative};
 use nalgebra::SVector;
 
 use crate::variables::{
@@ -288,9 +288,11 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                         C::NAME
                     ));
                 }
-                let stepper = C::dummy_derivative_stepper(Box::new(case.model), case.path, &start, &options)
-                    .ok_or_else(|| format!("{} has no dummy-derivative formulation", C::NAME))?;
-                Stepping::Reduced(stepper.map_err(|e| e.to_string())?)
+                dummy_derivative::system_size::<C::Model, N, M, A>()
+                    .map_err(|reason| format!("{} has no dummy-derivative formulation: {reason}", C::NAME))?;
+                let stepper = dummy_derivative::boxed_stepper(Box::new(case.model), case.path, &start, &options)
+                    .map_err(|e| e.to_string())?;
+                Stepping::Reduced(stepper)
             }
             _ => Stepping::Redundant(Box::new(
                 Stepper::new(Redundant::new(Box::new(case.model), case.path), &start, &options)

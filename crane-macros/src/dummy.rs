@@ -24,6 +24,11 @@ use crate::expr::{Arena, Id, Sym};
 use crate::model::{Kernels, Matrix, Model};
 use crate::structure::Structure;
 
+/// The highest derivative of the load path the runtime carries
+/// (`crane_runtime::dummy_derivative::MAX_PATH_ORDER`): no system is
+/// generated for a crane whose inputs need more.
+pub const MAX_PATH_ORDER: u8 = 10;
+
 /// The dummy-derivative system of a flat crane, as IR.
 pub struct DummyKernels {
     /// Pryce's offset `c_j` of each unknown of `[q, lambda, u]`.
@@ -72,6 +77,11 @@ impl DummyKernels {
             return None;
         };
         let (n, m, a, nr) = (model.n(), model.m(), model.a(), model.n_robot);
+        // the runtime refuses a system that reads more of the path than it
+        // carries: not generated (its cost grows steeply with the order)
+        if c[nr..n].iter().any(|&order| order > MAX_PATH_ORDER) {
+            return None;
+        }
         let jet = |j: usize, order: u8| Sym::Jet(j as u16, order);
         let arena = &mut model.arena;
 

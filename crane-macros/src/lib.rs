@@ -133,7 +133,14 @@ fn expand(input: TokenStream) -> TokenStream {
                 tokens.extend(codegen::stub(&decl));
                 return tokens;
             }
-            let structure = structure::structure(&model, &kernels);
+            let structure = match structure::structure(&model, &kernels) {
+                Ok(structure) => structure,
+                Err(message) => {
+                    let mut tokens = syn::Error::new(model.name.span(), message).to_compile_error();
+                    tokens.extend(codegen::stub(&decl));
+                    return tokens;
+                }
+            };
             if let Some(block) = structure::singular_block(&model, &kernels) {
                 let mut tokens = syn::Error::new(model.name.span(), block.message(&model)).to_compile_error();
                 tokens.extend(codegen::stub(&decl));

@@ -173,20 +173,34 @@ fn offsets(sigma: &[Vec<i64>], column: &[usize]) -> (Vec<i64>, Vec<i64>) {
     }
 }
 
-/// The structure of the model's servo-constrained system.
-pub fn structure(model: &Model, k: &Kernels) -> Structure {
+/// The structure of the model's servo-constrained system; an error (a
+/// message for the declaration's name) where the offsets leave what the
+/// runtime's `Structure` holds (an offset above 255) or break Pryce's
+/// `sum c >= sum d`, which no declaration the checks accept reaches.
+pub fn structure(model: &Model, k: &Kernels) -> Result<Structure, String> {
     let sigma = signature(model, k);
     let Some(column) = max_transversal(&sigma) else {
-        return Structure::Singular;
+        return Ok(Structure::Singular);
     };
     let (c, d) = offsets(&sigma, &column);
     let dimension = c.iter().sum::<i64>() - d.iter().sum::<i64>();
-    let small = |v: Vec<i64>| v.into_iter().map(|x| u8::try_from(x).unwrap_or(u8::MAX)).collect();
-    Structure::Internal {
-        dimension: usize::try_from(dimension).unwrap_or(0),
-        unknowns: small(c),
-        equations: small(d),
-    }
+    let small = |v: Vec<i64>| -> Result<Vec<u8>, String> {
+        v.into_iter()
+            .map(|x| {
+                u8::try_from(x).map_err(|_| {
+                    format!("the structure analysis gives an offset of {x}, beyond the 255 derivatives it can hold")
+                })
+            })
+            .collect()
+    };
+    let dimension = usize::try_from(dimension).map_err(|_| {
+        format!("the structure analysis gives a negative number of free states ({dimension}): please report this declaration")
+    })?;
+    Ok(Structure::Internal {
+        dimension,
+        unknowns: small(c)?,
+        equations: small(d)?,
+    })
 }
 
 /// Where a structurally singular system fails: a set of unknowns (columns

@@ -57,7 +57,7 @@ use crate::error::Error;
 use crate::init;
 use crate::linsolve::DenseSolver;
 use crate::minimal::degenerate;
-use crate::model::DummyDerivatives;
+use crate::model::{CraneModel, DummyDerivatives, NoDummyDerivatives, VisitDummyDerivatives};
 use crate::newton::{NonlinearSystem, normalised_residual};
 use crate::options::Options;
 use crate::problem::{Accepted, Follow, Predictor, Problem, Start};
@@ -436,8 +436,11 @@ where
 
 /// Solve the reduced servo problem at every step time from `start` to
 /// `options.tf()` ([`DummyDerivativeStepper`]), calling `progress(step,
-/// steps)` after every step; the step loop does not allocate.
-pub fn simulate_dummy_derivative<Mdl, Tr, S, const N: usize, const M: usize, const A: usize, const J: usize>(
+/// steps)` after every step; the step loop does not allocate. Any crane
+/// `crane_model!` declares without internal dynamics has the system (its
+/// size is the declaration's, [`CraneModel::visit_dummy_derivatives`]);
+/// for another, the error says why it has none.
+pub fn simulate_dummy_derivative<Mdl, Tr, S, const N: usize, const M: usize, const A: usize>(
     model: &Mdl,
     trajectory: Tr,
     start: &State<N, M, A>,
@@ -445,14 +448,127 @@ pub fn simulate_dummy_derivative<Mdl, Tr, S, const N: usize, const M: usize, con
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Solution<N, M, A>, Error>
 where
-    Mdl: DummyDerivatives<N, M, A, J>,
+    Mdl: CraneModel<N, M, A>,
     Tr: Trajectory<A> + Clone,
     S: Method,
 {
-    let mut stepper = DummyDerivativeStepper::new(model, trajectory, start, options)?;
-    let mut solution = record(&mut stepper, options.tf(), progress)?;
-    solution.redundant_start_steps = stepper.fallback_steps();
-    Ok(solution)
+    /// The run, with the system's size.
+    struct Simulate<'a, Mdl, Tr, S: Method, const N: usize, const M: usize, const A: usize> {
+        model: &'a Mdl,
+        trajectory: Tr,
+        start: &'a State<N, M, A>,
+        options: &'a Options<S>,
+        progress: &'a mut dyn FnMut(usize, usize),
+    }
+    impl<Mdl, Tr, S, const N: usize, const M: usize, const A: usize> VisitDummyDerivatives<Mdl, N, M, A>
+        for Simulate<'_, Mdl, Tr, S, N, M, A>
+    where
+        Tr: Trajectory<A> + Clone,
+        S: Method,
+    {
+        type Output = Result<Solution<N, M, A>, Error>;
+        fn visit<const J: usize>(self) -> Self::Output
+        where
+            Mdl: DummyDerivatives<N, M, A, J>,
+        {
+            let mut stepper = DummyDerivativeStepper::<_, _, _, N, M, A, J>::new(
+                self.model,
+                self.trajectory,
+                self.start,
+                self.options,
+            )?;
+            let mut solution = record(&mut stepper, self.options.tf(), self.progress)?;
+            solution.redundant_start_steps = stepper.fallback_steps();
+            Ok(solution)
+        }
+    }
+    let visit = Simulate {
+        model,
+        trajectory,
+        start,
+        options,
+        progress,
+    };
+    Mdl::visit_dummy_derivatives(visit).map_err(|reason| Error::NoDummyDerivatives {
+        model: Mdl::INFO.name,
+        reason,
+    })?
+}
+
+/// The size `J` of `Mdl`'s dummy-derivative system
+/// ([`CraneModel::visit_dummy_derivatives`]), or why it has none.
+pub fn system_size<Mdl, const N: usize, const M: usize, const A: usize>() -> Result<usize, NoDummyDerivatives>
+where
+    Mdl: CraneModel<N, M, A>,
+{
+    /// `J`.
+    struct Size;
+    impl<Mdl, const N: usize, const M: usize, const A: usize> VisitDummyDerivatives<Mdl, N, M, A> for Size {
+        type Output = usize;
+        fn visit<const J: usize>(self) -> usize
+        where
+            Mdl: DummyDerivatives<N, M, A, J>,
+        {
+            J
+        }
+    }
+    Mdl::visit_dummy_derivatives(Size)
+}
+
+/// A [`DummyDerivativeStepper`] of the crane behind `model` (`Box<Mdl>`,
+/// `Arc<Mdl>`) that owns its model and path, behind [`Advance`], for
+/// long-lived runs such as an FMU instance; the system's size is the
+/// declaration's (see [`simulate_dummy_derivative`]).
+#[allow(clippy::type_complexity)]
+pub fn boxed_stepper<H, Tr, S, const N: usize, const M: usize, const A: usize>(
+    model: H,
+    trajectory: Tr,
+    start: &State<N, M, A>,
+    options: &Options<S>,
+) -> Result<Box<dyn Advance<N, M, A, Model = H::Target>>, Error>
+where
+    H: Deref<Target: CraneModel<N, M, A> + Sized> + Clone + 'static,
+    Tr: Trajectory<A> + Clone + 'static,
+    S: Method + 'static,
+{
+    /// The stepper, with the system's size.
+    struct Build<'a, H, Tr, S: Method, const N: usize, const M: usize, const A: usize> {
+        model: H,
+        trajectory: Tr,
+        start: &'a State<N, M, A>,
+        options: &'a Options<S>,
+    }
+    impl<H, Tr, S, const N: usize, const M: usize, const A: usize> VisitDummyDerivatives<H::Target, N, M, A>
+        for Build<'_, H, Tr, S, N, M, A>
+    where
+        H: Deref<Target: CraneModel<N, M, A> + Sized> + Clone + 'static,
+        Tr: Trajectory<A> + Clone + 'static,
+        S: Method + 'static,
+    {
+        type Output = Result<Box<dyn Advance<N, M, A, Model = H::Target>>, Error>;
+        fn visit<const J: usize>(self) -> Self::Output
+        where
+            H::Target: DummyDerivatives<N, M, A, J>,
+        {
+            let stepper = DummyDerivativeStepper::<_, _, _, N, M, A, J>::new(
+                self.model,
+                self.trajectory,
+                self.start,
+                self.options,
+            )?;
+            Ok(Box::new(stepper))
+        }
+    }
+    let build = Build {
+        model,
+        trajectory,
+        start,
+        options,
+    };
+    H::Target::visit_dummy_derivatives(build).map_err(|reason| Error::NoDummyDerivatives {
+        model: <H::Target as CraneModel<N, M, A>>::INFO.name,
+        reason,
+    })?
 }
 
 #[cfg(test)]

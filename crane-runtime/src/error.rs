@@ -126,6 +126,14 @@ pub enum Error {
         /// Infinity norm of `phi(mu) - q0` at the last iterate.
         residual: f64,
     },
+    /// A guess of the minimal coordinates of the wrong length.
+    #[error("the guess of the minimal coordinates has {found} entries; the map has {expected}")]
+    MinimalGuessSize {
+        /// The map's number of minimal coordinates.
+        expected: usize,
+        /// The guess's.
+        found: usize,
+    },
     /// The static-equilibrium Newton iteration did not converge.
     #[error("no static equilibrium found from the guess: residual {residual:.3e} after {iterations} iterations")]
     EquilibriumNotFound {
@@ -179,6 +187,14 @@ pub enum Error {
         steps: f64,
         /// Bytes its results would take (infinite if not even countable).
         bytes: f64,
+    },
+    /// The dummy-derivative formulation of a crane that has no such system.
+    #[error("the crane `{model}` has no dummy-derivative formulation: {reason}")]
+    NoDummyDerivatives {
+        /// The model's type name ([`ModelInfo::name`](crate::ModelInfo::name)).
+        model: &'static str,
+        /// Why.
+        reason: crate::model::NoDummyDerivatives,
     },
     /// The crane's inputs need more derivatives of the load path than the
     /// dummy-derivative problem carries.

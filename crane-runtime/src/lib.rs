@@ -105,7 +105,8 @@ pub use error::Error;
 pub use forward::ForwardStepper;
 pub use minimal::{MinimalStepper, simulate_minimal};
 pub use model::{
-    CraneModel, DummyDerivatives, MapDerivatives, MinimalMap, ModelInfo, Rope, Scalar, Structure, UnknownParameter,
+    CraneModel, DummyDerivatives, MapDerivatives, MinimalMap, ModelInfo, NoDummyDerivatives, Rope, Scalar, Structure,
+    UnknownParameter, VisitDummyDerivatives, VisitMinimalMap,
 };
 pub use options::Options;
 pub use redundant::{RedundantStepper, simulate};

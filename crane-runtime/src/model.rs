@@ -121,6 +121,38 @@ pub trait CraneModel<const N: usize, const M: usize, const A: usize> {
     /// hand-written model) or structurally singular.
     const STRUCTURE: Option<Structure> = None;
 
+    /// Whether the declaration has a minimal-coordinate map
+    /// ([`MinimalMap`]); `crane_model!` sets it with a `minimal` block.
+    const HAS_MINIMAL_MAP: bool = false;
+
+    /// Run `visitor` with the crane's dummy-derivative system
+    /// ([`DummyDerivatives`], whose size `J` only the declaration knows), or
+    /// say why the crane has none. `crane_model!` generates the system, and
+    /// this method, for every crane without internal dynamics whose path
+    /// order the runtime carries; the default says why there is none from
+    /// [`STRUCTURE`](Self::STRUCTURE).
+    fn visit_dummy_derivatives<V: VisitDummyDerivatives<Self, N, M, A>>(
+        visitor: V,
+    ) -> Result<V::Output, NoDummyDerivatives>
+    where
+        Self: Sized,
+    {
+        let _ = visitor;
+        Err(NoDummyDerivatives::of(Self::STRUCTURE, A))
+    }
+
+    /// Run `visitor` with the crane's minimal-coordinate map ([`MinimalMap`],
+    /// whose size `F` only the declaration knows); `None` if it declares
+    /// none (the default; `crane_model!` generates it with a `minimal`
+    /// block).
+    fn visit_minimal_map<V: VisitMinimalMap<Self, N, M, A>>(visitor: V) -> Option<V::Output>
+    where
+        Self: Sized,
+    {
+        let _ = visitor;
+        None
+    }
+
     /// Current parameter values, in the order of [`ModelInfo::parameters`].
     fn parameter_values(&self) -> Vec<f64>;
 
@@ -213,6 +245,81 @@ pub trait DummyDerivatives<const N: usize, const M: usize, const A: usize, const
         gamma: &[SVector<f64, A>],
         z: &SVector<f64, J>,
     ) -> (SVector<f64, J>, SMatrix<f64, J, J>);
+}
+
+/// Code to run with a crane's dummy-derivative system:
+/// [`CraneModel::visit_dummy_derivatives`] calls [`visit`](Self::visit)
+/// with the system's size `J`, so that code generic over any crane can
+/// build a [`DummyDerivativeStepper`](crate::dummy_derivative::DummyDerivativeStepper)
+/// without knowing it.
+pub trait VisitDummyDerivatives<Mdl, const N: usize, const M: usize, const A: usize> {
+    /// What the visit returns.
+    type Output;
+    /// Run with `Mdl`'s system of `J` unknowns.
+    fn visit<const J: usize>(self) -> Self::Output
+    where
+        Mdl: DummyDerivatives<N, M, A, J>;
+}
+
+/// Code to run with a crane's minimal-coordinate map:
+/// [`CraneModel::visit_minimal_map`] calls [`visit`](Self::visit) with the
+/// number `F = N - M` of minimal coordinates.
+pub trait VisitMinimalMap<Mdl, const N: usize, const M: usize, const A: usize> {
+    /// What the visit returns.
+    type Output;
+    /// Run with `Mdl`'s map to `F` minimal coordinates.
+    fn visit<const F: usize>(self) -> Self::Output
+    where
+        Mdl: MinimalMap<N, M, A, F>;
+}
+
+/// Why a crane has no dummy-derivative system
+/// ([`CraneModel::visit_dummy_derivatives`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum NoDummyDerivatives {
+    /// The load path leaves `dimension` states free: they obey differential
+    /// equations of their own, which the reduction to an algebraic system
+    /// cannot take (eqs. 22a-d integrate them).
+    #[error(
+        "it has internal dynamics of dimension {dimension} (the load path leaves {dimension} states free), \
+         which the dummy-derivative formulation does not reduce; use the redundant formulation"
+    )]
+    InternalDynamics {
+        /// [`Structure::dimension`].
+        dimension: usize,
+    },
+    /// The inputs need more derivatives of the load path than the runtime
+    /// carries.
+    #[error(
+        "its inputs need the load path's derivative of order {order}; the dummy-derivative formulation carries up to {max}"
+    )]
+    PathOrderTooHigh {
+        /// [`Structure::path_order`].
+        order: usize,
+        /// [`MAX_PATH_ORDER`](crate::dummy_derivative::MAX_PATH_ORDER).
+        max: usize,
+    },
+    /// The model does not declare its structure (a hand-written model), or
+    /// declares it without a system.
+    #[error("its model declares no dummy-derivative system (declare it with `crane_model!`)")]
+    NotDeclared,
+}
+
+impl NoDummyDerivatives {
+    /// The reason read off a model's structure (for a model with `a`
+    /// inputs) when it has no system.
+    pub fn of(structure: Option<Structure>, a: usize) -> Self {
+        match structure {
+            Some(s) if s.dimension > 0 => NoDummyDerivatives::InternalDynamics { dimension: s.dimension },
+            Some(s) if s.path_order(a) > crate::dummy_derivative::MAX_PATH_ORDER => {
+                NoDummyDerivatives::PathOrderTooHigh {
+                    order: s.path_order(a),
+                    max: crate::dummy_derivative::MAX_PATH_ORDER,
+                }
+            }
+            _ => NoDummyDerivatives::NotDeclared,
+        }
+    }
 }
 
 /// The map `q = phi(mu)` and its derivatives at one point `(mu, mu')`, as

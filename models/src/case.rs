@@ -5,7 +5,7 @@
 use std::marker::PhantomData;
 
 use crane_runtime::trajectory::TrajectoryError;
-use crane_runtime::{Error, Options, Solution, State, init, redundant};
+use crane_runtime::{Error, Options, Solution, State, dummy_derivative, init, redundant};
 
 use crate::crane::Crane;
 use crate::path::Path;
@@ -136,8 +136,8 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
         redundant::simulate_with_progress(&self.model, &self.path, start, options, progress)
     }
 
-    /// The run in minimal coordinates (eqs. 24a-e) from `start`, if the crane
-    /// declares a minimal map; `None` if not.
+    /// The run in minimal coordinates (eqs. 24a-e) from `start`, if the
+    /// crane's model declares a minimal map; `None` if not.
     pub fn simulate_minimal(
         &self,
         start: &State<N, M, A>,
@@ -153,18 +153,20 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
         options: &Options,
         progress: &mut dyn FnMut(usize, usize),
     ) -> Option<Result<Solution<N, M, A>, Error>> {
-        C::simulate_minimal(&self.model, &self.path, start, options, progress)
+        crate::crane::simulate_minimal::<C, N, M, A>(&self.model, &self.path, start, options, progress)
     }
 
     /// The run of the servo problem reduced by dummy derivatives from
-    /// `start`, if the crane has no internal dynamics; `None` if it has.
+    /// `start` ([`dummy_derivative::simulate_dummy_derivative`]): every
+    /// crane its model declares without internal dynamics has it; for
+    /// another the error says why not.
     pub fn simulate_dummy_derivative(
         &self,
         start: &State<N, M, A>,
         options: &Options,
         progress: &mut dyn FnMut(usize, usize),
-    ) -> Option<Result<Solution<N, M, A>, Error>> {
-        C::simulate_dummy_derivative(&self.model, &self.path, start, options, progress)
+    ) -> Result<Solution<N, M, A>, Error> {
+        dummy_derivative::simulate_dummy_derivative(&self.model, &self.path, start, options, progress)
     }
 
     /// Names of the derived outputs.

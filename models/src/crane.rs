@@ -1,12 +1,17 @@
 //! [`Crane`]: everything the tool knows about one crane, built-in or a
 //! user's, in one place: the model, its default manoeuvre as data, its analytical reference
-//! on any path (where it has one), its minimal-coordinate run (where it has a
-//! map), derived outputs and its drawing. The command line, planning,
+//! on any path (where it has one), a guess of its minimal coordinates (where
+//! its model has a map), derived outputs and its drawing. What formulations
+//! a crane runs follows from its model's declaration alone
+//! ([`simulate_minimal`], and the dummy-derivative run of
+//! [`crane_runtime::dummy_derivative`]), for a built-in crane and a user's
+//! alike. The command line, planning,
 //! replay, the FMU and the tests all reach a crane through this trait and a
 //! [`Registry`](crate::registry::Registry). Only the model, the name and
 //! the default manoeuvre are required; everything else has a default.
 
-use crane_runtime::{Advance, CraneModel, Error, Options, Solution, State};
+use crane_runtime::nalgebra::SVector;
+use crane_runtime::{CraneModel, Error, MinimalMap, Options, Solution, State, VisitMinimalMap};
 
 use crate::drawing::Drawing;
 use crate::path::{Path, PathSpec};
@@ -36,12 +41,6 @@ pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
     const DESCRIPTION: &'static str = "";
     /// Whether [`reference`](Self::reference) gives an analytical solution.
     const HAS_REFERENCE: bool = false;
-    /// Whether [`simulate_minimal`](Self::simulate_minimal) runs.
-    const HAS_MINIMAL_MAP: bool = false;
-    /// Whether [`simulate_dummy_derivative`](Self::simulate_dummy_derivative)
-    /// runs (every crane without internal dynamics).
-    const HAS_DUMMY_DERIVATIVES: bool = false;
-
     /// The default manoeuvre.
     fn maneuver() -> Maneuver<A>;
 
@@ -52,46 +51,12 @@ pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
         None
     }
 
-    /// The run in minimal coordinates (eqs. 24a-e) from `start`, if the crane
-    /// declares a minimal map (with its rough guess of `mu` at the start).
-    fn simulate_minimal(
-        model: &Self::Model,
-        path: &Path<A>,
-        start: &State<N, M, A>,
-        options: &Options,
-        progress: &mut dyn FnMut(usize, usize),
-    ) -> Option<Result<Solution<N, M, A>, Error>> {
-        let _ = (model, path, start, options, progress);
-        None
-    }
-
-    /// The run of the servo problem reduced by dummy derivatives
-    /// ([`crane_runtime::dummy_derivative`]: exact at every step time for a
-    /// flat crane, whatever the path order) from `start`, if the crane has
-    /// no internal dynamics.
-    fn simulate_dummy_derivative(
-        model: &Self::Model,
-        path: &Path<A>,
-        start: &State<N, M, A>,
-        options: &Options,
-        progress: &mut dyn FnMut(usize, usize),
-    ) -> Option<Result<Solution<N, M, A>, Error>> {
-        let _ = (model, path, start, options, progress);
-        None
-    }
-
-    /// A stepper of the dummy-derivative formulation that owns its model
-    /// and path (for long-lived runs such as an FMU instance), if the crane
-    /// has no internal dynamics.
-    #[allow(clippy::type_complexity)]
-    fn dummy_derivative_stepper(
-        model: Box<Self::Model>,
-        path: Path<A>,
-        start: &State<N, M, A>,
-        options: &Options,
-    ) -> Option<Result<Box<dyn Advance<N, M, A, Model = Self::Model>>, Error>> {
-        let _ = (model, path, start, options);
-        None
+    /// A rough guess of the minimal coordinates `mu` (in the order of the
+    /// model's `minimal` block) at the redundant `start`, which the minimal
+    /// stepper refines by Gauss-Newton; empty (the default) for `mu = 0`.
+    fn minimal_guess(model: &Self::Model, start: &State<N, M, A>) -> Vec<f64> {
+        let _ = (model, start);
+        Vec::new()
     }
 
     /// The unit of each input, in the model's order (`"N m"` for a winch or
@@ -131,66 +96,60 @@ pub fn finite_state<const N: usize, const M: usize, const A: usize>(state: State
     .then_some(state)
 }
 
-/// The [`Crane::simulate_minimal`] of a crane that declares a minimal map:
-/// `minimal_run!((N, M, A), |model, start| guess);` inside its `impl
-/// Crane`, with `guess` a rough guess of `mu` at the redundant `start`
-/// (the minimal stepper refines it by Gauss-Newton).
-macro_rules! minimal_run {
-    (($n:literal, $m:literal, $a:literal), |$model:ident, $start:ident| $guess:expr) => {
-        fn simulate_minimal(
-            $model: &Self::Model,
-            path: &$crate::path::Path<$a>,
-            $start: &crane_runtime::State<$n, $m, $a>,
-            options: &crane_runtime::Options,
-            progress: &mut dyn FnMut(usize, usize),
-        ) -> Option<Result<crane_runtime::Solution<$n, $m, $a>, crane_runtime::Error>> {
-            let guess = $guess;
-            Some(crane_runtime::minimal::simulate_minimal_with_progress(
-                $model, path, $start, &guess, options, progress,
-            ))
+/// The run in minimal coordinates (eqs. 24a-e) of crane `C` on `path` from
+/// the redundant `start`, calling `progress(step, steps)` after every step;
+/// `None` if its model declares no minimal map. The map's size is the
+/// declaration's; the start of `mu` is refined from
+/// [`Crane::minimal_guess`].
+pub fn simulate_minimal<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    model: &C::Model,
+    path: &Path<A>,
+    start: &State<N, M, A>,
+    options: &Options,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Option<Result<Solution<N, M, A>, Error>> {
+    /// The run, with the map's size.
+    struct Run<'a, C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> {
+        model: &'a C::Model,
+        path: &'a Path<A>,
+        start: &'a State<N, M, A>,
+        options: &'a Options,
+        progress: &'a mut dyn FnMut(usize, usize),
+    }
+    impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> VisitMinimalMap<C::Model, N, M, A>
+        for Run<'_, C, N, M, A>
+    {
+        type Output = Result<Solution<N, M, A>, Error>;
+        fn visit<const F: usize>(self) -> Self::Output
+        where
+            C::Model: MinimalMap<N, M, A, F>,
+        {
+            let guess = C::minimal_guess(self.model, self.start);
+            let guess = if guess.is_empty() {
+                SVector::<f64, F>::zeros()
+            } else if guess.len() == F {
+                SVector::<f64, F>::from_column_slice(&guess)
+            } else {
+                return Err(Error::MinimalGuessSize {
+                    expected: F,
+                    found: guess.len(),
+                });
+            };
+            crane_runtime::minimal::simulate_minimal_with_progress(
+                self.model,
+                self.path,
+                self.start,
+                &guess,
+                self.options,
+                self.progress,
+            )
         }
-    };
+    }
+    C::Model::visit_minimal_map(Run::<C, N, M, A> {
+        model,
+        path,
+        start,
+        options,
+        progress,
+    })
 }
-pub(crate) use minimal_run;
-
-/// [`Crane::HAS_DUMMY_DERIVATIVES`], [`Crane::simulate_dummy_derivative`] and
-/// [`Crane::dummy_derivative_stepper`]
-/// of a flat crane: `dummy_derivative_run!((N, M, A, J));` inside its `impl
-/// Crane`, with `J` the size of its dummy-derivative system (the `J` of the
-/// model's `DummyDerivatives` implementation).
-macro_rules! dummy_derivative_run {
-    (($n:literal, $m:literal, $a:literal, $j:literal)) => {
-        const HAS_DUMMY_DERIVATIVES: bool = true;
-
-        fn simulate_dummy_derivative(
-            model: &Self::Model,
-            path: &$crate::path::Path<$a>,
-            start: &crane_runtime::State<$n, $m, $a>,
-            options: &crane_runtime::Options,
-            progress: &mut dyn FnMut(usize, usize),
-        ) -> Option<Result<crane_runtime::Solution<$n, $m, $a>, crane_runtime::Error>> {
-            Some(crane_runtime::dummy_derivative::simulate_dummy_derivative::<
-                _,
-                _,
-                _,
-                $n,
-                $m,
-                $a,
-                $j,
-            >(model, path, start, options, progress))
-        }
-
-        fn dummy_derivative_stepper(
-            model: Box<Self::Model>,
-            path: $crate::path::Path<$a>,
-            start: &crane_runtime::State<$n, $m, $a>,
-            options: &crane_runtime::Options,
-        ) -> Option<Result<Box<dyn crane_runtime::Advance<$n, $m, $a, Model = Self::Model>>, crane_runtime::Error>> {
-            let stepper = crane_runtime::dummy_derivative::DummyDerivativeStepper::<_, _, _, $n, $m, $a, $j>::new(
-                model, path, start, options,
-            );
-            Some(stepper.map(|s| Box::new(s) as Box<dyn crane_runtime::Advance<$n, $m, $a, Model = Self::Model>>))
-        }
-    };
-}
-pub(crate) use dummy_derivative_run;

@@ -26,6 +26,8 @@
 //! assert_eq!(registry::visit("no-such-crane", Coordinates), None);
 //! ```
 
+use crane_runtime::CraneModel;
+
 use crate::crane::Crane;
 
 /// A crane of a registry, as `crane list` shows it.
@@ -57,7 +59,7 @@ impl Entry {
             m: M,
             a: A,
             reference: C::HAS_REFERENCE,
-            minimal: C::HAS_MINIMAL_MAP,
+            minimal: <C::Model as CraneModel<N, M, A>>::HAS_MINIMAL_MAP,
         }
     }
 

@@ -90,6 +90,8 @@ fn assert_descriptive(error: &Error) {
         Error::PathOrderTooHigh { .. } => message.contains("derivative of order"),
         Error::StartOutOfRange { coordinate, .. } => message.contains(&format!("`{coordinate}`")),
         Error::MinimalStartNotFound { .. } | Error::EquilibriumNotFound { .. } => message.contains("residual"),
+        Error::MinimalGuessSize { expected, .. } => message.contains(&format!("the map has {expected}")),
+        Error::NoDummyDerivatives { model, .. } => message.contains(&format!("`{model}`")),
     };
     assert!(ok, "undescriptive error message: {message}");
 }

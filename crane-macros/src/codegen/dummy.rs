@@ -68,9 +68,22 @@ pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &To
             let (r, order) = (index(j - nr), index(order_usize));
             quote!(let #local = #gamma[#order][#r];)
         } else {
-            let slot = k.unknowns.iter().position(|&u| u == (j, order));
-            let slot = index(slot.unwrap_or(0));
-            quote!(let #local = #z[#slot];)
+            match k.unknowns.iter().position(|&u| u == (j, order)) {
+                Some(slot) => {
+                    let slot = index(slot);
+                    quote!(let #local = #z[#slot];)
+                }
+                // the system reads a jet beyond the offsets: a fault of the
+                // reduction, reported rather than read from a wrong slot
+                None => {
+                    let message = format!(
+                        "the dummy-derivative system of `{name}` reads `{}`, which is not among its unknowns: \
+                         please report this declaration",
+                        jet_label(model, j as u16, order)
+                    );
+                    quote::quote_spanned!(name.span() => ::core::compile_error!(#message);)
+                }
+            }
         }
     });
     let [res_var, jac_var] = [&outputs[0].var, &outputs[1].var];

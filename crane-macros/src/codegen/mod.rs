@@ -14,8 +14,11 @@
 //! argument starts with `__`, so a constant `J` or a unit struct `L` beside
 //! the declaration cannot turn `let __J` into a pattern. Internal names
 //! (`__q`, `__v`, `__lambda`, `__mu`, `__mu_dot`, `__out`, `__tN`,
-//! `__dot_x`) are `Span::mixed_site()`, so they cannot collide with the
-//! declared ones either (a coordinate `q` is `__q` at the call site).
+//! `__dot_x`, and the jets `__q_L1_d2`, `__lambda_rope_d4`, `__u_u1_d0` of
+//! the dummy-derivative system, which name the kind of unknown first so
+//! that no two collide whatever is declared) are `Span::mixed_site()`, so
+//! they cannot collide with the declared ones either (a coordinate `q` is
+//! `__q` at the call site).
 //! A common subexpression that is the value of a `let` of a `minimal` block
 //! is bound under the user's name instead of a `tN`.
 //!
@@ -101,7 +104,12 @@ pub fn generate(model: &Model, k: &Kernels, structure: &Structure, dummy: Option
     let lints = quote!(#[allow(non_snake_case, unused_variables, clippy::too_many_lines, clippy::unreadable_literal)]);
     let model_struct = model_struct(model, structure);
     let inherent = inherent_impl(model, k, &lints);
-    let crane_model = crane_model_impl(model, k, structure, &lints);
+    let dummy_size = dummy.map(|d| d.unknowns.len());
+    let minimal_size = match (&model.minimal, &k.minimal) {
+        (Some(_), Some(_)) => Some(model.n() - model.m()),
+        _ => None,
+    };
+    let crane_model = crane_model_impl(model, k, structure, dummy_size, minimal_size, &lints);
     let minimal_items = match (&model.minimal, &k.minimal) {
         (Some(minimal), Some(kernels)) => generate_minimal(model, minimal, kernels, &lints),
         _ => TokenStream::new(),

@@ -12,7 +12,18 @@ use crate::model::{Kernels, Model};
 use crate::structure::Structure;
 
 /// `impl CraneModel<N, M, A> for Name { ... }`.
-pub(super) fn crane_model_impl(model: &Model, k: &Kernels, structure: &Structure, lints: &TokenStream) -> TokenStream {
+///
+/// `dummy_size` is the size `J` of the crane's dummy-derivative system if
+/// it has one, `minimal_size` the number `F` of minimal coordinates if it
+/// declares a map: what a run may ask of the model follows from them.
+pub(super) fn crane_model_impl(
+    model: &Model,
+    k: &Kernels,
+    structure: &Structure,
+    dummy_size: Option<usize>,
+    minimal_size: Option<usize>,
+    lints: &TokenStream,
+) -> TokenStream {
     let name = &model.name;
     let (n_lit, m_lit, a_lit) = (index(model.n()), index(model.m()), index(model.a()));
     let info = model_info(model);
@@ -39,6 +50,7 @@ pub(super) fn crane_model_impl(model: &Model, k: &Kernels, structure: &Structure
         }
         Structure::Singular => quote!(::core::option::Option::None),
     };
+    let capabilities = capabilities(model, dummy_size, minimal_size);
     quote! {
         #lints
         impl __crane_runtime::CraneModel<#n_lit, #m_lit, #a_lit> for #name {
@@ -51,8 +63,42 @@ pub(super) fn crane_model_impl(model: &Model, k: &Kernels, structure: &Structure
             #parameters
 
             #kernels
+
+            #capabilities
         }
     }
+}
+
+/// `HAS_MINIMAL_MAP` and the visits that hand a run the sizes of the
+/// dummy-derivative system and of the minimal map.
+fn capabilities(model: &Model, dummy_size: Option<usize>, minimal_size: Option<usize>) -> TokenStream {
+    let (n_lit, m_lit, a_lit) = (index(model.n()), index(model.m()), index(model.a()));
+    let visitor = internal("visitor");
+    let dummy = dummy_size.map(|j| {
+        let j = index(j);
+        quote! {
+            fn visit_dummy_derivatives<
+                V: __crane_runtime::VisitDummyDerivatives<Self, #n_lit, #m_lit, #a_lit>,
+            >(
+                #visitor: V,
+            ) -> ::core::result::Result<V::Output, __crane_runtime::NoDummyDerivatives> {
+                ::core::result::Result::Ok(#visitor.visit::<#j>())
+            }
+        }
+    });
+    let minimal = minimal_size.map(|f| {
+        let f = index(f);
+        quote! {
+            const HAS_MINIMAL_MAP: bool = true;
+
+            fn visit_minimal_map<V: __crane_runtime::VisitMinimalMap<Self, #n_lit, #m_lit, #a_lit>>(
+                #visitor: V,
+            ) -> ::core::option::Option<V::Output> {
+                ::core::option::Option::Some(#visitor.visit::<#f>())
+            }
+        }
+    });
+    quote!(#dummy #minimal)
 }
 
 /// `const INFO`: the declared names.

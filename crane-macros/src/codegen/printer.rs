@@ -347,9 +347,21 @@ pub(super) fn velocity_name(coord: &Ident) -> Ident {
 }
 
 /// The local holding derivative `k` of unknown `j` of `[q, lambda, u]`:
-/// `__L1_d2`, `__lambda_rope_d4`, `__u1_d0`.
+/// `__q_L1_d2`, `__lambda_rope_d4`, `__u_u1_d0`. The kind of the unknown
+/// comes first and the order last, so no two unknowns share a local
+/// whatever they are named (a coordinate `lambda_rope` beside a constraint
+/// `rope`: `__q_lambda_rope_d0` and `__lambda_rope_d0`), and no jet is
+/// named like another internal local (`__q`, `__dot_x`, `__t3`, ...).
 pub(super) fn jet_name(model: &Model, j: u16, k: u8) -> Ident {
-    internal(&jet_label(model, j, k))
+    let (j, n, m) = (j as usize, model.n(), model.m());
+    let (kind, name) = if j < n {
+        ("q", bare(&model.coords[j]))
+    } else if j < n + m {
+        ("lambda", bare(&model.constraints[j - n].name))
+    } else {
+        ("u", bare(&model.inputs[j - n - m]))
+    };
+    internal(&format!("{kind}_{name}_d{k}"))
 }
 
 /// The declared name of derivative `k` of unknown `j` (`L1_d2`), for messages.

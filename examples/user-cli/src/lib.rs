@@ -1,7 +1,12 @@
-//! A planar gantry crane (trolley, hoist winch, load on one rope) with the
-//! whole tool: declared once, described once ([`PlanarGantry`]), listed in
-//! the registry [`MyCranes`] that the binary `my-cranes` runs and the FMU
-//! functions of this `cdylib` export.
+//! Two cranes of a user's own with the whole tool: a planar gantry crane
+//! (trolley, hoist winch, load on one rope) and a workshop crane whose load
+//! hangs on a sling below a hook block (a double pendulum, whose inputs
+//! need the path's 6th derivative), each declared once, described once
+//! ([`PlanarGantry`], [`HookCrane`]), listed in the registry [`MyCranes`]
+//! that the binary `my-cranes` runs and the FMU functions of this `cdylib`
+//! export. Every formulation their models support comes with the
+//! declaration: the hook crane runs the exact reduced (dummy-derivative)
+//! formulation by default, as a built-in crane of path order 6 does.
 
 use crane::prelude::*;
 
@@ -66,11 +71,60 @@ impl Crane<4, 1, 2> for PlanarGantry {
     }
 }
 
+crane_model! {
+    /// Workshop crane: trolley, hoist winch, hook block, load on a sling.
+    pub struct Hook {
+        params { m_t: positive = 120.0, m_h: positive = 15.0, m_l: positive = 400.0, J: positive = 0.2,
+                 r: positive = 0.08, l_s: positive = 1.5, g: positive = 9.81 }
+        robot  [s, L, xh, zh]
+        load   [x, z]
+        inputs [u1, u2]
+        kinetic = 0.5*m_t*dot(s)^2 + 0.5*J/r^2*dot(L)^2
+                + 0.5*m_h*(dot(xh)^2 + dot(zh)^2) + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+        forces { s: u1, L: u2/r, zh: -m_h*g, z: -m_l*g }
+        constraints {
+            #[rope(N1 = L)]
+            hoist: 0.5*((xh - s)^2 + zh^2 - L^2),
+            #[rope(N2 = l_s)]
+            sling: 0.5*((x - xh)^2 + (z - zh)^2 - l_s^2),
+        }
+    }
+}
+
+/// The workshop crane and its default move: 3 m across and 1 m up in 8 s
+/// on a profile smooth to the 6th derivative (its inputs need the path's
+/// 6th derivative).
+pub struct HookCrane;
+
+impl Crane<6, 2, 2> for HookCrane {
+    type Model = Hook;
+    const NAME: &'static str = "hook-crane";
+    const DESCRIPTION: &'static str = "workshop crane: trolley, hoist winch, hook block, load on a sling";
+
+    fn input_units() -> &'static [&'static str] {
+        &["N", "N m"]
+    }
+
+    fn maneuver() -> Maneuver<2> {
+        Maneuver {
+            path: PathSpec {
+                profile: Profile::SmoothThreePhase { tau0: 2.5 },
+                t0: 0.0,
+                t1: 8.0,
+                start: SVector::from([0.0, -4.5]),
+                end: SVector::from([3.0, -3.5]),
+            },
+            // the start guess [s, L, xh, zh]: hook and load at rest below the trolley
+            p0: vec![0.0, 3.0, 0.0, -3.0],
+        }
+    }
+}
+
 crane::registry! {
     /// The cranes of `my-cranes` (add `crane::models::BuiltIn` as a pair,
     /// `(MyCranes, BuiltIn)`, in both places below to get the built-in
     /// ones too).
-    pub struct MyCranes { PlanarGantry }
+    pub struct MyCranes { PlanarGantry, HookCrane }
 }
 
 crane::fmi::export_fmu!(registry = MyCranes);

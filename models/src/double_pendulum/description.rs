@@ -10,7 +10,7 @@ use nalgebra::vector;
 use super::model::DoublePendulum;
 use super::reference::reference_at;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver, dummy_derivative_run, finite_state};
+use crate::crane::{Crane, Maneuver, finite_state};
 use crate::drawing::{Drawing, Pose};
 use crate::path::{Path, PathSpec, Profile};
 
@@ -32,7 +32,6 @@ impl Crane<6, 2, 2> for Description {
     const NAME: &'static str = "double-pendulum";
     const DESCRIPTION: &'static str = "double-pendulum overhead crane: trolley, hoist, hook block, load on a sling";
     const HAS_REFERENCE: bool = true;
-    dummy_derivative_run!((6, 2, 2, 26));
 
     fn input_units() -> &'static [&'static str] {
         &["N", "N m"]

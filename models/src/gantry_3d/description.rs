@@ -9,7 +9,7 @@ use nalgebra::vector;
 use super::model::Gantry3d;
 use super::reference::reference_at;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver, finite_state, minimal_run};
+use crate::crane::{Crane, Maneuver, finite_state};
 use crate::drawing::{Drawing, Pose};
 use crate::path::{Path, PathSpec, Profile};
 
@@ -27,9 +27,7 @@ impl Crane<6, 1, 3> for Description {
     type Model = Gantry3d;
     const NAME: &'static str = "gantry-3d";
     const DESCRIPTION: &'static str = "3D gantry crane: bridge, trolley, hoist winch, one rope";
-    crate::crane::dummy_derivative_run!((6, 1, 3, 15));
     const HAS_REFERENCE: bool = true;
-    const HAS_MINIMAL_MAP: bool = true;
 
     fn input_units() -> &'static [&'static str] {
         &["N", "N", "N m"]
@@ -62,7 +60,9 @@ impl Crane<6, 1, 3> for Description {
         })
     }
 
-    minimal_run!((6, 1, 3), |model, start| minimal_guess(start));
+    fn minimal_guess(_: &Gantry3d, start: &State<6, 1, 3>) -> Vec<f64> {
+        minimal_guess(start).as_slice().to_vec()
+    }
 
     /// `q = [X, Y, L | x, y, z]`: the bridge at `X` spanning `y` from -10 to
     /// 10 m at height 0, the trolley `(X, Y, 0)`, the rope to the load.

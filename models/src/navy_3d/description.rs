@@ -52,7 +52,6 @@ impl Crane<11, 4, 3> for Description {
     type Model = Navy3d;
     const NAME: &'static str = "navy-3d";
     const DESCRIPTION: &'static str = "3D US Navy crane, massless pulley, slewing (paper sect. 6.1)";
-    crate::crane::dummy_derivative_run!((11, 4, 3, 37));
     const HAS_REFERENCE: bool = true;
 
     fn input_units() -> &'static [&'static str] {

@@ -9,7 +9,7 @@ use nalgebra::{SVector, vector};
 use super::model::NavyPlanar;
 use super::reference::reference_at;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver, finite_state, minimal_run};
+use crate::crane::{Crane, Maneuver, finite_state};
 use crate::drawing::{Drawing, Pose};
 use crate::path::{Path, PathSpec, Profile};
 
@@ -31,9 +31,7 @@ impl Crane<7, 3, 2> for Description {
     type Model = NavyPlanar;
     const NAME: &'static str = "navy-planar";
     const DESCRIPTION: &'static str = "planar US Navy crane, massless pulley (paper sect. 5.1)";
-    crate::crane::dummy_derivative_run!((7, 3, 2, 26));
     const HAS_REFERENCE: bool = true;
-    const HAS_MINIMAL_MAP: bool = true;
 
     fn input_units() -> &'static [&'static str] {
         &["N m", "N m"]
@@ -65,7 +63,9 @@ impl Crane<7, 3, 2> for Description {
         })
     }
 
-    minimal_run!((7, 3, 2), |model, start| minimal_guess(model, start));
+    fn minimal_guess(model: &NavyPlanar, start: &State<7, 3, 2>) -> Vec<f64> {
+        minimal_guess(model, start).as_slice().to_vec()
+    }
 
     /// `q = [L1, L2, L0, x0, z0 | x, z]`; tip P at the origin, winch 1 at
     /// `A = -l (sin alpha, cos alpha)` on the boom (eqs. 25-33).

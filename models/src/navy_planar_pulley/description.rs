@@ -9,7 +9,7 @@ use nalgebra::{SVector, vector};
 use super::model::NavyPlanarPulley;
 use super::reference::reference_at;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver, finite_state, minimal_run};
+use crate::crane::{Crane, Maneuver, finite_state};
 use crate::drawing::{Drawing, Pose, scale};
 use crate::path::{Path, PathSpec, Profile};
 
@@ -32,9 +32,7 @@ impl Crane<8, 4, 3> for Description {
     type Model = NavyPlanarPulley;
     const NAME: &'static str = "navy-planar-pulley";
     const DESCRIPTION: &'static str = "planar US Navy crane with pulley mass (paper sect. 5.2)";
-    crate::crane::dummy_derivative_run!((8, 4, 3, 24));
     const HAS_REFERENCE: bool = true;
-    const HAS_MINIMAL_MAP: bool = true;
 
     fn input_units() -> &'static [&'static str] {
         &["N m", "N m", "N m"]
@@ -67,7 +65,9 @@ impl Crane<8, 4, 3> for Description {
         })
     }
 
-    minimal_run!((8, 4, 3), |model, start| minimal_guess(model, start));
+    fn minimal_guess(model: &NavyPlanarPulley, start: &State<8, 4, 3>) -> Vec<f64> {
+        minimal_guess(model, start).as_slice().to_vec()
+    }
 
     /// `q = [L1, L2, L3, L0, x0 | x, z, z0]`; tip S at the origin, winch 3 at
     /// `P = -s (sin, cos)`, winch 1 at `A = -(l + s) (sin, cos)` (eqs. 49-56).

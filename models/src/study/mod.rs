@@ -29,7 +29,7 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use crane_runtime::internal::{diagnose, path_smoothness};
-use crane_runtime::{CraneModel, Options, Scheme, Solution, State};
+use crane_runtime::{CraneModel, Options, Scheme, Solution, State, dummy_derivative};
 
 use crate::case::Case;
 use crate::crane::Crane;
@@ -68,7 +68,8 @@ impl Formulation {
     /// [`Redundant`](Self::Redundant).
     pub fn default_for<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Self {
         let path_order = <C::Model as CraneModel<N, M, A>>::STRUCTURE.map(|s| s.path_order(A));
-        if C::HAS_DUMMY_DERIVATIVES && path_order.is_some_and(|order| order > 4) {
+        let reduced = dummy_derivative::system_size::<C::Model, N, M, A>().is_ok();
+        if reduced && path_order.is_some_and(|order| order > 4) {
             Formulation::DummyDerivative
         } else {
             Formulation::Redundant
@@ -133,9 +134,11 @@ impl Formulation {
             Formulation::Minimal => Ok(case
                 .simulate_minimal_with_progress(start, options, progress)
                 .ok_or_else(|| StudyError::NoMinimalMap(C::NAME.to_string()))??),
-            Formulation::DummyDerivative => Ok(case
-                .simulate_dummy_derivative(start, options, progress)
-                .ok_or_else(|| StudyError::NoDummyDerivatives(C::NAME.to_string()))??),
+            Formulation::DummyDerivative => {
+                dummy_derivative::system_size::<C::Model, N, M, A>()
+                    .map_err(|reason| StudyError::NoDummyDerivatives { model: C::NAME, reason })?;
+                Ok(case.simulate_dummy_derivative(start, options, progress)?)
+            }
         }
     }
 }
@@ -178,11 +181,15 @@ pub enum StudyError {
     /// The minimal formulation of a crane without a minimal map.
     #[error("model `{0}` declares no minimal-coordinate map; use the redundant formulation")]
     NoMinimalMap(String),
-    /// The dummy-derivative formulation of a crane with internal dynamics.
-    #[error(
-        "model `{0}` has internal dynamics, which the dummy-derivative formulation does not reduce; use the redundant formulation"
-    )]
-    NoDummyDerivatives(String),
+    /// The dummy-derivative formulation of a crane that has none (internal
+    /// dynamics, or a path order beyond what the runtime carries).
+    #[error("model `{model}` has no dummy-derivative formulation: {reason}")]
+    NoDummyDerivatives {
+        /// The crane's name.
+        model: &'static str,
+        /// Why.
+        reason: crane_runtime::NoDummyDerivatives,
+    },
     /// The convergence study cannot measure its error.
     #[error("{0}")]
     Convergence(String),

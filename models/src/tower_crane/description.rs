@@ -8,7 +8,7 @@ use nalgebra::{SVector, vector};
 
 use super::model::TowerCrane;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver, minimal_run};
+use crate::crane::{Crane, Maneuver};
 use crate::drawing::{Drawing, Pose};
 use crate::path::{PathSpec, Profile};
 
@@ -31,8 +31,6 @@ impl Crane<8, 3, 3> for Description {
     type Model = TowerCrane;
     const NAME: &'static str = "tower-crane";
     const DESCRIPTION: &'static str = "rotary tower crane: slewing jib, trolley, hoist winch, one rope";
-    crate::crane::dummy_derivative_run!((8, 3, 3, 23));
-    const HAS_MINIMAL_MAP: bool = true;
 
     fn input_units() -> &'static [&'static str] {
         &["N m", "N", "N m"]
@@ -54,7 +52,9 @@ impl Crane<8, 3, 3> for Description {
         }
     }
 
-    minimal_run!((8, 3, 3), |model, start| minimal_guess(start));
+    fn minimal_guess(_: &TowerCrane, start: &State<8, 3, 3>) -> Vec<f64> {
+        minimal_guess(start).as_slice().to_vec()
+    }
 
     fn derived_outputs() -> &'static [&'static str] {
         &["phi"]

@@ -378,6 +378,19 @@ const _: () = {
             __out[0] = __L1;
             __out[1] = __L2 - __L0;
         }
+        fn visit_dummy_derivatives<
+            V: __crane_runtime::VisitDummyDerivatives<Self, 7, 3, 2>,
+        >(
+            __visitor: V,
+        ) -> ::core::result::Result<V::Output, __crane_runtime::NoDummyDerivatives> {
+            ::core::result::Result::Ok(__visitor.visit::<26>())
+        }
+        const HAS_MINIMAL_MAP: bool = true;
+        fn visit_minimal_map<V: __crane_runtime::VisitMinimalMap<Self, 7, 3, 2>>(
+            __visitor: V,
+        ) -> ::core::option::Option<V::Output> {
+            ::core::option::Option::Some(__visitor.visit::<4>())
+        }
     }
     #[allow(
         non_snake_case,
@@ -986,31 +999,31 @@ const _: () = {
             __crane_runtime::nalgebra::SVector<f64, 26>,
             __crane_runtime::nalgebra::SMatrix<f64, 26, 26>,
         ) {
-            let __L1_d0 = __z[0];
-            let __L1_d1 = __z[1];
-            let __L1_d2 = __z[2];
-            let __L2_d0 = __z[3];
-            let __L2_d1 = __z[4];
-            let __L2_d2 = __z[5];
-            let __L0_d0 = __z[6];
-            let __L0_d1 = __z[7];
-            let __L0_d2 = __z[8];
-            let __x0_d0 = __z[9];
-            let __x0_d1 = __z[10];
-            let __x0_d2 = __z[11];
-            let __z0_d0 = __z[12];
-            let __z0_d1 = __z[13];
-            let __z0_d2 = __z[14];
-            let __x_d0 = __gamma[0][0];
-            let __x_d1 = __gamma[1][0];
-            let __x_d2 = __gamma[2][0];
-            let __x_d3 = __gamma[3][0];
-            let __x_d4 = __gamma[4][0];
-            let __z_d0 = __gamma[0][1];
-            let __z_d1 = __gamma[1][1];
-            let __z_d2 = __gamma[2][1];
-            let __z_d3 = __gamma[3][1];
-            let __z_d4 = __gamma[4][1];
+            let __q_L1_d0 = __z[0];
+            let __q_L1_d1 = __z[1];
+            let __q_L1_d2 = __z[2];
+            let __q_L2_d0 = __z[3];
+            let __q_L2_d1 = __z[4];
+            let __q_L2_d2 = __z[5];
+            let __q_L0_d0 = __z[6];
+            let __q_L0_d1 = __z[7];
+            let __q_L0_d2 = __z[8];
+            let __q_x0_d0 = __z[9];
+            let __q_x0_d1 = __z[10];
+            let __q_x0_d2 = __z[11];
+            let __q_z0_d0 = __z[12];
+            let __q_z0_d1 = __z[13];
+            let __q_z0_d2 = __z[14];
+            let __q_x_d0 = __gamma[0][0];
+            let __q_x_d1 = __gamma[1][0];
+            let __q_x_d2 = __gamma[2][0];
+            let __q_x_d3 = __gamma[3][0];
+            let __q_x_d4 = __gamma[4][0];
+            let __q_z_d0 = __gamma[0][1];
+            let __q_z_d1 = __gamma[1][1];
+            let __q_z_d2 = __gamma[2][1];
+            let __q_z_d3 = __gamma[3][1];
+            let __q_z_d4 = __gamma[4][1];
             let __lambda_rope1_d0 = __z[15];
             let __lambda_rope1_d1 = __z[16];
             let __lambda_rope1_d2 = __z[17];
@@ -1020,8 +1033,8 @@ const _: () = {
             let __lambda_hoist_d0 = __z[21];
             let __lambda_hoist_d1 = __z[22];
             let __lambda_hoist_d2 = __z[23];
-            let __u1_d0 = __z[24];
-            let __u2_d0 = __z[25];
+            let __u_u1_d0 = __z[24];
+            let __u_u2_d0 = __z[25];
             let __m_l = self.m_l;
             let __J1 = self.J1;
             let __J2 = self.J2;
@@ -1032,98 +1045,102 @@ const _: () = {
             let __g = self.g;
             let __t0 = __r1.powi(-2);
             let __t1 = __r2.powi(-2);
-            let __t2 = __L0_d0 - __L2_d0;
-            let __t3 = __L2_d0 - __L0_d0;
-            let __t4 = __l * __alpha.sin() + __x0_d0;
-            let __t5 = __x0_d0 - __x_d0;
-            let __t6 = __l * __alpha.cos() + __z0_d0;
-            let __t7 = __z0_d0 - __z_d0;
-            let __t8 = __x_d0 - __x0_d0;
-            let __t9 = __z_d0 - __z0_d0;
+            let __t2 = __q_L0_d0 - __q_L2_d0;
+            let __t3 = __q_L2_d0 - __q_L0_d0;
+            let __t4 = __l * __alpha.sin() + __q_x0_d0;
+            let __t5 = __q_x0_d0 - __q_x_d0;
+            let __t6 = __l * __alpha.cos() + __q_z0_d0;
+            let __t7 = __q_z0_d0 - __q_z_d0;
+            let __t8 = __q_x_d0 - __q_x0_d0;
+            let __t9 = __q_z_d0 - __q_z0_d0;
             let __t10 = -__lambda_rope0_d0 - __lambda_hoist_d0;
             let __t11 = -__lambda_rope0_d1 - __lambda_hoist_d1;
-            let __t12 = __L2_d1 - __L0_d1;
+            let __t12 = __q_L2_d1 - __q_L0_d1;
             let __t13 = __lambda_rope1_d0 + __lambda_rope0_d0 + __lambda_hoist_d0;
             let __t14 = __lambda_rope0_d1 + __lambda_hoist_d1 + __lambda_rope1_d1;
-            let __t15 = __x0_d1 - __x_d1;
-            let __t16 = __z0_d1 - __z_d1;
-            let __t17 = __x_d1 - __x0_d1;
-            let __t18 = __z_d1 - __z0_d1;
-            let __t19 = __x0_d1.powi(2);
-            let __t20 = __z0_d1.powi(2);
-            let __t21 = __L0_d1 - __L2_d1;
+            let __t15 = __q_x0_d1 - __q_x_d1;
+            let __t16 = __q_z0_d1 - __q_z_d1;
+            let __t17 = __q_x_d1 - __q_x0_d1;
+            let __t18 = __q_z_d1 - __q_z0_d1;
+            let __t19 = __q_x0_d1.powi(2);
+            let __t20 = __q_z0_d1.powi(2);
+            let __t21 = __q_L0_d1 - __q_L2_d1;
             let __t22 = __lambda_hoist_d1 * 2.0;
             let __t23 = -__lambda_hoist_d1 * 2.0;
-            let __t24 = -__L0_d1 * 2.0;
-            let __t25 = __L2_d2 - __L0_d2;
-            let __t26 = __t24 + __L2_d1 * 2.0;
+            let __t24 = -__q_L0_d1 * 2.0;
+            let __t25 = __q_L2_d2 - __q_L0_d2;
+            let __t26 = __t24 + __q_L2_d1 * 2.0;
             let __t27 = __lambda_rope0_d2 + __lambda_hoist_d2 + __lambda_rope1_d2;
             let __t28 = __t22 + __lambda_rope0_d1 * 2.0 + __lambda_rope1_d1 * 2.0;
-            let __t29 = __x0_d1 * 2.0;
-            let __t30 = __x0_d2 - __x_d2;
-            let __t31 = __t29 - __x_d1 * 2.0;
-            let __t32 = __z0_d1 * 2.0;
-            let __t33 = __z0_d2 - __z_d2;
-            let __t34 = __t32 - __z_d1 * 2.0;
+            let __t29 = __q_x0_d1 * 2.0;
+            let __t30 = __q_x0_d2 - __q_x_d2;
+            let __t31 = __t29 - __q_x_d1 * 2.0;
+            let __t32 = __q_z0_d1 * 2.0;
+            let __t33 = __q_z0_d2 - __q_z_d2;
+            let __t34 = __t32 - __q_z_d1 * 2.0;
             let mut __residual = __crane_runtime::nalgebra::SVector::<f64, 26>::zeros();
-            __residual[0] = __J1 * __t0 * __L1_d2 - __u1_d0 / __r1
-                - __L1_d0 * __lambda_rope1_d0;
-            __residual[1] = __J2 * __t1 * __L2_d2 - __u2_d0 / __r2
+            __residual[0] = __J1 * __t0 * __q_L1_d2 - __u_u1_d0 / __r1
+                - __q_L1_d0 * __lambda_rope1_d0;
+            __residual[1] = __J2 * __t1 * __q_L2_d2 - __u_u2_d0 / __r2
                 + __lambda_hoist_d0 * __t2;
-            __residual[2] = __lambda_hoist_d0 * __t3 - __L0_d0 * __lambda_rope0_d0;
-            __residual[3] = __L2_d1 * __lambda_hoist_d0 + __L0_d1 * __t10
-                - __L0_d0 * __lambda_rope0_d1 + __t3 * __lambda_hoist_d1;
-            __residual[4] = __L2_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __L2_d2
-                + __L0_d1 * __t11 + __t10 * __L0_d2 - __L0_d1 * __lambda_rope0_d1
-                - __L0_d0 * __lambda_rope0_d2 + __lambda_hoist_d1 * __t12
+            __residual[2] = __lambda_hoist_d0 * __t3 - __q_L0_d0 * __lambda_rope0_d0;
+            __residual[3] = __q_L2_d1 * __lambda_hoist_d0 + __q_L0_d1 * __t10
+                - __q_L0_d0 * __lambda_rope0_d1 + __t3 * __lambda_hoist_d1;
+            __residual[4] = __q_L2_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __q_L2_d2
+                + __q_L0_d1 * __t11 + __t10 * __q_L0_d2 - __q_L0_d1 * __lambda_rope0_d1
+                - __q_L0_d0 * __lambda_rope0_d2 + __lambda_hoist_d1 * __t12
                 + __t3 * __lambda_hoist_d2;
-            __residual[5] = __lambda_rope1_d0 * __t4 + __x0_d0 * __lambda_rope0_d0
+            __residual[5] = __lambda_rope1_d0 * __t4 + __q_x0_d0 * __lambda_rope0_d0
                 + __lambda_hoist_d0 * __t5;
-            __residual[6] = __x0_d1 * __t13 - __x_d1 * __lambda_hoist_d0
-                + __t4 * __lambda_rope1_d1 + __x0_d0 * __lambda_rope0_d1
+            __residual[6] = __q_x0_d1 * __t13 - __q_x_d1 * __lambda_hoist_d0
+                + __t4 * __lambda_rope1_d1 + __q_x0_d0 * __lambda_rope0_d1
                 + __t5 * __lambda_hoist_d1;
-            __residual[7] = __x0_d1 * __t14 + __t13 * __x0_d2
-                - __x_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __x_d2
-                + __x0_d1 * __lambda_rope1_d1 + __t4 * __lambda_rope1_d2
-                + __x0_d1 * __lambda_rope0_d1 + __x0_d0 * __lambda_rope0_d2
+            __residual[7] = __q_x0_d1 * __t14 + __t13 * __q_x0_d2
+                - __q_x_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __q_x_d2
+                + __q_x0_d1 * __lambda_rope1_d1 + __t4 * __lambda_rope1_d2
+                + __q_x0_d1 * __lambda_rope0_d1 + __q_x0_d0 * __lambda_rope0_d2
                 + __lambda_hoist_d1 * __t15 + __t5 * __lambda_hoist_d2;
-            __residual[8] = __lambda_rope1_d0 * __t6 + __z0_d0 * __lambda_rope0_d0
+            __residual[8] = __lambda_rope1_d0 * __t6 + __q_z0_d0 * __lambda_rope0_d0
                 + __lambda_hoist_d0 * __t7;
-            __residual[9] = __z0_d1 * __t13 - __z_d1 * __lambda_hoist_d0
-                + __t6 * __lambda_rope1_d1 + __z0_d0 * __lambda_rope0_d1
+            __residual[9] = __q_z0_d1 * __t13 - __q_z_d1 * __lambda_hoist_d0
+                + __t6 * __lambda_rope1_d1 + __q_z0_d0 * __lambda_rope0_d1
                 + __t7 * __lambda_hoist_d1;
-            __residual[10] = __z0_d1 * __t14 + __t13 * __z0_d2
-                - __z_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __z_d2
-                + __z0_d1 * __lambda_rope1_d1 + __t6 * __lambda_rope1_d2
-                + __z0_d1 * __lambda_rope0_d1 + __z0_d0 * __lambda_rope0_d2
+            __residual[10] = __q_z0_d1 * __t14 + __t13 * __q_z0_d2
+                - __q_z_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __q_z_d2
+                + __q_z0_d1 * __lambda_rope1_d1 + __t6 * __lambda_rope1_d2
+                + __q_z0_d1 * __lambda_rope0_d1 + __q_z0_d0 * __lambda_rope0_d2
                 + __lambda_hoist_d1 * __t16 + __t7 * __lambda_hoist_d2;
-            __residual[11] = __m_l * __x_d2 + __lambda_hoist_d0 * __t8;
-            __residual[12] = __x_d1 * __lambda_hoist_d0 - __x0_d1 * __lambda_hoist_d0
-                + __m_l * __x_d3 + __t8 * __lambda_hoist_d1;
-            __residual[13] = __x_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __x_d2
-                - __x0_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __x0_d2
-                + __m_l * __x_d4 + __lambda_hoist_d1 * __t17 + __t8 * __lambda_hoist_d2;
-            __residual[14] = __m_l * __z_d2 + __m_l * __g + __lambda_hoist_d0 * __t9;
-            __residual[15] = __z_d1 * __lambda_hoist_d0 - __z0_d1 * __lambda_hoist_d0
-                + __m_l * __z_d3 + __t9 * __lambda_hoist_d1;
-            __residual[16] = __z_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __z_d2
-                - __z0_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __z0_d2
-                + __m_l * __z_d4 + __lambda_hoist_d1 * __t18 + __t9 * __lambda_hoist_d2;
-            __residual[17] = (__t4.powi(2) + __t6.powi(2) - __L1_d0.powi(2)) * 0.5;
-            __residual[18] = __x0_d1 * __t4 - __L1_d0 * __L1_d1 + __z0_d1 * __t6;
-            __residual[19] = __t19 - __L1_d1.powi(2) - __L1_d0 * __L1_d2 + __t4 * __x0_d2
-                + __t20 + __t6 * __z0_d2;
-            __residual[20] = (__x0_d0.powi(2) + __z0_d0.powi(2) - __L0_d0.powi(2)) * 0.5;
-            __residual[21] = __x0_d0 * __x0_d1 - __L0_d0 * __L0_d1 + __z0_d0 * __z0_d1;
-            __residual[22] = __t19 + __t20 - __L0_d1.powi(2) - __L0_d0 * __L0_d2
-                + __x0_d0 * __x0_d2 + __z0_d0 * __z0_d2;
+            __residual[11] = __m_l * __q_x_d2 + __lambda_hoist_d0 * __t8;
+            __residual[12] = __q_x_d1 * __lambda_hoist_d0 - __q_x0_d1 * __lambda_hoist_d0
+                + __m_l * __q_x_d3 + __t8 * __lambda_hoist_d1;
+            __residual[13] = __q_x_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __q_x_d2
+                - __q_x0_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __q_x0_d2
+                + __m_l * __q_x_d4 + __lambda_hoist_d1 * __t17
+                + __t8 * __lambda_hoist_d2;
+            __residual[14] = __m_l * __q_z_d2 + __m_l * __g + __lambda_hoist_d0 * __t9;
+            __residual[15] = __q_z_d1 * __lambda_hoist_d0 - __q_z0_d1 * __lambda_hoist_d0
+                + __m_l * __q_z_d3 + __t9 * __lambda_hoist_d1;
+            __residual[16] = __q_z_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __q_z_d2
+                - __q_z0_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __q_z0_d2
+                + __m_l * __q_z_d4 + __lambda_hoist_d1 * __t18
+                + __t9 * __lambda_hoist_d2;
+            __residual[17] = (__t4.powi(2) + __t6.powi(2) - __q_L1_d0.powi(2)) * 0.5;
+            __residual[18] = __q_x0_d1 * __t4 - __q_L1_d0 * __q_L1_d1 + __q_z0_d1 * __t6;
+            __residual[19] = __t19 - __q_L1_d1.powi(2) - __q_L1_d0 * __q_L1_d2
+                + __t4 * __q_x0_d2 + __t20 + __t6 * __q_z0_d2;
+            __residual[20] = (__q_x0_d0.powi(2) + __q_z0_d0.powi(2) - __q_L0_d0.powi(2))
+                * 0.5;
+            __residual[21] = __q_x0_d0 * __q_x0_d1 - __q_L0_d0 * __q_L0_d1
+                + __q_z0_d0 * __q_z0_d1;
+            __residual[22] = __t19 + __t20 - __q_L0_d1.powi(2) - __q_L0_d0 * __q_L0_d2
+                + __q_x0_d0 * __q_x0_d2 + __q_z0_d0 * __q_z0_d2;
             __residual[23] = (__t8.powi(2) + __t9.powi(2) - __t3.powi(2)) * 0.5;
-            __residual[24] = __L2_d1 * __t2 + __L0_d1 * __t3 + __x0_d1 * __t5
-                + __z0_d1 * __t7 + __x_d1 * __t8 + __z_d1 * __t9;
-            __residual[25] = __L2_d1 * __t21 + __L2_d2 * __t2 + __L0_d1 * __t12
-                + __t3 * __L0_d2 + __x0_d1 * __t15 + __t5 * __x0_d2 + __z0_d1 * __t16
-                + __t7 * __z0_d2 + __x_d1 * __t17 + __x_d2 * __t8 + __z_d1 * __t18
-                + __z_d2 * __t9;
+            __residual[24] = __q_L2_d1 * __t2 + __q_L0_d1 * __t3 + __q_x0_d1 * __t5
+                + __q_z0_d1 * __t7 + __q_x_d1 * __t8 + __q_z_d1 * __t9;
+            __residual[25] = __q_L2_d1 * __t21 + __q_L2_d2 * __t2 + __q_L0_d1 * __t12
+                + __t3 * __q_L0_d2 + __q_x0_d1 * __t15 + __t5 * __q_x0_d2
+                + __q_z0_d1 * __t16 + __t7 * __q_z0_d2 + __q_x_d1 * __t17
+                + __q_x_d2 * __t8 + __q_z_d1 * __t18 + __q_z_d2 * __t9;
             let mut __jacobian = __crane_runtime::nalgebra::SMatrix::<
                 f64,
                 26,
@@ -1131,7 +1148,7 @@ const _: () = {
             >::zeros();
             __jacobian[(0, 0)] = -__lambda_rope1_d0;
             __jacobian[(0, 2)] = __J1 * __t0;
-            __jacobian[(0, 15)] = -__L1_d0;
+            __jacobian[(0, 15)] = -__q_L1_d0;
             __jacobian[(0, 24)] = -__r1.recip();
             __jacobian[(1, 3)] = -__lambda_hoist_d0;
             __jacobian[(1, 5)] = __J2 * __t1;
@@ -1140,14 +1157,14 @@ const _: () = {
             __jacobian[(1, 25)] = -__r2.recip();
             __jacobian[(2, 3)] = __lambda_hoist_d0;
             __jacobian[(2, 6)] = __t10;
-            __jacobian[(2, 18)] = -__L0_d0;
+            __jacobian[(2, 18)] = -__q_L0_d0;
             __jacobian[(2, 21)] = __t3;
             __jacobian[(3, 3)] = __lambda_hoist_d1;
             __jacobian[(3, 4)] = __lambda_hoist_d0;
             __jacobian[(3, 6)] = __t11;
             __jacobian[(3, 7)] = __t10;
-            __jacobian[(3, 18)] = -__L0_d1;
-            __jacobian[(3, 19)] = -__L0_d0;
+            __jacobian[(3, 18)] = -__q_L0_d1;
+            __jacobian[(3, 19)] = -__q_L0_d0;
             __jacobian[(3, 21)] = __t12;
             __jacobian[(3, 22)] = __t3;
             __jacobian[(4, 3)] = __lambda_hoist_d2;
@@ -1156,57 +1173,57 @@ const _: () = {
             __jacobian[(4, 6)] = -__lambda_rope0_d2 - __lambda_hoist_d2;
             __jacobian[(4, 7)] = __t23 - __lambda_rope0_d1 * 2.0;
             __jacobian[(4, 8)] = __t10;
-            __jacobian[(4, 18)] = -__L0_d2;
+            __jacobian[(4, 18)] = -__q_L0_d2;
             __jacobian[(4, 19)] = __t24;
-            __jacobian[(4, 20)] = -__L0_d0;
+            __jacobian[(4, 20)] = -__q_L0_d0;
             __jacobian[(4, 21)] = __t25;
             __jacobian[(4, 22)] = __t26;
             __jacobian[(4, 23)] = __t3;
             __jacobian[(5, 9)] = __t13;
             __jacobian[(5, 15)] = __t4;
-            __jacobian[(5, 18)] = __x0_d0;
+            __jacobian[(5, 18)] = __q_x0_d0;
             __jacobian[(5, 21)] = __t5;
             __jacobian[(6, 9)] = __t14;
             __jacobian[(6, 10)] = __t13;
-            __jacobian[(6, 15)] = __x0_d1;
+            __jacobian[(6, 15)] = __q_x0_d1;
             __jacobian[(6, 16)] = __t4;
-            __jacobian[(6, 18)] = __x0_d1;
-            __jacobian[(6, 19)] = __x0_d0;
+            __jacobian[(6, 18)] = __q_x0_d1;
+            __jacobian[(6, 19)] = __q_x0_d0;
             __jacobian[(6, 21)] = __t15;
             __jacobian[(6, 22)] = __t5;
             __jacobian[(7, 9)] = __t27;
             __jacobian[(7, 10)] = __t28;
             __jacobian[(7, 11)] = __t13;
-            __jacobian[(7, 15)] = __x0_d2;
+            __jacobian[(7, 15)] = __q_x0_d2;
             __jacobian[(7, 16)] = __t29;
             __jacobian[(7, 17)] = __t4;
-            __jacobian[(7, 18)] = __x0_d2;
+            __jacobian[(7, 18)] = __q_x0_d2;
             __jacobian[(7, 19)] = __t29;
-            __jacobian[(7, 20)] = __x0_d0;
+            __jacobian[(7, 20)] = __q_x0_d0;
             __jacobian[(7, 21)] = __t30;
             __jacobian[(7, 22)] = __t31;
             __jacobian[(7, 23)] = __t5;
             __jacobian[(8, 12)] = __t13;
             __jacobian[(8, 15)] = __t6;
-            __jacobian[(8, 18)] = __z0_d0;
+            __jacobian[(8, 18)] = __q_z0_d0;
             __jacobian[(8, 21)] = __t7;
             __jacobian[(9, 12)] = __t14;
             __jacobian[(9, 13)] = __t13;
-            __jacobian[(9, 15)] = __z0_d1;
+            __jacobian[(9, 15)] = __q_z0_d1;
             __jacobian[(9, 16)] = __t6;
-            __jacobian[(9, 18)] = __z0_d1;
-            __jacobian[(9, 19)] = __z0_d0;
+            __jacobian[(9, 18)] = __q_z0_d1;
+            __jacobian[(9, 19)] = __q_z0_d0;
             __jacobian[(9, 21)] = __t16;
             __jacobian[(9, 22)] = __t7;
             __jacobian[(10, 12)] = __t27;
             __jacobian[(10, 13)] = __t28;
             __jacobian[(10, 14)] = __t13;
-            __jacobian[(10, 15)] = __z0_d2;
+            __jacobian[(10, 15)] = __q_z0_d2;
             __jacobian[(10, 16)] = __t32;
             __jacobian[(10, 17)] = __t6;
-            __jacobian[(10, 18)] = __z0_d2;
+            __jacobian[(10, 18)] = __q_z0_d2;
             __jacobian[(10, 19)] = __t32;
-            __jacobian[(10, 20)] = __z0_d0;
+            __jacobian[(10, 20)] = __q_z0_d0;
             __jacobian[(10, 21)] = __t33;
             __jacobian[(10, 22)] = __t34;
             __jacobian[(10, 23)] = __t7;
@@ -1219,8 +1236,8 @@ const _: () = {
             __jacobian[(13, 9)] = -__lambda_hoist_d2;
             __jacobian[(13, 10)] = __t23;
             __jacobian[(13, 11)] = -__lambda_hoist_d0;
-            __jacobian[(13, 21)] = __x_d2 - __x0_d2;
-            __jacobian[(13, 22)] = __x_d1 * 2.0 - __x0_d1 * 2.0;
+            __jacobian[(13, 21)] = __q_x_d2 - __q_x0_d2;
+            __jacobian[(13, 22)] = __q_x_d1 * 2.0 - __q_x0_d1 * 2.0;
             __jacobian[(13, 23)] = __t8;
             __jacobian[(14, 12)] = -__lambda_hoist_d0;
             __jacobian[(14, 21)] = __t9;
@@ -1231,45 +1248,45 @@ const _: () = {
             __jacobian[(16, 12)] = -__lambda_hoist_d2;
             __jacobian[(16, 13)] = __t23;
             __jacobian[(16, 14)] = -__lambda_hoist_d0;
-            __jacobian[(16, 21)] = __z_d2 - __z0_d2;
-            __jacobian[(16, 22)] = __z_d1 * 2.0 - __z0_d1 * 2.0;
+            __jacobian[(16, 21)] = __q_z_d2 - __q_z0_d2;
+            __jacobian[(16, 22)] = __q_z_d1 * 2.0 - __q_z0_d1 * 2.0;
             __jacobian[(16, 23)] = __t9;
-            __jacobian[(17, 0)] = -__L1_d0;
+            __jacobian[(17, 0)] = -__q_L1_d0;
             __jacobian[(17, 9)] = __t4;
             __jacobian[(17, 12)] = __t6;
-            __jacobian[(18, 0)] = -__L1_d1;
-            __jacobian[(18, 1)] = -__L1_d0;
-            __jacobian[(18, 9)] = __x0_d1;
+            __jacobian[(18, 0)] = -__q_L1_d1;
+            __jacobian[(18, 1)] = -__q_L1_d0;
+            __jacobian[(18, 9)] = __q_x0_d1;
             __jacobian[(18, 10)] = __t4;
-            __jacobian[(18, 12)] = __z0_d1;
+            __jacobian[(18, 12)] = __q_z0_d1;
             __jacobian[(18, 13)] = __t6;
-            __jacobian[(19, 0)] = -__L1_d2;
-            __jacobian[(19, 1)] = -__L1_d1 * 2.0;
-            __jacobian[(19, 2)] = -__L1_d0;
-            __jacobian[(19, 9)] = __x0_d2;
+            __jacobian[(19, 0)] = -__q_L1_d2;
+            __jacobian[(19, 1)] = -__q_L1_d1 * 2.0;
+            __jacobian[(19, 2)] = -__q_L1_d0;
+            __jacobian[(19, 9)] = __q_x0_d2;
             __jacobian[(19, 10)] = __t29;
             __jacobian[(19, 11)] = __t4;
-            __jacobian[(19, 12)] = __z0_d2;
+            __jacobian[(19, 12)] = __q_z0_d2;
             __jacobian[(19, 13)] = __t32;
             __jacobian[(19, 14)] = __t6;
-            __jacobian[(20, 6)] = -__L0_d0;
-            __jacobian[(20, 9)] = __x0_d0;
-            __jacobian[(20, 12)] = __z0_d0;
-            __jacobian[(21, 6)] = -__L0_d1;
-            __jacobian[(21, 7)] = -__L0_d0;
-            __jacobian[(21, 9)] = __x0_d1;
-            __jacobian[(21, 10)] = __x0_d0;
-            __jacobian[(21, 12)] = __z0_d1;
-            __jacobian[(21, 13)] = __z0_d0;
-            __jacobian[(22, 6)] = -__L0_d2;
+            __jacobian[(20, 6)] = -__q_L0_d0;
+            __jacobian[(20, 9)] = __q_x0_d0;
+            __jacobian[(20, 12)] = __q_z0_d0;
+            __jacobian[(21, 6)] = -__q_L0_d1;
+            __jacobian[(21, 7)] = -__q_L0_d0;
+            __jacobian[(21, 9)] = __q_x0_d1;
+            __jacobian[(21, 10)] = __q_x0_d0;
+            __jacobian[(21, 12)] = __q_z0_d1;
+            __jacobian[(21, 13)] = __q_z0_d0;
+            __jacobian[(22, 6)] = -__q_L0_d2;
             __jacobian[(22, 7)] = __t24;
-            __jacobian[(22, 8)] = -__L0_d0;
-            __jacobian[(22, 9)] = __x0_d2;
+            __jacobian[(22, 8)] = -__q_L0_d0;
+            __jacobian[(22, 9)] = __q_x0_d2;
             __jacobian[(22, 10)] = __t29;
-            __jacobian[(22, 11)] = __x0_d0;
-            __jacobian[(22, 12)] = __z0_d2;
+            __jacobian[(22, 11)] = __q_x0_d0;
+            __jacobian[(22, 12)] = __q_z0_d2;
             __jacobian[(22, 13)] = __t32;
-            __jacobian[(22, 14)] = __z0_d0;
+            __jacobian[(22, 14)] = __q_z0_d0;
             __jacobian[(23, 3)] = __t2;
             __jacobian[(23, 6)] = __t3;
             __jacobian[(23, 9)] = __t5;
@@ -1282,8 +1299,8 @@ const _: () = {
             __jacobian[(24, 10)] = __t5;
             __jacobian[(24, 12)] = __t16;
             __jacobian[(24, 13)] = __t7;
-            __jacobian[(25, 3)] = __L0_d2 - __L2_d2;
-            __jacobian[(25, 4)] = __L0_d1 * 2.0 - __L2_d1 * 2.0;
+            __jacobian[(25, 3)] = __q_L0_d2 - __q_L2_d2;
+            __jacobian[(25, 4)] = __q_L0_d1 * 2.0 - __q_L2_d1 * 2.0;
             __jacobian[(25, 5)] = __t2;
             __jacobian[(25, 6)] = __t25;
             __jacobian[(25, 7)] = __t26;

@@ -1,0 +1,218 @@
+//! A user's crane gets every formulation its declaration supports, with
+//! nothing in its `impl Crane` beyond the model, the name and the
+//! manoeuvre: the reduced (dummy-derivative) formulation for a flat crane,
+//! as the default where its inputs need more than the path's 4th
+//! derivative; the minimal formulation where the model declares a map; a
+//! crane with internal dynamics is refused with their dimension, by the
+//! study, the case and the runtime alike.
+
+use crane_macros::crane_model;
+use crane_models::coupled_trolley;
+use crane_models::registry::Entry;
+use crane_models::study::{self, Formulation, RunSettings, StudyError};
+use crane_models::{Case, Crane, Maneuver, PathSpec, Profile};
+use crane_runtime::nalgebra::SVector;
+use crane_runtime::{Error, NoDummyDerivatives, Options, Scheme, State, dummy_derivative};
+
+crane_model! {
+    /// A planar gantry with a minimal map (trolley, rope length, angle).
+    pub struct UserGantry {
+        params { m_t: positive = 50.0, m_l: positive = 200.0, J: positive = 0.05, r: positive = 0.1,
+                 g: positive = 9.81 }
+        robot  [s, L]
+        load   [x, z]
+        inputs [u1, u2]
+        kinetic = 0.5*m_t*dot(s)^2 + 0.5*J/r^2*dot(L)^2 + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+        forces { s: u1, L: u2/r, z: -m_l*g }
+        constraints {
+            #[rope(N = L)]
+            rope: 0.5*((x - s)^2 + z^2 - L^2),
+        }
+        minimal [y | l, th] {
+            s = y;  L = l;  x = y + l*sin(th);  z = -l*cos(th);
+        }
+    }
+}
+
+crane_model! {
+    /// A double-pendulum overhead crane: the inputs need the path's 6th derivative.
+    pub struct UserHook {
+        params { m_t: positive = 120.0, m_h: positive = 15.0, m_l: positive = 400.0, J: positive = 0.2,
+                 r: positive = 0.08, l_s: positive = 1.5, g: positive = 9.81 }
+        robot  [s, L, xh, zh]
+        load   [x, z]
+        inputs [u1, u2]
+        kinetic = 0.5*m_t*dot(s)^2 + 0.5*J/r^2*dot(L)^2
+                + 0.5*m_h*(dot(xh)^2 + dot(zh)^2) + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+        forces { s: u1, L: u2/r, zh: -m_h*g, z: -m_l*g }
+        constraints {
+            #[rope(N1 = L)]
+            hoist: 0.5*((xh - s)^2 + zh^2 - L^2),
+            #[rope(N2 = l_s)]
+            sling: 0.5*((x - xh)^2 + (z - zh)^2 - l_s^2),
+        }
+    }
+}
+
+/// The gantry: only the model, the name and the manoeuvre (and a guess of
+/// its minimal coordinates, which it may leave out where zero is a good
+/// guess; here the rope length is not).
+struct Gantry;
+
+impl Crane<4, 1, 2> for Gantry {
+    type Model = UserGantry;
+    const NAME: &'static str = "user-gantry";
+
+    fn maneuver() -> Maneuver<2> {
+        Maneuver {
+            path: PathSpec {
+                profile: Profile::Poly9,
+                t0: 0.0,
+                t1: 5.0,
+                start: SVector::from([0.0, -5.0]),
+                end: SVector::from([4.0, -3.0]),
+            },
+            p0: vec![0.0, 5.0],
+        }
+    }
+
+    fn minimal_guess(_: &UserGantry, start: &State<4, 1, 2>) -> Vec<f64> {
+        vec![start.q[0], start.q[1], 0.0]
+    }
+}
+
+/// The double pendulum: only the model, the name and the manoeuvre.
+struct Hook;
+
+impl Crane<6, 2, 2> for Hook {
+    type Model = UserHook;
+    const NAME: &'static str = "user-hook";
+
+    fn maneuver() -> Maneuver<2> {
+        Maneuver {
+            path: PathSpec {
+                profile: Profile::SmoothThreePhase { tau0: 2.5 },
+                t0: 0.0,
+                t1: 8.0,
+                start: SVector::from([0.0, -4.5]),
+                end: SVector::from([3.0, -3.5]),
+            },
+            p0: vec![0.0, 3.0, 0.0, -3.0],
+        }
+    }
+}
+
+#[test]
+fn a_user_crane_has_the_formulations_its_declaration_supports() {
+    // the sizes of the reduced systems come from the declarations (the
+    // jets 0..=c of each robot coordinate, multiplier and input, with
+    // Pryce's offsets c): the gantry's s, L need their 2nd derivatives
+    // (offset 2: 3 jets each), the rope's multiplier 2 (3), the inputs 0
+    // (1 each): 11; the hook crane's s, L 2 (3 each), the hook 4 (5 each),
+    // the hoist's multiplier 4 (5), the sling's 2 (3), the inputs 0: 26
+    assert_eq!(dummy_derivative::system_size::<UserGantry, 4, 1, 2>(), Ok(11));
+    assert_eq!(dummy_derivative::system_size::<UserHook, 6, 2, 2>(), Ok(26));
+    assert!(Entry::of::<Gantry, 4, 1, 2>().minimal);
+    assert!(!Entry::of::<Hook, 6, 2, 2>().minimal);
+    // path order 4: eqs. (22) by default; 6: the exact reduced formulation
+    assert_eq!(Formulation::default_for::<Gantry, 4, 1, 2>(), Formulation::Redundant);
+    assert_eq!(
+        Formulation::default_for::<Hook, 6, 2, 2>(),
+        Formulation::DummyDerivative
+    );
+}
+
+/// The reduced formulation of the user's gantry agrees with BDF-4 of eqs.
+/// (22) at dt = 0.005 after BDF-4's start-up steps (its error there is
+/// O(dt^4) ~ 1e-9 of the peak; measured 7e-8 with the start-up's O(dt)
+/// steps still echoing), and the minimal formulation with both.
+#[test]
+fn the_reduced_run_of_a_user_gantry_agrees_with_bdf4() {
+    let case = Case::<Gantry, 4, 1, 2>::maneuver().unwrap();
+    let start = case.start().unwrap();
+    let options = Options::new(0.005, case.tf()).unwrap();
+    let reduced = case
+        .simulate_dummy_derivative(&start, &options, &mut |_, _| {})
+        .unwrap();
+    let bdf4 = case
+        .simulate(&start, &options.with_scheme(Scheme::Bdf4))
+        .unwrap();
+    let minimal = case
+        .simulate_minimal(&start, &options.with_scheme(Scheme::Bdf4))
+        .expect("the model declares a minimal map")
+        .unwrap();
+    let peak = reduced.states.iter().map(|s| s.u.amax()).fold(0.0, f64::max);
+    let worst = |other: &crane_runtime::Solution<4, 1, 2>| {
+        reduced
+            .states
+            .iter()
+            .zip(&other.states)
+            .filter(|(s, _)| s.t >= 0.05)
+            .map(|(a, b)| (a.u - b.u).amax())
+            .fold(0.0, f64::max)
+            / peak
+    };
+    let (e_bdf4, e_minimal) = (worst(&bdf4), worst(&minimal));
+    println!("reduced vs BDF-4: {e_bdf4:.2e}, vs minimal BDF-4: {e_minimal:.2e} of the peak {peak:.1}");
+    assert!(e_bdf4 < 1e-6, "{e_bdf4}");
+    assert!(e_minimal < 1e-6, "{e_minimal}");
+}
+
+/// The user's double pendulum runs its default (reduced) formulation
+/// through the study, and its inputs do not depend on the step: each step
+/// solves the exact inverse dynamics at its time (measured 7e-16 of the
+/// peak between dt = 0.02 and 0.01; Newton's relative tolerance is 1e-10).
+#[test]
+fn a_user_double_pendulum_gets_exact_inputs_at_any_step() {
+    let case = Case::<Hook, 6, 2, 2>::maneuver().unwrap();
+    let run = |dt: f64| {
+        let settings = RunSettings {
+            dt,
+            formulation: Formulation::default_for::<Hook, 6, 2, 2>(),
+            ..RunSettings::default()
+        };
+        study::run(&case, &settings, &mut |_, _| {}).unwrap().solution
+    };
+    let (coarse, fine) = (run(0.02), run(0.01));
+    let peak = coarse.states.iter().map(|s| s.u.amax()).fold(0.0, f64::max);
+    let worst = coarse
+        .states
+        .iter()
+        .zip(fine.states.iter().step_by(2))
+        .map(|(a, b)| {
+            assert!((a.t - b.t).abs() < 1e-9);
+            (a.u - b.u).amax()
+        })
+        .fold(0.0, f64::max);
+    println!("max |u(0.02) - u(0.01)| = {worst:.2e} of the peak {peak:.1}");
+    assert!(worst <= 1e-10 * peak, "{worst}");
+}
+
+/// A crane with internal dynamics (the coupled trolley: 2 states the path
+/// leaves free) has no reduced formulation, and every way in says so.
+#[test]
+fn a_crane_with_internal_dynamics_is_refused_with_their_dimension() {
+    type Model = coupled_trolley::CoupledTrolley;
+    let expected = NoDummyDerivatives::InternalDynamics { dimension: 2 };
+    assert_eq!(dummy_derivative::system_size::<Model, 4, 1, 2>(), Err(expected));
+    let case = coupled_trolley::DefaultCase::maneuver().unwrap();
+    let start = case.start().unwrap();
+    let options = Options::new(0.01, case.tf()).unwrap();
+    match case.simulate_dummy_derivative(&start, &options, &mut |_, _| {}) {
+        Err(Error::NoDummyDerivatives { reason, .. }) => assert_eq!(reason, expected),
+        other => panic!("{:?}", other.map(|s| s.states.len())),
+    }
+    let settings = RunSettings {
+        formulation: Formulation::DummyDerivative,
+        ..RunSettings::default()
+    };
+    match study::run(&case, &settings, &mut |_, _| {}) {
+        Err(error @ StudyError::NoDummyDerivatives { .. }) => {
+            let message = error.to_string();
+            assert!(message.contains("internal dynamics of dimension 2"), "{message}");
+        }
+        other => panic!("{:?}", other.map(|o| o.summary.steps)),
+    }
+    let boxed = dummy_derivative::boxed_stepper(Box::new(*case.model()), case.path().clone(), &start, &options);
+    assert!(matches!(boxed, Err(Error::NoDummyDerivatives { reason, .. }) if reason == expected));
+}
