@@ -134,9 +134,7 @@ fn the_reduced_run_of_a_user_gantry_agrees_with_bdf4() {
     let reduced = case
         .simulate_dummy_derivative(&start, &options, &mut |_, _| {})
         .unwrap();
-    let bdf4 = case
-        .simulate(&start, &options.with_scheme(Scheme::Bdf4))
-        .unwrap();
+    let bdf4 = case.simulate(&start, &options.with_scheme(Scheme::Bdf4)).unwrap();
     let minimal = case
         .simulate_minimal(&start, &options.with_scheme(Scheme::Bdf4))
         .expect("the model declares a minimal map")
