@@ -28,7 +28,7 @@ use std::collections::HashMap;
 
 use proc_macro2::Ident;
 
-use super::resolve::{Kind, Lowerer, Names, Place, RESERVED, join};
+use super::resolve::{Kind, Lowerer, Names, Place, RESERVED, join, key};
 use crate::expr::{Id, Sym};
 use crate::model::Minimal;
 use crate::parse::{MinimalDecl, MinimalStmt, Section};
@@ -271,7 +271,7 @@ pub(super) fn check(section: &Section<MinimalDecl>, a: usize, m: usize, lower: &
 /// What `ident` already names, as "a parameter" or "reserved (a function)";
 /// `None` if it is free.
 fn taken_by(lower: &Lowerer<'_>, ident: &Ident) -> Option<String> {
-    let name = ident.to_string();
+    let name = key(ident);
     if let Some((_, why)) = RESERVED.iter().find(|(r, _)| *r == name) {
         return Some(format!("reserved ({why})"));
     }

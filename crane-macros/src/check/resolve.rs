@@ -6,6 +6,7 @@
 use std::collections::HashMap;
 
 use proc_macro2::Ident;
+use syn::ext::IdentExt;
 
 use super::minimal;
 use crate::ctxt::Ctxt;
@@ -61,7 +62,7 @@ pub(super) struct Names {
 impl Names {
     /// Declares `ident`; `false` if it was already declared.
     fn declare(&mut self, ident: &Ident, kind: Kind, index: usize, cx: &Ctxt) -> bool {
-        let name = ident.to_string();
+        let name = key(ident);
         if let Some((_, why)) = RESERVED.iter().find(|(r, _)| *r == name) {
             // reported, but declared anyway so that its uses do not add errors
             cx.error_at(
@@ -81,8 +82,15 @@ impl Names {
     }
 
     pub(super) fn get(&self, ident: &Ident) -> Option<(Kind, usize)> {
-        self.map.get(&ident.to_string()).copied()
+        self.map.get(&key(ident)).copied()
     }
+}
+
+/// The name an identifier declares: a raw identifier's without its `r#`
+/// (`r#x` and `x` are one name in Rust, and would be one local of the
+/// generated code).
+pub(super) fn key(ident: &Ident) -> String {
+    ident.unraw().to_string()
 }
 
 /// Where an expression stands, which decides what it may use.

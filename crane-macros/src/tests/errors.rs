@@ -117,6 +117,13 @@ fn duplicate_names() {
         &navy_with("g = 9.81", "g = 9.81, PI = 3.0"),
         &["`PI` is reserved (the constant pi) and cannot be declared"],
     );
+    // a raw identifier is the same name: `r#x` and `x` would be one local
+    // (a parameter `r#x` beside the load's `x` once gave u1 = -45.8 N
+    // where the plainly named crane gives 8.17 N)
+    assert_errors(
+        &navy_with("g = 9.81", "g = 9.81, r#x = 1.0"),
+        &["duplicate name `x`: already declared as a parameter"],
+    );
 }
 
 #[test]
