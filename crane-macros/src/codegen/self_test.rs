@@ -18,7 +18,9 @@ pub(super) fn self_test(model: &Model) -> TokenStream {
     };
     let runtime = &model.runtime;
     let name = &model.name;
-    let module = format_ident!("__crane_self_test_{}", name.to_string().to_lowercase());
+    // the type's own name, not lowercased: `Gantry` and `GANTRY` in one
+    // module are two types and get two self-tests
+    let module = format_ident!("__crane_self_test_{}", super::bare(name));
     let ranges = |ranges: &[(crate::parse::Expr, crate::parse::Expr)]| {
         let items = ranges.iter().map(|(low, high)| {
             let (low, high) = (default_value(low), default_value(high));

@@ -676,7 +676,7 @@ fn sample_section_generates_a_self_test() {
     let (messages, _) = expand_errors(&source);
     assert!(messages.is_empty(), "{messages:?}");
     let output = expand(super::tokens(&source)).to_string();
-    assert!(output.contains("__crane_self_test_navyplanar"), "no self-test module");
+    assert!(output.contains("__crane_self_test_NavyPlanar"), "no self-test module");
     assert!(output.contains("derivative_self_test"));
     // opting out removes it
     let quiet = source.replacen("pub struct", "#[crane(no_self_test)] pub struct", 1);
