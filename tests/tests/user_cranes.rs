@@ -214,3 +214,42 @@ fn a_crane_with_internal_dynamics_is_refused_with_their_dimension() {
     let boxed = dummy_derivative::boxed_stepper(Box::new(*case.model()), case.path().clone(), &start, &options);
     assert!(matches!(boxed, Err(Error::NoDummyDerivatives { reason, .. }) if reason == expected));
 }
+
+/// The README's recipe for a minimal run on a user's gantry: a start from
+/// `init::static_equilibrium` and the exact guess of `mu`. The start's
+/// constraint residual must not be larger than the minimal start's own
+/// tolerance (`phi(mu0) = q0` to 1e-12 of |q0|): it once was 1.5e-10 and the
+/// run was refused ("no minimal coordinates mu0 ... residual 1.3e-11").
+#[test]
+fn a_static_equilibrium_start_runs_in_minimal_coordinates() {
+    use crane_runtime::trajectory::Poly9;
+    use crane_runtime::{CraneModel, init, simulate_minimal};
+    let crane = UserGantry::default();
+    for (start, end, guess) in [
+        ([0.0, -5.0], [4.0, -3.0], [0.3, 4.5]),
+        ([1.0, -7.3], [-2.0, -2.1], [0.0, 1.0]),
+        ([-3.3, -2.2], [5.1, -9.7], [-3.0, 9.0]),
+        ([0.0, -5.0], [4.0, -3.0], [2.0, 1.0]),
+        ([0.0, -5.0], [4.0, -3.0], [-7.0, 20.0]),
+        ([0.001, -0.3], [4.0, -3.0], [0.0, 1.0]),
+    ] {
+        let path = Poly9::new(0.0, 5.0, SVector::from(start), SVector::from(end)).unwrap();
+        let q0 = init::static_equilibrium(&crane, &path, 0.0, &guess).unwrap();
+        let residual = crane.constraints(&q0.q).amax();
+        let scale = q0.q.amax();
+        let mu = SVector::from([q0.q[0], q0.q[1], 0.0]);
+        let run = simulate_minimal(&crane, &path, &q0, &mu, &Options::new(0.01, 5.0).unwrap());
+        println!("start {start:?}: g(q0) = {residual:.1e}, {:?}", run.as_ref().err());
+        // g = (|d|^2 - L^2)/2 is off by about |q| times a length error:
+        // a start at round-off has |g| ~ 1e-15 |q|^2
+        assert!(residual <= 1e-13 * scale * scale, "g(q0) = {residual:e}");
+        assert!(run.is_ok(), "{:?}", run.err());
+        // a start typed to 10 digits (the rope 2e-10 m long; the
+        // consistency checks allow 1e-9 of |q|) has no mu with phi(mu) = q0
+        // to round-off: the closest one starts the run
+        let mut typed = q0;
+        typed.q[1] += 2e-10;
+        let run = simulate_minimal(&crane, &path, &typed, &mu, &Options::new(0.01, 5.0).unwrap());
+        assert!(run.is_ok(), "{:?}", run.err());
+    }
+}

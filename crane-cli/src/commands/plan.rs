@@ -7,6 +7,7 @@ use std::time::Instant;
 
 use crane_models::plan::{self, Limits, MAX_SWEEP_POINTS, Settings};
 use crane_models::registry::{Registry, Visit};
+use crane_models::study::Formulation;
 use crane_models::{Case, Crane};
 use crane_runtime::{CraneModel, Options, Scheme};
 use serde_json::json;
@@ -316,6 +317,14 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let best = plan::fastest(case, limits, settings).map_err(|e| CliError::Planning(e.to_string()))?;
     let wall = clock.elapsed().as_secs_f64();
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
+    // the formulation of every evaluation; a reduced run is exact at each
+    // step and uses no scheme
+    let formulation = Formulation::default_for::<C, N, M, A>();
+    let method = if formulation.discretised() {
+        format!("{formulation}, {}", settings.scheme)
+    } else {
+        formulation.to_string()
+    };
     let report = json!({
         "model": C::NAME,
         "duration": best.duration,
@@ -324,6 +333,7 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         "bracket": [best.bracket.0, best.bracket.1],
         "evaluations": best.evaluations,
         "interval": { "points": best.interval.points, "holds": best.interval.holds, "counterexample": best.interval.counterexample },
+        "formulation": formulation.name(),
         "scheme": settings.scheme.name(),
         "dt": settings.dt,
         "tolerance": settings.tolerance,
@@ -395,9 +405,8 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             best.bracket.1
         );
         println!(
-            "  {} evaluations ({}, dt <= {} s) and {} for the interval check in {:.1} ms; {}",
+            "  {} evaluations ({method}, dt <= {} s) and {} for the interval check in {:.1} ms; {}",
             best.evaluations,
-            settings.scheme,
             settings.dt,
             best.interval.points,
             wall * 1e3,

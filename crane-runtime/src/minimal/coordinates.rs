@@ -5,6 +5,7 @@
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
 use crate::error::Error;
+use crate::init::CONSISTENCY_TOLERANCE;
 use crate::linsolve::DenseSolver;
 use crate::model::MinimalMap;
 use crate::solution::State;
@@ -59,10 +60,18 @@ where
     let least_squares = |p: &SMatrix<f64, N, F>, rhs: &SVector<f64, N>| {
         nalgebra::linalg::Cholesky::new(p.tr_mul(p)).map(|c| c.solve(&p.tr_mul(rhs)))
     };
+    let mut last = f64::INFINITY;
     for iteration in 0..=MAX_ITERATIONS {
         let residual = state.q - model.phi(&mu);
         let p = model.null_space(&mu);
-        if residual.amax() <= 1e-12 * scale {
+        let size = residual.amax();
+        // phi(mu) = q to round-off; or, for a start that holds g(q) = 0 only
+        // to the consistency checks' tolerance (no mu maps onto it
+        // exactly), the closest mu: Gauss-Newton has stopped gaining (the
+        // residual no longer halves) within that tolerance
+        let closest = size >= 0.5 * last && size <= CONSISTENCY_TOLERANCE * scale;
+        last = size;
+        if size <= 1e-12 * scale || closest {
             let mu_dot = least_squares(&p, &state.v).ok_or(Error::NonFinite {
                 quantity: "minimal start velocity",
                 t: state.t,
