@@ -110,6 +110,8 @@ struct Run<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: us
     external: Option<ServoTarget<A>>,
     /// Rope lengths (one per rope).
     lengths: Vec<f64>,
+    /// Rope tensions (one per rope).
+    tensions: Vec<f64>,
 }
 
 impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> Run<Mdl, N, M, A> {
@@ -118,6 +120,7 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> R
             stepper,
             external,
             lengths: vec![0.0; Mdl::INFO.ropes.len()],
+            tensions: vec![0.0; Mdl::INFO.ropes.len()],
         }
     }
 }
@@ -307,14 +310,15 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         let Some(run) = self.run.as_mut() else { return };
         let stepper = run.stepper.advance();
         let state = *stepper.state();
-        stepper.model().rope_lengths(&state.q, &mut run.lengths);
-        let ropes = <C::Model as CraneModel<N, M, A>>::INFO.ropes;
+        stepper
+            .model()
+            .rope_tensions(&state.q, &state.lambda, &mut run.tensions);
         for v in &self.table {
             let value = match v.role {
                 Role::Input(k) => state.u[k],
                 Role::Coordinate(k) => state.q[k],
                 Role::Multiplier(k) => state.lambda[k],
-                Role::Tension(k) => state.lambda[ropes[k].constraint] * run.lengths[k],
+                Role::Tension(k) => run.tensions[k],
                 _ => continue,
             };
             self.reals[v.value_reference as usize] = value;

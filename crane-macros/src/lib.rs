@@ -71,7 +71,8 @@
 //! - `forces { coord: expr, ... }`: generalized forces, linear in the inputs
 //!   (inputs on robot coordinates only); unlisted coordinates get 0.
 //! - `constraints { name: expr, ... }`: `g(q)`; `#[rope(N = length)]` marks a
-//!   rope with tension `N = lambda * length`.
+//!   rope whose tension is the constraint's force along its length,
+//!   `N = -lambda dg/dlength` (`lambda * length` for `0.5*(|d|^2 - length^2)`).
 //! - `minimal [mu1, ... | mu2, ...] { ... }` (optional): the map
 //!   `q = phi(mu)` to `f = n - m` minimal coordinates; the `a` names after
 //!   `|` are `mu2`, chosen so that `D2 phi_x` is regular (eq. 12). The body
@@ -128,7 +129,9 @@ fn expand(input: TokenStream) -> TokenStream {
     match (model, cx.check()) {
         (Some(mut model), Ok(())) => {
             let kernels = model::Kernels::derive(&mut model);
-            if let Some(error) = check::negative_inertia(&decl, &model, &kernels) {
+            if let Some(error) = check::negative_inertia(&decl, &model, &kernels)
+                .or_else(|| check::ropes_depend_on_their_lengths(&decl, &model, &kernels))
+            {
                 let mut tokens = error.to_compile_error();
                 tokens.extend(codegen::stub(&decl));
                 return tokens;

@@ -97,7 +97,8 @@ pub struct Constraint {
     pub rope: Option<Rope>,
 }
 
-/// A rope: tension `N = lambda * L` (docs/errata.md, "Conventions").
+/// A rope: its tension's name and its length `L` (the tension is
+/// `N = -lambda dg/dL`, [`rope_tension`]).
 pub struct Rope {
     /// Name of the tension.
     pub tension: Ident,
@@ -155,6 +156,14 @@ pub struct Kernels {
     pub dbtu_dq: Matrix,
     /// Rope lengths `L(q)`, in constraint order.
     pub rope_lengths: Vec<Id>,
+    /// Rope tensions `N = -lambda dg/dL`, in the order of `rope_lengths`:
+    /// the constraint's generalized force along the rope's length, the
+    /// same whichever way `g` is written (see [`rope_tension`]).
+    pub rope_tensions: Vec<Id>,
+    /// `dg/dL` up to its positive normalisation (the numerator of
+    /// [`rope_tension`]), per rope: structurally zero where the constraint
+    /// does not depend on the rope's length.
+    pub rope_along: Vec<Id>,
     /// The minimal-coordinate map and its derivatives, if declared.
     pub minimal: Option<MinimalKernels>,
 }
@@ -190,6 +199,7 @@ impl Kernels {
 
         let g: Vec<Id> = model.constraints.iter().map(|c| c.g).collect();
         let rope_lengths: Vec<Id> = model.ropes().map(|(_, r)| r.length).collect();
+        let rope_constraints: Vec<usize> = model.ropes().map(|(k, _)| k).collect();
         let kinetic = model.kinetic;
         let forces = model.forces.clone();
         let arena = &mut model.arena;
@@ -267,6 +277,12 @@ impl Kernels {
             .map(|&e| (0..n).map(|j| d.diff(e, coord(j))).collect())
             .collect();
 
+        let (rope_tensions, rope_along) = rope_constraints
+            .iter()
+            .zip(&rope_lengths)
+            .map(|(&k, &length)| rope_tension(&mut d, &g, &jacobian, k, length))
+            .unzip();
+
         Kernels {
             g,
             jacobian,
@@ -278,9 +294,45 @@ impl Kernels {
             bt,
             dbtu_dq,
             rope_lengths,
+            rope_tensions,
+            rope_along,
             minimal,
         }
     }
+}
+
+/// The tension of the rope of constraint `k` with length `L`, and the
+/// numerator `dg/dL` of its factor: `N = -lambda_k dg_k/dL`, the generalized
+/// force the constraint exerts along the rope's length (on a winch that
+/// pays the rope out it is the rope's pull). `g` is differentiated along the
+/// direction in which only `L` changes, `grad L / |grad L|^2` over the
+/// coordinates and parameters `L` depends on, so `dg/dL = (grad g . grad L)
+/// / |grad L|^2`. For `g = 1/2 (|d|^2 - L^2)` this is `N = lambda L`;
+/// `|d|^2 - L^2` gives `2 lambda L` and `|d| - L` gives `lambda` with
+/// their own `lambda`: the same force.
+fn rope_tension(d: &mut Differentiator<'_>, g: &[Id], jacobian: &Matrix, k: usize, length: Id) -> (Id, Id) {
+    let variables: Vec<Sym> = d
+        .arena()
+        .symbols(length)
+        .into_iter()
+        .filter(|s| matches!(s, Sym::Coord(_) | Sym::Param(_)))
+        .collect();
+    let (mut along, mut norm) = (Vec::new(), Vec::new());
+    for v in variables {
+        let dl = d.diff(length, v);
+        let dg = match v {
+            Sym::Coord(j) => jacobian[k][j as usize],
+            _ => d.diff(g[k], v),
+        };
+        along.push(d.arena().mul2(dg, dl));
+        norm.push(d.arena().mul2(dl, dl));
+    }
+    let along = d.arena().add(along);
+    let norm = d.arena().add(norm);
+    let dg_dl = d.arena().div(along, norm);
+    let lambda = d.arena().sym(Sym::Lambda(k as u16));
+    let pull = d.arena().mul2(lambda, dg_dl);
+    (d.arena().neg(pull), along)
 }
 
 impl MinimalKernels {

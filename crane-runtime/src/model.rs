@@ -19,9 +19,9 @@ use num_dual::DualNum;
 pub trait Scalar: DualNum<Primitive = f64> + Copy + nalgebra::Scalar {}
 impl<T: DualNum<Primitive = f64> + Copy + nalgebra::Scalar> Scalar for T {}
 
-/// A rope of the crane: the constraint `1/2 (|r_i - r_j|^2 - L^2)` that
-/// models it, and the name of its tension `N = lambda * L` (see docs/errata.md,
-/// "Conventions").
+/// A rope of the crane: the constraint that models it (e.g. `1/2 (|r_i -
+/// r_j|^2 - L^2)`) and the name of its tension, the constraint's force along
+/// the rope's length ([`CraneModel::rope_tensions`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Rope {
     /// Name of the tension, e.g. `"N1"`; a column of the results.
@@ -188,6 +188,19 @@ pub trait CraneModel<const N: usize, const M: usize, const A: usize> {
     /// Lengths `L` of the ropes of [`ModelInfo::ropes`], written into `out`
     /// (`out.len()` must equal the number of ropes).
     fn rope_lengths(&self, q: &SVector<f64, N>, out: &mut [f64]);
+
+    /// Tensions `N` of the ropes of [`ModelInfo::ropes`] at `q` with the
+    /// multipliers `lambda`, written into `out` (one entry per rope): the
+    /// force the rope's constraint exerts along its length `L`, `N =
+    /// -lambda dg/dL`, whichever way the constraint is written (for `g =
+    /// 1/2 (|d|^2 - L^2)`, `N = lambda L`; `crane_model!` differentiates the
+    /// declared constraint). The default assumes that form.
+    fn rope_tensions(&self, q: &SVector<f64, N>, lambda: &SVector<f64, M>, out: &mut [f64]) {
+        self.rope_lengths(q, out);
+        for (tension, rope) in out.iter_mut().zip(Self::INFO.ropes) {
+            *tension *= lambda[rope.constraint];
+        }
+    }
 }
 
 /// A minimal-coordinate map `q = phi(mu)` of a crane (paper sect. 3.2,

@@ -34,7 +34,8 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     pub states: Vec<State<N, M, A>>,
     /// Newton iterations of each step (0 for the start).
     pub newton_iterations: Vec<usize>,
-    /// Rope tensions `N = lambda * L`, `info.ropes.len()` per state, row-major.
+    /// Rope tensions ([`CraneModel::rope_tensions`]), `info.ropes.len()` per
+    /// state, row-major.
     pub tensions: Vec<f64>,
     /// Newton steps that fell back to the minimum-norm solve (singular
     /// iteration matrix, as at the paper's degenerate starts).
@@ -87,7 +88,8 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         Ok(solution)
     }
 
-    /// Append a state with its Newton counts and rope tensions `N = lambda L`,
+    /// Append a state with its Newton counts and rope tensions
+    /// ([`CraneModel::rope_tensions`]),
     /// and keep the ropes' shortest lengths (`lengths` is scratch space, one
     /// entry per rope). Does not allocate within the reserved capacity.
     pub fn push<Mdl: CraneModel<N, M, A>>(
@@ -101,9 +103,12 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         self.states.push(*state);
         self.newton_iterations.push(iterations);
         self.min_norm_steps += min_norm_steps;
+        let ropes = self.info.ropes.len();
+        let first = self.tensions.len();
+        self.tensions.resize(first + ropes, 0.0);
+        model.rope_tensions(&state.q, &state.lambda, &mut self.tensions[first..]);
         model.rope_lengths(&state.q, lengths);
-        for ((rope, &length), shortest) in self.info.ropes.iter().zip(lengths.iter()).zip(&mut self.shortest_ropes) {
-            self.tensions.push(state.lambda[rope.constraint] * length);
+        for (&length, shortest) in lengths.iter().zip(&mut self.shortest_ropes) {
             if !(length >= shortest.0) {
                 *shortest = (length, state.t);
             }

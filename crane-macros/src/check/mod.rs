@@ -134,3 +134,45 @@ pub fn negative_inertia(
         ),
     ))
 }
+
+/// A rope's constraint must depend on the rope's length: its tension is
+/// the constraint's generalized force along that length (`N = -lambda
+/// dg/dL`), which is zero for a constraint that does not change with `L`
+/// (a rail `h - 1.0` marked as a rope once reported a tension of -2602 N).
+/// The error points at the rope's tension name.
+pub fn ropes_depend_on_their_lengths(
+    decl: &crate::parse::Declaration,
+    model: &crate::model::Model,
+    kernels: &crate::model::Kernels,
+) -> Option<syn::Error> {
+    let constraints = &decl.sections.constraints.as_ref()?.body;
+    let ropes = constraints.iter().filter_map(|c| c.rope.as_ref().map(|r| (c, r)));
+    for ((constraint, rope), &along) in ropes.zip(&kernels.rope_along) {
+        if !model.arena.is_zero(along) {
+            continue;
+        }
+        let length = &rope.length;
+        let constant = model
+            .arena
+            .symbols(model.ropes().find(|(_, r)| r.tension == rope.tension)?.1.length)
+            .iter()
+            .all(|s| !matches!(s, crate::expr::Sym::Coord(_) | crate::expr::Sym::Param(_)));
+        let message = if constant {
+            format!(
+                "the length `{length}` of rope `{}` is a number: a rope's length is a coordinate (a winch's \
+                 rope), a parameter (a sling) or an expression of them, so that its tension, the constraint's \
+                 force along the length, is defined",
+                rope.tension
+            )
+        } else {
+            format!(
+                "constraint `{}` does not depend on the length `{length}` of rope `{}`, so it exerts no force \
+                 along the rope: a rope's constraint relates its length to the distance between its ends, e.g. \
+                 `0.5*((x - s)^2 + z^2 - L^2)`; for a constraint that is no rope, remove `#[rope(...)]`",
+                constraint.name, rope.tension
+            )
+        };
+        return Some(syn::Error::new(rope.tension.span(), message));
+    }
+    None
+}

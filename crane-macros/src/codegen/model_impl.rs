@@ -169,7 +169,7 @@ fn parameter_methods(model: &Model) -> TokenStream {
     }
 }
 
-/// The kernels, from `constraints` to `rope_lengths`.
+/// The kernels, from `constraints` to `rope_lengths` and `rope_tensions`.
 fn kernel_methods(model: &Model, k: &Kernels) -> TokenStream {
     let (n, m, a) = (model.n(), model.m(), model.a());
     let (n_lit, m_lit, a_lit) = (index(n), index(m), index(a));
@@ -189,7 +189,8 @@ fn kernel_methods(model: &Model, k: &Kernels) -> TokenStream {
     let force_jacobians_body = force_jacobians_body(model, k);
     let input_matrix_body = single(model, matrix_output("out", &k.bt, 0..n, 0..a));
     let input_jacobian_body = single(model, matrix_output("out", &k.dbtu_dq, 0..n, 0..n));
-    let rope_lengths_body = rope_lengths_body(model, k);
+    let rope_lengths_body = rope_slice_body(model, "rope_lengths", &k.rope_lengths);
+    let rope_tensions_body = rope_slice_body(model, "rope_tensions", &k.rope_tensions);
 
     quote! {
         fn constraints<T: #scalar>(&self, #q: &#sv<T, #n_lit>) -> #sv<T, #m_lit> {
@@ -239,6 +240,10 @@ fn kernel_methods(model: &Model, k: &Kernels) -> TokenStream {
         fn rope_lengths(&self, #q: &#sv<f64, #n_lit>, #out: &mut [f64]) {
             #rope_lengths_body
         }
+
+        fn rope_tensions(&self, #q: &#sv<f64, #n_lit>, #lambda: &#sv<f64, #m_lit>, #out: &mut [f64]) {
+            #rope_tensions_body
+        }
     }
 }
 
@@ -255,15 +260,15 @@ fn force_jacobians_body(model: &Model, k: &Kernels) -> TokenStream {
     quote!(#statements (#a_var, #b_var))
 }
 
-/// The body of `rope_lengths`, in `f64`, writing into the caller's slice.
-fn rope_lengths_body(model: &Model, k: &Kernels) -> TokenStream {
+/// The body of `rope_lengths` or `rope_tensions` (`function`), in `f64`,
+/// writing one value per rope into the caller's slice.
+fn rope_slice_body(model: &Model, function: &str, values: &[crate::expr::Id]) -> TokenStream {
     let out = internal("out");
-    let n_ropes = k.rope_lengths.len();
+    let n_ropes = values.len();
     let output = Output {
         var: out.clone(),
         init: None,
-        writes: k
-            .rope_lengths
+        writes: values
             .iter()
             .enumerate()
             .map(|(i, &id)| (index(i).into_token_stream(), id))
@@ -271,6 +276,6 @@ fn rope_lengths_body(model: &Model, k: &Kernels) -> TokenStream {
     };
     let statements = body(model, Mode::F64, std::slice::from_ref(&output));
     let n_ropes_lit = index(n_ropes);
-    let message = format!("rope_lengths: `out` must have one entry per rope ({n_ropes})");
+    let message = format!("{function}: `out` must have one entry per rope ({n_ropes})");
     quote!(::core::assert_eq!(#out.len(), #n_ropes_lit, #message); #statements)
 }

@@ -97,7 +97,7 @@ pub struct ConstraintDecl {
     pub expr: Expr,
 }
 
-/// `#[rope(Tension = length)]`: the tension `N = lambda * length`.
+/// `#[rope(Tension = length)]`: the tension `N = -lambda dg/dlength`.
 pub struct RopeAttr {
     /// Name of the tension.
     pub tension: Ident,

@@ -736,3 +736,26 @@ fn a_structurally_singular_crane_names_its_unknowns_and_equations() {
     );
     assert!(stub);
 }
+
+/// A rope's tension is its constraint's force along its length, so the
+/// constraint must depend on the length, and the length on a coordinate or
+/// parameter.
+#[test]
+fn a_rope_constraint_depends_on_its_length() {
+    assert_errors(
+        &navy_with("#[rope(N1 = L1)]", "#[rope(N1 = L0)]"),
+        &[
+            "constraint `rope1` does not depend on the length `L0` of rope `N1`, so it exerts no force along the \
+           rope: a rope's constraint relates its length to the distance between its ends, e.g. `0.5*((x - s)^2 + \
+           z^2 - L^2)`; for a constraint that is no rope, remove `#[rope(...)]`",
+        ],
+    );
+    assert_errors(
+        &navy_with("#[rope(N1 = L1)]", "#[rope(N1 = 2.0)]"),
+        &[
+            "the length `2.0` of rope `N1` is a number: a rope's length is a coordinate (a winch's rope), a \
+           parameter (a sling) or an expression of them, so that its tension, the constraint's force along the \
+           length, is defined",
+        ],
+    );
+}

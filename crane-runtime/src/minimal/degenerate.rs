@@ -33,12 +33,11 @@ pub(crate) fn degenerate<Mdl: CraneModel<N, M, A>, const N: usize, const M: usiz
     state: &State<N, M, A>,
 ) -> bool {
     let ropes = Mdl::INFO.ropes;
-    let mut lengths = [0.0; M];
-    let lengths = &mut lengths[..ropes.len().min(M)];
-    model.rope_lengths(&state.q, lengths);
-    let tension = |i: usize| state.lambda[ropes[i].constraint] * lengths[i];
-    let largest = (0..lengths.len()).map(|i| tension(i).abs()).fold(0.0, f64::max);
-    (0..lengths.len()).any(|i| !(tension(i) >= DEGENERATE_TENSION_RATIO * largest))
+    let mut tensions = [0.0; M];
+    let tensions = &mut tensions[..ropes.len().min(M)];
+    model.rope_tensions(&state.q, &state.lambda, tensions);
+    let largest = tensions.iter().map(|n| n.abs()).fold(0.0, f64::max);
+    tensions.iter().any(|&n| !(n >= DEGENERATE_TENSION_RATIO * largest))
 }
 
 impl<H, Tr, const N: usize, const M: usize, const A: usize, const F: usize> Follow<N, M, A, F>

@@ -378,6 +378,21 @@ const _: () = {
             __out[0] = __L1;
             __out[1] = __L2 - __L0;
         }
+        fn rope_tensions(
+            &self,
+            __q: &__crane_runtime::nalgebra::SVector<f64, 7>,
+            __lambda: &__crane_runtime::nalgebra::SVector<f64, 3>,
+            __out: &mut [f64],
+        ) {
+            ::core::assert_eq!(
+                __out.len(), 2, "rope_tensions: `out` must have one entry per rope (2)"
+            );
+            let __L1 = __q[0];
+            let __L2 = __q[1];
+            let __L0 = __q[2];
+            __out[0] = __L1 * __lambda[0];
+            __out[1] = -__lambda[2] * (__L0 * 2.0 - __L2 * 2.0) * 0.5;
+        }
         fn visit_dummy_derivatives<
             V: __crane_runtime::VisitDummyDerivatives<Self, 7, 3, 2>,
         >(
