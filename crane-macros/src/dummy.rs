@@ -76,6 +76,9 @@ impl DummyKernels {
         else {
             return None;
         };
+        if !model.dummy_derivatives {
+            return None;
+        }
         let (n, m, a, nr) = (model.n(), model.m(), model.a(), model.n_robot);
         // the runtime refuses a system that reads more of the path than it
         // carries: not generated (its cost grows steeply with the order)

@@ -47,6 +47,9 @@ pub struct Model {
     /// Where the generated self-test samples, if a `sample` section is
     /// declared and `#[crane(no_self_test)]` is not given.
     pub self_test: Option<SelfTest>,
+    /// Whether to generate the dummy-derivative system (for a crane
+    /// without internal dynamics; off with `#[crane(no_dummy_derivatives)]`).
+    pub dummy_derivatives: bool,
 }
 
 /// The sampling boxes of the generated self-test: `(low, high)` constant

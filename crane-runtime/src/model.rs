@@ -312,6 +312,10 @@ pub enum NoDummyDerivatives {
         /// [`MAX_PATH_ORDER`](crate::dummy_derivative::MAX_PATH_ORDER).
         max: usize,
     },
+    /// The declaration turned the system off
+    /// (`#[crane(no_dummy_derivatives)]`).
+    #[error("its declaration turns the system off (`#[crane(no_dummy_derivatives)]`)")]
+    OptedOut,
     /// The model does not declare its structure (a hand-written model), or
     /// declares it without a system.
     #[error("its model declares no dummy-derivative system (declare it with `crane_model!`)")]

@@ -253,3 +253,26 @@ fn a_static_equilibrium_start_runs_in_minimal_coordinates() {
         assert!(run.is_ok(), "{:?}", run.err());
     }
 }
+
+crane_model! {
+    #[crane(no_dummy_derivatives)]
+    /// The gantry without its dummy-derivative system.
+    pub struct WithoutReduction {
+        params { m_t = 50.0, m_l = 200.0, J = 0.05, r = 0.1, g = 9.81 }
+        robot  [s, L]
+        load   [x, z]
+        inputs [u1, u2]
+        kinetic = 0.5*m_t*dot(s)^2 + 0.5*J/r^2*dot(L)^2 + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+        forces { s: u1, L: u2/r, z: -m_l*g }
+        constraints { #[rope(N = L)] rope: 0.5*((x - s)^2 + z^2 - L^2) }
+    }
+}
+
+/// A declaration may turn the reduced system off; the runtime then says so.
+#[test]
+fn a_declaration_can_leave_out_the_reduced_system() {
+    assert_eq!(
+        dummy_derivative::system_size::<WithoutReduction, 4, 1, 2>(),
+        Err(NoDummyDerivatives::OptedOut)
+    );
+}

@@ -66,7 +66,12 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         .minimal
         .as_ref()
         .and_then(|section| minimal::check(section, lists.load.len(), m, &mut lower));
-    let (runtime, self_test_enabled, attrs) = crane_options(&decl.attrs, cx);
+    let attributes::CraneOptions {
+        runtime,
+        self_test: self_test_enabled,
+        dummy_derivatives,
+        rest: attrs,
+    } = crane_options(&decl.attrs, cx);
     let self_test = s.sample.as_ref().and_then(|section| {
         let mu: Option<Vec<Ident>> = s
             .minimal
@@ -103,6 +108,7 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         forces,
         minimal,
         self_test: self_test.filter(|_| self_test_enabled),
+        dummy_derivatives,
     })
 }
 

@@ -74,18 +74,28 @@ pub(super) fn crane_model_impl(
 fn capabilities(model: &Model, dummy_size: Option<usize>, minimal_size: Option<usize>) -> TokenStream {
     let (n_lit, m_lit, a_lit) = (index(model.n()), index(model.m()), index(model.a()));
     let visitor = internal("visitor");
-    let dummy = dummy_size.map(|j| {
-        let j = index(j);
+    let visit = |result: TokenStream| {
         quote! {
             fn visit_dummy_derivatives<
                 V: __crane_runtime::VisitDummyDerivatives<Self, #n_lit, #m_lit, #a_lit>,
             >(
                 #visitor: V,
             ) -> ::core::result::Result<V::Output, __crane_runtime::NoDummyDerivatives> {
-                ::core::result::Result::Ok(#visitor.visit::<#j>())
+                #result
             }
         }
-    });
+    };
+    let dummy = match dummy_size {
+        Some(j) => {
+            let j = index(j);
+            Some(visit(quote!(::core::result::Result::Ok(#visitor.visit::<#j>()))))
+        }
+        // (otherwise the runtime's default says why there is none)
+        None if !model.dummy_derivatives => Some(visit(quote!(::core::result::Result::Err(
+            __crane_runtime::NoDummyDerivatives::OptedOut
+        )))),
+        None => None,
+    };
     let minimal = minimal_size.map(|f| {
         let f = index(f);
         quote! {
