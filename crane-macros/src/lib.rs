@@ -87,7 +87,9 @@
 //! Expressions: `+ - * /`, unary minus, `^` (integer or real constant
 //! exponent; binds tighter than unary minus, right-associative), parentheses,
 //! `sin cos tan sqrt exp ln atan2(y, x)`, numbers, `PI`, and the declared
-//! names. Mistakes are compile errors pointing at the culprit.
+//! names (nested at most 256 levels and 4096 operations deep: beyond, an
+//! error instead of an overflow of the compiler's stack). Mistakes are
+//! compile errors pointing at the culprit.
 #![warn(missing_docs)]
 
 extern crate proc_macro;

@@ -5,7 +5,6 @@
 
 use proc_macro2::{Ident, Span};
 use syn::parse::ParseStream;
-use syn::punctuated::Punctuated;
 use syn::{LitFloat, LitInt, Token};
 
 use super::ast::{BinOp, Expr, Function, PREFIX_BP};
@@ -17,21 +16,39 @@ pub const SUPPORTED_FUNCTIONS: &str = "sin, cos, tan, sqrt, exp, ln, atan2(y, x)
 /// What the error messages list as supported operators.
 pub const SUPPORTED_OPERATORS: &str = "+ - * / ^ (power) and parentheses";
 
+/// The deepest nesting of parentheses, function calls, unary minus and
+/// powers the parser follows (its own recursion; 2000 nested parentheses
+/// overflowed the compiler's stack inside the macro).
+pub const MAX_NESTING: usize = 256;
+
+/// The deepest expression tree the macro takes (a sum of `n` terms is `n`
+/// deep): the checks and the lowering walk the tree recursively, and a sum
+/// of 20000 terms overflowed the compiler's 8 MiB stack (10000 did not).
+pub const MAX_DEPTH: usize = 4096;
+
 /// Parses one expression; stops at the end of the input, a `,` or a `;`.
 pub fn parse_expr(input: ParseStream) -> syn::Result<Expr> {
-    expr_bp(input, 0)
+    expr_bp(input, 0, 0).map(|(expr, _)| expr)
 }
 
-fn expr_bp(input: ParseStream, min_bp: u8) -> syn::Result<Expr> {
-    let mut lhs = if input.peek(Token![-]) {
+/// The expression and its depth, at `nesting` levels of recursion.
+fn expr_bp(input: ParseStream, min_bp: u8, nesting: usize) -> syn::Result<(Expr, usize)> {
+    if nesting > MAX_NESTING {
+        return Err(input.error(format!(
+            "expression nested more than {MAX_NESTING} levels deep (parentheses, function calls, minus signs, \
+             powers): the macro stops here rather than overflow the compiler's stack"
+        )));
+    }
+    let (mut lhs, mut depth) = if input.peek(Token![-]) {
         let minus: Token![-] = input.parse()?;
-        let operand = expr_bp(input, PREFIX_BP)?;
-        Expr::Neg {
+        let (operand, depth) = expr_bp(input, PREFIX_BP, nesting + 1)?;
+        let neg = Expr::Neg {
             minus: minus.span,
             operand: Box::new(operand),
-        }
+        };
+        (neg, depth + 1)
     } else {
-        primary(input)?
+        primary(input, nesting)?
     };
     loop {
         if input.is_empty() || input.peek(Token![,]) || input.peek(Token![;]) {
@@ -48,14 +65,21 @@ fn expr_bp(input: ParseStream, min_bp: u8) -> syn::Result<Expr> {
             Some((_, rest)) => Ok(((), rest)),
             None => Err(cursor.error("expected an operator")),
         })?;
-        let rhs = expr_bp(input, right_bp)?;
+        let (rhs, rhs_depth) = expr_bp(input, right_bp, nesting + 1)?;
+        depth = depth.max(rhs_depth) + 1;
+        if depth > MAX_DEPTH {
+            return Err(input.error(format!(
+                "expression more than {MAX_DEPTH} operations deep (a sum of that many terms): the macro stops here \
+                 rather than overflow the compiler's stack"
+            )));
+        }
         lhs = Expr::Binary {
             op,
             lhs: Box::new(lhs),
             rhs: Box::new(rhs),
         };
     }
-    Ok(lhs)
+    Ok((lhs, depth))
 }
 
 fn peek_binop(input: ParseStream) -> Option<BinOp> {
@@ -100,32 +124,34 @@ fn number(
     })
 }
 
-fn primary(input: ParseStream) -> syn::Result<Expr> {
+/// A primary expression and its depth (1 for a leaf).
+fn primary(input: ParseStream, nesting: usize) -> syn::Result<(Expr, usize)> {
     if input.peek(LitInt) {
         let lit: LitInt = input.parse()?;
-        return number(lit.suffix(), lit.span(), lit.base10_digits(), || lit.base10_parse());
+        return number(lit.suffix(), lit.span(), lit.base10_digits(), || lit.base10_parse()).map(|e| (e, 1));
     }
     if input.peek(LitFloat) {
         let lit: LitFloat = input.parse()?;
-        return number(lit.suffix(), lit.span(), lit.base10_digits(), || lit.base10_parse());
+        return number(lit.suffix(), lit.span(), lit.base10_digits(), || lit.base10_parse()).map(|e| (e, 1));
     }
     if input.peek(syn::token::Paren) {
         let content;
         let paren = syn::parenthesized!(content in input);
-        let inner = parse_expr(&content)?;
+        let (inner, depth) = expr_bp(&content, 0, nesting + 1)?;
         if !content.is_empty() {
             return Err(content.error("unexpected token in parentheses"));
         }
-        return Ok(Expr::Paren {
+        let paren = Expr::Paren {
             open: paren.span.open(),
             inner: Box::new(inner),
             close: paren.span.close(),
-        });
+        };
+        return Ok((paren, depth + 1));
     }
     if input.peek(syn::Ident) {
         let name: Ident = input.parse()?;
         if !input.peek(syn::token::Paren) {
-            return Ok(Expr::Name(name));
+            return Ok((Expr::Name(name), 1));
         }
         let content;
         let paren = syn::parenthesized!(content in input);
@@ -144,11 +170,12 @@ fn primary(input: ParseStream) -> syn::Result<Expr> {
                         "dot() takes the name of a coordinate, e.g. `dot(x)`",
                     )
                 })?;
-            return Ok(Expr::Dot {
+            let dot = Expr::Dot {
                 dot: name,
                 coord,
                 close,
-            });
+            };
+            return Ok((dot, 1));
         }
         let Some(func) = Function::from_name(&name.to_string()) else {
             return Err(syn::Error::new(
@@ -156,9 +183,17 @@ fn primary(input: ParseStream) -> syn::Result<Expr> {
                 format!("unsupported function `{name}`; supported: {SUPPORTED_FUNCTIONS}"),
             ));
         };
-        let args: Vec<Expr> = Punctuated::<Expr, Token![,]>::parse_terminated_with(&content, parse_expr)?
-            .into_iter()
-            .collect();
+        // the arguments, separated by commas (a trailing one allowed)
+        let (mut args, mut deepest) = (Vec::new(), 0);
+        while !content.is_empty() {
+            let (arg, depth) = expr_bp(&content, 0, nesting + 1)?;
+            args.push(arg);
+            deepest = deepest.max(depth);
+            if content.is_empty() {
+                break;
+            }
+            content.parse::<Token![,]>()?;
+        }
         if args.len() != func.arity() {
             let expected = match func {
                 Function::Unary(_) => "1 argument".to_owned(),
@@ -172,12 +207,13 @@ fn primary(input: ParseStream) -> syn::Result<Expr> {
                 format!("`{name}` takes {expected}, found {}", args.len()),
             ));
         }
-        return Ok(Expr::Call {
+        let call = Expr::Call {
             func,
             name,
             args,
             close,
-        });
+        };
+        return Ok((call, deepest + 1));
     }
     if let Some((punct, _)) = input.cursor().punct() {
         let message = match punct.as_char() {

@@ -29,7 +29,7 @@ pub use ast::{
 };
 /// For the unit tests, which parse expressions on their own.
 #[cfg(test)]
-pub use expr::parse_expr;
+pub use expr::{MAX_DEPTH, MAX_NESTING, parse_expr};
 
 /// Parses a whole invocation. Returns `None` if not even the struct header
 /// could be read; every problem is reported to `cx`.

@@ -269,3 +269,18 @@ fn minimal_statements() {
     assert_eq!(statements("let c a").unwrap_err(), "expected `=`");
     assert_eq!(statements("x: a").unwrap_err(), "expected `=`");
 }
+
+/// Nesting and depth the macro refuses with an error rather than overflow
+/// the compiler's stack (2000 nested parentheses and a sum of 20000 terms
+/// once crashed rustc with SIGSEGV inside the macro).
+#[test]
+fn expressions_too_deep_are_errors() {
+    use crate::parse::{MAX_DEPTH, MAX_NESTING};
+    let nested = |levels: usize| format!("{}x{}", "(".repeat(levels), ")".repeat(levels));
+    assert_eq!(parsed(&nested(MAX_NESTING - 1)), "x");
+    assert!(parse_error(&nested(MAX_NESTING + 1)).starts_with("expression nested more than 256 levels deep"));
+    assert!(parse_error(&format!("{}x", "-".repeat(MAX_NESTING + 1))).starts_with("expression nested more than"));
+    let sum = |terms: usize| vec!["x"; terms].join(" + ");
+    assert!(parse_expr.parse2(tokens(&sum(MAX_DEPTH))).is_ok());
+    assert!(parse_error(&sum(MAX_DEPTH + 2)).starts_with("expression more than 4096 operations deep"));
+}
