@@ -295,7 +295,7 @@ pub enum NoDummyDerivatives {
     /// cannot take (eqs. 22a-d integrate them).
     #[error(
         "it has internal dynamics of dimension {dimension} (the load path leaves {dimension} states free), \
-         which the dummy-derivative formulation does not reduce; use the redundant formulation"
+         which the dummy-derivative formulation does not reduce"
     )]
     InternalDynamics {
         /// [`Structure::dimension`].

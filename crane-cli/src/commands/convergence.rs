@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use crane_models::registry::{Registry, Visit};
 use crane_models::study::Formulation;
-use crane_models::study::convergence::{DTS, T_ERROR, study};
+use crane_models::study::convergence::{DTS, T_ERROR, reference_inputs, study_against};
 use crane_models::{Case, Crane};
 use crane_runtime::Scheme;
 
@@ -20,7 +20,8 @@ use crate::{CliError, Tool, plot};
 // a negative number is a value to check ("--dt -0.01"), not a flag
 #[command(allow_negative_numbers = true)]
 pub struct ConvergenceArgs {
-    /// Model name (see `list`); it needs an analytical reference.
+    /// Model name (see `list`); errors are measured against its analytical
+    /// reference, or the exact inputs of its dummy-derivative formulation.
     model: String,
     /// Scenario file (its dt is ignored).
     #[arg(long, value_name = "FILE.toml")]
@@ -85,11 +86,15 @@ fn write<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             formulation.name()
         )
     };
+    let (reference, against) = reference_inputs(case)?;
     let mut header = Some(format!(
-        "{name} ({method}): relative error of u at t = {T_ERROR} s, eq. (48)\n{:>8}  {:>12}  {:>8}",
-        "dt [s]", "e_u", "order"
+        "{name} ({method}): relative error of u at t = {T_ERROR} s against {}, eq. (48)\n{:>8}  {:>12}  {:>8}",
+        against.describe(),
+        "dt [s]",
+        "e_u",
+        "order"
     ));
-    let rows = study(case, formulation, scheme, &DTS, |row| {
+    let rows = study_against(case, &reference, formulation, scheme, &DTS, |row| {
         if let Some(header) = header.take() {
             println!("{header}");
         }

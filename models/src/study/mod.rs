@@ -183,7 +183,7 @@ pub enum StudyError {
     NoMinimalMap(String),
     /// The dummy-derivative formulation of a crane that has none (internal
     /// dynamics, or a path order beyond what the runtime carries).
-    #[error("model `{model}` has no dummy-derivative formulation: {reason}")]
+    #[error("model `{model}` has no dummy-derivative formulation: {reason}; run it in the redundant formulation")]
     NoDummyDerivatives {
         /// The crane's name.
         model: &'static str,
