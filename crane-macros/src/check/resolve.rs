@@ -230,8 +230,12 @@ impl Lowerer<'_> {
             return None;
         }
         let Some((kind, index)) = self.names.get(ident) else {
+            let hint = self
+                .closest(ident, place)
+                .map(|name| format!("did you mean `{name}`? "))
+                .unwrap_or_default();
             self.cx
-                .error_at(span, format!("unknown symbol `{ident}`; {}", self.allowed(place)));
+                .error_at(span, format!("unknown symbol `{ident}`; {hint}{}", self.allowed(place)));
             return None;
         };
         let sym = match kind {
@@ -310,6 +314,33 @@ impl Lowerer<'_> {
         }
     }
 
+    /// The name allowed at `place` closest to the unknown `ident` (a
+    /// misspelling: at most a third of its letters off, at least one, for a
+    /// name of three letters or more; only case for a shorter one, a change
+    /// of case counting half), if any.
+    fn closest(&self, ident: &Ident, place: Place) -> Option<String> {
+        let unknown = key(ident);
+        let mut names: Vec<String> = self.names.params.iter().chain(&self.names.coords).map(key).collect();
+        if place == Place::Force {
+            names.extend(self.names.inputs.iter().map(key));
+        }
+        names.push("PI".to_owned());
+        // a name of one or two letters only differs in case (`pi` for `PI`):
+        // any other one-letter change would suggest a different symbol
+        let letters = unknown.chars().count();
+        let limit = if letters >= 3 {
+            (letters / 3).max(1) as f64
+        } else {
+            0.5 * letters as f64
+        };
+        names
+            .into_iter()
+            .map(|name| (edit_distance(&unknown, &name), name))
+            .filter(|(distance, _)| *distance <= limit)
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, name)| name)
+    }
+
     /// "allowed in ...: ..." for the unknown-symbol message.
     fn allowed(&self, place: Place) -> String {
         if place == Place::Minimal {
@@ -373,4 +404,25 @@ pub(super) fn declare_names(
     names.inputs = lists.inputs.clone();
     let complete = !lists.robot.is_empty() && !lists.load.is_empty() && !lists.inputs.is_empty();
     (complete && unique).then_some(names)
+}
+
+/// Levenshtein distance between `a` and `b`, a change of case counting half.
+fn edit_distance(a: &str, b: &str) -> f64 {
+    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
+    let mut previous: Vec<f64> = (0..=b.len()).map(|j| j as f64).collect();
+    for (i, &ca) in a.iter().enumerate() {
+        let mut current = vec![(i + 1) as f64; b.len() + 1];
+        for (j, &cb) in b.iter().enumerate() {
+            let change = if ca == cb {
+                0.0
+            } else if ca.eq_ignore_ascii_case(&cb) {
+                0.5
+            } else {
+                1.0
+            };
+            current[j + 1] = (previous[j] + change).min(previous[j + 1] + 1.0).min(current[j] + 1.0);
+        }
+        previous = current;
+    }
+    previous[b.len()]
 }

@@ -21,8 +21,26 @@ pub(super) fn check_sample(
     let mut q_ranges: Vec<Option<(Expr, Expr)>> = vec![None; coords.len()];
     let mut mu_ranges: Vec<Option<(Expr, Expr)>> = vec![None; mu.map_or(0, <[Ident]>::len)];
     for item in &section.body {
-        lower.lower(&item.low, Place::ParamDefault);
-        lower.lower(&item.high, Place::ParamDefault);
+        let low = lower.lower(&item.low, Place::ParamDefault);
+        let high = lower.lower(&item.high, Place::ParamDefault);
+        let value = |id: Option<crate::expr::Id>, lower: &Lowerer| id.and_then(|id| lower.arena.as_const(id));
+        if let (Some(low), Some(high)) = (value(low, lower), value(high, lower))
+            && !(low < high)
+        {
+            let (name, low_text, high_text) = (&item.name, &item.low, &item.high);
+            let message = if low == high {
+                format!(
+                    "the range of `{name}` in `sample` is empty ({low_text} .. {high_text}): the self-test draws \
+                     from `low .. high` with low < high"
+                )
+            } else {
+                format!(
+                    "the range of `{name}` in `sample` is reversed ({low_text} .. {high_text}): write the lower end \
+                     first, `{name} = {high_text} .. {low_text}`"
+                )
+            };
+            lower.cx.error_at(item.name.span(), message);
+        }
         let slot = if let Some(i) = coords.iter().position(|c| *c == item.name) {
             &mut q_ranges[i]
         } else if let Some(k) = mu.and_then(|mu| mu.iter().position(|c| *c == item.name)) {

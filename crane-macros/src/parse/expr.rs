@@ -98,10 +98,18 @@ fn unexpected_after_operand(input: ParseStream) -> syn::Error {
     let cursor = input.cursor();
     if let Some((punct, _)) = cursor.punct() {
         let c = punct.as_char();
-        let message = if c == '.' {
-            "unsupported operator `.`: write functions as `sin(x)`, not `x.sin()`".to_owned()
-        } else {
-            format!("unsupported operator `{c}`; supported: {SUPPORTED_OPERATORS}")
+        let message = match c {
+            '.' => "unsupported operator `.`: write functions as `sin(x)` and powers as `x^2`, not `x.sin()` or \
+                    `x.powi(2)`"
+                .to_owned(),
+            ':' => "paths are not expressions: write `PI` for pi (not `std::f64::consts::PI`) and declare other \
+                    constants as parameters"
+                .to_owned(),
+            '=' => "a constraint is an expression g(q) that the motion keeps at zero, not an equation: for \
+                    `a = b` write `a - (b)`"
+                .to_owned(),
+            '\'' => "write a velocity as `dot(x)`, not `x'`".to_owned(),
+            _ => format!("unsupported operator `{c}`; supported: {SUPPORTED_OPERATORS}"),
         };
         return syn::Error::new(punct.span(), message);
     }
@@ -178,9 +186,17 @@ fn primary(input: ParseStream, nesting: usize) -> syn::Result<(Expr, usize)> {
             return Ok((dot, 1));
         }
         let Some(func) = Function::from_name(&name.to_string()) else {
+            let hint = match name.to_string().as_str() {
+                "log" | "log10" | "log2" => " (the natural logarithm is `ln`; log_b(x) is `ln(x)/ln(b)`)",
+                "pow" | "powi" | "powf" => " (write powers as `x^n`)",
+                "sq" | "square" => " (write `x^2`)",
+                "cbrt" => " (write `x^(1/3)` as `x^0.3333333333333333`, or better a parameter)",
+                "atan" | "arctan" => " (write `atan2(y, x)`)",
+                _ => "",
+            };
             return Err(syn::Error::new(
                 name.span(),
-                format!("unsupported function `{name}`; supported: {SUPPORTED_FUNCTIONS}"),
+                format!("unsupported function `{name}`{hint}; supported: {SUPPORTED_FUNCTIONS}"),
             ));
         };
         // the arguments, separated by commas (a trailing one allowed)

@@ -44,7 +44,8 @@ pub(super) fn parse_param(input: ParseStream) -> syn::Result<ParamDecl> {
     })
 }
 
-/// `name = low .. high`; the bounds are split at the `..` token pair.
+/// `name = low .. high` (or `..=`); the bounds are split at the `..` token
+/// pair.
 pub(super) fn parse_sample(input: ParseStream) -> syn::Result<SampleDecl> {
     let name: Ident = input.parse()?;
     input.parse::<Token![=]>()?;
@@ -61,7 +62,9 @@ pub(super) fn parse_sample(input: ParseStream) -> syn::Result<SampleDecl> {
         ));
     };
     let low: TokenStream = tts[..dots].iter().cloned().collect();
-    let high: TokenStream = tts[dots + 2..].iter().cloned().collect();
+    // `low ..= high` is the same box for continuous draws
+    let inclusive = matches!(tts.get(dots + 2), Some(TokenTree::Punct(p)) if p.as_char() == '=');
+    let high: TokenStream = tts[dots + 2 + usize::from(inclusive)..].iter().cloned().collect();
     if low.is_empty() || high.is_empty() {
         return Err(syn::Error::new(
             tts[dots].span(),

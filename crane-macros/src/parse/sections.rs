@@ -83,9 +83,17 @@ pub(super) fn parse_sections(body: TokenStream, cx: &Ctxt) -> Sections {
         };
         let name = keyword.to_string();
         let Some(&(_, follow)) = SECTIONS.iter().find(|(kw, _)| *kw == name) else {
+            let hint = match name.as_str() {
+                "potential" | "gravity" | "V" | "energy" => {
+                    "; gravity and other potential forces are generalized forces in `forces`, `-dV/dq` \
+                     (for a load of mass m_l at height z: `forces { z: -m_l*g }`)"
+                }
+                "outputs" | "outputs_map" => "; the outputs are the `load` coordinates",
+                _ => "",
+            };
             cx.error_at(
                 keyword.span(),
-                format!("unknown section `{keyword}`; expected one of: {SECTION_NAMES}"),
+                format!("unknown section `{keyword}`; expected one of: {SECTION_NAMES}{hint}"),
             );
             i = skip_to_section(&tts, i + 1);
             continue;

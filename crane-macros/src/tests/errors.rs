@@ -67,7 +67,7 @@ fn unknown_symbol() {
     assert_errors(
         &navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(xx^2"),
         &[
-            "unknown symbol `xx`; allowed in `constraints`: parameters (m_l, J1, J2, r1, r2, alpha, l, g), \
+            "unknown symbol `xx`; did you mean `x0`? allowed in `constraints`: parameters (m_l, J1, J2, r1, r2, alpha, l, g), \
            coordinates (L1, L2, L0, x0, z0, x, z), PI",
         ],
     );
@@ -315,7 +315,7 @@ fn sections() {
     assert_errors(
         &navy_with("inputs [u1, u2]", "inputs [u1, u2] outputs [x, z]"),
         &[
-            "unknown section `outputs`; expected one of: params, robot, load, inputs, kinetic, forces, constraints, minimal, sample",
+            "unknown section `outputs`; expected one of: params, robot, load, inputs, kinetic, forces, constraints, minimal, sample; the outputs are the `load` coordinates",
         ],
     );
     assert_errors(
@@ -826,4 +826,71 @@ fn the_reduced_system_is_generated_only_where_the_runtime_takes_it() {
     );
     assert!(!with(&opted_out));
     assert!(expand(super::tokens(&opted_out)).to_string().contains("OptedOut"));
+}
+
+/// The messages for a control engineer's habits say what to write instead.
+#[test]
+fn messages_teach_the_formulation() {
+    let first = |source: &str| expand_errors(source).0.into_iter().next().unwrap_or_default();
+    let cases = [
+        (
+            navy_with("z: -m_l*g", "z: -m_lx*g"),
+            "unknown symbol `m_lx`; did you mean `m_l`? allowed in `forces`",
+        ),
+        (
+            navy_with("l*sin(alpha)", "l*sin(pi/3.0)"),
+            "unknown symbol `pi`; did you mean `PI`? allowed in",
+        ),
+        (
+            navy_with("l*sin(alpha)", "l*log(alpha)"),
+            "unsupported function `log` (the natural logarithm is `ln`",
+        ),
+        (
+            navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(pow(x0, 2)"),
+            "unsupported function `pow` (write powers as `x^n`)",
+        ),
+        (
+            navy_with("rope0: 0.5*(x0^2", "rope0: 0.5*(x0.powi(2)"),
+            "unsupported operator `.`: write functions as `sin(x)` and powers as `x^2`",
+        ),
+        (
+            navy_with("l*sin(alpha)", "l*sin(std::f64::consts::PI)"),
+            "paths are not expressions: write `PI` for pi",
+        ),
+        (
+            navy_with("rope0: 0.5*(x0^2 + z0^2 - L0^2)", "rope0: x0^2 + z0^2 = L0^2"),
+            "a constraint is an expression g(q) that the motion keeps at zero, not an equation: for `a = b` write `a - (b)`",
+        ),
+        (
+            navy_with("inputs [u1, u2]", "inputs [u1, u2] potential = m_l*g*z;"),
+            "unknown section `potential`; expected one of: params, robot, load, inputs, kinetic, forces, constraints, minimal, sample; gravity and other potential forces are generalized forces in `forces`",
+        ),
+        (
+            navy_with_sample(&format!(
+                "sample {{ {} }}",
+                FULL_SAMPLE.replace("L1 = 1.0 .. 20.0", "L1 = 20.0 .. 1.0")
+            )),
+            "the range of `L1` in `sample` is reversed (20.0 .. 1.0): write the lower end first, `L1 = 1.0 .. 20.0`",
+        ),
+        (
+            navy_with_sample(&format!(
+                "sample {{ {} }}",
+                FULL_SAMPLE.replace("L1 = 1.0 .. 20.0", "L1 = 1.0 .. 1.0")
+            )),
+            "the range of `L1` in `sample` is empty (1.0 .. 1.0)",
+        ),
+    ];
+    for (source, expected) in &cases {
+        let message = first(source);
+        assert!(
+            message.starts_with(expected),
+            "expected `{expected}...`, got `{message}`"
+        );
+    }
+    // `..=` is the same box for continuous draws
+    let inclusive = navy_with_sample(&format!(
+        "sample {{ {} }}",
+        FULL_SAMPLE.replace("1.0 .. 20.0", "1.0 ..= 20.0")
+    ));
+    assert_eq!(expand_errors(&inclusive).0, Vec::<String>::new());
 }

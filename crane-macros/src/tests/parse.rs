@@ -106,7 +106,7 @@ fn unsupported_syntax_is_an_error_not_a_panic() {
     );
     assert_eq!(
         parse_error("x.sin()"),
-        "unsupported operator `.`: write functions as `sin(x)`, not `x.sin()`"
+        "unsupported operator `.`: write functions as `sin(x)` and powers as `x^2`, not `x.sin()` or `x.powi(2)`"
     );
     assert_eq!(parse_error("x ** 2"), "unexpected `*`: write powers as `x^n`");
     assert_eq!(
