@@ -155,6 +155,9 @@ fn parameter_methods(model: &Model) -> TokenStream {
     } else {
         quote!(::std::vec![#(self.#param_names),*])
     };
+    let (name, value) = (internal("name"), internal("value"));
+    // every arm returns (an arm after the match would be unreachable for a
+    // crane without parameters)
     quote! {
         fn parameter_values(&self) -> ::std::vec::Vec<f64> {
             #parameter_values
@@ -162,19 +165,19 @@ fn parameter_methods(model: &Model) -> TokenStream {
 
         fn set_parameter(
             &mut self,
-            name: &str,
-            value: f64,
+            #name: &str,
+            #value: f64,
         ) -> ::core::result::Result<(), __crane_runtime::UnknownParameter> {
-            match name {
-                #(#param_strs => self.#param_names = value,)*
-                _ => {
-                    return ::core::result::Result::Err(__crane_runtime::UnknownParameter {
-                        name: ::std::string::String::from(name),
-                        known: ::std::string::String::from(#known),
-                    });
-                }
+            match #name {
+                #(#param_strs => {
+                    self.#param_names = #value;
+                    ::core::result::Result::Ok(())
+                })*
+                _ => ::core::result::Result::Err(__crane_runtime::UnknownParameter {
+                    name: ::std::string::String::from(#name),
+                    known: ::std::string::String::from(#known),
+                }),
             }
-            ::core::result::Result::Ok(())
         }
     }
 }

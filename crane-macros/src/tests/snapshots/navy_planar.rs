@@ -229,28 +229,51 @@ const _: () = {
         }
         fn set_parameter(
             &mut self,
-            name: &str,
-            value: f64,
+            __name: &str,
+            __value: f64,
         ) -> ::core::result::Result<(), __crane_runtime::UnknownParameter> {
-            match name {
-                "m_l" => self.m_l = value,
-                "J1" => self.J1 = value,
-                "J2" => self.J2 = value,
-                "r1" => self.r1 = value,
-                "r2" => self.r2 = value,
-                "alpha" => self.alpha = value,
-                "l" => self.l = value,
-                "g" => self.g = value,
+            match __name {
+                "m_l" => {
+                    self.m_l = __value;
+                    ::core::result::Result::Ok(())
+                }
+                "J1" => {
+                    self.J1 = __value;
+                    ::core::result::Result::Ok(())
+                }
+                "J2" => {
+                    self.J2 = __value;
+                    ::core::result::Result::Ok(())
+                }
+                "r1" => {
+                    self.r1 = __value;
+                    ::core::result::Result::Ok(())
+                }
+                "r2" => {
+                    self.r2 = __value;
+                    ::core::result::Result::Ok(())
+                }
+                "alpha" => {
+                    self.alpha = __value;
+                    ::core::result::Result::Ok(())
+                }
+                "l" => {
+                    self.l = __value;
+                    ::core::result::Result::Ok(())
+                }
+                "g" => {
+                    self.g = __value;
+                    ::core::result::Result::Ok(())
+                }
                 _ => {
-                    return ::core::result::Result::Err(__crane_runtime::UnknownParameter {
-                        name: ::std::string::String::from(name),
+                    ::core::result::Result::Err(__crane_runtime::UnknownParameter {
+                        name: ::std::string::String::from(__name),
                         known: ::std::string::String::from(
                             "m_l, J1, J2, r1, r2, alpha, l, g",
                         ),
-                    });
+                    })
                 }
             }
-            ::core::result::Result::Ok(())
         }
         fn constraints<T: __crane_runtime::Scalar>(
             &self,
