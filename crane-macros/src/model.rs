@@ -314,14 +314,8 @@ impl Kernels {
 /// `|d|^2 - L^2` gives `2 lambda L` and `|d| - L` gives `lambda` with
 /// their own `lambda`: the same force.
 fn rope_tension(d: &mut Differentiator<'_>, g: &[Id], jacobian: &Matrix, k: usize, length: Id) -> (Id, Id) {
-    let variables: Vec<Sym> = d
-        .arena()
-        .symbols(length)
-        .into_iter()
-        .filter(|s| matches!(s, Sym::Coord(_) | Sym::Param(_)))
-        .collect();
     let (mut along, mut norm) = (Vec::new(), Vec::new());
-    for v in variables {
+    for v in length_variables(d.arena(), length) {
         let dl = d.diff(length, v);
         let dg = match v {
             Sym::Coord(j) => jacobian[k][j as usize],
@@ -336,6 +330,16 @@ fn rope_tension(d: &mut Differentiator<'_>, g: &[Id], jacobian: &Matrix, k: usiz
     let lambda = d.arena().sym(Sym::Lambda(k as u16));
     let pull = d.arena().mul2(lambda, dg_dl);
     (d.arena().neg(pull), along)
+}
+
+/// The coordinates and parameters a rope's length depends on (none for a
+/// length that is a number).
+pub fn length_variables(arena: &Arena, length: Id) -> Vec<Sym> {
+    arena
+        .symbols(length)
+        .into_iter()
+        .filter(|s| matches!(s, Sym::Coord(_) | Sym::Param(_)))
+        .collect()
 }
 
 impl MinimalKernels {

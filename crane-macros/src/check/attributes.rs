@@ -12,7 +12,7 @@ use crate::ctxt::Ctxt;
 /// `no_dummy_derivatives` the dummy-derivative system (for a crane that
 /// will only run eqs. 22 or 24: its system grows with the path order and
 /// is the largest part of the expansion).
-pub(super) struct CraneOptions {
+pub(crate) struct CraneOptions {
     /// The runtime crate's path.
     pub runtime: TokenStream,
     /// Whether the self-test is generated.
@@ -24,7 +24,7 @@ pub(super) struct CraneOptions {
 }
 
 /// The [`CraneOptions`] of the struct's attributes.
-pub(super) fn crane_options(attrs: &[syn::Attribute], cx: &Ctxt) -> CraneOptions {
+pub(crate) fn crane_options(attrs: &[syn::Attribute], cx: &Ctxt) -> CraneOptions {
     let mut runtime = quote::quote!(::crane_runtime);
     let (mut self_test, mut dummy_derivatives) = (true, true);
     let mut rest = Vec::new();

@@ -32,7 +32,8 @@ use crate::ctxt::Ctxt;
 use crate::expr::Arena;
 use crate::model::{Model, Param};
 use crate::parse::Declaration;
-use attributes::{crane_options, first_doc_line};
+pub(crate) use attributes::crane_options;
+use attributes::first_doc_line;
 use resolve::{Lowerer, Place, declare_names};
 use rules::{check_constraints, check_counts, check_forces, check_kinetic, required_sections};
 use sample::check_sample;
@@ -152,18 +153,14 @@ pub fn ropes_depend_on_their_lengths(
     kernels: &crate::model::Kernels,
 ) -> Option<syn::Error> {
     let constraints = &decl.sections.constraints.as_ref()?.body;
-    let ropes = constraints.iter().filter_map(|c| c.rope.as_ref().map(|r| (c, r)));
-    for ((constraint, rope), &along) in ropes.zip(&kernels.rope_along) {
+    // the declared ropes, the model's and the kernels' are in constraint order
+    let declared = constraints.iter().filter_map(|c| c.rope.as_ref().map(|r| (c, r)));
+    for (((constraint, rope), (_, lowered)), &along) in declared.zip(model.ropes()).zip(&kernels.rope_along) {
         if !model.arena.is_zero(along) {
             continue;
         }
         let length = &rope.length;
-        let constant = model
-            .arena
-            .symbols(model.ropes().find(|(_, r)| r.tension == rope.tension)?.1.length)
-            .iter()
-            .all(|s| !matches!(s, crate::expr::Sym::Coord(_) | crate::expr::Sym::Param(_)));
-        let message = if constant {
+        let message = if crate::model::length_variables(&model.arena, lowered.length).is_empty() {
             format!(
                 "the length `{length}` of rope `{}` is a number: a rope's length is a coordinate (a winch's \
                  rope), a parameter (a sling) or an expression of them, so that its tension, the constraint's \

@@ -35,24 +35,6 @@ pub fn stub(decl: &Declaration) -> TokenStream {
     }
 }
 
-/// The runtime path of `#[crane(runtime = path)]`, else `::crane_runtime`.
-fn runtime(decl: &Declaration) -> TokenStream {
-    decl.attrs
-        .iter()
-        .filter(|attr| attr.path().is_ident("crane"))
-        .find_map(|attr| {
-            attr.parse_args_with(|input: syn::parse::ParseStream| {
-                let key: syn::Ident = input.parse()?;
-                input.parse::<syn::Token![=]>()?;
-                let path: TokenStream = input.parse()?;
-                Ok((key == "runtime" && !path.is_empty()).then_some(path))
-            })
-            .ok()
-            .flatten()
-        })
-        .unwrap_or_else(|| quote!(::crane_runtime))
-}
-
 /// The trait impls of the stub; `None` where a section that gives a size
 /// is missing.
 fn trait_stubs(decl: &Declaration) -> Option<TokenStream> {
@@ -65,7 +47,8 @@ fn trait_stubs(decl: &Declaration) -> Option<TokenStream> {
         return None;
     }
     let name = &decl.name;
-    let runtime = runtime(decl);
+    // the options were reported with the declaration's other errors
+    let runtime = crate::check::crane_options(&decl.attrs, &crate::ctxt::Ctxt::new()).runtime;
     let lit = Literal::usize_unsuffixed;
     let (n, m, a, f) = (lit(n), lit(m), lit(a), lit(robot + a - m));
     let sv = quote!(#runtime::nalgebra::SVector);
