@@ -291,10 +291,13 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                         C::NAME
                     ));
                 }
-                dummy_derivative::system_size::<C::Model, N, M, A>()
-                    .map_err(|reason| format!("{} has no dummy-derivative formulation: {reason}", C::NAME))?;
                 let stepper = dummy_derivative::boxed_stepper(Box::new(case.model), case.path, &start, &options)
-                    .map_err(|e| e.to_string())?;
+                    .map_err(|error| match error {
+                        crane_runtime::Error::NoDummyDerivatives { reason, .. } => {
+                            format!("{} has no dummy-derivative formulation: {reason}", C::NAME)
+                        }
+                        error => error.to_string(),
+                    })?;
                 Stepping::Reduced(stepper)
             }
             _ => Stepping::Redundant(Box::new(

@@ -4,7 +4,7 @@
 //! time steps, with the observed orders.
 
 use crane_runtime::nalgebra::SVector;
-use crane_runtime::{Options, Scheme, dummy_derivative};
+use crane_runtime::{Options, Scheme};
 
 use super::{Formulation, StudyError};
 use crate::case::Case;
@@ -72,16 +72,18 @@ pub fn reference_inputs<C: Crane<N, M, A>, const N: usize, const M: usize, const
     if let Some(state) = case.reference(T_ERROR) {
         return Ok((state.u, Reference::Analytical));
     }
-    if let Err(reason) = dummy_derivative::system_size::<C::Model, N, M, A>() {
-        return Err(StudyError::Convergence(format!(
-            "{} has no analytical reference at t = {T_ERROR} s and no exact reduced formulation to measure the \
-             error against: {reason}",
-            C::NAME
-        )));
-    }
     let start = case.start()?;
     let options = Options::new(0.01, T_ERROR)?;
-    let reduced = case.simulate_dummy_derivative(&start, &options, &mut |_, _| {})?;
+    let reduced = case
+        .simulate_dummy_derivative(&start, &options, &mut |_, _| {})
+        .map_err(|error| match error {
+            crane_runtime::Error::NoDummyDerivatives { reason, .. } => StudyError::Convergence(format!(
+                "{} has no analytical reference at t = {T_ERROR} s and no exact reduced formulation to measure the \
+                 error against: {reason}",
+                C::NAME
+            )),
+            error => StudyError::Runtime(error),
+        })?;
     let state = reduced
         .states
         .last()

@@ -134,11 +134,9 @@ impl Formulation {
             Formulation::Minimal => Ok(case
                 .simulate_minimal_with_progress(start, options, progress)
                 .ok_or_else(|| StudyError::NoMinimalMap(C::NAME.to_string()))??),
-            Formulation::DummyDerivative => {
-                dummy_derivative::system_size::<C::Model, N, M, A>()
-                    .map_err(|reason| StudyError::NoDummyDerivatives { model: C::NAME, reason })?;
-                Ok(case.simulate_dummy_derivative(start, options, progress)?)
-            }
+            Formulation::DummyDerivative => case
+                .simulate_dummy_derivative(start, options, progress)
+                .map_err(|error| StudyError::of_crane(C::NAME, error)),
         }
     }
 }
@@ -201,6 +199,17 @@ pub enum StudyError {
         /// What is wrong with it.
         message: String,
     },
+}
+
+impl StudyError {
+    /// A runtime error of crane `model`, the missing dummy-derivative
+    /// system named by the crane's name.
+    pub fn of_crane(model: &'static str, error: crane_runtime::Error) -> Self {
+        match error {
+            crane_runtime::Error::NoDummyDerivatives { reason, .. } => StudyError::NoDummyDerivatives { model, reason },
+            error => StudyError::Runtime(error),
+        }
+    }
 }
 
 /// How a case is run: the settings a scenario file or the command line
