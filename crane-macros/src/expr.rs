@@ -250,9 +250,8 @@ impl Arena {
         self.symbols(id).into_iter().find(|&s| pred(s))
     }
 
-    /// Numerical value of `id` with the symbols valued by `env` (used by the
-    /// tests to compare derivatives with finite differences).
-    #[cfg(test)]
+    /// Numerical value of `id` with the symbols valued by `env` (the
+    /// compile-time checks at sample points; the tests' finite differences).
     pub fn eval(&self, id: Id, env: &dyn Fn(Sym) -> f64) -> f64 {
         let order = self.reachable([id]);
         let mut values: HashMap<Id, f64> = HashMap::with_capacity(order.len());

@@ -90,6 +90,18 @@
 //! names (nested at most 256 levels and 4096 operations deep: beyond, an
 //! error instead of an overflow of the compiler's stack). Mistakes are
 //! compile errors pointing at the culprit.
+//!
+//! # Physics checks
+//! Beyond the form, the macro checks what the declaration says physically:
+//! constraints must be independent (their gradients are compared at
+//! pseudo-random configurations; a duplicated or combined constraint is an
+//! error naming the constraints it depends on), a rope's constraint must
+//! involve its length, and a kinetic energy with a configuration-dependent
+//! mass matrix in an angle is shown its rewrite in the load's position. A
+//! coordinate that carries a constant force (a weight) but has no inertia
+//! compiles with a warning at the force (`use of deprecated constant
+//! z_has_a_force_but_no_inertia: ...`, the one warning a macro can emit),
+//! which `#![deny(warnings)]` makes an error.
 #![warn(missing_docs)]
 
 extern crate proc_macro;
@@ -133,6 +145,7 @@ fn expand(input: TokenStream) -> TokenStream {
             let kernels = model::Kernels::derive(&mut model);
             if let Some(error) = check::negative_inertia(&decl, &model, &kernels)
                 .or_else(|| check::ropes_depend_on_their_lengths(&decl, &model, &kernels))
+                .or_else(|| check::dependent_constraints(&decl, &model, &kernels))
             {
                 let mut tokens = error.to_compile_error();
                 tokens.extend(codegen::stub(&decl));
@@ -151,8 +164,11 @@ fn expand(input: TokenStream) -> TokenStream {
                 tokens.extend(codegen::stub(&decl));
                 return tokens;
             }
+            let lints = check::physics_lints(&decl, &model, &kernels);
             let dummy = dummy::DummyKernels::derive(&mut model, &kernels, &structure);
-            codegen::generate(&model, &kernels, &structure, dummy.as_ref())
+            let mut tokens = codegen::generate(&model, &kernels, &structure, dummy.as_ref());
+            tokens.extend(codegen::lints(&lints));
+            tokens
         }
         (_, Err(error)) => {
             let mut tokens = error.to_compile_error();

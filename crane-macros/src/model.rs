@@ -84,6 +84,8 @@ pub struct Param {
     pub name: Ident,
     /// The default as declared (a constant expression).
     pub default: Expr,
+    /// The default lowered (a constant of the IR).
+    pub value: Id,
     /// Declared `positive`: the runtime refuses a value <= 0.
     pub positive: bool,
     /// Doc comments on the parameter.

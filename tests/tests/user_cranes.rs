@@ -215,7 +215,7 @@ fn a_crane_with_internal_dynamics_is_refused_with_their_dimension() {
     assert!(matches!(boxed, Err(Error::NoDummyDerivatives { reason, .. }) if reason == expected));
 }
 
-/// The README's recipe for a minimal run on a user's gantry: a start from
+/// The guide's recipe (docs/minimal-coordinates.md) for a minimal run on a user's gantry: a start from
 /// `init::static_equilibrium` and the exact guess of `mu`. The start's
 /// constraint residual must not be larger than the minimal start's own
 /// tolerance (`phi(mu0) = q0` to 1e-12 of |q0|): it once was 1.5e-10 and the
@@ -301,4 +301,58 @@ fn a_user_crane_converges_against_its_reduced_inputs() {
     let orders: Vec<f64> = rows[1..].iter().map(|row| row.order.unwrap()).collect();
     assert!(orders.iter().all(|p| (p - 1.0).abs() < 0.2), "{orders:?}");
     assert!((orders[orders.len() - 1] - 1.0).abs() < 0.1, "{orders:?}");
+}
+
+crane_model! {
+    /// The user's gantry with gravity declared upward (`z: +m_l*g`, z up).
+    pub struct UpsideDown {
+        params { m_t: positive = 50.0, m_l: positive = 200.0, J: positive = 0.05, r: positive = 0.1,
+                 g: positive = 9.81 }
+        robot  [s, L]
+        load   [x, z]
+        inputs [u1, u2]
+        kinetic = 0.5*m_t*dot(s)^2 + 0.5*J/r^2*dot(L)^2 + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+        forces { s: u1, L: u2/r, z: m_l*g }
+        constraints {
+            #[rope(N = L)]
+            rope: 0.5*((x - s)^2 + z^2 - L^2),
+        }
+    }
+}
+
+struct UpsideDownGantry;
+
+impl Crane<4, 1, 2> for UpsideDownGantry {
+    type Model = UpsideDown;
+    const NAME: &'static str = "upside-down";
+
+    fn maneuver() -> Maneuver<2> {
+        Gantry::maneuver()
+    }
+}
+
+/// Gravity declared upward: the load below the trolley pushes on its rope
+/// all along (-1962 N at rest). The run says so, and what to check, where
+/// it once said only that the rope goes slack at t = 0; `--strict` fails
+/// on it. The correct gantry's rope stays taut.
+#[test]
+fn a_rope_that_pushes_all_along_points_at_gravity() {
+    let settings = RunSettings::default();
+    let case = Case::<UpsideDownGantry, 4, 1, 2>::maneuver().unwrap();
+    let summary = study::run(&case, &settings, &mut |_, _| {}).unwrap().summary;
+    let rope = &summary.ropes[0];
+    println!("N between {} and {} N", rope.min_tension, rope.max_tension);
+    // the load's weight pushes: -1962 N at rest, between -2133 and -1837 N
+    // along the move (measured)
+    assert!(rope.max_tension < 0.0, "{}", rope.max_tension);
+    let findings = study::infeasibilities(&summary);
+    assert!(
+        findings.iter().any(|f| f.starts_with("rope N pushes for the whole run")
+            && f.contains("check the sign of gravity in the crane's forces (with z up, `z: -m_l*g`)")),
+        "{findings:?}"
+    );
+    let case = Case::<Gantry, 4, 1, 2>::maneuver().unwrap();
+    let summary = study::run(&case, &settings, &mut |_, _| {}).unwrap().summary;
+    assert!(summary.ropes[0].min_tension > 0.0);
+    assert!(study::infeasibilities(&summary).is_empty());
 }

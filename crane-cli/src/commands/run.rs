@@ -319,11 +319,8 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
             ));
             continue;
         }
-        match r.first_slack {
-            Some(t) => lines.push(format!(
-                "WARNING: rope {} goes slack at t = {t:.3} s (min tension {:.3e} N)",
-                r.name, r.min_tension
-            )),
+        match r.slack() {
+            Some(slack) => lines.push(format!("WARNING: {slack} (min tension {:.3e} N)", r.min_tension)),
             // round-off below the printed digits is no negative tension
             None => lines.push(format!(
                 "rope {} stays taut: min tension {:.3} N at t = {:.3} s",

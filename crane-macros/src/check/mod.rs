@@ -22,6 +22,7 @@
 
 mod attributes;
 mod minimal;
+mod physics;
 mod resolve;
 mod rules;
 mod sample;
@@ -34,8 +35,9 @@ use crate::model::{Model, Param};
 use crate::parse::Declaration;
 pub(crate) use attributes::crane_options;
 use attributes::first_doc_line;
+pub use physics::{Lint, dependent_constraints, negative_inertia, physics_lints, ropes_depend_on_their_lengths};
 use resolve::{Lowerer, Place, declare_names};
-use rules::{check_constraints, check_counts, check_forces, check_kinetic, required_sections};
+use rules::{check_constraints, check_counts, check_forces, check_kinetic, required_constraints, required_sections};
 use sample::check_sample;
 
 /// Checks `decl` and builds the [`Model`]; `None` if anything was reported.
@@ -57,10 +59,13 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         cx,
         minimal: None,
     };
-    for p in params {
-        lower.lower(&p.default, Place::ParamDefault);
-    }
+    // `None` only after an error was reported
+    let defaults: Option<Vec<crate::expr::Id>> = params
+        .iter()
+        .map(|p| lower.lower(&p.default, Place::ParamDefault))
+        .collect();
     let kinetic = s.kinetic.as_ref().and_then(|k| check_kinetic(&k.body, &mut lower));
+    required_constraints(decl, cx);
     let forces = check_forces(decl, n_robot, &mut lower);
     let constraints = check_constraints(constraints, &mut lower);
     let minimal = s
@@ -86,9 +91,11 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
 
     let params = params
         .iter()
-        .map(|p| Param {
+        .zip(defaults?)
+        .map(|(p, value)| Param {
             name: p.name.clone(),
             default: p.default.clone(),
+            value,
             positive: p.positive,
             docs: p.docs.clone(),
         })
@@ -111,71 +118,4 @@ pub fn check(decl: &Declaration, cx: &Ctxt) -> Option<Model> {
         self_test: self_test.filter(|_| self_test_enabled),
         dummy_derivatives,
     })
-}
-
-/// A kinetic energy must be positive semi-definite: a diagonal entry of the
-/// mass matrix `M_ii = d^2 T / dq_i'^2` that is a negative constant (a
-/// literal negative coefficient of `dot(q_i)^2`) is an error at the
-/// `kinetic` keyword. Entries that depend on parameters are checked by the
-/// runtime, with the parameters' values, before a run.
-pub fn negative_inertia(
-    decl: &crate::parse::Declaration,
-    model: &crate::model::Model,
-    kernels: &crate::model::Kernels,
-) -> Option<syn::Error> {
-    let kinetic = decl.sections.kinetic.as_ref()?;
-    let (i, value) = (0..model.coords.len()).find_map(|i| {
-        model
-            .arena
-            .as_const(kernels.mass[i][i])
-            .filter(|v| *v < 0.0)
-            .map(|v| (i, v))
-    })?;
-    let coord = &model.coords[i];
-    Some(syn::Error::new(
-        kinetic.keyword.span(),
-        format!(
-            "the kinetic energy gives `{coord}` the negative inertia {value} (the coefficient of `dot({coord})^2` is \
-             {}): a kinetic energy must be positive semi-definite",
-            value / 2.0
-        ),
-    ))
-}
-
-/// A rope's constraint must depend on the rope's length: its tension is
-/// the constraint's generalized force along that length (`N = -lambda
-/// dg/dL`), which is zero for a constraint that does not change with `L`
-/// (a rail `h - 1.0` marked as a rope once reported a tension of -2602 N).
-/// The error points at the rope's tension name.
-pub fn ropes_depend_on_their_lengths(
-    decl: &crate::parse::Declaration,
-    model: &crate::model::Model,
-    kernels: &crate::model::Kernels,
-) -> Option<syn::Error> {
-    let constraints = &decl.sections.constraints.as_ref()?.body;
-    // the declared ropes, the model's and the kernels' are in constraint order
-    let declared = constraints.iter().filter_map(|c| c.rope.as_ref().map(|r| (c, r)));
-    for (((constraint, rope), (_, lowered)), &along) in declared.zip(model.ropes()).zip(&kernels.rope_along) {
-        if !model.arena.is_zero(along) {
-            continue;
-        }
-        let length = &rope.length;
-        let message = if crate::model::length_variables(&model.arena, lowered.length).is_empty() {
-            format!(
-                "the length `{length}` of rope `{}` is a number: a rope's length is a coordinate (a winch's \
-                 rope), a parameter (a sling) or an expression of them, so that its tension, the constraint's \
-                 force along the length, is defined",
-                rope.tension
-            )
-        } else {
-            format!(
-                "constraint `{}` does not depend on the length `{length}` of rope `{}`, so it exerts no force \
-                 along the rope: a rope's constraint relates its length to the distance between its ends, e.g. \
-                 `0.5*((x - s)^2 + z^2 - L^2)`; for a constraint that is no rope, remove `#[rope(...)]`",
-                constraint.name, rope.tension
-            )
-        };
-        return Some(syn::Error::new(rope.tension.span(), message));
-    }
-    None
 }

@@ -220,6 +220,13 @@ impl Lowerer<'_> {
         let span = ident.span();
         if place == Place::ParamDefault {
             let what = match self.names.get(ident) {
+                // each parameter is set on its own (`Crane::set_parameter`,
+                // `--param`), so a default cannot follow another's value
+                Some((Kind::Param, _)) => format!(
+                    "`{ident}` is a parameter, set on its own at run time, so a default cannot follow it: write \
+                     the number, or use `{ident}` where the derived value is needed (in `kinetic`, `forces` or \
+                     `constraints`)"
+                ),
                 Some((kind, _)) => format!("`{ident}` is {}", kind.describe()),
                 None => format!("`{ident}` is unknown"),
             };

@@ -9,7 +9,7 @@ use proc_macro2::Ident;
 use super::resolve::{Kind, Lists, Lowerer, Names, Place, join};
 use crate::ctxt::Ctxt;
 use crate::diff::Differentiator;
-use crate::expr::{Arena, Id, Sym};
+use crate::expr::{Arena, Func, Id, Node, Sym};
 use crate::model::{Constraint, Rope};
 use crate::parse::{BinOp, ConstraintDecl, Declaration, Expr, Section};
 
@@ -55,8 +55,18 @@ pub(super) fn required_sections(decl: &Declaration, cx: &Ctxt) -> Lists {
         }
         Some(_) => {}
     }
-    match &s.constraints {
-        None => missing("constraints", "constraints { rope: 0.5*(x^2 + z^2 - L^2) }"),
+    lists
+}
+
+/// Reports a missing or empty `constraints` section; run after the kinetic
+/// energy's checks, whose message for an angle formulation says which
+/// constraint to write.
+pub(super) fn required_constraints(decl: &Declaration, cx: &Ctxt) {
+    match &decl.sections.constraints {
+        None => cx.error_at(
+            decl.name.span(),
+            "missing section `constraints`: declare it, e.g. `constraints { rope: 0.5*(x^2 + z^2 - L^2) }`",
+        ),
         Some(sec) if sec.body.is_empty() => {
             cx.error_spanned_by(
                 sec.range,
@@ -65,7 +75,6 @@ pub(super) fn required_sections(decl: &Declaration, cx: &Ctxt) -> Lists {
         }
         Some(_) => {}
     }
-    lists
 }
 
 /// One input per load coordinate (eq. 1c), fewer constraints than
@@ -289,15 +298,49 @@ fn quadratic_form(arena: &mut Arena, t: Id, names: &Names) -> Result<(), String>
         for &vj in &vels[i..] {
             let dij = d.diff(di, vj);
             if let Some(coord) = d.arena().find_symbol(dij, |s| matches!(s, Sym::Coord(_))) {
-                return Err(format!(
+                let mut message = format!(
                     "configuration-dependent mass matrix: the method needs a constant M, but the coefficient \
                         of this term depends on {}",
-                    describe_sym(coord, names)
-                ));
+                    describe_sym(coord, names),
+                );
+                if is_angle(d.arena(), dij, coord) {
+                    message += &format!("; {}", cartesian_rewrite(coord, names));
+                }
+                return Err(message);
             }
         }
     }
     Ok(())
+}
+
+/// Whether `coord` enters `e` through a `sin`, `cos` or `tan`: an angle.
+fn is_angle(arena: &Arena, e: Id, coord: Sym) -> bool {
+    arena.reachable([e]).into_iter().any(|n| match arena.node(n) {
+        Node::Func(Func::Sin | Func::Cos | Func::Tan, a) => arena.symbols(*a).contains(&coord),
+        _ => false,
+    })
+}
+
+/// How to write a kinetic energy whose mass matrix depends on the angle
+/// `coord` (a pendulum's, typically) with a constant one: the load's position as
+/// coordinates, its rope a constraint (sect. 2, eq. 28).
+fn cartesian_rewrite(coord: Sym, names: &Names) -> String {
+    let Sym::Coord(i) = coord else {
+        return String::new();
+    };
+    let angle = &names.coords[i as usize];
+    let trolley = names
+        .coords
+        .iter()
+        .find(|c| *c != angle)
+        .map_or("s".to_string(), |c| c.to_string());
+    format!(
+        "write it with the load's position instead of `{angle}`: the load's coordinates `x`, `z` (z up) in \
+         `load`, the rope length `L` in `robot` (or a parameter), the kinetic energy \
+         `0.5*m_l*(dot(x)^2 + dot(z)^2)` plus the robot's terms, gravity as the force `z: -m_l*g`, and the \
+         rope as a constraint, `#[rope(N = L)] rope: 0.5*((x - {trolley})^2 + z^2 - L^2)`; `{angle}` then \
+         follows from the positions (sin({angle}) = (x - {trolley})/L)"
+    )
 }
 
 fn describe_sym(sym: Sym, names: &Names) -> String {

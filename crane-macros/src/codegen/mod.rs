@@ -33,6 +33,7 @@ mod body;
 mod constants;
 mod dummy;
 mod inherent;
+mod lints;
 mod minimal;
 mod model_impl;
 mod model_struct;
@@ -52,6 +53,7 @@ use model_impl::crane_model_impl;
 use model_struct::model_struct;
 use self_test::self_test;
 
+pub use lints::lints;
 pub use stub::stub;
 
 /// An internal name of the generated code (`q`, `out`, `t3` → `__q`,

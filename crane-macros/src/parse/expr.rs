@@ -192,6 +192,15 @@ fn primary(input: ParseStream, nesting: usize) -> syn::Result<(Expr, usize)> {
                 "sq" | "square" => " (write `x^2`)",
                 "cbrt" => " (write `x^(1/3)` as `x^0.3333333333333333`, or better a parameter)",
                 "atan" | "arctan" => " (write `atan2(y, x)`)",
+                "abs" => {
+                    " (`sqrt(x^2)`; a crane's expressions are smooth where it moves, so an `abs` usually \
+                           means a sign to choose once, e.g. a rope length that stays positive)"
+                }
+                "asin" | "arcsin" => " (write `atan2(x, sqrt(1 - x^2))`)",
+                "acos" | "arccos" => " (write `atan2(sqrt(1 - x^2), x)`)",
+                "sinh" => " (write `0.5*(exp(x) - exp(-x))`)",
+                "cosh" => " (write `0.5*(exp(x) + exp(-x))`)",
+                "tanh" => " (write `(exp(2*x) - 1)/(exp(2*x) + 1)`)",
                 _ => "",
             };
             return Err(syn::Error::new(

@@ -266,6 +266,17 @@ fn parse_items<T>(
             }
             continue;
         }
+        // `m_l = 100.0; J = 0.1`: a separator of statements between items
+        if separator == ',' {
+            let semicolon = chunk.clone().into_iter().find_map(|tt| match tt {
+                TokenTree::Punct(p) if p.as_char() == ';' => Some(p.span()),
+                _ => None,
+            });
+            if let Some(span) = semicolon {
+                cx.error_at(span, "expected `,` between the items of a section, found `;`");
+                continue;
+            }
+        }
         let end = chunk.clone().into_iter().last().map(|tt| tt.span());
         // a token missing at the very end (`params { g }`: "expected `=`")
         // is reported by syn at the macro call; move it to the chunk's end
@@ -299,6 +310,19 @@ fn at_end_of(error: syn::Error, end: Option<Span>) -> syn::Error {
 }
 
 fn parse_names(group: &TokenTree, cx: &Ctxt) -> Vec<Ident> {
+    // `/// the trolley` above a coordinate: doc comments document the
+    // struct and its parameters, which are its fields
+    if let Some(TokenTree::Punct(p)) = group_stream(group)
+        .into_iter()
+        .find(|tt| matches!(tt, TokenTree::Punct(p) if p.as_char() == '#'))
+    {
+        cx.error_at(
+            p.span(),
+            "attributes and doc comments are not allowed on coordinates and inputs: describe them in a `//` \
+             comment or in the crane's doc comment (doc comments are for the crane and its parameters)",
+        );
+        return Vec::new();
+    }
     let parser = Punctuated::<Ident, Token![,]>::parse_terminated;
     match parser.parse2(group_stream(group)) {
         Ok(names) => names.into_iter().collect(),

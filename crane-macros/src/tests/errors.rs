@@ -276,8 +276,8 @@ fn unsupported_functions_and_operators() {
     assert_errors(
         &navy_with("l*sin(alpha)", "l*sinh(alpha)"),
         &[
-            "unsupported function `sinh`; supported: sin, cos, tan, sqrt, exp, ln, atan2(y, x), and dot(coordinate) \
-           for a velocity",
+            "unsupported function `sinh` (write `0.5*(exp(x) - exp(-x))`); supported: sin, cos, tan, sqrt, exp, ln, \
+             atan2(y, x), and dot(coordinate) for a velocity",
         ],
     );
     assert_errors(
@@ -359,7 +359,11 @@ fn a_pendulum_without_constraints_section() {
 fn parameter_defaults_must_be_constant() {
     assert_errors(
         &navy_with("l = 10.0", "l = 2*alpha"),
-        &["parameter defaults must be constant (numbers, PI and functions of them); `alpha` is a parameter"],
+        &[
+            "parameter defaults must be constant (numbers, PI and functions of them); `alpha` is a parameter, set \
+           on its own at run time, so a default cannot follow it: write the number, or use `alpha` where the \
+           derived value is needed (in `kinetic`, `forces` or `constraints`)",
+        ],
     );
     assert_errors(
         &navy_with("l = 10.0", "l = 2*L1"),
@@ -893,4 +897,113 @@ fn messages_teach_the_formulation() {
         FULL_SAMPLE.replace("1.0 .. 20.0", "1.0 ..= 20.0")
     ));
     assert_eq!(expand_errors(&inclusive).0, Vec::<String>::new());
+}
+
+/// The textbook angle formulation of a gantry crane: its mass matrix
+/// depends on the angle. The message shows the rewrite in the load's
+/// position with the user's names, before the missing constraint it asks
+/// for.
+#[test]
+fn an_angle_formulation_is_shown_its_cartesian_rewrite() {
+    let pendulum = r#"
+        pub struct Pendulum {
+            params { m_t = 10.0, m = 100.0, l = 5.0, g = 9.81 }
+            robot  [s]
+            load   [theta]
+            inputs [u]
+            kinetic = 0.5*(m_t + m)*dot(s)^2 + m*l*cos(theta)*dot(s)*dot(theta) + 0.5*m*l^2*dot(theta)^2;
+            forces { s: u, theta: -m*g*l*sin(theta) }
+            constraints { }
+        }
+    "#;
+    assert_errors(
+        pendulum,
+        &[
+            "configuration-dependent mass matrix: the method needs a constant M, but the coefficient of this term \
+             depends on the coordinate `theta`; write it with the load's position instead of `theta`: the load's \
+             coordinates `x`, `z` (z up) in `load`, the rope length `L` in `robot` (or a parameter), the kinetic \
+             energy `0.5*m_l*(dot(x)^2 + dot(z)^2)` plus the robot's terms, gravity as the force `z: -m_l*g`, and \
+             the rope as a constraint, `#[rope(N = L)] rope: 0.5*((x - s)^2 + z^2 - L^2)`; `theta` then follows \
+             from the positions (sin(theta) = (x - s)/L)",
+            "empty section `constraints`: declare at least one constraint",
+        ],
+    );
+}
+
+/// Constraints must be independent (`G` of full rank): a duplicated
+/// constraint, one scaled, a sum of two, and one that does not involve the
+/// coordinates are errors naming the constraints (before, the run stopped
+/// at its first step: "NonUniqueEquilibrium ... free: L").
+#[test]
+fn dependent_constraints_are_named() {
+    let duplicated = navy_with(
+        "rope0: 0.5*(x0^2 + z0^2 - L0^2),",
+        "rope0: 0.5*(x0^2 + z0^2 - L0^2),\n rope0_again: x0^2 + z0^2 - L0^2,",
+    );
+    assert_errors(
+        &duplicated,
+        &[
+            "constraint `rope0_again` depends on `rope0`: its gradient is a combination of theirs at every \
+           configuration tried, so `G = dg/dq` has rank < m (eq. 3) and the constraint forces are not unique; \
+           remove it or state an independent constraint",
+        ],
+    );
+    let sum = navy_with(
+        "rope0: 0.5*(x0^2 + z0^2 - L0^2),",
+        "rope0: 0.5*(x0^2 + z0^2 - L0^2),\n both: 0.5*(x0^2 + z0^2 - L0^2) + 0.5*((x0 + l*sin(alpha))^2 + \
+         (z0 + l*cos(alpha))^2 - L1^2),",
+    );
+    let (messages, _) = expand_errors(&sum);
+    assert_eq!(messages.len(), 1, "{messages:?}");
+    assert!(
+        messages[0].starts_with("constraint `both` depends on `rope1`, `rope0`:"),
+        "{messages:?}"
+    );
+    // the sample points are generic: the planar crane's own constraints
+    // are independent (the_planar_crane_has_no_errors), and so are the
+    // built-ins' (they compile)
+}
+
+/// A load with a weight but no mass in the kinetic energy (its `dot(z)^2`
+/// left out) compiles, with a warning at the force: the rope would hold
+/// the weight alone, with a constant tension.
+#[test]
+fn a_weight_without_inertia_is_a_lint() {
+    let massless = navy_with("0.5*m_l*(dot(x)^2 + dot(z)^2)", "0.5*m_l*dot(x)^2");
+    let output = expand(tokens(&massless)).to_string();
+    assert!(
+        output.contains("z_has_a_force_but_no_inertia"),
+        "no lint in the expansion"
+    );
+    assert!(output.contains("`z` carries a constant force but has no inertia"));
+    assert!(!output.contains("compile_error"));
+    // the planar crane's massless pulley (L0, x0, z0: no inertia, no force)
+    // is not flagged
+    let output = expand(tokens(NAVY)).to_string();
+    assert!(!output.contains("deprecated"), "a lint on the planar crane");
+}
+
+/// Near misses of the declaration's punctuation and scope, each told what
+/// to write.
+#[test]
+fn near_misses_are_told_what_to_write() {
+    assert_errors(
+        &navy_with("m_l = 100.0, J1 = 0.1,", "m_l = 100.0; J1 = 0.1,"),
+        &["expected `,` between the items of a section, found `;`"],
+    );
+    assert_errors(
+        &navy_with("robot  [L1, L2,", "robot  [\n /// rope 1\n L1, L2,"),
+        &[
+            "attributes and doc comments are not allowed on coordinates and inputs: describe them in a `//` \
+           comment or in the crane's doc comment (doc comments are for the crane and its parameters)",
+        ],
+    );
+    assert_errors(
+        &navy_with("J2 = 0.1,", "J2 = 2.0*J1,"),
+        &[
+            "parameter defaults must be constant (numbers, PI and functions of them); `J1` is a parameter, set on \
+           its own at run time, so a default cannot follow it: write the number, or use `J1` where the derived \
+           value is needed (in `kinetic`, `forces` or `constraints`)",
+        ],
+    );
 }

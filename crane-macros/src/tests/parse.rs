@@ -111,8 +111,17 @@ fn unsupported_syntax_is_an_error_not_a_panic() {
     assert_eq!(parse_error("x ** 2"), "unexpected `*`: write powers as `x^n`");
     assert_eq!(
         parse_error("cosh(x)"),
-        "unsupported function `cosh`; supported: sin, cos, tan, sqrt, exp, ln, atan2(y, x), and dot(coordinate) for a velocity"
+        "unsupported function `cosh` (write `0.5*(exp(x) + exp(-x))`); supported: sin, cos, tan, sqrt, exp, ln, \
+         atan2(y, x), and dot(coordinate) for a velocity"
     );
+    assert_eq!(
+        parse_error("abs(x)"),
+        "unsupported function `abs` (`sqrt(x^2)`; a crane's expressions are smooth where it moves, so an `abs` \
+         usually means a sign to choose once, e.g. a rope length that stays positive); supported: sin, cos, tan, \
+         sqrt, exp, ln, atan2(y, x), and dot(coordinate) for a velocity"
+    );
+    assert!(parse_error("asin(x)").contains("(write `atan2(x, sqrt(1 - x^2))`)"));
+    assert!(parse_error("tanh(x)").contains("(write `(exp(2*x) - 1)/(exp(2*x) + 1)`)"));
     assert_eq!(parse_error("atan2(x)"), "`atan2` takes 2 arguments (y, x), found 1");
     assert_eq!(parse_error("sin(x, y)"), "`sin` takes 1 argument, found 2");
     assert_eq!(

@@ -26,6 +26,8 @@ pub struct RopeSummary {
     pub min_tension: f64,
     /// When, s.
     pub t_min: f64,
+    /// The largest tension, N (below zero: the rope pushes the whole run).
+    pub max_tension: f64,
     /// First time the rope is slack ([`below_floor`] 0; ropes only pull, a
     /// negative tension is infeasible).
     pub first_slack: Option<f64>,
@@ -39,6 +41,23 @@ pub struct RopeSummary {
 }
 
 impl RopeSummary {
+    /// What a slack rope tells the user, if it goes slack: when, or, for a
+    /// rope that pushes all along (a load hanging on it would pull it
+    /// taut: almost surely gravity declared upward), what to check.
+    pub fn slack(&self) -> Option<String> {
+        let t = self.first_slack?;
+        Some(if self.max_tension < 0.0 {
+            format!(
+                "rope {} pushes for the whole run (its tension stays between {:.1} and {:.1} N): a rope only \
+                 pulls, and a load hanging on it pulls it taut, so check the sign of gravity in the crane's \
+                 forces (with z up, `z: -m_l*g`)",
+                self.name, self.min_tension, self.max_tension
+            )
+        } else {
+            format!("rope {} goes slack at t = {t:.3} s", self.name)
+        })
+    }
+
     /// Whether the rope's length reached zero or below: the path left the
     /// crane's workspace.
     pub fn leaves_workspace(&self) -> bool {
@@ -301,11 +320,13 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
             let (t_min, min_tension) = series()
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .unwrap_or((f64::NAN, f64::NAN));
+            let max_tension = series().map(|(_, n)| n).fold(f64::NEG_INFINITY, f64::max);
             let (min_length, t_min_length) = solution.shortest_ropes.get(r).copied().unwrap_or((f64::NAN, f64::NAN));
             RopeSummary {
                 name: rope.tension.to_string(),
                 min_tension,
                 t_min,
+                max_tension,
                 first_slack: first_slack(solution, r),
                 constraint: info.constraints.get(rope.constraint).copied().unwrap_or("").to_string(),
                 min_length,
@@ -403,10 +424,7 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
             )
         })
         .collect();
-    out.extend(summary.ropes.iter().filter_map(|r| {
-        r.first_slack
-            .map(|t| format!("rope {} goes slack at t = {t:.3} s", r.name))
-    }));
+    out.extend(summary.ropes.iter().filter_map(RopeSummary::slack));
 
     out.extend(summary.torque_limits.iter().filter_map(|l| {
         l.first_violation.map(|t| {
