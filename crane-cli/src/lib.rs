@@ -66,7 +66,7 @@ enum Command {
     Sweep(commands::plan::SweepArgs),
     /// Write an FMI 2.0 co-simulation FMU of a model (the inverse
     /// model: load target in, inputs, coordinates, multipliers and tensions
-    /// out); see the README, "Using a crane in Simulink, Modelica or Python".
+    /// out); see docs/fmi.md in the guide.
     Fmu(commands::fmu::FmuArgs),
 }
 

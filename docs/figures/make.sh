@@ -1,5 +1,5 @@
 #!/bin/sh
-# Regenerate the pictures of the README's "Reproducing the paper" section:
+# Regenerate the pictures of docs/reproducing-the-paper.md:
 # runs `crane` on the scenarios in examples/ and copies the SVGs picked for
 # each paper figure into docs/figures/.
 #   sh docs/figures/make.sh

@@ -112,7 +112,7 @@ fn one_step_each<const N: usize, const M: usize, const A: usize, const F: usize,
 /// Per scheme on navy-planar: the full run at dt = 0.01 and one step at
 /// t = 1.5 s from a stepper that got there itself (so its history is full);
 /// and the runs of the work-precision table: per scheme the largest dt
-/// (dividing 1.5 s and 4 s) with e_u(1.5 s) <= 1e-6 (README).
+/// (dividing 1.5 s and 4 s) with e_u(1.5 s) <= 1e-6 (docs/benchmarks.md).
 fn schemes(c: &mut Criterion) {
     let case = navy_planar::PaperCase::new(4.0).unwrap();
     let start = case.start().unwrap();

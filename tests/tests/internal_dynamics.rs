@@ -100,7 +100,7 @@ fn the_built_in_cranes_are_flat_along_their_manoeuvres() {
 }
 
 /// What the causal inverse does with the unstable coupled crane: the run
-/// "succeeds" with torques that grow like exp(9.9 t) (printed for the README;
+/// "succeeds" with torques that grow like exp(9.9 t) (printed for docs/internal-dynamics.md;
 /// asserted only to be beyond any physical scale, 1e6 x the static torque).
 #[test]
 fn the_unstable_inverse_explodes() {

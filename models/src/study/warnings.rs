@@ -87,8 +87,8 @@ impl fmt::Display for Warning {
             } => write!(
                 f,
                 "{model} has unstable internal dynamics along this path (dimension {dimension}, largest real part \
-                 {max_real_part:.4} 1/s at t = {} s): the computed inputs grow without bound; see the README, \
-                 \"Flat and non-flat cranes\"",
+                 {max_real_part:.4} 1/s at t = {} s): the computed inputs grow without bound; see docs/internal-dynamics.md \
+                 in the guide",
                 Seconds(*at)
             ),
             Warning::PathTooRough {
