@@ -15,8 +15,19 @@ pub enum CliError {
     Io { context: String, source: std::io::Error },
     #[error("writing {what}: {message}")]
     Output { what: String, message: String },
+    #[error("writing to standard output: {0}")]
+    Stdout(std::io::Error),
     #[error("--repeat must be at least 1")]
     NoRepeats,
+    #[error("--repeat {0}: at most {max} timed runs", max = crate::commands::bench::MAX_REPEAT)]
+    TooManyRepeats(usize),
+    #[error("{flag} `{name}` is given twice ({first} and {second}): give each name once")]
+    Repeated {
+        flag: &'static str,
+        name: String,
+        first: f64,
+        second: f64,
+    },
     #[error("--plant `{0}`: expected NAME=VALUE, e.g. --plant m_l=110")]
     Plant(String),
     #[error("--settle {0}: the settling window must be a positive number of seconds")]

@@ -16,6 +16,14 @@
 //! lives in `commands/`, what a run means in `crane_models::study`.
 #![warn(missing_docs)]
 
+/// `println!` that returns the error of a closed or full standard output
+/// instead of panicking: `say!("wrote {}", out.display())?;`.
+macro_rules! say {
+    ($($arg:tt)*) => {
+        $crate::output::say(format_args!($($arg)*))
+    };
+}
+
 mod commands;
 mod error;
 mod output;
@@ -190,6 +198,8 @@ impl<R: Registry> Tool<R> {
         output::remove_partials_on_signals();
         match self.execute(cli.command) {
             Ok(()) => ExitCode::SUCCESS,
+            // the reader has all it wanted (`crane list | head -1`)
+            Err(CliError::Stdout(error)) if error.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
             Err(error) => {
                 eprintln!("error: {error}");
                 ExitCode::FAILURE

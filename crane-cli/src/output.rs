@@ -12,6 +12,54 @@ use crate::plot;
 use crane_models::study::Formulation;
 use crane_models::study::Summary;
 
+/// One line on standard output (what the crate's `say!` prints): an
+/// error, such as a full disk behind `> file` or a reader that closed the
+/// pipe (`| head -1`), is returned, where `println!` would panic.
+pub fn say(line: std::fmt::Arguments) -> Result<(), CliError> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    stdout
+        .write_fmt(line)
+        .and_then(|()| stdout.write_all(b"\n"))
+        .and_then(|()| stdout.flush())
+        .map_err(CliError::Stdout)
+}
+
+/// Whether `dir` could take a command's output, checked before the command
+/// computes anything and leaving nothing behind: `dir` is a folder, or does
+/// not exist yet and its nearest existing ancestor is one, and a file can
+/// be created there (a probe, removed at once).
+pub fn check_writable(dir: &Path) -> Result<(), CliError> {
+    let refuse = |message: String| CliError::Output {
+        what: dir.display().to_string(),
+        message,
+    };
+    let mut existing = dir;
+    while fs::symlink_metadata(existing).is_err() {
+        match existing.parent() {
+            Some(parent) if !parent.as_os_str().is_empty() => existing = parent,
+            _ => {
+                existing = Path::new(".");
+                break;
+            }
+        }
+    }
+    if !existing.is_dir() {
+        return Err(refuse(format!("{} is not a folder", existing.display())));
+    }
+    let probe = existing.join(format!(".crane-probe-{}", std::process::id()));
+    match fs::OpenOptions::new().write(true).create_new(true).open(&probe) {
+        Ok(_) => {
+            let _ = fs::remove_file(&probe);
+            Ok(())
+        }
+        Err(error) => Err(refuse(format!(
+            "cannot create files in {}: {error}",
+            existing.display()
+        ))),
+    }
+}
+
 /// Column names of `results.csv` (docs/numerics.md): `t`, the coordinates, the
 /// inputs, `lambda1..lambdam`, the rope tensions.
 pub fn header<const N: usize, const M: usize, const A: usize>(

@@ -1473,3 +1473,201 @@ fn inputs_are_printed_in_their_own_units() {
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["input_units"], serde_json::json!(["N", "N", "N m"]));
 }
+
+/// Every input is bounded and every repeat decided: a repeated `--limit`,
+/// `--min-tension` or `--plant` is refused naming both values (a sweep once
+/// kept the last, `u2=150`, and marked a peak of 125 feasible against 100);
+/// `--threads` and `--repeat` have caps, checked before any work; a
+/// scenario that is a device or too large is refused before it is read
+/// (`/dev/zero` once grew to 4.7 GB); a negative inertia is refused
+/// however small (`J_b = -1e-9` once passed on navy-3d-pulley).
+#[test]
+fn every_input_is_bounded_and_every_repeat_decided() {
+    let refused = |args: &[&str]| {
+        let result = crane(args);
+        let stderr = String::from_utf8_lossy(&result.stderr).to_string();
+        assert!(!result.status.success(), "{args:?} was accepted: {stderr}");
+        assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
+        stderr
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let out = out.to_str().unwrap();
+    let twice = refused(&[
+        "fastest",
+        "navy-planar",
+        "--limit",
+        "u2=100",
+        "--limit",
+        "u2=150",
+        "--out",
+        out,
+    ]);
+    assert!(
+        twice.contains("--limit `u2` is given twice (100 and 150): give each name once"),
+        "{twice}"
+    );
+    let twice = refused(&[
+        "sweep",
+        "navy-planar",
+        "--param",
+        "m_l=90:110:3",
+        "--min-tension",
+        "N2=10",
+        "--min-tension",
+        "N2=20",
+        "--out",
+        out,
+    ]);
+    assert!(
+        twice.contains("--min-tension `N2` is given twice (10 and 20)"),
+        "{twice}"
+    );
+    let twice = refused(&[
+        "run",
+        "navy-planar",
+        "--replay",
+        "--plant",
+        "m_l=110",
+        "--plant",
+        "m_l=120",
+        "--out",
+        out,
+    ]);
+    assert!(twice.contains("--plant `m_l` is given twice (110 and 120)"), "{twice}");
+    let threads = refused(&[
+        "sweep",
+        "navy-planar",
+        "--param",
+        "m_l=90:110:3",
+        "--threads",
+        "100000",
+        "--out",
+        out,
+    ]);
+    assert!(threads.contains("--threads 100000: at most 256"), "{threads}");
+    let repeat = refused(&["bench", "navy-planar", "--repeat", "1000000000"]);
+    assert!(
+        repeat.contains("--repeat 1000000000: at most 100000 timed runs"),
+        "{repeat}"
+    );
+    let overflow = refused(&["bench", "navy-planar", "--repeat", "18446744073709551615"]);
+    assert!(overflow.contains("at most 100000 timed runs"), "{overflow}");
+    if Path::new("/dev/zero").exists() {
+        let device = refused(&["run", "navy-planar", "--scenario", "/dev/zero", "--out", out]);
+        assert!(device.contains("scenario /dev/zero: not a regular file"), "{device}");
+    }
+    let big = dir.path().join("big.toml");
+    std::fs::write(&big, format!("# {}\ndt = 0.01\n", "x".repeat(2 << 20))).unwrap();
+    let large = refused(&["run", "navy-planar", "--scenario", big.to_str().unwrap(), "--out", out]);
+    assert!(large.contains("larger than 1024 KiB"), "{large}");
+    let small = dir.path().join("negative.toml");
+    std::fs::write(&small, "[parameters]\nJ_b = -1e-9\n").unwrap();
+    let negative = refused(&[
+        "run",
+        "navy-3d-pulley",
+        "--scenario",
+        small.to_str().unwrap(),
+        "--out",
+        out,
+    ]);
+    assert!(negative.contains("J_b"), "{negative}");
+    assert!(!Path::new(out).join("results.csv").exists());
+}
+
+/// Every output goes where it should or fails in one line: a closed pipe
+/// (`crane list | head -1`) ends quietly and a full disk behind stdout is
+/// an error, where both once panicked (status 101 and a backtrace); an FMU
+/// is never written over a symbolic link, a FIFO or a device (`--out
+/// /dev/full` once replaced the device with a file); an output folder that
+/// cannot be created is refused before the computation, with nothing left
+/// behind.
+#[test]
+fn outputs_go_where_they_should_or_fail_in_one_line() {
+    use std::io::Read;
+    use std::process::Stdio;
+    // a reader that closes the pipe at once
+    let mut child = Command::new(env!("CARGO_BIN_EXE_crane"))
+        .arg("list")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let mut stderr = String::new();
+    child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();
+    let status = child.wait().unwrap();
+    assert!(status.success(), "{status:?}: {stderr}");
+    assert!(stderr.is_empty(), "{stderr}");
+    if let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") {
+        let result = Command::new(env!("CARGO_BIN_EXE_crane"))
+            .arg("list")
+            .stdout(full)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert_eq!(result.status.code(), Some(1), "{stderr}");
+        assert_eq!(
+            stderr.trim_end(),
+            "error: writing to standard output: No space left on device (os error 28)"
+        );
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let library = Path::new(env!("CARGO_BIN_EXE_crane")).with_file_name("libcrane_fmu.so");
+    let target = dir.path().join("target.txt");
+    std::fs::write(&target, "mine").unwrap();
+    let link = dir.path().join("link.fmu");
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    if library.is_file() {
+        let result = crane(&[
+            "fmu",
+            "navy-planar",
+            "--out",
+            link.to_str().unwrap(),
+            "--library",
+            library.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(!result.status.success());
+        assert!(
+            stderr.contains("exists and is a symbolic link, not a regular file"),
+            "{stderr}"
+        );
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "mine");
+        assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+        if Path::new("/dev/full").exists() {
+            let result = crane(&[
+                "fmu",
+                "navy-planar",
+                "--out",
+                "/dev/full",
+                "--library",
+                library.to_str().unwrap(),
+            ]);
+            let stderr = String::from_utf8_lossy(&result.stderr);
+            assert!(
+                stderr.contains("/dev/full exists and is a device, a FIFO or a socket"),
+                "{stderr}"
+            );
+        }
+    }
+    // a folder below a regular file cannot be made: refused at once
+    let out = target.join("out");
+    let result = crane(&[
+        "sweep",
+        "navy-planar",
+        "--param",
+        "m_l=90:110:3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(!result.status.success());
+    assert!(stderr.contains("target.txt is not a folder"), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names.len(), 2, "nothing left behind: {names:?}");
+}

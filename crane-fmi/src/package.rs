@@ -33,6 +33,15 @@ pub enum PackageError {
         /// What it lacks.
         reason: &'static str,
     },
+    /// The destination exists and is no regular file (a device, a FIFO,
+    /// a symbolic link, a folder): it is not replaced.
+    #[error("{path} exists and is {kind}, not a regular file: give the path of an .fmu file to write")]
+    NotAFile {
+        /// The destination given.
+        path: PathBuf,
+        /// What it is.
+        kind: &'static str,
+    },
     /// The zip writer.
     #[error("writing {path}: {source}")]
     Zip {
@@ -86,7 +95,30 @@ pub fn write_archive(xml: &str, identifier: &str, binary: &[u8], out: &Path) -> 
     if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent).map_err(io(format!("creating {}", parent.display())))?;
     }
-    let partial = out.with_extension("fmu.partial");
+    if let Ok(metadata) = std::fs::symlink_metadata(out) {
+        let kind = metadata.file_type();
+        let what = if kind.is_symlink() {
+            Some("a symbolic link")
+        } else if kind.is_dir() {
+            Some("a folder")
+        } else if !kind.is_file() {
+            Some("a device, a FIFO or a socket")
+        } else {
+            None
+        };
+        if let Some(kind) = what {
+            return Err(PackageError::NotAFile {
+                path: out.to_path_buf(),
+                kind,
+            });
+        }
+    }
+    // a name of this process's own beside the destination: two packagers
+    // writing the same FMU at once each rename a whole archive (the last
+    // one wins), never one archive written by both
+    static SERIAL: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let serial = SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let partial = out.with_extension(format!("fmu.{}-{serial}.partial", std::process::id()));
     let zip_error = |source| PackageError::Zip {
         path: out.to_path_buf(),
         source,

@@ -12,6 +12,10 @@ use super::{formulation_help, scheme_help};
 use crate::scenario::{self, Overrides};
 use crate::{CliError, Tool};
 
+/// The most timed runs `crane bench` makes (each keeps its time; a median
+/// of 1e5 runs is as good as it gets, and 1e9 would run for days).
+pub const MAX_REPEAT: usize = 100_000;
+
 /// The flags of `crane bench`.
 #[derive(clap::Args, Debug)]
 // a negative number is a value to check ("--dt -0.01"), not a flag
@@ -85,6 +89,9 @@ fn time<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     if repeat == 0 {
         return Err(CliError::NoRepeats);
     }
+    if repeat > MAX_REPEAT {
+        return Err(CliError::TooManyRepeats(repeat));
+    }
     let name = C::NAME;
     let start = case.start()?;
     let options = Options::new(dt, case.tf())?.with_scheme(scheme);
@@ -107,16 +114,16 @@ fn time<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             "repeat": repeat, "median_run_s": median, "median_step_s": median / steps as f64,
             "mean_newton_iterations": iterations,
         });
-        println!("{value}");
+        say!("{value}")?;
     } else {
-        println!(
+        say!(
             "{name} ({}, {scheme}): dt = {dt} s, {steps} steps, {repeat} runs: median {:.3} ms per run, {:.2} us per \
              step, {:.2} Newton iterations per step",
             formulation.name(),
             median * 1e3,
             median / steps as f64 * 1e6,
             iterations
-        );
+        )?;
     }
     Ok(())
 }

@@ -52,7 +52,7 @@ impl Visit for Convergence<'_> {
 /// Run the study.
 pub fn convergence<R: Registry>(tool: &Tool<R>, args: ConvergenceArgs) -> Result<(), CliError> {
     let file = args.scenario.as_deref().map(ScenarioFile::load).transpose()?;
-    let out = out_dir(args.out.as_deref(), &args.model);
+    let out = out_dir(args.out.as_deref(), &args.model)?;
     let overrides = Overrides {
         dt: None,
         tf: None,
@@ -94,15 +94,21 @@ fn write<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         "e_u",
         "order"
     ));
+    // the first failure to print stops the printing and is reported after
+    let mut printed: Result<(), CliError> = Ok(());
     let rows = study_against(case, &reference, formulation, scheme, &DTS, |row| {
-        if let Some(header) = header.take() {
-            println!("{header}");
+        if printed.is_err() {
+            return;
         }
-        match row.order {
-            Some(p) => println!("{:>8}  {:>12.4e}  {p:>8.3}", row.dt, row.e_u),
-            None => println!("{:>8}  {:>12.4e}  {:>8}", row.dt, row.e_u, "-"),
-        }
+        printed = header
+            .take()
+            .map_or(Ok(()), |header| say!("{header}"))
+            .and_then(|()| match row.order {
+                Some(p) => say!("{:>8}  {:>12.4e}  {p:>8.3}", row.dt, row.e_u),
+                None => say!("{:>8}  {:>12.4e}  {:>8}", row.dt, row.e_u, "-"),
+            });
     })?;
+    printed?;
     let mut staged = crate::output::Staged::new(out)?;
     let mut csv = String::from("dt,e_u,order\n");
     for row in &rows {
@@ -119,6 +125,6 @@ fn write<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     staged.text("convergence.csv", csv)?;
     staged.text("convergence.svg", svg)?;
     staged.commit()?;
-    println!("wrote {}", out.join("convergence.svg").display());
+    say!("wrote {}", out.join("convergence.svg").display())?;
     Ok(())
 }

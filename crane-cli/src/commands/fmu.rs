@@ -59,10 +59,10 @@ pub fn fmu<R: Registry>(tool: &Tool<R>, args: FmuArgs) -> Result<(), CliError> {
             out: &out,
         },
     )?;
-    println!(
+    say!(
         "wrote {} (FMI 2.0 co-simulation, binaries/linux64/{}.so)",
         out.display(),
         crane_fmi::description::model_identifier(&model)
-    );
+    )?;
     Ok(())
 }

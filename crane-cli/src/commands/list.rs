@@ -50,16 +50,25 @@ impl Visit for RowOf {
 pub fn list<R: Registry>(tool: &Tool<R>) -> Result<(), CliError> {
     let entries = tool.registry().entries();
     let width = entries.iter().map(|e| e.name.len()).max().unwrap_or(5);
-    println!(
+    say!(
         "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} {:>5}  {:<16} {:<10} description",
-        "model", "n", "m", "a", "f", "reference", "minimal", "order", "formulation", "internal"
-    );
+        "model",
+        "n",
+        "m",
+        "a",
+        "f",
+        "reference",
+        "minimal",
+        "order",
+        "formulation",
+        "internal"
+    )?;
     let yes = |b: bool| if b { "yes" } else { "no" };
     for e in &entries {
         let Some(row) = tool.registry().visit(e.name, RowOf) else {
             continue;
         };
-        println!(
+        say!(
             "{:<width$} {:>3} {:>3} {:>3} {:>3}  {:<9} {:<7} {:>5}  {:<16} {:<10} {}",
             e.name,
             e.n,
@@ -72,7 +81,7 @@ pub fn list<R: Registry>(tool: &Tool<R>) -> Result<(), CliError> {
             row.formulation,
             row.internal,
             e.description
-        );
+        )?;
     }
     Ok(())
 }

@@ -18,8 +18,12 @@ use crane_runtime::Scheme;
 use crate::CliError;
 
 /// The output directory: `out` if given, else `out/MODEL`.
-pub fn out_dir(out: Option<&Path>, model: &str) -> PathBuf {
-    out.map_or_else(|| PathBuf::from("out").join(model), Path::to_path_buf)
+pub fn out_dir(out: Option<&Path>, model: &str) -> Result<PathBuf, CliError> {
+    let dir = out.map_or_else(|| PathBuf::from("out").join(model), Path::to_path_buf);
+    // before any computation: a folder that cannot be written is an error
+    // now, not after a long run or sweep
+    crate::output::check_writable(&dir)?;
+    Ok(dir)
 }
 
 /// The help of a `--scheme` flag, from the one list of schemes.
@@ -36,6 +40,30 @@ pub fn formulation_help() -> String {
         Formulation::default(),
         Formulation::DummyDerivative
     )
+}
+
+/// Every `NAME=VALUE` of a repeatable flag (`--limit`, `--min-tension`,
+/// `--plant`), each name once: a second value for a name is an error, not
+/// a silent override (`--limit u2=100 --limit u2=150` once kept 150).
+pub fn name_values(
+    flag: &'static str,
+    items: &[String],
+    bad: impl Fn(&str) -> CliError,
+) -> Result<Vec<(String, f64)>, CliError> {
+    let mut pairs: Vec<(String, f64)> = Vec::with_capacity(items.len());
+    for item in items {
+        let (name, value) = name_value(item, || bad(item))?;
+        if let Some(&(_, first)) = pairs.iter().find(|(other, _)| *other == name) {
+            return Err(CliError::Repeated {
+                flag,
+                name,
+                first,
+                second: value,
+            });
+        }
+        pairs.push((name, value));
+    }
+    Ok(pairs)
 }
 
 /// `NAME=VALUE` of a flag such as `--plant m_l=110` or `--limit u2=150`,

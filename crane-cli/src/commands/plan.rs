@@ -12,11 +12,15 @@ use crane_models::{Case, Crane};
 use crane_runtime::{CraneModel, Options, Scheme};
 use serde_json::json;
 
-use super::{name_value, out_dir};
+use super::{name_values, out_dir};
 use crate::output::Staged;
 use crate::plot;
 use crate::scenario::{self, Overrides, ScenarioFile};
 use crate::{CliError, Tool};
+
+/// The most worker threads `crane sweep` starts: beyond the cores they gain
+/// nothing, and tens of thousands once hung the process at exit.
+pub const MAX_THREADS: usize = 256;
 
 /// The flags `crane fastest` and `crane sweep` share.
 #[derive(clap::Args, Debug)]
@@ -85,7 +89,7 @@ impl PlanFlags {
     /// The scenario file (loaded) and the output directory.
     fn files(&self, model: &str) -> Result<(Option<ScenarioFile>, PathBuf), CliError> {
         let file = self.scenario.as_deref().map(ScenarioFile::load).transpose()?;
-        Ok((file, out_dir(self.out.as_deref(), model)))
+        Ok((file, out_dir(self.out.as_deref(), model)?))
     }
 
     /// The planner's settings from the flags (BDF-4, dt 0.05 s, 1 ms by default).
@@ -226,6 +230,9 @@ pub fn sweep<R: Registry>(tool: &Tool<R>, args: SweepArgs) -> Result<(), CliErro
     };
     match args.threads {
         Some(0) => Err(CliError::Planning("--threads must be at least 1".into())),
+        Some(n) if n > MAX_THREADS => Err(CliError::Planning(format!(
+            "--threads {n}: at most {MAX_THREADS} (one per core is the default; more than the cores gain nothing)"
+        ))),
         Some(n) => rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build()
@@ -246,10 +253,10 @@ fn limits<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usi
     // the example names what the flag takes: an input of the crane, a rope
     let input = Mdl::INFO.inputs.first().copied().unwrap_or("u1");
     let rope = Mdl::INFO.ropes.first().map_or("N1", |r| r.tension);
-    let parse = |flag: &str, example: String, items: &[String]| -> Result<Vec<(String, f64)>, CliError> {
-        let bad =
-            |item: &str| CliError::Planning(format!("{flag} `{item}`: expected NAME=VALUE, e.g. {flag} {example}"));
-        items.iter().map(|item| name_value(item, || bad(item))).collect()
+    let parse = |flag: &'static str, example: String, items: &[String]| -> Result<Vec<(String, f64)>, CliError> {
+        name_values(flag, items, |item| {
+            CliError::Planning(format!("{flag} `{item}`: expected NAME=VALUE, e.g. {flag} {example}"))
+        })
     };
     let (torque, tension) = (
         parse("--limit", format!("{input}=150"), torque)?,
@@ -381,7 +388,7 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     }
     staged.commit()?;
     if print_json {
-        println!("{text}");
+        say!("{text}")?;
     } else {
         let b = &best.binding;
         let bound = if b.tension {
@@ -397,14 +404,14 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
                 b.name, b.limit, b.value, b.at
             )
         };
-        println!(
+        say!(
             "{}: fastest feasible duration T* = {:.4} s (bracket {:.4} .. {:.4} s), bound by {bound}",
             C::NAME,
             best.duration,
             best.bracket.0,
             best.bracket.1
-        );
-        println!(
+        )?;
+        say!(
             "  {} evaluations ({method}, dt <= {} s) and {} for the interval check in {:.1} ms; {}",
             best.evaluations,
             settings.dt,
@@ -419,8 +426,8 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
                     best.interval.counterexample.unwrap_or(f64::NAN)
                 )
             }
-        );
-        println!("wrote {}", out.display());
+        )?;
+        say!("wrote {}", out.display())?;
     }
     Ok(())
 }
@@ -545,7 +552,7 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     staged.commit()?;
     let failed = points.iter().filter(|p| p.evaluation.error.is_some()).count();
     let feasible = points.iter().filter(|p| p.feasible).count();
-    println!(
+    say!(
         "{}: {} points in {:.2} s ({:.0} points/s on {} threads): {feasible} feasible, {failed} failed; the \
             move's own duration is {:.3} s",
         C::NAME,
@@ -554,7 +561,7 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         points.len() as f64 / wall,
         rayon::current_num_threads(),
         spec.t1 - spec.t0
-    );
-    println!("wrote {}", out.display());
+    )?;
+    say!("wrote {}", out.display())?;
     Ok(())
 }

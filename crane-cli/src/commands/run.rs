@@ -12,7 +12,7 @@ use crane_models::{Case, Crane};
 use crane_runtime::error::Seconds;
 use crane_runtime::{Scheme, State};
 
-use super::{formulation_help, name_value, out_dir, scheme_help};
+use super::{formulation_help, name_values, out_dir, scheme_help};
 use crate::scenario::{self, Overrides, ScenarioFile};
 use crate::{CliError, Tool, output, plot, progress, snapshots};
 
@@ -73,18 +73,14 @@ pub struct RunArgs {
 /// infeasible.
 pub fn run<R: Registry>(tool: &Tool<R>, args: RunArgs) -> Result<(), CliError> {
     let file = args.scenario.as_deref().map(ScenarioFile::load).transpose()?;
-    let out = out_dir(args.out.as_deref(), &args.model);
+    let out = out_dir(args.out.as_deref(), &args.model)?;
     let overrides = Overrides {
         dt: args.dt,
         tf: args.tf,
         formulation: args.formulation,
         scheme: args.scheme,
     };
-    let plant = args
-        .plant
-        .iter()
-        .map(|item| name_value(item, || CliError::Plant(item.clone())))
-        .collect::<Result<Vec<_>, CliError>>()?;
+    let plant = name_values("--plant", &args.plant, |item| CliError::Plant(item.to_string()))?;
     let feedback = args
         .feedback
         .as_deref()
@@ -175,7 +171,7 @@ impl Visit for Run<'_> {
         }
         write(&case, &outcome, self.out)?;
         let (solution, summary) = (&outcome.solution, &outcome.summary);
-        println!(
+        say!(
             "{} ({}, {}): {} steps of dt = {} s in {:.1} ms ({:.2} Newton iterations per step)",
             C::NAME,
             settings.formulation.name(),
@@ -184,20 +180,20 @@ impl Visit for Run<'_> {
             settings.dt,
             summary.wall_time_s * 1e3,
             solution.mean_newton_iterations()
-        );
+        )?;
         if solution.redundant_start_steps > 0 {
             let k = solution.redundant_start_steps;
-            println!(
+            say!(
                 "  first {k} steps (to t = {} s) in redundant coordinates: a rope carries under {:e} of the largest \
                  tension (degenerate start)",
                 Seconds(solution.states[k].t),
                 crane_runtime::minimal::DEGENERATE_TENSION_RATIO
-            );
+            )?;
         }
         for line in highlights(summary) {
-            println!("  {line}");
+            say!("  {line}")?;
         }
-        println!("wrote {}", self.out.display());
+        say!("wrote {}", self.out.display())?;
         Ok(outcome.summary)
     }
 }

@@ -1,6 +1,8 @@
 //! What can be wrong with a scenario, each variant naming the key.
 
 use crane_models::ProfileKind;
+
+use super::file::MAX_SCENARIO_BYTES;
 use crane_runtime::UnknownParameter;
 use crane_runtime::scheme::UnknownScheme;
 use crane_runtime::trajectory::TrajectoryError;
@@ -12,6 +14,8 @@ pub enum ScenarioError {
     Read { path: String, source: std::io::Error },
     #[error("scenario {path}: {message}")]
     Parse { path: String, message: String },
+    #[error("scenario {path}: {what}; a scenario is a TOML file of at most {} KiB", MAX_SCENARIO_BYTES / 1024)]
+    NotAScenario { path: String, what: String },
     #[error("scenario: `model` is \"{given}\" but the command runs {running}")]
     WrongModel { given: String, running: String },
     #[error("scenario: `{key}` must be a positive number of seconds, got {value:?}")]
@@ -73,7 +77,7 @@ impl ScenarioError {
     pub fn key(&self) -> Option<String> {
         use ScenarioError::*;
         match self {
-            Read { .. } | Parse { .. } | EndTwice => None,
+            Read { .. } | Parse { .. } | NotAScenario { .. } | EndTwice => None,
             WrongModel { .. } => Some("model".into()),
             NotPositiveTime { key, .. } | WrongCount { key, .. } | EntryNotFinite { key, .. } => Some(key.to_string()),
             StepTooSmall(_) => Some("dt".to_string()),

@@ -8,6 +8,11 @@ use std::path::Path;
 use serde::Deserialize;
 
 use super::ScenarioError;
+
+/// The largest scenario file read, in bytes: the paper's scenarios are under
+/// 1 KiB; a bound keeps a device such as `/dev/zero` or a huge file from
+/// filling the memory.
+pub const MAX_SCENARIO_BYTES: u64 = 1 << 20;
 use crane_models::ProfileKind;
 use crane_models::study::Formulation;
 
@@ -50,15 +55,40 @@ pub struct ScenarioFile {
 impl ScenarioFile {
     /// Read and parse a scenario file (unknown keys and wrong types are errors naming the key).
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Read {
-            path: path.display().to_string(),
-            source,
-        })?;
+        let text = read_bounded(path)?;
         toml::from_str(&text).map_err(|e| ScenarioError::Parse {
             path: path.display().to_string(),
             message: describe(&text, &e),
         })
     }
+}
+
+/// The text of a scenario file: a regular file (not a device or a FIFO,
+/// which could stream without end) of at most [`MAX_SCENARIO_BYTES`], read
+/// no further than that bound.
+fn read_bounded(path: &Path) -> Result<String, ScenarioError> {
+    use std::io::Read;
+    let read_error = |source| ScenarioError::Read {
+        path: path.display().to_string(),
+        source,
+    };
+    let not_a_scenario = |what: String| ScenarioError::NotAScenario {
+        path: path.display().to_string(),
+        what,
+    };
+    let file = std::fs::File::open(path).map_err(read_error)?;
+    let metadata = file.metadata().map_err(read_error)?;
+    if !metadata.is_file() {
+        return Err(not_a_scenario("not a regular file".into()));
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_SCENARIO_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(read_error)?;
+    if bytes.len() as u64 > MAX_SCENARIO_BYTES {
+        return Err(not_a_scenario(format!("larger than {} KiB", MAX_SCENARIO_BYTES / 1024)));
+    }
+    String::from_utf8(bytes).map_err(|_| not_a_scenario("not UTF-8 text".into()))
 }
 
 /// One line for a TOML error: the key it is about (with its table), the

@@ -46,8 +46,8 @@ crane_model! {
             m_l: positive = 100.0,
             /// Moment of inertia `J_b` of the crane without pulley and load about
             /// the `Z`-axis, kg m^2. The paper gives `M = J_b / r^2 = 6.4 kg`
-            /// (sect. 6.1.1) with `r^2 = 75 m^2`, so `J_b: positive = 480 kg m^2`.
-            J_b = 480.0,
+            /// (sect. 6.1.1) with `r^2 = 75 m^2`, so `J_b = 480 kg m^2`.
+            J_b: positive = 480.0,
             /// Inertia of winch 1, kg m^2 (sect. 6.1.1).
             J1: positive = 0.1,
             /// Inertia of winch 2, kg m^2 (sect. 6.1.1).

@@ -70,10 +70,10 @@ crane_model! {
             r3: positive = 0.1,
             /// Angle of the boom with the vertical, in rad.
             alpha = PI / 3.0,
-            /// Distance `l: positive = |PA|` between winches 3 and 1 on the boom, in m.
-            l = 10.0,
-            /// Distance `s: positive = |SP|` between winches 2 and 3 on the boom, in m.
-            s = 5.0,
+            /// Distance `l = |PA|` between winches 3 and 1 on the boom, in m.
+            l: positive = 10.0,
+            /// Distance `s = |SP|` between winches 2 and 3 on the boom, in m.
+            s: positive = 5.0,
             /// Gravitational acceleration, in m/s^2.
             g: positive = 9.81,
         }
