@@ -1150,7 +1150,13 @@ fn replay_options_without_replay_and_negative_values_are_refused() {
     let file = dir.path().join("plant.toml");
     std::fs::write(&file, "[plant]\nm_l = 110\n").unwrap();
     assert!(stderr(&["--scenario", file.to_str().unwrap()]).contains("[plant] table (m_l) applies only to a replay"));
-    assert!(stderr(&["--dt", "-0.01"]).contains("must be a positive number of seconds, got -0.01"));
+    // a flag's mistake is named as the flag, not as a scenario key
+    assert!(stderr(&["--dt", "-0.01"]).contains("--dt -0.01: the time step must be at least 1e-6 s and finite"));
+    assert!(stderr(&["--tf", "-4"]).contains("--tf -4: the end time must be finite and after the start time t0 = 0 s"));
+    assert!(stderr(&["--tf", "inf"]).contains("--tf inf: the end time must be finite"));
+    let file = dir.path().join("endless.toml");
+    std::fs::write(&file, "tf = inf\n").unwrap();
+    assert!(stderr(&["--scenario", file.to_str().unwrap()]).contains("scenario: `tf` must be finite, got inf"));
     assert!(!std::path::Path::new(out).join("results.csv").exists());
 }
 
@@ -1386,9 +1392,7 @@ fn messages_name_the_real_problem() {
     let result = crane(&["fastest", "navy-planar", "--min-tension", "garbage"]);
     assert!(String::from_utf8_lossy(&result.stderr).contains("e.g. --min-tension N1=10"));
     let result = crane(&["run", "navy-planar", "--dt", "1e-300"]);
-    assert!(
-        String::from_utf8_lossy(&result.stderr).contains("`dt` = 1e-300 s is below the smallest time step, 1e-6 s")
-    );
+    assert!(String::from_utf8_lossy(&result.stderr).contains("--dt 1e-300: the time step must be at least 1e-6 s"));
 }
 
 /// The paper's crane on a 2000 s move, run for its first 2 s at dt = 0.001:

@@ -172,6 +172,16 @@ pub enum Error {
         /// Its value.
         value: f64,
     },
+    /// A replay was asked of a run without states.
+    #[error("the run to replay has no states")]
+    NothingToReplay,
+    /// The two steppers of a [`Handover`](crate::stepper::Handover) do not
+    /// start from the same state with the same step.
+    #[error("the steppers of a hand-over must share their {what}")]
+    HandoverMismatch {
+        /// What differs, with both values.
+        what: String,
+    },
     /// `step_to` was asked for a time that is not the next step's.
     #[error("a step must go to t_n + dt = {} s, not {} s", Seconds::of(.expected), Seconds::of(.t))]
     WrongStepTime {

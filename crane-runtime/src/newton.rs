@@ -106,11 +106,28 @@ pub enum NewtonFailure {
     },
     /// Singular iteration matrix that even the minimum-norm step could not handle.
     Singular {
+        /// Iterations taken, the failing one included.
+        iterations: usize,
         /// Smallest-to-largest LU pivot ratio.
         pivot_ratio: f64,
     },
     /// The residual or the update became NaN or infinite.
-    NonFinite,
+    NonFinite {
+        /// Iterations taken, the failing one included.
+        iterations: usize,
+    },
+}
+
+impl NewtonFailure {
+    /// The iterations (linear solves and evaluations) the failed solve
+    /// took: what a retry adds to its own count.
+    pub fn iterations(&self) -> usize {
+        match *self {
+            NewtonFailure::NotConverged { iterations, .. }
+            | NewtonFailure::Singular { iterations, .. }
+            | NewtonFailure::NonFinite { iterations } => iterations,
+        }
+    }
 }
 
 /// Newton's method with preallocated workspace: `solve` does not allocate.
@@ -159,7 +176,7 @@ impl Newton {
         for iteration in 1..=self.options.max_iterations {
             let normalised = system.evaluate(z, &mut self.residual, &mut self.jac);
             if !normalised.is_finite() {
-                return Err(NewtonFailure::NonFinite);
+                return Err(NewtonFailure::NonFinite { iterations: iteration });
             }
             // a residual at round-off level (normalised) ends the solve, but
             // only after the step it gives is applied: the row normalisation
@@ -177,6 +194,7 @@ impl Newton {
                 self.solver.solve_with_last_scales(&self.jac, &mut self.residual)
             };
             let kind = solved.map_err(|singular| NewtonFailure::Singular {
+                iterations: iteration,
                 pivot_ratio: singular.pivot_ratio,
             })?;
             if kind == SolveKind::MinNorm {
@@ -184,7 +202,7 @@ impl Newton {
             }
             let dz = &self.residual;
             if !dz.iter().all(|v| v.is_finite()) {
-                return Err(NewtonFailure::NonFinite);
+                return Err(NewtonFailure::NonFinite { iterations: iteration });
             }
             *z -= dz;
             // the update in units of the tolerance, the largest over blocks:
@@ -226,5 +244,62 @@ impl Newton {
             iterations: self.options.max_iterations,
             residual: self.residual.amax(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `z^2 - 2 = 0` from `z = 1`, whose evaluation turns NaN from the
+    /// `nan_from`-th on: a failed solve reports how far it got.
+    struct Square {
+        evaluations: usize,
+        nan_from: usize,
+        block: Range<usize>,
+    }
+
+    impl NonlinearSystem for Square {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
+            self.evaluations += 1;
+            if self.evaluations >= self.nan_from {
+                r[0] = f64::NAN;
+                return f64::NAN;
+            }
+            r[0] = z[0] * z[0] - 2.0;
+            jac[(0, 0)] = 2.0 * z[0];
+            (r[0] / 2.0).abs()
+        }
+        fn blocks(&self) -> &[Range<usize>] {
+            std::slice::from_ref(&self.block)
+        }
+    }
+
+    #[test]
+    fn a_failed_solve_counts_its_iterations() {
+        let mut newton = Newton::new(1, NewtonOptions::default());
+        let mut system = Square {
+            evaluations: 0,
+            nan_from: 3,
+            block: 0..1,
+        };
+        let failure = newton
+            .solve(&mut system, &mut DVector::from_element(1, 1.0))
+            .unwrap_err();
+        assert_eq!(failure, NewtonFailure::NonFinite { iterations: 3 });
+        assert_eq!(failure.iterations(), 3);
+        // without the NaN it converges to sqrt(2) in a few iterations
+        let mut system = Square {
+            evaluations: 0,
+            nan_from: usize::MAX,
+            block: 0..1,
+        };
+        let mut z = DVector::from_element(1, 1.0);
+        let converged = newton.solve(&mut system, &mut z).unwrap();
+        assert!((z[0] - 2f64.sqrt()).abs() < 1e-14);
+        assert!((4..=6).contains(&converged.iterations), "{converged:?}");
     }
 }

@@ -307,11 +307,9 @@ where
     Mdl: CraneModel<N, M, A>,
     Tr: Trajectory<A>,
 {
+    // (the interpolation below reads the first and last state)
     let (Some(start), Some(end)) = (inverse.states.first(), inverse.states.last()) else {
-        return Err(Error::InvalidTimeSpan {
-            t0: f64::NAN,
-            tf: f64::NAN,
-        });
+        return Err(Error::NothingToReplay);
     };
     let refine = options.refine.max(1);
     let dt = inverse.dt / refine as f64;

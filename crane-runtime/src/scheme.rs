@@ -42,7 +42,7 @@
 //! // the formula differentiates a polynomial of degree k exactly:
 //! // y = t^3 at t = -2, -1, 0 (history) and 1 (new), dt = 1
 //! let past = [vector![0.0], vector![-1.0], vector![-8.0]]; // y_n, y_{n-1}, y_{n-2}
-//! let history = History::from_past(bdf3, &past, &past);
+//! let history = History::from_past(bdf3, &past, &past).unwrap();
 //! let (rate, _) = history.formula(1.0).kinematics(0, 1.0);
 //! assert!((rate - 3.0).abs() < 1e-12); // y'(1) = 3
 //! ```
@@ -67,14 +67,19 @@ pub struct Formula {
 }
 
 impl Formula {
-    /// The formula with `c` and the past coefficients `alpha` (at most
-    /// [`MAX_STEPS`] of them; more are ignored).
-    pub fn new(c: f64, alpha: &[f64]) -> Self {
-        let steps = alpha.len().min(MAX_STEPS);
+    /// The formula with `c` and the past coefficients `alpha`: at most
+    /// [`MAX_STEPS`] of them, which the compiler checks (a sixth
+    /// coefficient is a compile error, not a coefficient dropped):
+    ///
+    /// ```compile_fail
+    /// let six = crane_runtime::scheme::Formula::new(1.0, &[0.1; 6]);
+    /// ```
+    pub fn new<const K: usize>(c: f64, alpha: &[f64; K]) -> Self {
+        const { assert!(K <= MAX_STEPS, "a formula uses at most MAX_STEPS = 5 past values") };
         let mut padded = [0.0; MAX_STEPS];
-        padded[..steps].copy_from_slice(&alpha[..steps]);
+        padded[..K].copy_from_slice(alpha);
         Self {
-            steps,
+            steps: K,
             c,
             alpha: padded,
         }
@@ -269,15 +274,18 @@ impl Method for Scheme {
     }
 }
 
-/// BDF-k coefficients (table in the module docs).
+/// BDF-k coefficients (table in the module docs): `c = 1/beta` and alpha.
 fn bdf_formula(k: usize) -> Formula {
-    let (beta, alpha): (f64, &[f64]) = match k {
-        1 => (1.0, &[-1.0]),
-        2 => (2.0 / 3.0, &[-4.0 / 3.0, 1.0 / 3.0]),
-        3 => (6.0 / 11.0, &[-18.0 / 11.0, 9.0 / 11.0, -2.0 / 11.0]),
-        4 => (12.0 / 25.0, &[-48.0 / 25.0, 36.0 / 25.0, -16.0 / 25.0, 3.0 / 25.0]),
-        _ => (
-            60.0 / 137.0,
+    match k {
+        1 => Formula::new(1.0, &[-1.0]),
+        2 => Formula::new(1.0 / (2.0 / 3.0), &[-4.0 / 3.0, 1.0 / 3.0]),
+        3 => Formula::new(1.0 / (6.0 / 11.0), &[-18.0 / 11.0, 9.0 / 11.0, -2.0 / 11.0]),
+        4 => Formula::new(
+            1.0 / (12.0 / 25.0),
+            &[-48.0 / 25.0, 36.0 / 25.0, -16.0 / 25.0, 3.0 / 25.0],
+        ),
+        _ => Formula::new(
+            1.0 / (60.0 / 137.0),
             &[
                 -300.0 / 137.0,
                 300.0 / 137.0,
@@ -286,8 +294,7 @@ fn bdf_formula(k: usize) -> Formula {
                 -12.0 / 137.0,
             ],
         ),
-    };
-    Formula::new(1.0 / beta, alpha)
+    }
 }
 
 impl fmt::Display for Scheme {
@@ -442,15 +449,17 @@ impl<const K: usize, S: Method> History<K, S> {
         }
     }
 
-    /// A history from past values and rates, newest (`t0`) first (at least
-    /// one of each).
-    pub fn from_past(method: S, values: &[SVector<f64, K>], rates: &[SVector<f64, K>]) -> Self {
-        let known = values.len().min(rates.len()).clamp(1, MAX_STEPS);
-        let mut history = Self::start(method, values[0], rates[0]);
+    /// A history from past values and rates, newest (`t0`) first: as many
+    /// as both give, up to [`MAX_STEPS`]; `None` without at least one of
+    /// each.
+    pub fn from_past(method: S, values: &[SVector<f64, K>], rates: &[SVector<f64, K>]) -> Option<Self> {
+        let known = values.len().min(rates.len()).min(MAX_STEPS);
+        let (&first_value, &first_rate) = (values.first()?, rates.first()?);
+        let mut history = Self::start(method, first_value, first_rate);
         history.values[..known].copy_from_slice(&values[..known]);
         history.rates[..known].copy_from_slice(&rates[..known]);
         history.known = known;
-        history
+        Some(history)
     }
 
     /// The method.
@@ -541,6 +550,16 @@ mod tests {
     use super::*;
     use nalgebra::vector;
 
+    /// A history needs a past: none from empty slices, and no panic.
+    #[test]
+    fn a_history_without_a_past_is_none() {
+        let empty: [SVector<f64, 1>; 0] = [];
+        assert!(History::from_past(Scheme::Bdf3, &empty, &empty).is_none());
+        assert!(History::from_past(Scheme::Bdf3, &[SVector::<f64, 1>::zeros()], &empty).is_none());
+        let one = [SVector::<f64, 1>::zeros()];
+        assert!(History::from_past(Scheme::Bdf3, &one, &one).is_some());
+    }
+
     /// BDF-k is exact for polynomials of degree k (and its consistency
     /// conditions hold): `sum alpha = -1`, `sum j alpha_j = -beta`.
     #[test]
@@ -561,7 +580,7 @@ mod tests {
                 let dt = 0.5;
                 let t_new = 1.0;
                 let past: Vec<_> = (1..=k).map(|j| vector![y(t_new - j as f64 * dt)]).collect();
-                let history = History::<1>::from_past(scheme, &past, &past);
+                let history = History::<1>::from_past(scheme, &past, &past).expect("a past");
                 assert_eq!(history.order(), k);
                 let step = history.formula(dt);
                 let (v, _) = step.kinematics(0, y(t_new));
@@ -592,7 +611,9 @@ mod tests {
             let past: Vec<_> = (0..MAX_STEPS).map(|j| vector![1.0 + 0.3 * j as f64]).collect();
             let rates: Vec<_> = (0..MAX_STEPS).map(|j| vector![0.5 - 0.2 * j as f64]).collect();
             let dt = 0.05;
-            let step = History::<1>::from_past(scheme, &past, &rates).formula(dt);
+            let step = History::<1>::from_past(scheme, &past, &rates)
+                .expect("a past")
+                .formula(dt);
             let slopes = step.slopes();
             let (v0, a0) = step.kinematics(0, 2.0);
             let (v1, a1) = step.kinematics(0, 3.0);
@@ -613,14 +634,14 @@ mod tests {
             let k = scheme.order().min(MAX_STEPS - 1);
             let y = |t: f64| (0..=k).map(|i| t.powi(i as i32) / (i + 1) as f64).sum::<f64>();
             let past: Vec<_> = (0..MAX_STEPS).map(|j| vector![y(-(j as f64))]).collect();
-            let history = History::<1>::from_past(scheme, &past, &past);
+            let history = History::<1>::from_past(scheme, &past, &past).expect("a past");
             let p = history.predict(1.0, 0)[0];
             assert!((p - y(1.0)).abs() < 1e-9, "{scheme}: {p} vs {}", y(1.0));
             // one extra point: exact for one degree more (up to the five values held)
             let k = (scheme.order() + 1).min(MAX_STEPS - 1);
             let y = |t: f64| (0..=k).map(|i| t.powi(i as i32) / (i + 1) as f64).sum::<f64>();
             let past: Vec<_> = (0..MAX_STEPS).map(|j| vector![y(-(j as f64))]).collect();
-            let history = History::<1>::from_past(scheme, &past, &past);
+            let history = History::<1>::from_past(scheme, &past, &past).expect("a past");
             let p = history.predict(1.0, 1)[0];
             assert!((p - y(1.0)).abs() < 1e-9, "{scheme} + 1: {p} vs {}", y(1.0));
         }

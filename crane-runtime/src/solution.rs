@@ -37,8 +37,9 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     /// Rope tensions ([`CraneModel::rope_tensions`]), `info.ropes.len()` per
     /// state, row-major.
     pub tensions: Vec<f64>,
-    /// Newton steps that fell back to the minimum-norm solve (singular
-    /// iteration matrix, as at the paper's degenerate starts).
+    /// Time steps whose Newton iteration fell back to the minimum-norm solve
+    /// at least once (singular iteration matrix, as at the paper's
+    /// degenerate starts): at most the number of steps.
     pub min_norm_steps: usize,
     /// The highest path order the formulation that computed it covers
     /// ([`Problem::path_order_covered`](crate::problem::Problem::path_order_covered));
@@ -102,7 +103,8 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
     ) {
         self.states.push(*state);
         self.newton_iterations.push(iterations);
-        self.min_norm_steps += min_norm_steps;
+        // a step counts once however many of its iterations were singular
+        self.min_norm_steps += usize::from(min_norm_steps > 0);
         let ropes = self.info.ropes.len();
         let first = self.tensions.len();
         self.tensions.resize(first + ropes, 0.0);

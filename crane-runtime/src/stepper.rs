@@ -108,8 +108,8 @@ fn step_error(failure: NewtonFailure, t: f64) -> Error {
             iterations,
             residual,
         },
-        NewtonFailure::Singular { pivot_ratio } => Error::SingularIterationMatrix { t, pivot_ratio },
-        NewtonFailure::NonFinite => Error::NonFinite {
+        NewtonFailure::Singular { pivot_ratio, .. } => Error::SingularIterationMatrix { t, pivot_ratio },
+        NewtonFailure::NonFinite { .. } => Error::NonFinite {
             quantity: "Newton iterate",
             t,
         },
@@ -235,9 +235,8 @@ where
                     .newton
                     .solve(&mut self.problem, &mut self.z)
                     .map_err(|failure| step_error(failure, t))?;
-                if let NewtonFailure::NotConverged { iterations, .. } = first {
-                    retried.iterations += iterations;
-                }
+                // the statistics count the failed attempt's iterations too
+                retried.iterations += first.iterations();
                 retried
             }
             Err(failure) => return Err(step_error(failure, t)),
@@ -402,10 +401,14 @@ where
             None
         } else {
             let first = first()?;
-            if first.dt != second.dt || first.state != second.state {
-                return Err(Error::WrongStepTime {
-                    t: first.state.t + first.dt,
-                    expected: second.next_time(),
+            if first.dt != second.dt {
+                return Err(Error::HandoverMismatch {
+                    what: format!("time step ({} s and {} s)", first.dt, second.dt),
+                });
+            }
+            if first.state != second.state {
+                return Err(Error::HandoverMismatch {
+                    what: format!("start (at t = {} s and {} s)", first.state.t, second.state.t),
                 });
             }
             Some(first)

@@ -127,5 +127,5 @@ pub(crate) fn random_history(scheme: Scheme, rnd: &mut impl FnMut() -> f64) -> (
         u: SVector::zeros(),
         lambda: SVector::zeros(),
     };
-    (History::from_past(scheme, &past, &rates), start)
+    (History::from_past(scheme, &past, &rates).expect("a past"), start)
 }

@@ -92,6 +92,8 @@ fn assert_descriptive(error: &Error) {
         Error::MinimalStartNotFound { .. } | Error::EquilibriumNotFound { .. } => message.contains("residual"),
         Error::MinimalGuessSize { expected, .. } => message.contains(&format!("the map has {expected}")),
         Error::NoDummyDerivatives { model, .. } => message.contains(&format!("`{model}`")),
+        Error::NothingToReplay => message.contains("no states"),
+        Error::HandoverMismatch { what } => message.contains(what.as_str()),
     };
     assert!(ok, "undescriptive error message: {message}");
 }

@@ -73,7 +73,7 @@ pub struct SweepArgs {
     #[arg(long = "param", value_name = "NAME=LOW:HIGH:COUNT")]
     param: Vec<String>,
     /// Swept durations of the move, LOW:HIGH:COUNT (default: its own).
-    #[arg(long, value_name = "LOW:HIGH:COUNT")]
+    #[arg(long, value_name = "LOW:HIGH:COUNT", allow_hyphen_values = true)]
     duration: Option<String>,
     #[command(flatten)]
     plan: PlanFlags,
@@ -552,9 +552,14 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     staged.commit()?;
     let failed = points.iter().filter(|p| p.evaluation.error.is_some()).count();
     let feasible = points.iter().filter(|p| p.feasible).count();
+    // every point is one of the three: ran and feasible, ran and
+    // infeasible, failed to run
+    let infeasible = (points.iter())
+        .filter(|p| !p.feasible && p.evaluation.error.is_none())
+        .count();
     say!(
-        "{}: {} points in {:.2} s ({:.0} points/s on {} threads): {feasible} feasible, {failed} failed; the \
-            move's own duration is {:.3} s",
+        "{}: {} points in {:.2} s ({:.0} points/s on {} threads): {feasible} feasible, {infeasible} infeasible, \
+            {failed} failed; the move's own duration is {:.3} s",
         C::NAME,
         points.len(),
         wall,

@@ -65,7 +65,7 @@ pub struct RunArgs {
     /// planned p(t): `default` (gains from the model) or `KP,KD` (the same
     /// stiffness and damping on every robot coordinate); the replay runs
     /// open loop too and replay.svg shows both.
-    #[arg(long, value_name = "default|KP,KD", requires = "replay")]
+    #[arg(long, value_name = "default|KP,KD", requires = "replay", allow_hyphen_values = true)]
     feedback: Option<String>,
 }
 

@@ -16,6 +16,13 @@ pub enum ScenarioError {
     Parse { path: String, message: String },
     #[error("scenario {path}: {what}; a scenario is a TOML file of at most {} KiB", MAX_SCENARIO_BYTES / 1024)]
     NotAScenario { path: String, what: String },
+    #[error("{flag} {value}: {need}")]
+    Flag {
+        flag: &'static str,
+        /// As written by [`short_number`](super::resolve::short_number).
+        value: String,
+        need: String,
+    },
     #[error("scenario: `model` is \"{given}\" but the command runs {running}")]
     WrongModel { given: String, running: String },
     #[error("scenario: `{key}` must be a positive number of seconds, got {value:?}")]
@@ -77,7 +84,7 @@ impl ScenarioError {
     pub fn key(&self) -> Option<String> {
         use ScenarioError::*;
         match self {
-            Read { .. } | Parse { .. } | NotAScenario { .. } | EndTwice => None,
+            Read { .. } | Parse { .. } | NotAScenario { .. } | Flag { .. } | EndTwice => None,
             WrongModel { .. } => Some("model".into()),
             NotPositiveTime { key, .. } | WrongCount { key, .. } | EntryNotFinite { key, .. } => Some(key.to_string()),
             StepTooSmall(_) => Some("dt".to_string()),

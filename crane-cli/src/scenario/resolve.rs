@@ -61,7 +61,13 @@ fn path_of<const A: usize>(
             value: t0,
         });
     }
-    if let Some(tf) = tf_given.filter(|tf| !(tf.is_finite() && *tf > t0)) {
+    if let Some(tf) = tf_given.filter(|tf| !tf.is_finite()) {
+        return Err(ScenarioError::NotFinite {
+            key: "tf".into(),
+            value: tf,
+        });
+    }
+    if let Some(tf) = tf_given.filter(|tf| !(*tf > t0)) {
         return Err(ScenarioError::EndBeforeStart { tf, t0 });
     }
     let t1 = match (file.t1, file.duration) {
@@ -119,6 +125,7 @@ fn spec<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         (None, Some(name)) => name.parse().map_err(ScenarioError::Scheme)?,
         (None, None) => default.scheme,
     };
+    check_flags(overrides, file.t0.unwrap_or(default.path.t0))?;
     let tf_given = overrides.tf.or(file.tf);
     let path = path_of(&default.path, file, tf_given, name, &info.coordinates[N - A..])?;
     Ok(RunSpec {
@@ -135,6 +142,44 @@ fn spec<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         limits: file.limits.iter().map(|(k, v)| (k.clone(), *v)).collect(),
         plant: file.plant.iter().map(|(k, v)| (k.clone(), *v)).collect(),
     })
+}
+
+/// A number as short as it reads back: `-4`, `-0.01`, `1e-300` (where
+/// `{}` would print 300 zeros).
+pub(super) fn short_number(value: f64) -> String {
+    if value.is_finite() && value == value.trunc() && value.abs() < 1e15 {
+        format!("{value}")
+    } else {
+        format!("{value:?}")
+    }
+}
+
+/// The time flags are checked as flags (`--dt -0.01` is the flag's
+/// mistake, not the scenario key `dt`'s): a step of at least the smallest
+/// one, an end time that is a finite time after the start.
+fn check_flags(overrides: &Overrides, t0: f64) -> Result<(), ScenarioError> {
+    if let Some(dt) = overrides.dt
+        && !(dt.is_finite() && dt >= crane_runtime::options::MIN_DT)
+    {
+        return Err(ScenarioError::Flag {
+            flag: "--dt",
+            value: short_number(dt),
+            need: format!(
+                "the time step must be at least {:e} s and finite",
+                crane_runtime::options::MIN_DT
+            ),
+        });
+    }
+    if let Some(tf) = overrides.tf
+        && !(tf.is_finite() && tf > t0)
+    {
+        return Err(ScenarioError::Flag {
+            flag: "--tf",
+            value: short_number(tf),
+            need: format!("the end time must be finite and after the start time t0 = {t0} s"),
+        });
+    }
+    Ok(())
 }
 
 /// Build the case and settings of `crane run MODEL` from a scenario (or none:

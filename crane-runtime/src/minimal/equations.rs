@@ -356,7 +356,7 @@ mod tests {
                 for _ in 0..10 {
                     let past: Vec<SVector<f64, 3>> = (0..5).map(|_| SVector::from_fn(|_, _| rnd())).collect();
                     let rates: Vec<SVector<f64, 3>> = (0..5).map(|_| SVector::from_fn(|_, _| rnd())).collect();
-                    let history = History::from_past(scheme, &past, &rates);
+                    let history = History::from_past(scheme, &past, &rates).expect("a past");
                     let target = [
                         SVector::from_fn(|_, _| rnd()),
                         SVector::from_fn(|_, _| rnd()),

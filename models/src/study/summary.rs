@@ -88,7 +88,8 @@ pub struct NewtonSummary {
     pub mean_per_step: f64,
     /// Most in one step.
     pub max_per_step: usize,
-    /// Minimum-norm steps on a singular iteration matrix.
+    /// Time steps that took a minimum-norm Newton update on a singular
+    /// iteration matrix (at most `steps`).
     pub min_norm_steps: usize,
     /// Of a minimal run: the first steps taken in redundant coordinates at a
     /// degenerate start (a rope nearly slack).
