@@ -38,6 +38,8 @@ pub enum CliError {
     Feedback(String, crane_models::study::replay::BadFeedback),
     #[error(transparent)]
     Scenario(#[from] crate::scenario::ScenarioError),
+    #[error("the replay failed: {source}; the inverse run's results were written to {out}")]
+    ReplayFailed { source: StudyError, out: String },
     #[error("infeasible (--strict): {problems}; the results were still written to {out}")]
     Infeasible { problems: String, out: String },
     #[error("{0}")]

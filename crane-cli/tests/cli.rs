@@ -1675,3 +1675,36 @@ fn outputs_go_where_they_should_or_fail_in_one_line() {
         .collect();
     assert_eq!(names.len(), 2, "nothing left behind: {names:?}");
 }
+
+/// A replay that fails (a plant of 1e9 kg the torques cannot move: Newton
+/// fails at its first steps) is an error of one line, but the inverse run
+/// is a result of its own and is written (it once wrote nothing), without
+/// replay files or a replay section.
+#[test]
+fn a_failed_replay_still_writes_the_inverse_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let result = crane(&[
+        "run",
+        "navy-planar",
+        "--replay",
+        "--plant",
+        "m_l=1e9",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(!result.status.success());
+    assert!(
+        stderr.starts_with("error: the replay failed: Newton's method did not converge"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("the inverse run's results were written to"), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(out.join("results.csv").exists() && out.join("summary.json").exists());
+    assert!(!out.join("replay.csv").exists());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(summary["replay"].is_null(), "{}", summary["replay"]);
+}

@@ -166,8 +166,17 @@ impl Visit for Run<'_> {
         for warning in &outcome.warnings {
             eprintln!("warning: {warning}");
         }
-        if let Some(request) = &replay {
-            outcome.replay(&case, request)?;
+        let replayed = replay
+            .as_ref()
+            .map(|request| outcome.replay(&case, request).map(|_| ()));
+        if let Some(Err(error)) = replayed {
+            // the inverse run is a result of its own: written, and the
+            // replay's failure said with where it went
+            write(&case, &outcome, self.out)?;
+            return Err(CliError::ReplayFailed {
+                source: error,
+                out: self.out.display().to_string(),
+            });
         }
         write(&case, &outcome, self.out)?;
         let (solution, summary) = (&outcome.solution, &outcome.summary);
