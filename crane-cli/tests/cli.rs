@@ -1708,3 +1708,55 @@ fn a_failed_replay_still_writes_the_inverse_results() {
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert!(summary["replay"].is_null(), "{}", summary["replay"]);
 }
+
+/// The states a run reports are checked against the constraints: one step
+/// of 1e6 s passes Newton's scaled test with states metres off the ropes
+/// (it once printed "stays taut" and u1 = 0 without a word); now a warning
+/// names the constraint and `--strict` fails. A regular run's states are
+/// on their constraints to round-off (measured 1.1e-13 m on navy-planar at
+/// dt = 0.1; the threshold is 1e-6 of the largest coordinate).
+#[test]
+fn states_off_their_constraints_are_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("huge");
+    let args = [
+        "run",
+        "navy-planar",
+        "--tf",
+        "1e6",
+        "--dt",
+        "1e6",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let result = crane(&args);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(result.status.success());
+    assert!(
+        stderr.contains(
+            "warning: navy-planar: the reported states leave constraint `rope0` by 1.811e0 m at t = 1000000 s"
+        ),
+        "{stderr}"
+    );
+    let strict = crane(&[&args[..], &["--strict", "--quiet"]].concat());
+    assert!(!strict.status.success());
+    assert!(String::from_utf8_lossy(&strict.stderr).contains("infeasible (--strict): the reported states leave"));
+    let regular = dir.path().join("regular");
+    assert!(
+        crane(&[
+            "run",
+            "navy-planar",
+            "--dt",
+            "0.1",
+            "--out",
+            regular.to_str().unwrap(),
+            "--quiet"
+        ])
+        .status
+        .success()
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(regular.join("summary.json")).unwrap()).unwrap();
+    let distance = summary["constraint_residual"]["distance"].as_f64().unwrap();
+    assert!(distance < 1e-10, "{distance}");
+}

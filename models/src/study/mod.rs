@@ -307,6 +307,7 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             continuous: smooth.continuous,
             sufficient: smooth.is_sufficient(),
         });
+    summary.constraint_residual = Some(summary::constraint_residual(case.model(), &solution));
     let warnings = warnings::warnings(&summary);
     Ok(Outcome {
         solution,

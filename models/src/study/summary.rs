@@ -3,7 +3,7 @@
 
 use crane_runtime::error::Seconds;
 use crane_runtime::internal::{RUNAWAY_FACTOR, RunDiagnosis};
-use crane_runtime::{Solution, State};
+use crane_runtime::{CraneModel, Solution, State};
 use serde::Serialize;
 
 /// Extreme value of a column and when it occurs.
@@ -151,6 +151,81 @@ pub struct Summary {
     /// How smooth the path must be (the inputs depend on its derivatives
     /// up to `needed`) and is (`continuous`), where both are known.
     pub path_smoothness: Option<PathSmoothnessSummary>,
+    /// How far the reported states are from the constraints, where
+    /// measured ([`constraint_residual`]).
+    pub constraint_residual: Option<ConstraintResidual>,
+}
+
+/// The largest distance of a run's states from its constraints: the states
+/// are a solution only where they satisfy `g(q) = 0`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ConstraintResidual {
+    /// The constraint farthest from holding.
+    pub constraint: String,
+    /// Its distance, `|g_k(q)| / |dg_k/dq|` (the first-order distance from
+    /// the constraint's surface, in the coordinates' units).
+    pub distance: f64,
+    /// When, s.
+    pub t: f64,
+    /// The largest coordinate, for scale (`|q|_inf`, at least 1).
+    pub scale: f64,
+}
+
+impl ConstraintResidual {
+    /// Whether the states leave their constraints beyond what Newton's
+    /// tolerance (`1e-10` relative) and round-off explain: by more than
+    /// [`CONSTRAINT_TOLERANCE`] of the coordinates' scale.
+    pub fn violated(&self) -> bool {
+        !(self.distance <= CONSTRAINT_TOLERANCE * self.scale)
+    }
+}
+
+impl std::fmt::Display for ConstraintResidual {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "the reported states leave constraint `{}` by {:.3e} m at t = {} s: they are not a solution of the \
+             crane's equations there (a step too large for Newton's scaled test to mean the equations hold); \
+             take a smaller dt",
+            self.constraint,
+            self.distance,
+            Seconds(self.t)
+        )
+    }
+}
+
+/// The relative distance from the constraints a state may have and still
+/// count as on them: converged steps are measured at 1e-12 and below; a
+/// step Newton's scaled test accepts where the equations are not solved (a
+/// single step of 1e6 s) leaves metres.
+pub const CONSTRAINT_TOLERANCE: f64 = 1e-6;
+
+/// The [`ConstraintResidual`] of `solution`'s states under `model`.
+pub fn constraint_residual<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    solution: &Solution<N, M, A>,
+) -> ConstraintResidual {
+    let mut worst = ConstraintResidual {
+        constraint: String::new(),
+        distance: 0.0,
+        t: solution.states.first().map_or(f64::NAN, |s| s.t),
+        scale: 1.0,
+    };
+    for state in &solution.states {
+        worst.scale = worst.scale.max(state.q.amax());
+        let (g, jacobian) = (model.constraints(&state.q), model.constraint_jacobian(&state.q));
+        for k in 0..M {
+            let slope = jacobian.row(k).norm();
+            let distance = if slope > 0.0 { g[k].abs() / slope } else { g[k].abs() };
+            // NaN counts as the worst
+            if !(distance <= worst.distance) {
+                worst.distance = distance;
+                worst.t = state.t;
+                worst.constraint = solution.info.constraints.get(k).copied().unwrap_or("").to_string();
+            }
+        }
+    }
+    worst
 }
 
 /// `path_smoothness` in summary.json.
@@ -395,6 +470,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         replay: None,
         internal_dynamics: RunDiagnosis::none(),
         path_smoothness: None,
+        constraint_residual: None,
     }
 }
 
@@ -425,6 +501,9 @@ pub fn infeasibilities(summary: &Summary) -> Vec<String> {
             )
         })
         .collect();
+    if let Some(residual) = summary.constraint_residual.as_ref().filter(|r| r.violated()) {
+        out.push(residual.to_string());
+    }
     out.extend(summary.ropes.iter().filter_map(RopeSummary::slack));
 
     out.extend(summary.torque_limits.iter().filter_map(|l| {

@@ -57,6 +57,14 @@ pub enum Warning {
         /// When, s.
         at: f64,
     },
+    /// The reported states leave their constraints
+    /// ([`ConstraintResidual::violated`](super::summary::ConstraintResidual::violated)).
+    ConstraintsViolated {
+        /// The crane's name.
+        model: String,
+        /// How far, where, when.
+        residual: super::summary::ConstraintResidual,
+    },
     /// Many steps met a singular iteration matrix ([`singular_steps`](super::summary::singular_steps)).
     SingularSteps {
         /// The crane's name.
@@ -115,6 +123,7 @@ impl fmt::Display for Warning {
                  path leaves the crane's workspace, and the computed motion is not one the crane can make",
                 Seconds(*at)
             ),
+            Warning::ConstraintsViolated { model, residual } => write!(f, "{model}: {residual}"),
             Warning::SingularSteps { model, count, steps } => write!(
                 f,
                 "{count} of {steps} steps of {model} met an iteration matrix singular to working precision (a rope \
@@ -148,6 +157,12 @@ pub fn warnings(summary: &Summary) -> Vec<Warning> {
             model: model.clone(),
             needed: p.needed,
             covered: p.covered,
+        });
+    }
+    if let Some(residual) = summary.constraint_residual.as_ref().filter(|r| r.violated()) {
+        out.push(Warning::ConstraintsViolated {
+            model: model.clone(),
+            residual: residual.clone(),
         });
     }
     if !internal.stable {
