@@ -1760,3 +1760,33 @@ fn states_off_their_constraints_are_reported() {
     let distance = summary["constraint_residual"]["distance"].as_f64().unwrap();
     assert!(distance < 1e-10, "{distance}");
 }
+
+/// A crane without a minimal map is pointed at its own default formulation:
+/// the reduced one for double-pendulum (whose inputs need the path's 6th
+/// derivative, beyond eqs. (22)), where the message once advised the
+/// redundant formulation to every crane.
+#[test]
+fn a_missing_minimal_map_points_at_the_default_formulation() {
+    let dir = tempfile::tempdir().unwrap();
+    for (model, default) in [("double-pendulum", "dummy-derivative"), ("navy-3d", "redundant")] {
+        let out = dir.path().join(model);
+        let result = crane(&[
+            "run",
+            model,
+            "--formulation",
+            "minimal",
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ]);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(!result.status.success());
+        assert!(
+            stderr.contains(&format!(
+                "model `{model}` declares no minimal-coordinate map; run it in its default formulation, {default}"
+            )),
+            "{stderr}"
+        );
+        assert!(!out.join("results.csv").exists());
+    }
+}

@@ -133,7 +133,10 @@ impl Formulation {
             Formulation::Redundant => Ok(case.simulate_with_progress(start, options, progress)?),
             Formulation::Minimal => Ok(case
                 .simulate_minimal_with_progress(start, options, progress)
-                .ok_or_else(|| StudyError::NoMinimalMap(C::NAME.to_string()))??),
+                .ok_or_else(|| StudyError::NoMinimalMap {
+                    model: C::NAME.to_string(),
+                    default: Formulation::default_for::<C, N, M, A>(),
+                })??),
             Formulation::DummyDerivative => case
                 .simulate_dummy_derivative(start, options, progress)
                 .map_err(|error| StudyError::of_crane(C::NAME, error)),
@@ -177,8 +180,15 @@ pub enum StudyError {
     #[error(transparent)]
     Runtime(#[from] crane_runtime::Error),
     /// The minimal formulation of a crane without a minimal map.
-    #[error("model `{0}` declares no minimal-coordinate map; use the redundant formulation")]
-    NoMinimalMap(String),
+    #[error("model `{model}` declares no minimal-coordinate map; run it in its default formulation, {default}")]
+    NoMinimalMap {
+        /// The crane's name.
+        model: String,
+        /// The formulation its declaration supports by default (the
+        /// redundant one, or the reduced one where its inputs need more
+        /// than the path's 4th derivative).
+        default: Formulation,
+    },
     /// The dummy-derivative formulation of a crane that has none (internal
     /// dynamics, or a path order beyond what the runtime carries).
     #[error("model `{model}` has no dummy-derivative formulation: {reason}; run it in the redundant formulation")]
