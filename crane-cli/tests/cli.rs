@@ -1790,3 +1790,35 @@ fn a_missing_minimal_map_points_at_the_default_formulation() {
         assert!(!out.join("results.csv").exists());
     }
 }
+
+/// The replay says on the console what the torques do on the plant (it
+/// printed nothing there: the numbers were only in summary.json).
+#[test]
+fn the_replay_is_summed_up_on_the_console() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("heavy");
+    let result = crane(&[
+        "run",
+        "navy-planar-pulley",
+        "--scheme",
+        "bdf4",
+        "--replay",
+        "--plant",
+        "m_l=110",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(result.status.success());
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    let line = stdout
+        .lines()
+        .find(|line| line.contains("replay on the plant with m_l = 110: the load leaves its path by at most"))
+        .unwrap_or_else(|| panic!("no replay line: {stdout}"));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let deviation = summary["replay"]["max_load_deviation"].as_f64().unwrap();
+    assert!(
+        line.contains(&format!("at most {deviation:.3e} m")),
+        "{line} vs {deviation}"
+    );
+}

@@ -382,5 +382,32 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
             format!("WARNING: internal dynamics: dimension {k}, UNSTABLE: the torques are not a usable feedforward")
         }
     });
+    if let Some(replay) = &summary.replay {
+        // what the torques do on the plant, where the files say it in full
+        let plant = if replay.plant.is_empty() {
+            "the model".to_string()
+        } else {
+            let changed: Vec<String> = replay
+                .plant
+                .iter()
+                .map(|(name, value)| format!("{name} = {value}"))
+                .collect();
+            format!("the plant with {}", changed.join(", "))
+        };
+        let with = replay
+            .feedback
+            .as_ref()
+            .map_or(String::new(), |law| format!(" with feedback {law}"));
+        lines.push(format!(
+            "replay on {plant}{with}: the load leaves its path by at most {:.3e} m, {:.3e} m at the end, and sways \
+             by {:.3e} m over the {:.3} s after it (replay.csv, replay.svg)",
+            replay.max_load_deviation, replay.deviation_at_tf, replay.residual_sway, replay.settle_time
+        ));
+        for (rope, t) in &replay.first_slack {
+            lines.push(format!(
+                "WARNING: in the replay rope {rope} would have to push from t = {t:.3} s"
+            ));
+        }
+    }
     lines
 }
