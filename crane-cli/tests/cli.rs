@@ -169,8 +169,7 @@ fn example_scenario_end_to_end() {
         let svg = std::fs::read_to_string(out.join(name)).unwrap();
         assert!(svg.len() > 1024 && svg.contains("<svg"), "{name} is trivial");
     }
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     let limits = summary["torque_limits"].as_array().unwrap();
     assert_eq!(limits.len(), 2);
     assert!(limits.iter().all(|l| l["first_violation"].is_null()));
@@ -202,8 +201,7 @@ fn command_line_overrides_the_file() {
         "--quiet",
     ]);
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     assert_eq!(summary["dt"].as_f64(), Some(0.02));
     assert_eq!(summary["steps"].as_u64(), Some(200));
 }
@@ -228,8 +226,7 @@ fn strict_fails_on_a_violated_limit_but_writes_results() {
     assert!(lenient.status.success());
     let stdout = String::from_utf8_lossy(&lenient.stdout);
     assert!(stdout.contains("WARNING: |u2| exceeds its limit 50 N m"), "{stdout}");
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     assert!(summary["torque_limits"][0]["first_violation"].as_f64().is_some());
     std::fs::remove_dir_all(&out).unwrap();
     // with --strict: non-zero, results still written, and the message says so
@@ -345,8 +342,7 @@ fn the_scheme_takes_effect_from_the_flag_and_the_file() {
         all.extend_from_slice(args);
         let result = crane(&all);
         assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
-        let json: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        let json = summary_json(&out);
         (
             json["scheme"].as_str().unwrap().to_string(),
             json["reference"]["e_u_at_1_5s"].as_f64().unwrap(),
@@ -414,6 +410,11 @@ fn results(dir: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
         .map(|r| r.unwrap().iter().map(|v| v.parse::<f64>().unwrap()).collect())
         .collect();
     (header, rows)
+}
+
+/// The `summary.json` a command wrote into `out`.
+fn summary_json(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
 }
 
 /// Run `crane run MODEL ARGS --out DIR/NAME --quiet`; expect success.
@@ -612,8 +613,7 @@ fn a_slack_rope_is_reported_and_strict_fails_on_it() {
         dir.path(),
         "fast",
     );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     let rope = summary["ropes"]
         .as_array()
         .unwrap()
@@ -694,16 +694,13 @@ fn a_negative_mass_in_the_scenario_names_the_key() {
 #[test]
 fn replay_reports_how_the_torques_do_on_the_plant() {
     let dir = tempfile::tempdir().unwrap();
-    let summary = |out: &Path| -> serde_json::Value {
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
-    };
     let exact = run_ok(
         "navy-planar-pulley",
         &["--scheme", "bdf4", "--replay", "--settle", "9"],
         dir.path(),
         "exact",
     );
-    let replay = &summary(&exact)["replay"];
+    let replay = &summary_json(&exact)["replay"];
     assert!(replay["max_load_deviation"].as_f64().unwrap() < 1e-4, "{replay}");
     assert_eq!(replay["settle_time"].as_f64(), Some(9.0));
     assert_eq!(replay["scheme"], "bdf2");
@@ -725,7 +722,7 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
         dir.path(),
         "heavy",
     );
-    let replay = &summary(&heavy)["replay"];
+    let replay = &summary_json(&heavy)["replay"];
     assert!(replay["max_load_deviation"].as_f64().unwrap() > 1.0, "{replay}");
     assert_eq!(replay["plant"]["m_l"].as_f64(), Some(110.0));
     let file = dir.path().join("plant.toml");
@@ -737,7 +734,7 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
         "file",
     );
     assert_eq!(
-        summary(&from_file)["replay"]["max_load_deviation"],
+        summary_json(&from_file)["replay"]["max_load_deviation"],
         replay["max_load_deviation"]
     );
     // a lighter load that the planned torques over-lift: rope N1 would have
@@ -748,7 +745,7 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
         dir.path(),
         "light",
     );
-    let slack = summary(&light)["replay"]["first_slack"]["N1"]
+    let slack = summary_json(&light)["replay"]["first_slack"]["N1"]
         .as_f64()
         .expect("N1 pushes");
     assert!((9.0..10.5).contains(&slack), "{slack}");
@@ -767,7 +764,7 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
         dir.path(),
         "fed",
     );
-    let with = &summary(&fed)["replay"];
+    let with = &summary_json(&fed)["replay"];
     assert!(with["feedback"].as_str().unwrap().starts_with("default"));
     assert_eq!(with["open_loop_max_load_deviation"], replay["max_load_deviation"]);
     assert!(
@@ -801,8 +798,7 @@ fn unstable_internal_dynamics_are_reported_and_strict_fails_on_them() {
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(stderr.contains("unstable internal dynamics"), "{stderr}");
     assert!(stderr.contains("exceeds 1e6 times its size at the start"), "{stderr}");
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     let internal = &summary["internal_dynamics"];
     assert_eq!(internal["structural_dimension"], 2, "{internal}");
     assert_eq!(internal["dimension"], 2, "{internal}");
@@ -982,8 +978,7 @@ fn a_crane_beyond_the_formulation_is_warned_of_and_strict_fails() {
     ]);
     let stderr = String::from_utf8_lossy(&default.stderr);
     assert!(default.status.success() && !stderr.contains("covers order"), "{stderr}");
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(reduced.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&reduced);
     assert_eq!(summary["formulation"], "dummy-derivative");
     assert_eq!(summary["internal_dynamics"]["path_order"]["covered"], 6);
     let out = dir.path().join("smooth");
@@ -1005,8 +1000,7 @@ fn a_crane_beyond_the_formulation_is_warned_of_and_strict_fails() {
         stderr.contains("derivatives up to order 6, but this formulation (the paper's minimal extension, eqs. 22 and 24) covers order 4"),
         "{stderr}"
     );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     assert_eq!(summary["internal_dynamics"]["path_order"]["needed"], 6);
     assert_eq!(summary["internal_dynamics"]["path_order"]["covered"], 4);
     let strict = crane(&[&args[..], &["--strict"]].concat());
@@ -1042,8 +1036,7 @@ fn a_path_too_rough_for_the_crane_is_reported() {
         stderr.contains("derivatives up to order 6, but this path is continuous only up to order 4"),
         "{stderr}"
     );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     assert_eq!(
         summary["path_smoothness"]["sufficient"], false,
         "{}",
@@ -1057,8 +1050,7 @@ fn a_path_too_rough_for_the_crane_is_reported() {
         dir.path(),
         "smooth",
     );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(smooth.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&smooth);
     assert_eq!(summary["path_smoothness"]["needed"], 6);
     assert_eq!(summary["path_smoothness"]["sufficient"], true);
 }
@@ -1101,8 +1093,7 @@ fn the_error_at_1_5_s_needs_a_step_there() {
             "{stdout}"
         );
         assert_eq!(stdout.contains("no step lands at t = 1.5 s"), !expected, "{stdout}");
-        let summary: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        let summary = summary_json(&out);
         assert_eq!(summary["reference"]["e_u_at_1_5s"].is_null(), !expected);
     }
 }
@@ -1250,8 +1241,7 @@ fn a_rope_of_non_positive_length_is_reported_and_infeasible() {
         stderr.contains("rope N2 of navy-planar (constraint `hoist`) has the length -11.6243 m"),
         "{stderr}"
     );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     assert!(summary["ropes"][0]["min_length"].as_f64().unwrap() < 0.0);
     let strict = crane(&[&args[..], &["--strict", "--quiet"]].concat());
     assert!(!strict.status.success());
@@ -1300,8 +1290,7 @@ fn an_output_folder_holds_one_runs_output() {
         .lines()
         .count()
         - 1;
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     assert_eq!(
         rows as u64,
         summary["steps"].as_u64().unwrap() + 1,
@@ -1425,8 +1414,7 @@ fn a_run_of_singular_steps_is_reported() {
     );
     // N1 = -2.6e-13 N at the start is round-off of the crane's 981 N, not
     // of N1's own peak (below 1e-6 N over these 2 s): not slack
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     assert!(summary["ropes"][0]["min_tension"].as_f64().unwrap() < 0.0);
     assert!(summary["ropes"][0]["first_slack"].is_null(), "{}", summary["ropes"][0]);
     let strict = crane(&[&args[..], &["--strict"]].concat());
@@ -1473,8 +1461,7 @@ fn inputs_are_printed_in_their_own_units() {
     assert!(line("u1").contains(" N at t ="), "{}", line("u1"));
     assert!(line("u2").contains(" N at t ="), "{}", line("u2"));
     assert!(line("u3").contains(" N m at t ="), "{}", line("u3"));
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     assert_eq!(summary["input_units"], serde_json::json!(["N", "N", "N m"]));
 }
 
@@ -1704,8 +1691,7 @@ fn a_failed_replay_still_writes_the_inverse_results() {
     assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
     assert!(out.join("results.csv").exists() && out.join("summary.json").exists());
     assert!(!out.join("replay.csv").exists());
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     assert!(summary["replay"].is_null(), "{}", summary["replay"]);
 }
 
@@ -1755,8 +1741,7 @@ fn states_off_their_constraints_are_reported() {
         .status
         .success()
     );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(regular.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&regular);
     let distance = summary["constraint_residual"]["distance"].as_f64().unwrap();
     assert!(distance < 1e-10, "{distance}");
 }
@@ -1814,8 +1799,7 @@ fn the_replay_is_summed_up_on_the_console() {
         .lines()
         .find(|line| line.contains("replay on the plant with m_l = 110: the load leaves its path by at most"))
         .unwrap_or_else(|| panic!("no replay line: {stdout}"));
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_json(&out);
     let deviation = summary["replay"]["max_load_deviation"].as_f64().unwrap();
     assert!(
         line.contains(&format!("at most {deviation:.3e} m")),

@@ -145,7 +145,7 @@ fn expand(input: TokenStream) -> TokenStream {
             let kernels = model::Kernels::derive(&mut model);
             if let Some(error) = check::negative_inertia(&decl, &model, &kernels)
                 .or_else(|| check::ropes_depend_on_their_lengths(&decl, &model, &kernels))
-                .or_else(|| check::dependent_constraints(&decl, &model, &kernels))
+                .or_else(|| check::dependent_constraints(&model, &kernels))
             {
                 let mut tokens = error.to_compile_error();
                 tokens.extend(codegen::stub(&decl));

@@ -169,16 +169,15 @@ impl Visit for Run<'_> {
         let replayed = replay
             .as_ref()
             .map(|request| outcome.replay(&case, request).map(|_| ()));
+        // the inverse run is a result of its own: written whether or not
+        // its replay succeeded, and a failed replay says where it went
+        write(&case, &outcome, self.out)?;
         if let Some(Err(error)) = replayed {
-            // the inverse run is a result of its own: written, and the
-            // replay's failure said with where it went
-            write(&case, &outcome, self.out)?;
             return Err(CliError::ReplayFailed {
                 source: error,
                 out: self.out.display().to_string(),
             });
         }
-        write(&case, &outcome, self.out)?;
         let (solution, summary) = (&outcome.solution, &outcome.summary);
         say!(
             "{} ({}, {}): {} steps of dt = {} s in {:.1} ms ({:.2} Newton iterations per step)",

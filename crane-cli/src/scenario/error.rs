@@ -1,11 +1,11 @@
 //! What can be wrong with a scenario, each variant naming the key.
 
 use crane_models::ProfileKind;
-
-use super::file::MAX_SCENARIO_BYTES;
 use crane_runtime::UnknownParameter;
 use crane_runtime::scheme::UnknownScheme;
 use crane_runtime::trajectory::TrajectoryError;
+
+use super::file::MAX_SCENARIO_BYTES;
 
 /// Errors of a scenario, each naming the key (as written in the file).
 #[derive(Debug, thiserror::Error)]

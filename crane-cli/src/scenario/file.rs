@@ -8,13 +8,13 @@ use std::path::Path;
 use serde::Deserialize;
 
 use super::ScenarioError;
+use crane_models::ProfileKind;
+use crane_models::study::Formulation;
 
 /// The largest scenario file read, in bytes: the paper's scenarios are under
 /// 1 KiB; a bound keeps a device such as `/dev/zero` or a huge file from
 /// filling the memory.
 pub const MAX_SCENARIO_BYTES: u64 = 1 << 20;
-use crane_models::ProfileKind;
-use crane_models::study::Formulation;
 
 /// A scenario file as written.
 #[derive(Debug, Clone, Default, Deserialize)]

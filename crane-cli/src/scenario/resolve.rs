@@ -159,7 +159,7 @@ pub(super) fn short_number(value: f64) -> String {
 /// one, an end time that is a finite time after the start.
 fn check_flags(overrides: &Overrides, t0: f64) -> Result<(), ScenarioError> {
     if let Some(dt) = overrides.dt
-        && !(dt.is_finite() && dt >= crane_runtime::options::MIN_DT)
+        && crane_runtime::Options::stepping(dt).is_err()
     {
         return Err(ScenarioError::Flag {
             flag: "--dt",

@@ -92,8 +92,7 @@ const DEPENDENT: f64 = 1e-8;
 /// constraints) is an error naming it and the constraints it depends on.
 /// Without this the run stops at its first step with a Jacobian whose
 /// multipliers are not unique.
-pub fn dependent_constraints(decl: &Declaration, model: &Model, kernels: &Kernels) -> Option<syn::Error> {
-    let declared = &decl.sections.constraints.as_ref()?.body;
+pub fn dependent_constraints(model: &Model, kernels: &Kernels) -> Option<syn::Error> {
     let (m, n) = (model.m(), model.n());
     let params: Vec<f64> = model
         .params
@@ -163,8 +162,7 @@ pub fn dependent_constraints(decl: &Declaration, model: &Model, kernels: &Kernel
             others.join(", ")
         )
     };
-    let span = declared.get(k).map_or(model.name.span(), |c| c.name.span());
-    Some(syn::Error::new(span, message))
+    Some(syn::Error::new(name.span(), message))
 }
 
 /// The coefficients `c` with `row = sum_j c_j rows[j]` when `row` is such a

@@ -13,16 +13,18 @@ use crate::expr::{Arena, Func, Id, Node, Sym};
 use crate::model::{Constraint, Rope};
 use crate::parse::{BinOp, ConstraintDecl, Declaration, Expr, Section};
 
+/// Reports a missing section at the crane's name, with an example of it.
+fn missing_section(decl: &Declaration, cx: &Ctxt, keyword: &str, example: &str) {
+    cx.error_at(
+        decl.name.span(),
+        format!("missing section `{keyword}`: declare it, e.g. `{example}`"),
+    );
+}
+
 /// Reports missing or empty sections.
 pub(super) fn required_sections(decl: &Declaration, cx: &Ctxt) -> Lists {
     let s = &decl.sections;
-    let name_span = decl.name.span();
-    let missing = |keyword: &str, example: &str| {
-        cx.error_at(
-            name_span,
-            format!("missing section `{keyword}`: declare it, e.g. `{example}`"),
-        );
-    };
+    let missing = |keyword: &str, example: &str| missing_section(decl, cx, keyword, example);
     let list = |section: &Option<Section<Vec<Ident>>>, keyword: &str, example: &str| match section {
         None => {
             missing(keyword, example);
@@ -63,10 +65,7 @@ pub(super) fn required_sections(decl: &Declaration, cx: &Ctxt) -> Lists {
 /// constraint to write.
 pub(super) fn required_constraints(decl: &Declaration, cx: &Ctxt) {
     match &decl.sections.constraints {
-        None => cx.error_at(
-            decl.name.span(),
-            "missing section `constraints`: declare it, e.g. `constraints { rope: 0.5*(x^2 + z^2 - L^2) }`",
-        ),
+        None => missing_section(decl, cx, "constraints", "constraints { rope: 0.5*(x^2 + z^2 - L^2) }"),
         Some(sec) if sec.body.is_empty() => {
             cx.error_spanned_by(
                 sec.range,
