@@ -224,8 +224,11 @@ fn strict_fails_on_a_violated_limit_but_writes_results() {
     // without --strict: a warning, exit 0
     let lenient = crane(&args);
     assert!(lenient.status.success());
-    let stdout = String::from_utf8_lossy(&lenient.stdout);
-    assert!(stdout.contains("WARNING: |u2| exceeds its limit 50 N m"), "{stdout}");
+    let stderr = String::from_utf8_lossy(&lenient.stderr);
+    assert!(
+        stderr.contains("warning: |u2| exceeds its limit 50 N m first at t = "),
+        "{stderr}"
+    );
     let summary = summary_json(&out);
     assert!(summary["torque_limits"][0]["first_violation"].as_f64().is_some());
     std::fs::remove_dir_all(&out).unwrap();
@@ -817,7 +820,7 @@ fn unstable_internal_dynamics_are_reported_and_strict_fails_on_them() {
     assert!(!result.status.success());
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(
-        stderr.contains("infeasible (--strict): unstable internal dynamics"),
+        stderr.contains("infeasible (--strict): coupled-trolley has unstable internal dynamics"),
         "{stderr}"
     );
     assert!(
@@ -940,7 +943,7 @@ fn sweep_writes_a_row_per_point_and_survives_a_failure() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "m_l,duration,peak_u1,peak_u2,min_N1,min_N2,feasible,error"
+        "m_l,duration,peak_u1,peak_u2,min_N1,min_N2,feasible,error,audit"
     );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 9);
@@ -1007,7 +1010,7 @@ fn a_crane_beyond_the_formulation_is_warned_of_and_strict_fails() {
     assert!(!strict.status.success());
     let stderr = String::from_utf8_lossy(&strict.stderr);
     assert!(
-        stderr.contains("infeasible (--strict): the crane needs the path's derivatives up to order 6, the formulation covers order 4"),
+        stderr.contains("infeasible (--strict): the inputs of navy-3d-pulley depend on the load path's derivatives up to order 6, but this formulation (the paper's minimal extension, eqs. 22 and 24) covers order 4"),
         "{stderr}"
     );
     assert!(out.join("results.csv").exists(), "--strict still writes the results");
@@ -1245,7 +1248,10 @@ fn a_rope_of_non_positive_length_is_reported_and_infeasible() {
     assert!(summary["ropes"][0]["min_length"].as_f64().unwrap() < 0.0);
     let strict = crane(&[&args[..], &["--strict", "--quiet"]].concat());
     assert!(!strict.status.success());
-    assert!(String::from_utf8_lossy(&strict.stderr).contains("rope N1 has the non-positive length -4.333 m"));
+    assert!(
+        String::from_utf8_lossy(&strict.stderr)
+            .contains("rope N1 of navy-planar (constraint `rope1`) has the length -4.3333 m")
+    );
     let default = crane(&[
         "run",
         "navy-planar",
@@ -1419,7 +1425,7 @@ fn a_run_of_singular_steps_is_reported() {
     assert!(summary["ropes"][0]["first_slack"].is_null(), "{}", summary["ropes"][0]);
     let strict = crane(&[&args[..], &["--strict"]].concat());
     assert!(!strict.status.success());
-    assert!(String::from_utf8_lossy(&strict.stderr).contains("met a singular iteration matrix"));
+    assert!(String::from_utf8_lossy(&strict.stderr).contains("met an iteration matrix singular"));
     let default = crane(&[
         "run",
         "navy-planar",
@@ -1726,7 +1732,10 @@ fn states_off_their_constraints_are_reported() {
     );
     let strict = crane(&[&args[..], &["--strict", "--quiet"]].concat());
     assert!(!strict.status.success());
-    assert!(String::from_utf8_lossy(&strict.stderr).contains("infeasible (--strict): the reported states leave"));
+    assert!(
+        String::from_utf8_lossy(&strict.stderr)
+            .contains("infeasible (--strict): navy-planar: the reported states leave")
+    );
     let regular = dir.path().join("regular");
     assert!(
         crane(&[
@@ -1804,5 +1813,166 @@ fn the_replay_is_summed_up_on_the_console() {
     assert!(
         line.contains(&format!("at most {deviation:.3e} m")),
         "{line} vs {deviation}"
+    );
+}
+
+/// The audit of a replay: backward Euler's torques on the paper's move,
+/// held after it, drift the load 0.84 m over the settling window (its
+/// end torques are O(dt) off the static ones), and a 20 % heavier plant
+/// leaves 68 m: `--replay` warns, `--replay --strict` fails on both, where
+/// it passed with any sway. BDF-4's torques on the planned plant arrive
+/// (7.7e-5 m of sway) and pass. The forward replay's start, where rope N1
+/// carries nothing and dips to -1.2e-5 N, is not a rope that pushes.
+#[test]
+fn a_replay_that_misses_the_path_fails_strict() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, extra) in [
+        ("be", &[][..]),
+        ("heavy", &["--scheme", "bdf4", "--plant", "m_l=1200"][..]),
+    ] {
+        let out = dir.path().join(name);
+        let mut args = vec![
+            "run",
+            "navy-planar",
+            "--replay",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let lenient = crane(&args);
+        assert!(lenient.status.success(), "{name}");
+        let stderr = String::from_utf8_lossy(&lenient.stderr);
+        assert!(
+            stderr.contains("warning: the replayed load does not arrive: it ends ")
+                && stderr.contains("more than 1 % of its 5.000 m travel"),
+            "{name}: {stderr}"
+        );
+        assert!(!stderr.contains("would have to push from t = 0.003 s"), "{stderr}");
+        let strict = crane(&[&args[..], &["--strict"]].concat());
+        let stderr = String::from_utf8_lossy(&strict.stderr);
+        assert!(!strict.status.success(), "{name}");
+        assert!(
+            stderr.contains("infeasible (--strict): ") && stderr.contains("the replayed load does not arrive"),
+            "{name}: {stderr}"
+        );
+        let why = if name == "be" {
+            "the torques at the end differ from the static ones"
+        } else {
+            "the plant differs from the planner's (add --feedback)"
+        };
+        assert!(stderr.contains(why), "{name}: {stderr}");
+    }
+    let out = dir.path().join("bdf4");
+    let args = [
+        "run",
+        "navy-planar",
+        "--replay",
+        "--scheme",
+        "bdf4",
+        "--strict",
+        "--quiet",
+        "--out",
+    ];
+    let exact = crane(&[&args[..], &[out.to_str().unwrap()]].concat());
+    assert!(exact.status.success(), "{}", String::from_utf8_lossy(&exact.stderr));
+    assert!(summary_json(&out)["replay"]["residual_sway"].as_f64().unwrap() < 1e-3);
+}
+
+/// The audit of a convergence study: the load straight below the boom tip
+/// (end (0, -5)) leaves rope N1 without tension and Newton's matrix
+/// singular at almost every step; each row says so (marked `!`, a warning
+/// naming its dt, an `audit` column in convergence.csv) and `--strict`
+/// fails, where the study printed orders of -3 to 0.08 as if measured.
+#[test]
+fn a_convergence_study_on_unreliable_runs_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("below.toml");
+    std::fs::write(&file, "end = [0.0, -5.0]\n").unwrap();
+    let out = dir.path().join("study");
+    let args = [
+        "convergence",
+        "navy-planar",
+        "--scenario",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let result = crane(&args);
+    assert!(result.status.success());
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&result.stdout),
+        String::from_utf8_lossy(&result.stderr),
+    );
+    assert!(stdout.lines().filter(|l| l.ends_with("  !")).count() >= 5, "{stdout}");
+    assert!(
+        stderr.contains("warning: dt = 0.001 s: 1499 of 1500 steps of navy-planar met an iteration matrix singular"),
+        "{stderr}"
+    );
+    let csv = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
+    assert!(csv.starts_with("dt,e_u,order,audit\n"), "{csv}");
+    assert!(csv.lines().skip(1).all(|l| l.contains("singular")), "{csv}");
+    let strict = crane(&[&args[..], &["--strict"]].concat());
+    assert!(!strict.status.success());
+    assert!(String::from_utf8_lossy(&strict.stderr).contains("infeasible (--strict): dt = 0.1 s: "));
+    // the paper's move: nothing found, nothing marked
+    let clean = crane(&[
+        "convergence",
+        "navy-planar",
+        "--strict",
+        "--out",
+        dir.path().join("paper").to_str().unwrap(),
+    ]);
+    assert!(clean.status.success(), "{}", String::from_utf8_lossy(&clean.stderr));
+    assert!(!String::from_utf8_lossy(&clean.stdout).contains('!'));
+}
+
+/// The audit of planning: the coupled trolley at c = 2 has unstable
+/// internal dynamics and inputs that run away (3e16 N m); its sweep point
+/// is infeasible with the audit's words in sweep.csv's `audit` column (the
+/// uncoupled one, c = 0, is feasible with the column empty), and
+/// `fastest` finds no feasible duration, saying why.
+#[test]
+fn planning_counts_what_the_audit_finds_as_infeasible() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sweep");
+    let result = crane(&[
+        "sweep",
+        "coupled-trolley",
+        "--param",
+        "c=0:2:2",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let mut reader = csv::Reader::from_path(out.join("sweep.csv")).unwrap();
+    let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+    assert_eq!((&rows[0][0], &rows[0][5], &rows[0][7]), ("0.0", "true", ""));
+    assert_eq!((&rows[1][0], &rows[1][5]), ("2.0", "false"));
+    assert!(
+        rows[1][7].starts_with("coupled-trolley has unstable internal dynamics"),
+        "{:?}",
+        &rows[1]
+    );
+    assert!(
+        rows[1][7].contains("exceeds 1e6 times its size at the start"),
+        "{:?}",
+        &rows[1]
+    );
+    let result = crane(&[
+        "fastest",
+        "coupled-trolley",
+        "--limit",
+        "u2=1e5",
+        "--out",
+        dir.path().join("f").to_str().unwrap(),
+    ]);
+    assert!(!result.status.success());
+    assert!(
+        String::from_utf8_lossy(&result.stderr)
+            .contains("no feasible duration up to 640.000 s: coupled-trolley has unstable internal dynamics"),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
     );
 }

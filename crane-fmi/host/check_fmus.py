@@ -10,7 +10,10 @@ communication step that is not a multiple of dt (an FMI error), a host's
 misuse through FMPy's FMU2Slave (gravity of the wrong sign, a time step
 below a microsecond, a NaN or infinite communication point, a step size
 of zero or below: each an FMI error status naming the problem, and the
-instance can still be freed), and the
+instance can still be freed), the audit (the `status` output reads 1
+after initialisation where `TOOL run` finds unstable internal dynamics, 0
+otherwise; where the run's inputs run away the FMU stops with an FMI
+error and `status` 2, and the comparison ends before), and the
 C host (host.c) loading the FMU's shared library directly, against the same
 run. Prints the time per doStep of the C host and of FMPy next to the
 native stepper's (`TOOL bench`).
@@ -113,6 +116,42 @@ def misuse(unzipped, md):
     return cases
 
 
+def audit(unzipped, md, summary, stop):
+    """The `status` output through FMU2Slave against `TOOL run`'s summary:
+    1 after initialisation for unstable internal dynamics (a warning), 0
+    otherwise; at the end of the move 2 with an FMI error for a runaway
+    input, else what it was."""
+    status = next(v.valueReference for v in md.modelVariables if v.name == "status")
+    internal = summary["internal_dynamics"]
+    slave = fmpy.fmi2.FMU2Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier, instanceName="audit")
+    slave.instantiate()
+    try:
+        slave.setupExperiment(startTime=0.0)
+        slave.enterInitializationMode()
+        slave.exitInitializationMode()
+        at_start = slave.getInteger([status])[0]
+        expected = 0 if internal["stable"] else 1
+        if at_start != expected:
+            raise SystemExit(f"{md.modelName}: status {at_start} after initialisation, expected {expected}")
+        failed = None
+        for k in range(round(stop / DT)):
+            try:
+                slave.doStep(currentCommunicationPoint=k * DT, communicationStepSize=DT)
+            except fmpy.fmi1.FMICallException:
+                failed = (k + 1) * DT
+                break
+        at_end = slave.getInteger([status])[0]
+    finally:
+        slave.freeInstance()
+    if internal["runaway_at"] is not None:
+        if failed is None or at_end != 2 or abs(failed - internal["runaway_at"]) > 1e-9:
+            raise SystemExit(f"{md.modelName}: the runaway at t = {internal['runaway_at']} s gave an error at {failed}, status {at_end}")
+        return f"status {at_start} at the start, error and status 2 at the runaway (t = {failed:.2f} s)"
+    if failed is not None or at_end > 1:
+        raise SystemExit(f"{md.modelName}: an FMI error at t = {failed}, status {at_end}")
+    return f"status {at_start} at the start, {at_end} at the end"
+
+
 def main():
     crane, host, out = sys.argv[1], sys.argv[2], Path(sys.argv[3])
     out.mkdir(parents=True, exist_ok=True)
@@ -125,13 +164,21 @@ def main():
             raise SystemExit(f"{model}: validate_fmu: {problems}")
         md = fmpy.read_model_description(str(fmu))
         stop = float(md.defaultExperiment.stopTime)
-        outputs = [v for v in md.modelVariables if v.causality == "output"]
+        outputs = [v for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
         compared = [v.name for v in outputs if not v.name.startswith("lambda")]
 
-        reference = columns(Path(run(crane, "run", model, "--dt", str(DT), "--quiet", "--out", str(out / model)).split("wrote ")[-1].strip()) / "results.csv")
+        written = Path(run(crane, "run", model, "--dt", str(DT), "--quiet", "--out", str(out / model)).split("wrote ")[-1].strip())
+        reference = columns(written / "results.csv")
+        summary = json.loads((written / "summary.json").read_text())
+        unzipped = fmpy.extract(str(fmu))
+        audited = audit(unzipped, md, summary, stop)
+        runaway = summary["internal_dynamics"]["runaway_at"]
+        if runaway is not None:
+            # the FMU stops at the runaway: compare the move before it
+            stop = round(runaway / DT - 1) * DT
+            reference = {name: values[: round(stop / DT) + 1] for name, values in reference.items()}
 
         result = fmpy.simulate_fmu(str(fmu), stop_time=stop, output_interval=DT, step_size=DT, output=compared)
-        unzipped = fmpy.extract(str(fmu))
         fmpy_step = fmpy_do_step(unzipped, md, stop)
         worst_fmpy = max(agree(f"{model} FMPy {name}", reference[name], list(result[name])) for name in compared if name in reference)
 
@@ -164,7 +211,7 @@ def main():
         native = json.loads(run(crane, "bench", model, "--dt", str(DT), "--repeat", "5", "--json"))["median_step_s"]
         report.append((model, len(result) - 1, worst_fmpy, worst_host, native, host_step, fmpy_step))
         print(f"{model}: validated; FMPy and C host agree with {Path(crane).name} run to {worst_fmpy:.1e} and {worst_host:.1e} (relative); "
-              f"{mass} = -1: {bad_mass.strip()}; FMI errors for {', '.join(misused)}", flush=True)
+              f"{mass} = -1: {bad_mass.strip()}; FMI errors for {', '.join(misused)}; audit: {audited}", flush=True)
 
     print(f"\nper step (dt = 0.01 s): native stepper ({Path(crane).name} bench, median) | C host fmi2DoStep (median) | FMPy doStep (median, through ctypes)")
     for model, steps, _, _, native, host_step, fmpy_step in report:

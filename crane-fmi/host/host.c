@@ -103,10 +103,14 @@ int main(int argc, char **argv) {
                "fmi2FreeInstance: %d\n", status, again, freed);
         return (status == 3 && again == 3 && freed == 3) ? 0 : 1;
     }
-    if (exit_init(c) != 0) {
+    /* fmi2Warning (1): the audit found something, the run goes on */
+    long warnings = 0;
+    fmi2Status started = exit_init(c);
+    if (started > 1) {
         fprintf(stderr, "host: fmi2ExitInitializationMode failed\n");
         return 1;
     }
+    warnings += started == 1;
     double stop = strtod(argv[3], NULL), h = strtod(argv[4], NULL);
     size_t n = (size_t)(argc - 5);
     fmi2ValueReference *vr = malloc(n * sizeof *vr);
@@ -122,10 +126,11 @@ int main(int argc, char **argv) {
             fmi2Status status = do_step(c, (k - 1) * h, h, 1);
             clock_gettime(CLOCK_MONOTONIC, &b);
             times[k - 1] = (b.tv_sec - a.tv_sec) * 1e6 + (b.tv_nsec - a.tv_nsec) * 1e-3;
-            if (status != 0) {
+            if (status > 1) {
                 fprintf(stderr, "host: fmi2DoStep failed at t = %g\n", t);
                 return 1;
             }
+            warnings += status == 1;
         }
         get_real(c, vr, n, values);
         printf("%.17g", t);
@@ -133,7 +138,7 @@ int main(int argc, char **argv) {
         printf("\n");
     }
     qsort(times, (size_t)steps, sizeof *times, compare);
-    fprintf(stderr, "host: %ld steps, median fmi2DoStep %.2f us\n", steps, times[steps / 2]);
+    fprintf(stderr, "host: %ld steps, median fmi2DoStep %.2f us, %ld warnings\n", steps, times[steps / 2], warnings);
     terminate(c);
     free_instance(c);
     free(vr);

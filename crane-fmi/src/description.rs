@@ -63,6 +63,8 @@ pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, cons
         let (causality, variability, initial) = match v.causality {
             Causality::Parameter => ("parameter", "fixed", Some("exact")),
             Causality::Input => ("input", "continuous", None),
+            // only a Real can be continuous
+            Causality::Output if v.integer => ("output", "discrete", Some("calculated")),
             Causality::Output => ("output", "continuous", Some("calculated")),
         };
         let initial = initial.map(|i| format!(" initial=\"{i}\"")).unwrap_or_default();

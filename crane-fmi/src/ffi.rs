@@ -110,7 +110,13 @@ unsafe fn with_slave(c: RawComponent, what: &str, f: impl FnOnce(&mut dyn Compon
     let slave = unsafe { &mut *c.cast::<Slave>() };
     let result = catch_unwind(AssertUnwindSafe(|| f(slave.component.as_mut())));
     match result {
-        Ok(Ok(())) => Status::Ok,
+        Ok(Ok(())) => match slave.component.take_warning() {
+            Some(warning) => {
+                slave.log(Status::Warning, "logStatusWarning", &format!("{what}: {warning}"));
+                Status::Warning
+            }
+            None => Status::Ok,
+        },
         Ok(Err(message)) => {
             slave.log(Status::Error, "logStatusError", &format!("{what}: {message}"));
             Status::Error
@@ -286,8 +292,8 @@ pub unsafe fn enter_initialization_mode(c: RawComponent) -> Status {
 /// `c` from [`instantiate`].
 pub unsafe fn exit_initialization_mode(c: RawComponent) -> Status {
     let status = unsafe { with_slave(c, "fmi2ExitInitializationMode", |s| s.exit_initialization_mode()) };
-    if status == Status::Ok {
-        // SAFETY: as `with_slave` (not null: the status is OK)
+    if matches!(status, Status::Ok | Status::Warning) {
+        // SAFETY: as `with_slave` (not null: the call succeeded)
         let slave = unsafe { &*c.cast::<Slave>() };
         if slave.logging {
             slave.log(

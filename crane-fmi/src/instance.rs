@@ -7,6 +7,7 @@
 //! here); `do_step(t, h)` advances `h / dt` internal steps and writes the
 //! outputs, without allocating.
 
+use crane_models::study::audit::{Finding, Severity, StepAudit};
 use crane_models::study::{Formulation, RunSpec, SpecError};
 use crane_models::{Crane, Path, PathSpec, Profile};
 use crane_runtime::options::steps_in;
@@ -16,7 +17,7 @@ use crane_runtime::{Advance, CraneModel, Options, Scheme, Stepper, dummy_derivat
 use nalgebra::SVector;
 
 use crate::variables::{
-    Causality, EXTERNAL_PATH, NameClash, PathChoice, Role, Variable, path_help, path_of_code, variables,
+    Causality, EXTERNAL_PATH, NameClash, PathChoice, Role, Variable, path_help, path_of_code, status, variables,
 };
 
 /// What an instance can be asked to do, whatever its crane: the object the
@@ -42,6 +43,9 @@ pub trait Component {
     fn terminate(&mut self) -> Result<(), String>;
     /// `fmi2Reset`: back to the state after instantiation.
     fn reset(&mut self);
+    /// What the audit found in the last call, if it is a warning (the call
+    /// then returns `fmi2Warning` and logs it); taken once.
+    fn take_warning(&mut self) -> Option<String>;
     /// Time of the last state.
     fn time(&self) -> f64;
     /// Whether the instance was terminated.
@@ -108,29 +112,40 @@ struct Run<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: us
     stepper: Stepping<Mdl, N, M, A>,
     /// The external target at the last state, if the path is external.
     external: Option<ServoTarget<A>>,
-    /// Rope lengths (one per rope).
-    lengths: Vec<f64>,
     /// Rope tensions (one per rope).
     tensions: Vec<f64>,
+    /// The audit of the states as they come.
+    audit: StepAudit,
 }
 
 impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> Run<Mdl, N, M, A> {
-    fn new(stepper: Stepping<Mdl, N, M, A>, external: Option<ServoTarget<A>>) -> Self {
-        Self {
+    /// The run, and what the audit finds at its start.
+    fn new(
+        name: &'static str,
+        stepper: Stepping<Mdl, N, M, A>,
+        external: Option<ServoTarget<A>>,
+    ) -> (Self, Vec<Finding>) {
+        let advance = stepper.advance();
+        let (audit, findings) = StepAudit::start(name, advance.model(), advance.state(), advance.path_order_covered());
+        let run = Self {
             stepper,
             external,
-            lengths: vec![0.0; Mdl::INFO.ropes.len()],
             tensions: vec![0.0; Mdl::INFO.ropes.len()],
-        }
+            audit,
+        };
+        (run, findings)
     }
 }
 
 /// An FMU instance of crane `C`.
 pub struct Instance<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> {
     table: Vec<Variable>,
-    defaults: (Vec<f64>, [i32; 2]),
+    defaults: (Vec<f64>, [i32; 3]),
     reals: Vec<f64>,
-    integers: [i32; 2],
+    /// `scheme`, `path`, `status`.
+    integers: [i32; 3],
+    /// A warning of the audit not yet returned ([`Component::take_warning`]).
+    warning: Option<String>,
     /// Value references of the external target, `[k][order]` (found once:
     /// `do_step` reads them on every step).
     targets: Vec<[usize; 3]>,
@@ -144,7 +159,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
     pub fn new() -> Result<Self, NameClash> {
         let table = variables::<C, N, M, A>()?;
         let reals: Vec<f64> = table.iter().filter(|v| !v.integer).map(|v| v.start).collect();
-        let mut integers = [0; 2];
+        let mut integers = [0; 3];
         for v in table.iter().filter(|v| v.integer) {
             integers[v.value_reference as usize] = v.start as i32;
         }
@@ -163,6 +178,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
             mode: Mode::Instantiated,
             start_time: C::maneuver().path.t0,
             run: None,
+            warning: None,
         })
     }
 
@@ -263,8 +279,8 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
 
     /// The crane, path, start and stepper from the variables: the start of
     /// `crane run` where it holds (the default move), else the static
-    /// equilibrium from the same guess.
-    fn build(&self) -> Result<Run<C::Model, N, M, A>, String> {
+    /// equilibrium from the same guess; and what the audit finds at the start.
+    fn build(&self) -> Result<(Run<C::Model, N, M, A>, Vec<Finding>), String> {
         let (spec, external) = self.spec()?;
         let (case, settings) = spec.build::<C, N, M>().map_err(|e| match e {
             SpecError::Path(e) if external.is_some() => format!("the external target: {e}"),
@@ -305,7 +321,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                     .map_err(|e| e.to_string())?,
             )),
         };
-        Ok(Run::new(stepper, external))
+        Ok(Run::new(C::NAME, stepper, external))
     }
 
     /// Copy the last state into the outputs.
@@ -373,17 +389,20 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                 (Stepping::Redundant(stepper), None) => stepper.step(),
                 (Stepping::Reduced(stepper), _) => stepper.step(),
             };
-            result.map_err(|e| e.to_string())?;
-            // a rope of non-positive length: the path left the crane's workspace
+            let report = result.map_err(|e| e.to_string())?;
             let stepper = run.stepper.advance();
-            let state = stepper.state();
-            stepper.model().rope_lengths(&state.q, &mut run.lengths);
-            if let Some(r) = run.lengths.iter().position(|length| !(*length > 0.0)) {
-                let ropes = <C::Model as CraneModel<N, M, A>>::INFO.ropes;
-                return Err(format!(
-                    "rope {} has the non-positive length {:.4} m at t = {} s: the path leaves the crane's workspace",
-                    ropes[r].tension, run.lengths[r], state.t
-                ));
+            if let Some(finding) = run
+                .audit
+                .step(stepper.model(), stepper.state(), report.min_norm_steps > 0)
+            {
+                if finding.severity() == Severity::Error {
+                    return Err(finding.to_string());
+                }
+                self.integers[2] = self.integers[2].max(status::WARNING);
+                self.warning = Some(match self.warning.take() {
+                    Some(earlier) => format!("{earlier}; {finding}"),
+                    None => finding.to_string(),
+                });
             }
         }
         if run.external.is_some() {
@@ -464,14 +483,20 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Componen
             return Err("fmi2ExitInitializationMode without fmi2EnterInitializationMode".into());
         }
         match self.build() {
-            Ok(run) => {
+            Ok((run, findings)) => {
                 self.run = Some(run);
                 self.mode = Mode::Stepping;
                 self.write_outputs();
+                if !findings.is_empty() {
+                    self.integers[2] = status::WARNING;
+                    let findings: Vec<String> = findings.iter().map(|f| f.to_string()).collect();
+                    self.warning = Some(findings.join("; "));
+                }
                 Ok(())
             }
             Err(e) => {
                 self.mode = Mode::Failed;
+                self.integers[2] = status::ERROR;
                 Err(e)
             }
         }
@@ -487,6 +512,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Componen
         let result = self.advance(t, h);
         if result.is_err() {
             self.mode = Mode::Failed;
+            self.integers[2] = status::ERROR;
         }
         result
     }
@@ -500,6 +526,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Componen
         self.run = None;
         self.reals.copy_from_slice(&self.defaults.0);
         self.integers = self.defaults.1;
+        self.warning = None;
         self.mode = Mode::Instantiated;
         self.start_time = C::maneuver().path.t0;
     }
@@ -512,5 +539,9 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Componen
 
     fn terminated(&self) -> bool {
         self.mode == Mode::Terminated
+    }
+
+    fn take_warning(&mut self) -> Option<String> {
+        self.warning.take()
     }
 }

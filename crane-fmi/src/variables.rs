@@ -6,7 +6,8 @@
 //! load coordinate, `tau0`), the external load target (`gamma_<x>`,
 //! `gamma_<x>_d`, `gamma_<x>_dd`), then the outputs: the inputs `u1..`,
 //! the coordinates, the multipliers `lambda1..` and the rope tensions, all
-//! named as the model declares them. Integers: `scheme` and `path`.
+//! named as the model declares them. Integers: `scheme` and `path`, and
+//! the output `status`, the audit of the run so far ([`STATUS_HELP`]).
 
 use std::collections::HashSet;
 
@@ -48,6 +49,24 @@ pub enum Role {
     Scheme,
     /// Integer: the path ([`path_of_code`]).
     Path,
+    /// Integer output: the audit of the run so far ([`STATUS_HELP`]).
+    Status,
+}
+
+/// What the `status` output means.
+pub const STATUS_HELP: &str = "the audit of the run so far: 0 nothing found; 1 a warning (a rope would have to \
+     push, unstable internal dynamics, many singular steps: a solution, but not a move to make), logged and returned \
+     as fmi2Warning when found; 2 an error (states off their constraints, a rope of non-positive length, a runaway \
+     input: not a solution), returned as fmi2Error";
+
+/// The `status` values.
+pub mod status {
+    /// Nothing found.
+    pub const OK: i32 = 0;
+    /// A warning was found.
+    pub const WARNING: i32 = 1;
+    /// An error was found.
+    pub const ERROR: i32 = 2;
 }
 
 /// `causality` in the model description.
@@ -275,6 +294,15 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
         start: f64::from(spec.profile.kind().code()),
         description: format!("load path: {}", path_help()),
         role: Role::Path,
+    });
+    table.push(Variable {
+        name: "status".into(),
+        integer: true,
+        value_reference: 2,
+        causality: Causality::Output,
+        start: f64::from(status::OK),
+        description: STATUS_HELP.into(),
+        role: Role::Status,
     });
     let mut seen = HashSet::new();
     for v in &table {

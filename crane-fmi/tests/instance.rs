@@ -44,7 +44,8 @@ fn outputs<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(fm
 /// communication step) gives the API's run in the crane's default
 /// formulation (dummy derivatives for navy-3d-pulley and the double
 /// pendulum, eqs. 22 for the others) bit for bit: inputs and
-/// coordinates at every step, the same consistent start.
+/// coordinates at every step, the same consistent start (the coupled
+/// trolley's up to its runaway input, where the FMU stops with an error).
 #[test]
 fn every_built_in_fmu_reproduces_the_api_run() {
     struct Compare;
@@ -58,8 +59,14 @@ fn every_built_in_fmu_reproduces_the_api_run() {
                 .unwrap();
             let mut fmu = started::<C, N, M, A>();
             for (i, state) in run.states.iter().enumerate() {
-                if i > 0 {
-                    fmu.do_step(run.states[i - 1].t, 0.01).unwrap();
+                if i > 0
+                    && let Err(error) = fmu.do_step(run.states[i - 1].t, 0.01)
+                {
+                    // the audit stops the unstable crane where its inputs
+                    // run away; the run goes on returning them
+                    assert_eq!(C::NAME, "coupled-trolley", "{error}");
+                    assert!(error.contains("exceeds 1e6 times its size at the start"), "{error}");
+                    return i;
                 }
                 let expected: Vec<f64> = state.u.iter().chain(state.q.iter()).copied().collect();
                 assert_eq!(outputs(&fmu), expected, "{} at t = {}", C::NAME, state.t);
@@ -350,5 +357,93 @@ fn a_rope_of_non_positive_length_is_an_fmi_error() {
     let error = (0..400)
         .find_map(|i| fmu.do_step(i as f64 * 0.01, 0.01).err())
         .expect("a step fails");
-    assert!(error.contains("rope N2 has the non-positive length"), "{error}");
+    assert!(
+        error.contains("rope N2 of navy-planar (constraint `hoist`) has the length"),
+        "{error}"
+    );
+    let mut status = [0];
+    fmu.get_integer(&[2], &mut status).unwrap();
+    assert_eq!(status, [2], "the status output says it");
+}
+
+/// The coupled trolley's internal dynamics are unstable from the start:
+/// `fmi2ExitInitializationMode` says so as a warning and the `status`
+/// output reads 1; where its inputs run away (beyond 1e6 times their size
+/// at the start, u1 = -1e10 N by t = 2.5 s) `fmi2DoStep` is an error and
+/// `status` reads 2, where the FMU used to return the inputs with fmi2OK.
+#[test]
+fn unstable_internal_dynamics_are_a_warning_and_the_runaway_an_error() {
+    type D = crane_models::coupled_trolley::Description;
+    let mut fmu = Instance::<D, 4, 1, 2>::new().unwrap();
+    fmu.setup_experiment(0.0).unwrap();
+    fmu.enter_initialization_mode().unwrap();
+    fmu.exit_initialization_mode().unwrap();
+    let warning = fmu.take_warning().expect("a warning at the start");
+    assert!(
+        warning.contains("coupled-trolley has unstable internal dynamics along this path (dimension 2"),
+        "{warning}"
+    );
+    assert_eq!(fmu.take_warning(), None, "taken once");
+    let mut status = [0];
+    fmu.get_integer(&[2], &mut status).unwrap();
+    assert_eq!(status, [1]);
+    let (k, error) = (0..500)
+        .find_map(|k| fmu.do_step(k as f64 * 0.01, 0.01).err().map(|e| (k, e)))
+        .expect("the runaway is an error");
+    println!("step {k}: {error}");
+    assert!(k < 250, "before t = 2.5 s: {k}");
+    assert!(error.contains("exceeds 1e6 times its size at the start"), "{error}");
+    fmu.get_integer(&[2], &mut status).unwrap();
+    assert_eq!(status, [2]);
+    fmu.reset();
+    fmu.get_integer(&[2], &mut status).unwrap();
+    assert_eq!(status, [0], "reset clears it");
+}
+
+/// A flat crane on its default move: nothing to report, `status` 0 at
+/// every step.
+#[test]
+fn a_regular_run_reports_nothing() {
+    type D = navy_planar::Description;
+    let mut fmu = started::<D, 7, 3, 2>();
+    assert_eq!(fmu.take_warning(), None);
+    let mut status = [9];
+    for k in 0..400 {
+        fmu.do_step(k as f64 * 0.01, 0.01).unwrap();
+        assert_eq!(fmu.take_warning(), None, "step {k}");
+    }
+    fmu.get_integer(&[2], &mut status).unwrap();
+    assert_eq!(status, [0]);
+}
+
+/// The load moved to straight below the boom tip (end (0, -5)) leaves rope
+/// N1 without tension and Newton's matrix singular at almost every step
+/// (`crane run` warns: 378 of 400 steps): once more than 1 % of the steps
+/// and more than two are singular, `fmi2DoStep` returns a warning naming
+/// them (once) and `status` reads 1; the run goes on.
+#[test]
+fn a_path_that_does_not_determine_the_inputs_is_a_warning() {
+    type D = navy_planar::Description;
+    let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
+    fmu.setup_experiment(0.0).unwrap();
+    fmu.enter_initialization_mode().unwrap();
+    let end: Vec<u32> = (0..2).map(|k| vr::<D, 7, 3, 2>(Role::End(k))).collect();
+    fmu.set_real(&end, &[0.0, -5.0]).unwrap();
+    fmu.exit_initialization_mode().unwrap();
+    assert_eq!(fmu.take_warning(), None);
+    let mut warnings = Vec::new();
+    for k in 0..400 {
+        fmu.do_step(k as f64 * 0.01, 0.01).unwrap();
+        warnings.extend(fmu.take_warning().map(|w| (k, w)));
+    }
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(
+        warnings[0]
+            .1
+            .contains("steps of navy-planar met an iteration matrix singular"),
+        "{warnings:?}"
+    );
+    let mut status = [0];
+    fmu.get_integer(&[2], &mut status).unwrap();
+    assert_eq!(status, [1]);
 }

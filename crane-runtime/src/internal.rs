@@ -445,7 +445,8 @@ impl RunDiagnosis {
 
 /// The internal dynamics of a run of `model`: [`internal_dynamics`] at up
 /// to `samples + 1` evenly spaced states of `solution` (before its first
-/// runaway input), with the largest real part and where it occurs.
+/// runaway input), with the largest real part and where it occurs; with
+/// `samples = 0` at none (the runaway and the path order only).
 ///
 /// `simulate` returns whatever the causal inverse computes; this is the
 /// check that tells a usable result from an exploding one.
@@ -487,7 +488,8 @@ where
         .map(|s| s.t);
     let runaway_at = diagnosis.runaway_at;
     let physical = |t: f64| runaway_at.is_none_or(|runaway| t < runaway);
-    for state in states.iter().step_by(stride).take_while(|s| physical(s.t)) {
+    let sampled = if samples == 0 { 0 } else { states.len() };
+    for state in states[..sampled].iter().step_by(stride).take_while(|s| physical(s.t)) {
         diagnosis.samples += 1;
         match internal_dynamics(model, state) {
             Ok(d) => {

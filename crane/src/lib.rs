@@ -143,7 +143,7 @@
 //! A built-in crane (or a [`Crane`](models::Crane) description of one's
 //! own) on its default manoeuvre, with the summary `crane run` writes:
 //! peaks, ropes, errors against the analytical reference, internal
-//! dynamics, feasibility and warnings.
+//! dynamics, and the [`audit`](study::audit()) of what it found.
 //!
 //! ```
 //! use crane::models::navy_planar::PaperCase;
@@ -153,7 +153,7 @@
 //! let outcome = study::run(&case, &RunSettings::default(), &mut |_, _| {}).unwrap();
 //! let reference = outcome.summary.reference.as_ref().unwrap();
 //! assert!(reference.e_u_at_1_5s.unwrap() < 2e-3); // eq. (48), Fig. 7
-//! assert!(study::infeasibilities(&outcome.summary).is_empty());
+//! assert!(study::audit(&outcome.summary).is_empty()); // on its constraints, taut, flat
 //! ```
 //!
 //! # The fastest feasible move: [`plan`]

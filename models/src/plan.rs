@@ -5,7 +5,10 @@
 //! A duration `T` is *feasible* when the inverse dynamics of the case's
 //! path shape, scaled to last `T` (start, end and profile fixed), keep every
 //! limited `|u_k|` at or below its limit and every floored rope tension at
-//! or above its floor over the whole run ([`evaluate`]). [`fastest`]
+//! or above its floor over the whole run, and the run's
+//! [`audit`](crate::study::audit()) finds nothing else wrong with it (states
+//! off their constraints, unstable internal dynamics, a runaway input, many
+//! singular steps, a crane beyond its formulation) ([`evaluate`]). [`fastest`]
 //! brackets the shortest feasible duration by halving or doubling the
 //! case's own duration, bisects to a tolerance, and checks on the bracket
 //! that feasible durations form an interval there (the assumption that
@@ -84,6 +87,10 @@ pub struct Evaluation {
     pub largest_tension: f64,
     /// The run's error, if it failed (then infeasible).
     pub error: Option<String>,
+    /// What the run's [`audit`](crate::study::audit()) found besides the
+    /// limits and floors, which planning measures itself (each makes the
+    /// duration infeasible).
+    pub findings: Vec<String>,
 }
 
 /// A limit and how a run meets it.
@@ -228,6 +235,7 @@ impl Evaluation {
         limits: &Limits,
     ) -> bool {
         self.error.is_none()
+            && self.findings.is_empty()
             && self
                 .bindings::<Mdl, N, M, A>(limits)
                 .iter()
@@ -333,6 +341,7 @@ pub fn peaks<const N: usize, const M: usize, const A: usize>(duration: f64, run:
         min_tension,
         largest_tension: run.largest_tension(),
         error: None,
+        findings: Vec::new(),
     }
 }
 
@@ -364,6 +373,7 @@ fn evaluate_model<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
                 min_tension: Vec::new(),
                 largest_tension: 0.0,
                 error: Some(error),
+                findings: Vec::new(),
             },
             None,
         )
@@ -373,9 +383,45 @@ fn evaluate_model<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
         Err(e) => return failed(e),
     };
     match run(&scaled, settings) {
-        Ok(solution) => (peaks(duration, &solution), Some(solution)),
+        Ok(solution) => {
+            let mut evaluation = peaks(duration, &solution);
+            evaluation.findings = findings(&scaled, &solution);
+            (evaluation, Some(solution))
+        }
         Err(e) => failed(e),
     }
+}
+
+/// The states at which an evaluation diagnoses the internal dynamics of a
+/// crane that has them structurally: 11 (a run of
+/// [`study::run`](crate::study::run) has 101; an evaluation is one of many,
+/// and unstable internal dynamics show at every state). A crane without
+/// them by structure has none at any state, and is not sampled (the
+/// sampling's SVDs would double the cost of an evaluation).
+pub const DIAGNOSIS_SAMPLES: usize = 10;
+
+/// What the [`audit`](crate::study::audit()) of `solution`, a run of `case`,
+/// finds besides slack ropes and exceeded limits (planning measures those
+/// itself, between the steps and against its own floors) and a path
+/// smoothness planning has checked before ([`impulses`]).
+fn findings<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    solution: &Solution<N, M, A>,
+) -> Vec<String> {
+    use crate::study::{self, Finding, RunSettings};
+    let settings = RunSettings {
+        dt: solution.dt,
+        formulation: study::Formulation::default_for::<C, N, M, A>(),
+        ..RunSettings::default()
+    };
+    let flat = <C::Model as CraneModel<N, M, A>>::STRUCTURE.is_some_and(|s| s.dimension == 0);
+    let samples = if flat { 0 } else { DIAGNOSIS_SAMPLES };
+    let summary = study::summarize_run(case, &settings, solution, 0.0, samples);
+    study::audit(&summary)
+        .iter()
+        .filter(|f| !matches!(f, Finding::SlackRope(_) | Finding::PathTooRough { .. }))
+        .map(|f| f.to_string())
+        .collect()
 }
 
 /// What the interval check found.
@@ -436,16 +482,17 @@ pub enum PlanError {
         reason: String,
     },
     /// No limit binds before the inverse dynamics itself fails: below
-    /// `duration` the runs fail, so the answer would be the solver's limit,
-    /// not the crane's.
+    /// `duration` the runs fail, or give results the audit finds are no
+    /// solution or no move to make (a rope of negative length), so the
+    /// answer would be the solver's limit, not the crane's.
     #[error(
-        "no limit binds down to {duration:.4} s, where the inverse dynamics stops: {error}; the limits do not \
-         decide the fastest move (tighten them, or check the crane's parameters)"
+        "no limit binds down to {duration:.4} s, and below it {error}; the limits do not decide the fastest move \
+         (tighten them, or check the crane's parameters)"
     )]
     RunFailsFirst {
         /// The shortest duration whose run succeeded, s.
         duration: f64,
-        /// Why the run just below it failed.
+        /// Why the run just below it failed, or what its audit found.
         error: String,
     },
     /// The path is too rough for the crane: its inputs carry impulses.
@@ -494,6 +541,9 @@ fn reason<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usi
 ) -> String {
     if let Some(error) = &e.error {
         return format!("the inverse dynamics failed: {error}");
+    }
+    if let Some(finding) = e.findings.first() {
+        return finding.clone();
     }
     match e.bindings::<Mdl, N, M, A>(limits).first() {
         Some(b) if b.excess > b.allowance => {
@@ -596,6 +646,16 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
         return Err(PlanError::RunFailsFirst {
             duration: hi,
             error: error.clone(),
+        });
+    }
+    // infeasible by the audit alone: no limit decides
+    let binds = |e: &Evaluation| (e.bindings::<C::Model, N, M, A>(limits).iter()).any(|b| b.excess > b.allowance);
+    if let Some(finding) = below.findings.first()
+        && !binds(&below)
+    {
+        return Err(PlanError::RunFailsFirst {
+            duration: hi,
+            error: finding.clone(),
         });
     }
     let (answer, solution) = above;
@@ -724,6 +784,7 @@ pub fn sweep_point<C: Crane<N, M, A>, const N: usize, const M: usize, const A: u
             min_tension: Vec::new(),
             largest_tension: 0.0,
             error: Some(e),
+            findings: Vec::new(),
         },
         None => evaluate_model(case, model, duration, settings).0,
     };

@@ -2,7 +2,6 @@
 //! the terminal, with convergence.csv and a log-log plot like the paper's
 //! Figs. 7 and 16.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crane_models::registry::{Registry, Visit};
@@ -33,6 +32,10 @@ pub struct ConvergenceArgs {
     /// Output directory (default out/MODEL).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Exit non-zero if the audit finds a run of the study that is not a
+    /// trustworthy inverse dynamics (the results are still written).
+    #[arg(long)]
+    strict: bool,
 }
 
 struct Convergence<'a> {
@@ -42,7 +45,8 @@ struct Convergence<'a> {
 }
 
 impl Visit for Convergence<'_> {
-    type Output = Result<(), CliError>;
+    /// The study's findings, `dt = ...: what`.
+    type Output = Result<Vec<String>, CliError>;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
         let (case, settings) = scenario::build::<C, N, M, A>(self.file, &self.overrides)?;
         write(&case, settings.formulation, settings.scheme, self.out)
@@ -59,24 +63,32 @@ pub fn convergence<R: Registry>(tool: &Tool<R>, args: ConvergenceArgs) -> Result
         formulation: args.formulation,
         scheme: args.scheme,
     };
-    tool.dispatch(
+    let findings = tool.dispatch(
         &args.model,
         Convergence {
             file: file.as_ref(),
             overrides,
             out: &out,
         },
-    )
+    )?;
+    if args.strict && !findings.is_empty() {
+        return Err(CliError::Infeasible {
+            problems: findings.join("; "),
+            out: out.display().to_string(),
+        });
+    }
+    Ok(())
 }
 
-/// Print the rows as they come and write `convergence.svg` and
-/// `convergence.csv` into `out`.
+/// Print the rows as they come (a row whose run the audit flags marked
+/// `!`, what it found a warning), write `convergence.svg` and
+/// `convergence.csv` into `out`, and return the findings.
 fn write<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
     formulation: Formulation,
     scheme: Scheme,
     out: &Path,
-) -> Result<(), CliError> {
+) -> Result<Vec<String>, CliError> {
     let name = C::NAME;
     let method = if formulation.discretised() {
         format!("{}, {scheme}, order {}", formulation.name(), scheme.order())
@@ -100,21 +112,39 @@ fn write<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         if printed.is_err() {
             return;
         }
-        printed = header
-            .take()
-            .map_or(Ok(()), |header| say!("{header}"))
-            .and_then(|()| match row.order {
-                Some(p) => say!("{:>8}  {:>12.4e}  {p:>8.3}", row.dt, row.e_u),
-                None => say!("{:>8}  {:>12.4e}  {:>8}", row.dt, row.e_u, "-"),
-            });
+        printed = header.take().map_or(Ok(()), |header| say!("{header}")).and_then(|()| {
+            let mark = if row.findings.is_empty() { "" } else { "  !" };
+            match row.order {
+                Some(p) => say!("{:>8}  {:>12.4e}  {p:>8.3}{mark}", row.dt, row.e_u),
+                None => say!("{:>8}  {:>12.4e}  {:>8}{mark}", row.dt, row.e_u, "-"),
+            }
+        });
+        for finding in &row.findings {
+            eprintln!("warning: dt = {} s: {finding}", row.dt);
+        }
     })?;
     printed?;
     let mut staged = crate::output::Staged::new(out)?;
-    let mut csv = String::from("dt,e_u,order\n");
+    let failed = |e: csv::Error| CliError::Output {
+        what: "convergence.csv".into(),
+        message: e.to_string(),
+    };
+    let mut csv = csv::Writer::from_writer(Vec::new());
+    csv.write_record(["dt", "e_u", "order", "audit"]).map_err(failed)?;
     for row in &rows {
         let order = row.order.map(|p| format!("{p}")).unwrap_or_default();
-        let _ = writeln!(csv, "{},{:e},{order}", row.dt, row.e_u);
+        let record = [
+            format!("{}", row.dt),
+            format!("{:e}", row.e_u),
+            order,
+            row.findings.join("; "),
+        ];
+        csv.write_record(&record).map_err(failed)?;
     }
+    let csv = csv.into_inner().map_err(|e| CliError::Output {
+        what: "convergence.csv".into(),
+        message: e.to_string(),
+    })?;
     let title = format!(
         "{name} ({}, {scheme}) - relative error of u at t = {T_ERROR} s, eq. (48)",
         formulation.name()
@@ -126,5 +156,9 @@ fn write<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     staged.text("convergence.svg", svg)?;
     staged.commit()?;
     say!("wrote {}", out.join("convergence.svg").display())?;
-    Ok(())
+    let findings = rows
+        .iter()
+        .flat_map(|row| row.findings.iter().map(move |f| format!("dt = {} s: {f}", row.dt)))
+        .collect();
+    Ok(findings)
 }

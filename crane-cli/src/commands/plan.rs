@@ -476,7 +476,7 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     header.push("duration".into());
     header.extend(info.inputs.iter().map(|u| format!("peak_{u}")));
     header.extend(info.ropes.iter().map(|r| format!("min_{}", r.tension)));
-    header.extend(["feasible".into(), "error".into()]);
+    header.extend(["feasible".into(), "error".into(), "audit".into()]);
     let mut writer = csv::Writer::from_writer(Vec::new());
     let failed_csv = |e: csv::Error| CliError::Output {
         what: "sweep.csv".into(),
@@ -495,6 +495,7 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         }
         row.push(p.feasible.to_string());
         row.push(e.error.clone().unwrap_or_default());
+        row.push(e.findings.join("; "));
         writer.write_record(&row).map_err(failed_csv)?;
     }
     let bytes = writer.into_inner().map_err(|e| CliError::Output {

@@ -41,8 +41,11 @@ pub struct RunArgs {
     formulation: Option<Formulation>,
     #[arg(long, value_name = "SCHEME", help = scheme_help(Scheme::default()))]
     scheme: Option<Scheme>,
-    /// Exit non-zero if a rope goes slack, an input exceeds its limit or
-    /// the internal dynamics are unstable (the results are still written).
+    /// Exit non-zero if the audit finds anything: states off their
+    /// constraints, a rope that goes slack or of non-positive length, an
+    /// input beyond its limit or running away, unstable internal dynamics,
+    /// many singular steps, a path too rough or beyond the formulation, a
+    /// replay that misses the path (the results are still written).
     #[arg(long)]
     strict: bool,
     /// No progress bar (it is shown only on a terminal, for runs over a second).
@@ -107,8 +110,9 @@ pub fn run<R: Registry>(tool: &Tool<R>, args: RunArgs) -> Result<(), CliError> {
         replay,
     };
     let summary = tool.dispatch(&args.model, job)?;
-    let problems = study::infeasibilities(&summary);
-    if args.strict && !problems.is_empty() {
+    let findings = study::audit(&summary);
+    if args.strict && !findings.is_empty() {
+        let problems: Vec<String> = findings.iter().map(|f| f.to_string()).collect();
         return Err(CliError::Infeasible {
             problems: problems.join("; "),
             out: out.display().to_string(),
@@ -163,9 +167,6 @@ impl Visit for Run<'_> {
         let outcome = study::run(&case, &settings, &mut |step, steps| progress.tick(step, steps));
         progress.finish();
         let mut outcome = outcome.map_err(|e| default_start_hint::<C, N, M, A>(e, self.file))?;
-        for warning in &outcome.warnings {
-            eprintln!("warning: {warning}");
-        }
         let replayed = replay
             .as_ref()
             .map(|request| outcome.replay(&case, request).map(|_| ()));
@@ -200,6 +201,9 @@ impl Visit for Run<'_> {
         }
         for line in highlights(summary) {
             say!("  {line}")?;
+        }
+        for finding in &outcome.findings {
+            eprintln!("warning: {finding}");
         }
         say!("wrote {}", self.out.display())?;
         Ok(outcome.summary)
@@ -315,42 +319,28 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
             p.t
         ));
     }
-    for r in &summary.ropes {
-        if r.leaves_workspace() {
-            lines.push(format!(
-                "WARNING: rope {} has the non-positive length {:.3} m at t = {:.3} s",
-                r.name, r.min_length, r.t_min_length
-            ));
-            continue;
-        }
-        match r.slack() {
-            Some(slack) => lines.push(format!("WARNING: {slack} (min tension {:.3e} N)", r.min_tension)),
-            // round-off below the printed digits is no negative tension
-            None => lines.push(format!(
-                "rope {} stays taut: min tension {:.3} N at t = {:.3} s",
-                r.name,
-                if r.min_tension.abs() < 5e-4 { 0.0 } else { r.min_tension },
-                r.t_min
-            )),
-        }
+    // what the audit finds is said once, as a warning
+    for r in summary
+        .ropes
+        .iter()
+        .filter(|r| !r.leaves_workspace() && r.first_slack.is_none())
+    {
+        // round-off below the printed digits is no negative tension
+        lines.push(format!(
+            "rope {} stays taut: min tension {:.3} N at t = {:.3} s",
+            r.name,
+            if r.min_tension.abs() < 5e-4 { 0.0 } else { r.min_tension },
+            r.t_min
+        ));
     }
-    for l in &summary.torque_limits {
-        match l.first_violation {
-            Some(t) => lines.push(format!(
-                "WARNING: |{}| exceeds its limit {}{unit} first at t = {t:.3} s (peak {:.3}{unit})",
-                l.name,
-                l.limit,
-                l.peak,
-                unit = summary.unit_suffix(&l.name)
-            )),
-            None => lines.push(format!(
-                "|{}| stays within its limit {}{unit} (peak {:.3}{unit})",
-                l.name,
-                l.limit,
-                l.peak,
-                unit = summary.unit_suffix(&l.name)
-            )),
-        }
+    for l in summary.torque_limits.iter().filter(|l| l.first_violation.is_none()) {
+        lines.push(format!(
+            "|{}| stays within its limit {}{unit} (peak {:.3}{unit})",
+            l.name,
+            l.limit,
+            l.peak,
+            unit = summary.unit_suffix(&l.name)
+        ));
     }
     if let Some(reference) = &summary.reference {
         lines.push(match reference.e_u_at_1_5s {
@@ -361,13 +351,6 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
         });
     }
     let internal = &summary.internal_dynamics;
-    if let Some(p) = internal.path_order.filter(|p| !p.is_covered()) {
-        lines.push(format!(
-            "WARNING: the inputs need the path's derivatives up to order {}, the formulation covers order {}: \
-             not a reliable result",
-            p.needed, p.covered
-        ));
-    }
     lines.push(match (internal.dimension, internal.stable) {
         (0, _) if internal.unresolved == 0 => {
             "internal dynamics: none (flat), the torques are the unique ones".to_string()
@@ -377,9 +360,7 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
             internal.unresolved, internal.samples
         ),
         (k, true) => format!("internal dynamics: dimension {k}, stable"),
-        (k, false) => {
-            format!("WARNING: internal dynamics: dimension {k}, UNSTABLE: the torques are not a usable feedforward")
-        }
+        (k, false) => format!("internal dynamics: dimension {k}, unstable (see the warning)"),
     });
     if let Some(replay) = &summary.replay {
         // what the torques do on the plant, where the files say it in full
@@ -402,11 +383,6 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
              by {:.3e} m over the {:.3} s after it (replay.csv, replay.svg)",
             replay.max_load_deviation, replay.deviation_at_tf, replay.residual_sway, replay.settle_time
         ));
-        for (rope, t) in &replay.first_slack {
-            lines.push(format!(
-                "WARNING: in the replay rope {rope} would have to push from t = {t:.3} s"
-            ));
-        }
     }
     lines
 }

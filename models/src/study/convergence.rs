@@ -6,7 +6,7 @@
 use crane_runtime::nalgebra::SVector;
 use crane_runtime::{Options, Scheme};
 
-use super::{Formulation, StudyError};
+use super::{Formulation, RunSettings, StudyError};
 use crate::case::Case;
 use crate::crane::Crane;
 
@@ -22,7 +22,7 @@ pub const T_ERROR: f64 = 1.5;
 pub const ROUND_OFF: f64 = 1e-13;
 
 /// One time step of the study.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Row {
     /// The time step, s.
     pub dt: f64,
@@ -31,6 +31,10 @@ pub struct Row {
     /// The observed order against the row before, if there is one and
     /// neither error is at [`ROUND_OFF`].
     pub order: Option<f64>,
+    /// What the [`audit`](super::audit()) of the run found: an error measured
+    /// on states that are not a solution, or on a run beyond its
+    /// formulation, is no evidence of an order.
+    pub findings: Vec<String>,
 }
 
 /// The observed order between errors `e0` at step `dt0` and `e1` at `dt1`:
@@ -157,7 +161,20 @@ pub fn study_against<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
             .last()
             .filter(|last| last.e_u > ROUND_OFF && e_u > ROUND_OFF)
             .map(|last| observed_order(last.dt, last.e_u, dt, e_u));
-        let row = Row { dt, e_u, order };
+        let settings = RunSettings {
+            dt,
+            formulation,
+            scheme,
+            ..RunSettings::default()
+        };
+        let summary = super::summarize_run(case, &settings, &solution, 0.0, crate::plan::DIAGNOSIS_SAMPLES);
+        let findings = super::audit(&summary).iter().map(|f| f.to_string()).collect();
+        let row = Row {
+            dt,
+            e_u,
+            order,
+            findings,
+        };
         observe(&row);
         rows.push(row);
     }

@@ -1,7 +1,7 @@
 //! What a run means, in one place for the command line, the FMU, the tests
 //! and API users: the formulation dispatch ([`Formulation`]), a run with
-//! its summary, feasibility and warnings ([`run`], [`summary`],
-//! [`warnings`]), the convergence study ([`convergence`]) and the replay
+//! its summary and the audit of its results ([`run`], [`summary`],
+//! [`audit`](mod@audit)), the convergence study ([`convergence`]) and the replay
 //! policy ([`replay`]). A run is described as data by a [`RunSpec`]
 //! ([`spec`]), which scenario files and FMU variables both fill in.
 //!
@@ -14,15 +14,14 @@
 //! let summary = &outcome.summary;
 //! assert_eq!(summary.steps, 400);
 //! assert!(summary.reference.as_ref().unwrap().e_u_at_1_5s.unwrap() < 2e-3); // eq. (48)
-//! assert!(study::summary::infeasibilities(summary).is_empty());             // ropes taut, flat
-//! assert!(outcome.warnings.is_empty());
+//! assert!(outcome.findings.is_empty());                                     // ropes taut, flat
 //! ```
 
+pub mod audit;
 pub mod convergence;
 pub mod replay;
 pub mod spec;
 pub mod summary;
-pub mod warnings;
 
 use std::fmt;
 use std::str::FromStr;
@@ -33,10 +32,10 @@ use crane_runtime::{CraneModel, Options, Scheme, Solution, State, dummy_derivati
 
 use crate::case::Case;
 use crate::crane::Crane;
+pub use audit::{Finding, Severity, audit};
 pub use replay::{FeedbackSpec, ReplayOutcome, ReplayRequest};
 pub use spec::{RunSpec, SpecError};
-pub use summary::{PathSmoothnessSummary, Summary, below_floor, infeasibilities};
-pub use warnings::Warning;
+pub use summary::{PathSmoothnessSummary, Summary, below_floor};
 
 /// Which formulation of the servo problem a run solves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -261,8 +260,9 @@ pub struct Outcome<const N: usize, const M: usize, const A: usize> {
     pub solution: Solution<N, M, A>,
     /// Its summary (with the replay's, once [`replay`](Self::replay) made one).
     pub summary: Summary,
-    /// What the summary warns of.
-    pub warnings: Vec<Warning>,
+    /// What the [`audit()`] of the summary found (the replay's included,
+    /// once there is one).
+    pub findings: Vec<Finding>,
     /// The replay, once [`replay`](Self::replay) made one.
     pub replay: Option<ReplayOutcome<N, M, A>>,
 }
@@ -277,6 +277,7 @@ impl<const N: usize, const M: usize, const A: usize> Outcome<N, M, A> {
     ) -> Result<&ReplayOutcome<N, M, A>, StudyError> {
         let replay = replay::replay_run(case, &self.solution, request)?;
         self.summary.replay = Some(replay.summary.clone());
+        self.findings = audit(&self.summary);
         Ok(self.replay.insert(replay))
     }
 }
@@ -296,13 +297,37 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let clock = Instant::now();
     let solution = settings.formulation.simulate(case, &start, &options, progress)?;
     let wall = clock.elapsed().as_secs_f64();
+    let summary = summarize_run(case, settings, &solution, wall, DIAGNOSIS_SAMPLES);
+    let findings = audit(&summary);
+    Ok(Outcome {
+        solution,
+        summary,
+        findings,
+        replay: None,
+    })
+}
+
+/// The states at which [`run`] diagnoses the internal dynamics: 101.
+pub const DIAGNOSIS_SAMPLES: usize = 100;
+
+/// The summary of `solution`, a run of `case` under `settings` that took
+/// `wall` seconds: peaks, ropes, limits, errors against the reference, the
+/// internal dynamics at `samples + 1` states, the path's smoothness and
+/// the distance from the constraints; what [`audit()`] reads.
+pub fn summarize_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    settings: &RunSettings,
+    solution: &Solution<N, M, A>,
+    wall: f64,
+    samples: usize,
+) -> Summary {
     // the reference is evaluated where it is needed, never stored per step
     let reference_at = |t: f64| case.reference(t);
     let has_reference = C::HAS_REFERENCE && case.reference(case.t0()).is_some();
     let mut summary = summary::summarize(
         C::NAME,
         settings.formulation.name(),
-        &solution,
+        solution,
         has_reference.then_some(&reference_at as &dyn Fn(f64) -> Option<State<N, M, A>>),
         &settings.limits,
         wall,
@@ -310,21 +335,15 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     for (unit, declared) in summary.input_units.iter_mut().zip(C::input_units()) {
         *unit = declared.to_string();
     }
-    summary.internal_dynamics = diagnose(case.model(), &solution, 100);
+    summary.internal_dynamics = diagnose(case.model(), solution, samples);
     summary.path_smoothness =
         path_smoothness::<C::Model, _, N, M, A>(case.path()).map(|smooth| PathSmoothnessSummary {
             needed: smooth.needed,
             continuous: smooth.continuous,
             sufficient: smooth.is_sufficient(),
         });
-    summary.constraint_residual = Some(summary::constraint_residual(case.model(), &solution));
-    let warnings = warnings::warnings(&summary);
-    Ok(Outcome {
-        solution,
-        summary,
-        warnings,
-        replay: None,
-    })
+    summary.constraint_residual = Some(summary::constraint_residual(case.model(), solution));
+    summary
 }
 
 #[cfg(test)]
@@ -365,18 +384,19 @@ mod tests {
         assert!(d.runaway_at.is_some_and(|t| t < 2.5), "{d:?}");
         // diagnosed up to the runaway (1.8 s of 5 s: 37 of the 101 samples)
         assert!(d.samples >= 30 && d.unresolved == 0, "{d:?}");
-        let warnings = warnings::warnings(&summary);
+        let findings = audit(&summary);
         // (past the runaway Newton's matrix is singular at most steps, which
         // is reported too)
         assert!(matches!(
-            warnings[..],
-            [Warning::UnstableInternalDynamics { .. }, Warning::Runaway { .. }, ..]
+            findings[..],
+            [Finding::UnstableInternalDynamics { .. }, Finding::Runaway { .. }, ..]
         ));
-        let problems = infeasibilities(&summary);
-        assert!(
-            problems.iter().any(|p| p.starts_with("unstable internal dynamics")),
-            "{problems:?}"
+        assert_eq!(
+            findings[0].severity(),
+            Severity::Warning,
+            "a solution, not a feedforward"
         );
+        assert_eq!(findings[1].severity(), Severity::Error, "not a physical result");
     }
 
     /// Without the coupling: flat, nothing to report.
@@ -411,17 +431,17 @@ mod tests {
         assert!(d.stable && !d.is_usable(), "{d:?}");
         assert!(
             matches!(
-                outcome.warnings[..],
-                [Warning::BeyondFormulation {
+                outcome.findings[..],
+                [Finding::BeyondFormulation {
                     needed: 6,
                     covered: 4,
                     ..
                 }]
             ),
             "{:?}",
-            outcome.warnings
+            outcome.findings
         );
-        assert!(infeasibilities(&outcome.summary)[0].contains("covers order 4"));
+        assert!(outcome.findings[0].to_string().contains("covers order 4"));
         let covered = crate::navy_planar::PaperCase::new(4.0).unwrap();
         let outcome = super::run(&covered, &RunSettings::default(), &mut |_, _| {}).unwrap();
         let d = &outcome.summary.internal_dynamics;
@@ -429,7 +449,7 @@ mod tests {
             d.path_order,
             Some(crane_runtime::internal::PathOrder { needed: 4, covered: 4 })
         );
-        assert!(d.is_usable() && outcome.warnings.is_empty());
+        assert!(d.is_usable() && outcome.findings.is_empty());
     }
 
     /// One slack rule: round-off around a rope that carries nothing is not

@@ -160,9 +160,17 @@ pub fn replay_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
     let result = closed_loop.as_ref().unwrap_or(&open_loop);
     let info = inverse.info;
     let solution = &result.solution;
+    let peak = solution.largest_tension();
+    let floor = -summary::REPLAY_SLACK_TOLERANCE * peak;
     let first_slack = (info.ropes.iter().enumerate())
-        .filter_map(|(r, rope)| summary::first_slack(solution, r).map(|t| (rope.tension.to_string(), t)))
+        .filter_map(|(r, rope)| {
+            (0..solution.states.len())
+                .find(|&i| solution.tensions_at(i)[r] < floor)
+                .map(|i| (rope.tension.to_string(), solution.states[i].t))
+        })
         .collect();
+    let spec = case.path().spec();
+    let travel = (spec.end - spec.start).norm();
     let summary = ReplaySummary {
         max_load_deviation: result.max_load_deviation,
         deviation_at_tf: result.deviation_at_tf,
@@ -174,6 +182,7 @@ pub fn replay_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
         feedback: gains.map(|(_, label)| label),
         open_loop_max_load_deviation: open_loop.max_load_deviation,
         first_slack,
+        travel,
     };
     Ok(ReplayOutcome {
         summary,

@@ -2,7 +2,7 @@
 //! and the one slack rule of every study ([`below_floor`]).
 
 use crane_runtime::error::Seconds;
-use crane_runtime::internal::{RUNAWAY_FACTOR, RunDiagnosis};
+use crane_runtime::internal::RunDiagnosis;
 use crane_runtime::{CraneModel, Solution, State};
 use serde::Serialize;
 
@@ -18,7 +18,7 @@ pub struct Extreme {
 }
 
 /// A rope's tension over the run.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RopeSummary {
     /// The tension's name, e.g. `N1`.
     pub name: String,
@@ -97,7 +97,7 @@ pub struct NewtonSummary {
 }
 
 /// A torque limit from the scenario's `[limits]` and when it is first exceeded.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LimitSummary {
     /// The input.
     pub name: String,
@@ -213,16 +213,12 @@ pub fn constraint_residual<Mdl: CraneModel<N, M, A>, const N: usize, const M: us
     };
     for state in &solution.states {
         worst.scale = worst.scale.max(state.q.amax());
-        let (g, jacobian) = (model.constraints(&state.q), model.constraint_jacobian(&state.q));
-        for k in 0..M {
-            let slope = jacobian.row(k).norm();
-            let distance = if slope > 0.0 { g[k].abs() / slope } else { g[k].abs() };
-            // NaN counts as the worst
-            if !(distance <= worst.distance) {
-                worst.distance = distance;
-                worst.t = state.t;
-                worst.constraint = solution.info.constraints.get(k).copied().unwrap_or("").to_string();
-            }
+        let (k, distance) = super::audit::constraint_distance(model, &state.q);
+        // NaN counts as the worst
+        if !(distance <= worst.distance) {
+            worst.distance = distance;
+            worst.t = state.t;
+            worst.constraint = solution.info.constraints.get(k).copied().unwrap_or("").to_string();
         }
     }
     worst
@@ -262,10 +258,34 @@ pub struct ReplaySummary {
     /// The largest deviation of the open-loop replay (the same as
     /// `max_load_deviation` without feedback), m.
     pub open_loop_max_load_deviation: f64,
-    /// Ropes that would have to push in the replay ([`below_floor`] 0):
-    /// the first time, per rope.
+    /// Ropes that would have to push in the replay (below 0 by more than
+    /// [`REPLAY_SLACK_TOLERANCE`] of the largest tension): the first time,
+    /// per rope.
     pub first_slack: std::collections::BTreeMap<String, f64>,
+    /// The load's travel `|gamma(t1) - gamma(t0)|`, m: the scale of
+    /// [`misses`](Self::misses).
+    pub travel: f64,
 }
+
+impl ReplaySummary {
+    /// Whether the replayed load does not arrive: it ends, or sways after
+    /// the move, farther from the path's end than
+    /// [`REPLAY_TOLERANCE`](super::audit::REPLAY_TOLERANCE) of its travel
+    /// (at least 1 mm).
+    pub fn misses(&self) -> bool {
+        let tolerance = (super::audit::REPLAY_TOLERANCE * self.travel).max(1e-3);
+        !(self.deviation_at_tf.max(self.residual_sway) <= tolerance)
+    }
+}
+
+/// The slack rule of a replay: its tensions come from a forward
+/// integration whose error is far above the inverse run's round-off (the
+/// nominal replay of the paper's move leaves its path by 1e-5 m relative
+/// and more), so a rope counts as pushing only below `-1e-6` of the
+/// largest tension: the paper's rope N1, which starts at exactly zero
+/// tension, dips to -1.2e-5 N (1e-8 of the 1228 N peak) in the first
+/// forward steps.
+pub const REPLAY_SLACK_TOLERANCE: f64 = 1e-6;
 
 /// The one slack rule of every study (`--strict`, planning, replay): a
 /// rope tension `n` is below its floor (0: taut) when `n < floor -
@@ -481,67 +501,10 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
 /// tip for a long time) leaves a coordinate free at every step, and the
 /// inputs there are whatever round-off makes them.
 pub fn singular_steps(summary: &Summary) -> bool {
-    let count = summary.newton.min_norm_steps;
-    count > 2 && count * 100 > summary.steps
+    too_many_singular(summary.newton.min_norm_steps, summary.steps)
 }
 
-/// What makes a run infeasible (for `--strict`): ropes of non-positive
-/// length, slack ropes, violated torque limits, many singular steps, a
-/// crane beyond its formulation's path order, unstable internal dynamics,
-/// a runaway input.
-pub fn infeasibilities(summary: &Summary) -> Vec<String> {
-    let mut out: Vec<String> = summary
-        .ropes
-        .iter()
-        .filter(|r| r.leaves_workspace())
-        .map(|r| {
-            format!(
-                "rope {} has the non-positive length {:.3} m at t = {:.3} s (outside the crane's workspace)",
-                r.name, r.min_length, r.t_min_length
-            )
-        })
-        .collect();
-    if let Some(residual) = summary.constraint_residual.as_ref().filter(|r| r.violated()) {
-        out.push(residual.to_string());
-    }
-    out.extend(summary.ropes.iter().filter_map(RopeSummary::slack));
-
-    out.extend(summary.torque_limits.iter().filter_map(|l| {
-        l.first_violation.map(|t| {
-            format!(
-                "|{}| exceeds its limit {}{} at t = {t:.3} s",
-                l.name,
-                l.limit,
-                summary.unit_suffix(&l.name)
-            )
-        })
-    }));
-    let internal = &summary.internal_dynamics;
-    if let Some(p) = internal.path_order.filter(|p| !p.is_covered()) {
-        out.push(format!(
-            "the crane needs the path's derivatives up to order {}, the formulation covers order {}",
-            p.needed, p.covered
-        ));
-    }
-    if !internal.stable {
-        out.push(format!(
-            "unstable internal dynamics (largest real part {:.4} 1/s at t = {} s)",
-            internal.max_real_part.unwrap_or(f64::NAN),
-            Seconds(internal.at.unwrap_or(f64::NAN))
-        ));
-    }
-    if let Some(t) = internal.runaway_at {
-        out.push(format!(
-            "an input exceeds {:e} times its size at the start from t = {} s",
-            RUNAWAY_FACTOR,
-            Seconds(t)
-        ));
-    }
-    if singular_steps(summary) {
-        out.push(format!(
-            "{} of {} steps met a singular iteration matrix: the path does not determine the inputs there",
-            summary.newton.min_norm_steps, summary.steps
-        ));
-    }
-    out
+/// The rule of [`singular_steps`]: `count` singular steps of `steps`.
+pub fn too_many_singular(count: usize, steps: usize) -> bool {
+    count > 2 && count * 100 > steps
 }
