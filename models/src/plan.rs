@@ -270,7 +270,9 @@ pub fn with_duration<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
 }
 
 /// The run of `case` (its own duration and model) under `settings`: the
-/// largest step at most `settings.dt` that divides the run, the start
+/// largest step at most `settings.dt` that divides the run (the smallest
+/// above it where that would fall below the runtime's smallest step,
+/// [`MIN_DT`](crane_runtime::options::MIN_DT)), the start
 /// from `p0` (or, where the parameters moved it, the static equilibrium
 /// from it), in the crane's default formulation
 /// ([`Formulation::default_for`](crate::study::Formulation::default_for)).
@@ -283,8 +285,7 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     if !(span > 0.0 && span.is_finite()) {
         return Err(format!("the run from t = {t0} s to {tf} s is empty"));
     }
-    let steps = (span / settings.dt - 1e-9).ceil().max(1.0);
-    let dt = span / steps;
+    let dt = step_for(span, settings.dt);
     let start = case.consistent_start(t0).map_err(|e| e.to_string())?;
     let options = Options::new(dt, tf)
         .map_err(|e| e.to_string())?
@@ -292,6 +293,18 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     crate::study::Formulation::default_for::<C, N, M, A>()
         .simulate(case, &start, &options, &mut |_, _| {})
         .map_err(|e| e.to_string())
+}
+
+/// The largest step at most `dt` that divides `span` into whole steps, or
+/// where that falls below [`MIN_DT`](crane_runtime::options::MIN_DT) (a
+/// `dt` at the minimum), the smallest above it.
+fn step_for(span: f64, dt: f64) -> f64 {
+    let steps = (span / dt - 1e-9).ceil().max(1.0);
+    if span / steps < crane_runtime::options::MIN_DT && steps > 1.0 {
+        span / (steps - 1.0)
+    } else {
+        span / steps
+    }
 }
 
 /// The extremum of the parabola through three equally spaced samples
@@ -794,5 +807,34 @@ pub fn sweep_point<C: Crane<N, M, A>, const N: usize, const M: usize, const A: u
         duration,
         evaluation,
         feasible,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crane_runtime::options::MIN_DT;
+
+    /// The step of an evaluation divides its run, stays at most the asked
+    /// `dt`, and never falls below the runtime's smallest step: `fastest
+    /// --dt 1e-6` on a move of 3.3281 s chose 9.999998e-7 s, which the
+    /// runtime refuses, and reported that as the inverse dynamics failing.
+    #[test]
+    fn the_step_divides_the_run_and_respects_the_minimum() {
+        let whole = |span: f64, dt: f64| ((span / dt) - (span / dt).round()).abs() < 1e-6;
+        for span in [4.0, 3.3281, 3.328_123_456_7, 1.0 + 1e-9, 0.5e-6] {
+            for dt in [0.05, 0.01, 1e-3, MIN_DT] {
+                let step = step_for(span, dt);
+                assert!(whole(span, step), "{span} / {step}");
+                assert!(step >= MIN_DT || span < MIN_DT, "{span}, {dt}: {step}");
+                assert!(step <= dt || dt == MIN_DT || span < dt, "{span}, {dt}: {step}");
+            }
+        }
+        // durations of a bisection at the minimum: never below it
+        for span in [3.328_123_456_7, std::f64::consts::PI, 2.385_742_187_5] {
+            let step = step_for(span, MIN_DT);
+            assert!(step >= MIN_DT && step < MIN_DT * (1.0 + 1e-6), "{span}: {step}");
+        }
+        assert_eq!(step_for(4.0, 0.05), 0.05);
     }
 }
