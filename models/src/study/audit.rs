@@ -27,7 +27,7 @@ use crane_runtime::internal::{RUNAWAY_FACTOR, internal_dynamics};
 use crane_runtime::nalgebra::SVector;
 use crane_runtime::{CraneModel, State};
 
-use super::summary::{ConstraintResidual, LimitSummary, RopeSummary, Summary, below_floor};
+use super::summary::{ConstraintResidual, InputSpike, LimitSummary, RopeSummary, Summary, below_floor};
 
 /// How bad a finding is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -126,6 +126,21 @@ pub enum Finding {
         /// The input's unit suffix (`" N m"`), empty where none is declared.
         unit: String,
     },
+    /// An input turns between steps by more than its peak
+    /// ([`InputSpike::spiky`]).
+    InputSpike {
+        /// The crane's name.
+        model: String,
+        /// Where and how much.
+        spike: InputSpike,
+    },
+    /// The path's ramps are shorter than [`RAMP_STEPS`] steps.
+    UnresolvedRamp {
+        /// The ramp duration, s.
+        tau0: f64,
+        /// The step, s.
+        dt: f64,
+    },
     /// In the replay, a rope would have to push.
     ReplaySlack {
         /// The rope's tension name.
@@ -148,6 +163,13 @@ pub enum Finding {
         feedback: bool,
     },
 }
+
+/// The fewest steps a three-phase path's ramp must span: the difference
+/// formulas of BDF-3 and above span more than a shorter ramp, and the
+/// inputs' peaks inside it fall between the steps (ramps of tau0 = 0.01 s
+/// on navy-planar at dt = 0.01 s give a peak |u2| of 98 N m; the exact
+/// inputs there reach ~1e12 N m).
+pub const RAMP_STEPS: f64 = 4.0;
 
 /// How far from the path's end, relative to the load's travel, a replayed
 /// load may end or sway and still count as arrived (at least 1 mm): the
@@ -240,6 +262,24 @@ impl fmt::Display for Finding {
                 Seconds(limit.first_violation.unwrap_or(f64::NAN)),
                 limit.peak
             ),
+            Finding::InputSpike { model, spike } => write!(
+                f,
+                "input {} of {model} turns by {:.4e} between the steps around t = {} s, more than its largest value \
+                 {:.4e}: no smooth input does that; a direction the path does not determine (a rope without \
+                 tension leaves a massless pulley free, and round-off, differentiated by the scheme, moves it) or a \
+                 path feature shorter than the step; the inputs there are not a result (a longer step, or a faster \
+                 move, determines them better)",
+                spike.input,
+                spike.second_difference,
+                Seconds(spike.t),
+                spike.peak
+            ),
+            Finding::UnresolvedRamp { tau0, dt } => write!(
+                f,
+                "the path's ramps last tau0 = {tau0} s, fewer than {RAMP_STEPS} steps of dt = {dt} s: the steps do \
+                 not resolve them, and the inputs' peaks inside them are missed (take dt <= {} s, or longer ramps)",
+                tau0 / RAMP_STEPS
+            ),
             Finding::ReplaySlack { rope, at } => write!(
                 f,
                 "in the replay rope {rope} would have to push from t = {} s",
@@ -274,8 +314,8 @@ impl fmt::Display for Finding {
 /// Every finding on a run's summary, in this order: a crane beyond the
 /// formulation, states off their constraints, unstable internal dynamics,
 /// a path too rough, ropes of non-positive length, a runaway input, many
-/// singular steps, slack ropes, exceeded limits, and the replay's, if the
-/// summary has one.
+/// singular steps, ramps the steps do not resolve, a spiking input, slack
+/// ropes, exceeded limits, and the replay's, if the summary has one.
 pub fn audit(summary: &Summary) -> Vec<Finding> {
     let model = summary.model.clone();
     let internal = &summary.internal_dynamics;
@@ -328,6 +368,15 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
             model,
             count: summary.newton.min_norm_steps,
             steps: summary.steps,
+        });
+    }
+    if let Some(tau0) = summary.ramp.filter(|&tau0| !(tau0 >= RAMP_STEPS * summary.dt)) {
+        out.push(Finding::UnresolvedRamp { tau0, dt: summary.dt });
+    }
+    if let Some(spike) = summary.input_spike.as_ref().filter(|s| s.spiky()) {
+        out.push(Finding::InputSpike {
+            model: summary.model.clone(),
+            spike: spike.clone(),
         });
     }
     let workspace_left = |r: &&RopeSummary| r.leaves_workspace();

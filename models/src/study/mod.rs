@@ -343,6 +343,7 @@ pub fn summarize_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
             sufficient: smooth.is_sufficient(),
         });
     summary.constraint_residual = Some(summary::constraint_residual(case.model(), solution));
+    summary.ramp = case.path().spec().profile.tau0();
     summary
 }
 
