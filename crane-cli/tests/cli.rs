@@ -1244,8 +1244,20 @@ fn a_rope_of_non_positive_length_is_reported_and_infeasible() {
         stderr.contains("rope N2 of navy-planar (constraint `hoist`) has the length -11.6243 m"),
         "{stderr}"
     );
+    // the static equilibria along the path tell the workspace from speed
+    assert!(
+        stderr.contains(
+            "the path leaves the crane's workspace (with the load at rest there, a rope would be shorter than zero)"
+        ),
+        "{stderr}"
+    );
     let summary = summary_json(&out);
     assert!(summary["ropes"][0]["min_length"].as_f64().unwrap() < 0.0);
+    assert_eq!(
+        summary["ropes"][1]["length_at_rest"].as_f64(),
+        Some(0.0),
+        "N2: the hoist"
+    );
     let strict = crane(&[&args[..], &["--strict", "--quiet"]].concat());
     assert!(!strict.status.success());
     assert!(
@@ -1261,6 +1273,23 @@ fn a_rope_of_non_positive_length_is_reported_and_infeasible() {
     let stdout = String::from_utf8_lossy(&default.stdout);
     assert!(stdout.contains("rope N1 stays taut: min tension 0.000 N"), "{stdout}");
     assert!(!String::from_utf8_lossy(&default.stderr).contains("length"));
+    // the paper's path in 2 s: rope N1 swings through zero length on a path
+    // inside the workspace; the run does not blame the workspace alone
+    let fast = crane(&[
+        "run",
+        "navy-planar",
+        "--tf",
+        "2",
+        "--quiet",
+        "--out",
+        dir.path().join("fast").to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&fast.stderr);
+    assert!(
+        stderr.contains("rope N1 of navy-planar (constraint `rope1`) has the length -141.3128 m at t = 0.63 s")
+            && stderr.contains("the path leaves the crane's workspace, or the move is too fast for the crane"),
+        "{stderr}"
+    );
 }
 
 /// A folder holds one run's complete output: two runs into the same `--out`
@@ -1975,4 +2004,22 @@ fn planning_counts_what_the_audit_finds_as_infeasible() {
         "{}",
         String::from_utf8_lossy(&result.stderr)
     );
+}
+
+/// A parameter beyond what double precision can evaluate the equations
+/// with (`m_l = 1e300`, whose products overflow) is refused by name, where
+/// the run used to stop at its first step with "singular iteration matrix
+/// (LU pivot ratio 0.0e0)"; so is one too small to be told from zero.
+#[test]
+fn a_parameter_beyond_double_precision_is_named() {
+    for (value, shown) in [("1e300", "1e300"), ("-1e200", "-1e200"), ("1e-200", "1e-200")] {
+        expect_error(
+            "navy-planar",
+            &format!("[parameters]\nm_l = {value}\n"),
+            &[
+                &format!("parameter `m_l` = {shown} is beyond what the equations can be evaluated with"),
+                "between 1e-150 and 1e150",
+            ],
+        );
+    }
 }

@@ -378,8 +378,17 @@ impl<T: Scalar, const N: usize, const F: usize> MapDerivatives<T, N, F> {
     }
 }
 
+/// The magnitudes a nonzero parameter may have, `(smallest, largest)`: a
+/// value beyond 1e150 overflows double precision (1.8e308) when squared or
+/// multiplied by a few others (`m_l = 1e300` made every iteration matrix
+/// singular, with no word of the parameter), one below 1e-150 underflows;
+/// a crane's parameters in SI units lie far inside (masses of grams to
+/// thousands of tonnes, lengths of millimetres to kilometres).
+pub const PARAMETER_RANGE: (f64, f64) = (1e-150, 1e150);
+
 /// Refuse parameters a crane cannot have before a run starts: NaN or
-/// infinite values, values that make the mass matrix indefinite (a kinetic
+/// infinite values, magnitudes beyond [`PARAMETER_RANGE`], values that
+/// make the mass matrix indefinite (a kinetic
 /// energy is positive semi-definite; a negative mass or inertia would flip
 /// the sign of the inputs it moves and still "converge"), and non-positive
 /// values of parameters the model declares `positive`.
@@ -390,6 +399,10 @@ pub fn check_parameters<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize
     for (name, &value) in Mdl::INFO.parameters.iter().zip(&values) {
         if !value.is_finite() {
             return Err(Error::NonFiniteParameter { name, value });
+        }
+        let (smallest, largest) = PARAMETER_RANGE;
+        if value != 0.0 && !(smallest..=largest).contains(&value.abs()) {
+            return Err(Error::ParameterOutOfRange { name, value });
         }
     }
     for &k in Mdl::INFO.positive {

@@ -75,7 +75,9 @@ fn assert_descriptive(error: &Error) {
         | Error::SingularIterationMatrix { .. }
         | Error::NonFinite { .. }
         | Error::SingularOutputJacobian { .. } => message.contains("t = "),
-        Error::NonFiniteParameter { name, .. } => message.contains(&format!("`{name}`")),
+        Error::NonFiniteParameter { name, .. } | Error::ParameterOutOfRange { name, .. } => {
+            message.contains(&format!("`{name}`"))
+        }
         Error::InconsistentStart { equation, .. } => !equation.is_empty() && message.contains(equation.as_str()),
         Error::NonUniqueEquilibrium { free, .. } => !free.is_empty() && message.contains(free.as_str()),
         Error::InvalidTimeStep { .. } | Error::StepsDoNotFit { .. } => message.contains("dt = "),

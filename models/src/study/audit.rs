@@ -76,9 +76,10 @@ pub enum Finding {
         /// The path order the formulation covers.
         covered: usize,
     },
-    /// A rope's length reaches zero or below during the run: the path leaves
-    /// the crane's workspace (the start refuses such a state; along the
-    /// run the equations still solve, on the mirror side of the rope).
+    /// A rope's length reaches zero or below during the run: the path
+    /// leaves the crane's workspace, or the move is too fast for the crane
+    /// (the start refuses such a state; along the run the equations still
+    /// solve, on the mirror side of the rope).
     NonPositiveRopeLength {
         /// The crane's name.
         model: String,
@@ -90,6 +91,9 @@ pub enum Finding {
         length: f64,
         /// When, s.
         at: f64,
+        /// Its length with the load at rest at the same point of the path
+        /// ([`RopeSummary::length_at_rest`]), where known.
+        at_rest: Option<f64>,
     },
     /// The reported states leave their constraints
     /// ([`ConstraintResidual::violated`](super::summary::ConstraintResidual::violated)).
@@ -225,12 +229,32 @@ impl fmt::Display for Finding {
                 constraint,
                 length,
                 at,
-            } => write!(
-                f,
-                "rope {rope} of {model} (constraint `{constraint}`) has the length {length:.4} m at t = {} s: the \
-                 path leaves the crane's workspace, and the computed motion is not one the crane can make",
-                Seconds(*at)
-            ),
+                at_rest,
+            } => {
+                write!(
+                    f,
+                    "rope {rope} of {model} (constraint `{constraint}`) has the length {length:.4} m at t = {} s: the \
+                     computed motion is not one the crane can make; ",
+                    Seconds(*at)
+                )?;
+                match at_rest {
+                    Some(rest) if *rest > 0.0 => write!(
+                        f,
+                        "with the load at rest at the same point of the path the rope is {rest:.4} m long, so the \
+                         path is inside the crane's workspace and the move is too fast for the crane: following it, \
+                         the load swings the rope through zero length (a slower move, or `crane fastest` under \
+                         limits, finds one the crane can make)"
+                    ),
+                    Some(_) => f.write_str(
+                        "the path leaves the crane's workspace (with the load at rest there, a rope would be shorter \
+                         than zero)",
+                    ),
+                    None => f.write_str(
+                        "the path leaves the crane's workspace, or the move is too fast for the crane (no \
+                         equilibrium with the load at rest there was found to tell which: try the same path slower)",
+                    ),
+                }
+            }
             Finding::ConstraintsViolated { model, residual } => write!(f, "{model}: {residual}"),
             Finding::SingularSteps { model, count, steps } => write!(
                 f,
@@ -355,6 +379,7 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
             constraint: r.constraint.clone(),
             length: r.min_length,
             at: r.t_min_length,
+            at_rest: r.length_at_rest,
         });
     }
     if let Some(at) = internal.runaway_at {
@@ -547,6 +572,7 @@ impl StepAudit {
                     .to_string(),
                 length: self.lengths[r],
                 at: state.t,
+                at_rest: None,
             });
         }
         if !(state.u.amax() <= RUNAWAY_FACTOR * self.scale) {
@@ -572,6 +598,7 @@ impl StepAudit {
                     .to_string(),
                 min_length: self.lengths[r],
                 t_min_length: state.t,
+                length_at_rest: None,
             }));
         }
         if !self.singular_reported && super::summary::too_many_singular(self.singular, self.steps) {

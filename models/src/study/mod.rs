@@ -344,8 +344,44 @@ pub fn summarize_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
         });
     summary.constraint_residual = Some(summary::constraint_residual(case.model(), solution));
     summary.ramp = case.path().spec().profile.tau0();
+    for (r, rope) in summary.ropes.iter_mut().enumerate() {
+        if rope.leaves_workspace() {
+            rope.length_at_rest = length_at_rest(case, r, rope.t_min_length);
+        }
+    }
     summary
 }
+
+/// The length of rope `r` with the load at rest at the point of `case`'s
+/// path at time `t`: the static equilibria along the path from its start
+/// (from the case's `p0`) to `t` in [`REST_MARCH`] steps, each from the
+/// one before; zero where one of them needs some rope shorter than zero
+/// (the path leaves the workspace), `None` where one is not found.
+fn length_at_rest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    r: usize,
+    t: f64,
+) -> Option<f64> {
+    let model = case.model();
+    let mut lengths = vec![0.0; <C::Model as CraneModel<N, M, A>>::INFO.ropes.len()];
+    let mut guess = case.p0.clone();
+    let t0 = case.t0();
+    for k in 1..=REST_MARCH {
+        let at = t0 + (t - t0) * k as f64 / REST_MARCH as f64;
+        match crane_runtime::init::static_equilibrium(model, case.path(), at, &guess) {
+            Ok(rest) => {
+                model.rope_lengths(&rest.q, &mut lengths);
+                guess = rest.q.iter().take(N - A).copied().collect();
+            }
+            Err(crane_runtime::Error::NonPositiveRopeLength { .. }) => return Some(0.0),
+            Err(_) => return None,
+        }
+    }
+    lengths.get(r).copied()
+}
+
+/// Steps of the march of static equilibria in [`length_at_rest`].
+const REST_MARCH: usize = 16;
 
 #[cfg(test)]
 mod tests {

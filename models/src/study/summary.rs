@@ -38,6 +38,12 @@ pub struct RopeSummary {
     pub min_length: f64,
     /// When, s.
     pub t_min_length: f64,
+    /// Of a rope whose length reached zero or below: its length with the
+    /// load at rest at the path's point of `t_min_length` (the static
+    /// equilibrium there), where one is found: above zero, the path is
+    /// inside the crane's workspace and the move is too fast for it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length_at_rest: Option<f64>,
 }
 
 impl RopeSummary {
@@ -498,6 +504,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
                 constraint: info.constraints.get(rope.constraint).copied().unwrap_or("").to_string(),
                 min_length,
                 t_min_length,
+                length_at_rest: None,
             }
         })
         .collect();
