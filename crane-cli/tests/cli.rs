@@ -2023,3 +2023,36 @@ fn a_parameter_beyond_double_precision_is_named() {
         );
     }
 }
+
+/// Numbers in messages are as short as they read back: `1e300`, not the
+/// 301 digits `{}` prints for it; parameters too.
+#[test]
+fn numbers_in_messages_are_short() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let result = crane(&[
+        "run",
+        "navy-planar",
+        "--dt",
+        "1e300",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        stderr.contains("not a whole number of steps of dt = 1e300 s"),
+        "{stderr}"
+    );
+    expect_error(
+        "navy-planar",
+        "t0 = 1e300\n",
+        &["`t1` = 1e300 s must be after `t0` = 1e300 s"],
+    );
+    expect_error(
+        "navy-planar",
+        "[parameters]\nr1 = -1e100\n",
+        &["`parameters.r1` = -1e100 must be positive"],
+    );
+    assert!(!stderr.contains("0000000000"), "{stderr}");
+}

@@ -49,7 +49,7 @@ pub enum Error {
         dt: f64,
     },
     /// The end time of a run is not a number.
-    #[error("invalid end time tf = {tf}: it must be a finite number of seconds")]
+    #[error("invalid end time tf = {}: it must be a finite number of seconds", Seconds(*.tf))]
     InvalidEndTime {
         /// The rejected value.
         tf: f64,
@@ -58,7 +58,7 @@ pub enum Error {
     #[error("invalid Newton options: {0}")]
     InvalidNewtonOptions(&'static str),
     /// The end time is not after the start time.
-    #[error("invalid time span: tf = {tf} must be finite and greater than t0 = {t0}")]
+    #[error("invalid time span: tf = {} must be finite and greater than t0 = {}", Seconds(*.tf), Seconds(*.t0))]
     InvalidTimeSpan {
         /// Start time.
         t0: f64,
@@ -66,7 +66,7 @@ pub enum Error {
         tf: f64,
     },
     /// The time span is not a whole number of steps.
-    #[error("tf - t0 = {span} s is not a whole number of steps of dt = {dt} s")]
+    #[error("tf - t0 = {} s is not a whole number of steps of dt = {} s", Seconds(*.span), Seconds(*.dt))]
     StepsDoNotFit {
         /// `tf - t0`.
         span: f64,
@@ -176,7 +176,7 @@ pub enum Error {
         length: f64,
     },
     /// A parameter declared `positive` is zero or negative.
-    #[error("parameter `{name}` = {value} must be positive (it is declared `positive`)")]
+    #[error("parameter `{name}` = {} must be positive (it is declared `positive`)", Number(*.value))]
     NonPositiveParameter {
         /// Parameter name.
         name: &'static str,
@@ -231,7 +231,16 @@ pub enum Error {
 }
 
 /// A time printed as a person writes it: the shortest decimal that reads back
-/// to within 1e-12 s (0.051, not 0.051000000000000004).
+/// to within 1e-12 s (0.051, not 0.051000000000000004); beyond 1e15 s in
+/// scientific notation (1e300, not 301 digits), below 1e-12 s in size as 0
+/// (never -0.000).
+///
+/// ```
+/// use crane_runtime::error::Seconds;
+/// assert_eq!(Seconds(0.051000000000000004).to_string(), "0.051");
+/// assert_eq!(Seconds(1e300).to_string(), "1e300");
+/// assert_eq!(Seconds(-1e-14).to_string(), "0");
+/// ```
 pub struct Seconds(pub f64);
 
 impl Seconds {
@@ -241,11 +250,38 @@ impl Seconds {
     }
 }
 
+/// A number printed as short as it reads back exactly: `{}` between 1e-4
+/// and 1e15 in size (`-4`, `0.01`), scientific notation beyond (`1e300`,
+/// `-2.5e-7`, where `{}` prints hundreds of digits).
+///
+/// ```
+/// use crane_runtime::error::Number;
+/// assert_eq!(Number(-4.0).to_string(), "-4");
+/// assert_eq!(Number(0.01).to_string(), "0.01");
+/// assert_eq!(Number(-1e300).to_string(), "-1e300");
+/// assert_eq!(Number(2.5e-7).to_string(), "2.5e-7");
+/// ```
+pub struct Number(pub f64);
+
+impl std::fmt::Display for Number {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0;
+        if x == 0.0 || (x.is_finite() && (1e-4..1e15).contains(&x.abs())) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
+        }
+    }
+}
+
 impl std::fmt::Display for Seconds {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let t = self.0;
-        if !t.is_finite() {
-            return write!(f, "{t}");
+        if !t.is_finite() || t.abs() >= 1e15 {
+            return write!(f, "{t:e}");
+        }
+        if t.abs() < 1e-12 {
+            return f.write_str("0");
         }
         for digits in 0..=12 {
             let text = format!("{t:.digits$}");

@@ -2,6 +2,7 @@
 
 use crane_models::ProfileKind;
 use crane_runtime::UnknownParameter;
+use crane_runtime::error::{Number, Seconds};
 use crane_runtime::scheme::UnknownScheme;
 use crane_runtime::trajectory::TrajectoryError;
 
@@ -29,13 +30,13 @@ pub enum ScenarioError {
     NotPositiveTime { key: &'static str, value: f64 },
     #[error("scenario: `dt` = {0:?} s is below the smallest time step, 1e-6 s")]
     StepTooSmall(f64),
-    #[error("scenario: `{key}` must be finite, got {value}")]
+    #[error("scenario: `{key}` must be finite, got {}", Number(*.value))]
     NotFinite { key: String, value: f64 },
     #[error("scenario: `t1` and `duration` both given; give one")]
     EndTwice,
-    #[error("scenario: `tf` = {tf} s must be after the start time t0 = {t0} s")]
+    #[error("scenario: `tf` = {} s must be after the start time t0 = {} s", Seconds(*.tf), Seconds(*.t0))]
     EndBeforeStart { tf: f64, t0: f64 },
-    #[error("scenario: `t1` = {t1} s must be after `t0` = {t0} s")]
+    #[error("scenario: `t1` = {} s must be after `t0` = {} s", Seconds(*.t1), Seconds(*.t0))]
     MotionEndsBeforeStart { t1: f64, t0: f64 },
     #[error("scenario: `{key}` needs {expected} numbers for {model} ({names}), got {found}")]
     WrongCount {
@@ -62,7 +63,7 @@ pub enum ScenarioError {
     Path(TrajectoryError),
     #[error("scenario: `parameters.{key}`: {source}")]
     Parameter { key: String, source: UnknownParameter },
-    #[error("scenario: `parameters.{key}` = {value} must be positive (the model declares it `positive`)")]
+    #[error("scenario: `parameters.{key}` = {} must be positive (the model declares it `positive`)", Number(*.value))]
     NotPositiveParameter { key: String, value: f64 },
     #[error("scenario: `parameters`: {0}")]
     Physical(crane_runtime::Error),
