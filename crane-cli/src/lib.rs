@@ -29,7 +29,7 @@ mod error;
 mod output;
 mod plot;
 mod progress;
-mod scenario;
+pub mod scenario;
 mod snapshots;
 
 use std::ffi::OsString;

@@ -9,6 +9,8 @@ use crane_runtime::trajectory::TrajectoryError;
 use super::file::MAX_SCENARIO_BYTES;
 
 /// Errors of a scenario, each naming the key (as written in the file).
+/// Each variant is documented by its message.
+#[allow(missing_docs)]
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
     #[error("reading scenario {path}: {source}")]
@@ -20,7 +22,7 @@ pub enum ScenarioError {
     #[error("{flag} {value}: {need}")]
     Flag {
         flag: &'static str,
-        /// As written by [`short_number`](super::resolve::short_number).
+        /// As written: as short as it reads back (`1e-300`, not 300 zeros).
         value: String,
         need: String,
     },

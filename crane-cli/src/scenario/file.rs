@@ -22,11 +22,15 @@ pub const MAX_SCENARIO_BYTES: u64 = 1 << 20;
 pub struct ScenarioFile {
     /// Optional: the model the file is written for (checked).
     pub model: Option<String>,
+    /// Time step, s.
     pub dt: Option<f64>,
+    /// End of the run, s (default: the end of the motion).
     pub tf: Option<f64>,
+    /// Formulation of the servo problem.
     pub formulation: Option<Formulation>,
     /// Time-discretisation scheme, by name (`bdf4`).
     pub scheme: Option<String>,
+    /// Start of the robot coordinates (checked for consistency).
     pub p0: Option<Vec<f64>>,
     /// Profile of the load path.
     pub trajectory: Option<ProfileKind>,
@@ -42,8 +46,10 @@ pub struct ScenarioFile {
     pub t1: Option<f64>,
     /// `t1 - t0`, s (instead of `t1`).
     pub duration: Option<f64>,
+    /// Parameter overrides by the model's names.
     #[serde(default)]
     pub parameters: BTreeMap<String, f64>,
+    /// Limits on `|u|` by input name.
     #[serde(default)]
     pub limits: BTreeMap<String, f64>,
     /// Parameters of the plant a `--replay` drives, where it differs from
@@ -56,9 +62,15 @@ impl ScenarioFile {
     /// Read and parse a scenario file (unknown keys and wrong types are errors naming the key).
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
         let text = read_bounded(path)?;
-        toml::from_str(&text).map_err(|e| ScenarioError::Parse {
-            path: path.display().to_string(),
-            message: describe(&text, &e),
+        Self::parse(&text, &path.display().to_string())
+    }
+
+    /// Parse the text of a scenario from `origin` (a file's path, or what
+    /// it came from; errors name it and the key).
+    pub fn parse(text: &str, origin: &str) -> Result<Self, ScenarioError> {
+        toml::from_str(text).map_err(|e| ScenarioError::Parse {
+            path: origin.to_string(),
+            message: describe(text, &e),
         })
     }
 }

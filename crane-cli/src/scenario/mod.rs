@@ -1,8 +1,9 @@
 //! Scenario files (`crane run MODEL --scenario FILE.toml`): the load path,
 //! times, parameters, start and torque limits of a run, applied over the
-//! model's default manoeuvre. Three stages: [`file`] (the schema as
-//! written), [`error`] (what can be wrong, naming the key), [`resolve`]
-//! (the file against a crane: a `RunSpec`, then its `Case` and run settings).
+//! model's default manoeuvre. Three stages: `file` (the schema as
+//! written, [`ScenarioFile`]), `error` (what can be wrong, naming the key,
+//! [`ScenarioError`]), `resolve` (the file against a crane: a `RunSpec`,
+//! then its `Case` and run settings, [`build`]).
 //!
 //! ```toml
 //! dt = 0.01                 # time step, s
@@ -40,9 +41,13 @@ use crane_runtime::Scheme;
 /// Command-line values that override the file.
 #[derive(Debug, Clone, Default)]
 pub struct Overrides {
+    /// `--dt`, s.
     pub dt: Option<f64>,
+    /// `--tf`, s.
     pub tf: Option<f64>,
+    /// `--formulation`.
     pub formulation: Option<Formulation>,
+    /// `--scheme`.
     pub scheme: Option<Scheme>,
 }
 

@@ -1,0 +1,51 @@
+"""Inverse dynamics of underactuated cranes: whole runs into numpy arrays."""
+
+from os import PathLike
+from typing import Any, Mapping, Optional, Union
+
+import numpy as np
+import numpy.typing as npt
+
+class CraneError(ValueError):
+    """A run the tool could not make, or an argument it refuses: the tool's one-line message."""
+
+class Run:
+    """One run: its states (float64, one row per step), the names of their
+    columns, the summary (summary.json as a dict) and what the audit found."""
+
+    t: npt.NDArray[np.float64]
+    """Times, s: shape (steps + 1,)."""
+    q: npt.NDArray[np.float64]
+    """Coordinates: shape (steps + 1, n), columns `coordinates`."""
+    v: npt.NDArray[np.float64]
+    """Velocities: shape (steps + 1, n), columns `coordinates`."""
+    u: npt.NDArray[np.float64]
+    """Inputs: shape (steps + 1, a), columns `inputs`."""
+    lambda_: npt.NDArray[np.float64]
+    """Multipliers: shape (steps + 1, m)."""
+    tensions: npt.NDArray[np.float64]
+    """Rope tensions, N: shape (steps + 1, ropes), columns `ropes`."""
+    coordinates: list[str]
+    inputs: list[str]
+    ropes: list[str]
+    summary: dict[str, Any]
+    """The summary `crane run` writes as summary.json."""
+    warnings: list[str]
+    """What the audit found: empty for a trustworthy run."""
+
+def models() -> list[dict[str, Any]]:
+    """The built-in cranes: name, description, sizes n, m, a, reference,
+    minimal, path_order, formulation (the default) and internal_dimension."""
+
+def run(
+    model: str,
+    *,
+    dt: Optional[float] = None,
+    tf: Optional[float] = None,
+    scheme: Optional[str] = None,
+    formulation: Optional[str] = None,
+    scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
+    parameters: Optional[Mapping[str, float]] = None,
+    limits: Optional[Mapping[str, float]] = None,
+) -> Run:
+    """Run `model` as `crane run` does (see the module's docs); raises CraneError."""

@@ -1,0 +1,366 @@
+//! The Python module `crane`: the inverse dynamics of the built-in cranes
+//! from Python, a whole run at a time, into numpy arrays.
+//!
+//! ```python
+//! import crane
+//! r = crane.run("navy-planar", dt=0.01, scheme="bdf4")
+//! r.u.shape                   # (401, 2): one row per step, one column per input
+//! r.summary["peak_torque"]    # the dict of summary.json
+//! r.warnings                  # what the audit found, one string each
+//! ```
+//!
+//! A run is the command line's `crane run`: the same scenario keys (a TOML
+//! file or a dict of the same keys), the same defaults, the same summary
+//! and audit; it calls the library, not the command line. Failures raise
+//! `crane.CraneError` (a `ValueError`) with the tool's one-line message;
+//! runs release the GIL.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use crane::cli::scenario::{self, Overrides, ScenarioFile};
+use crane::models::registry::{BuiltIn, Registry, Visit};
+use crane::models::{Case, Crane};
+use crane::runtime::CraneModel;
+use crane::study::{self, Formulation};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+
+pyo3::create_exception!(
+    crane,
+    CraneError,
+    PyValueError,
+    "A run the tool could not make, or an argument it refuses: the tool's one-line message."
+);
+
+/// A run's numbers, gathered without the GIL.
+struct RunData {
+    rows: usize,
+    t: Vec<f64>,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    u: Vec<f64>,
+    lambda: Vec<f64>,
+    tensions: Vec<f64>,
+    coordinates: Vec<String>,
+    inputs: Vec<String>,
+    ropes: Vec<String>,
+    multipliers: usize,
+    summary: String,
+    warnings: Vec<String>,
+}
+
+/// `crane run` on one crane, its numbers kept.
+struct RunJob {
+    file: ScenarioFile,
+    overrides: Overrides,
+}
+
+impl Visit for RunJob {
+    type Output = Result<RunData, String>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let (case, settings) =
+            scenario::build::<C, N, M, A>(Some(&self.file), &self.overrides).map_err(|e| e.to_string())?;
+        let outcome = study::run(&case, &settings, &mut |_, _| {}).map_err(|e| e.to_string())?;
+        let solution = &outcome.solution;
+        let states = &solution.states;
+        let info = solution.info;
+        let flat = |width: usize, value: &dyn Fn(usize, usize) -> f64| -> Vec<f64> {
+            (0..states.len())
+                .flat_map(|i| (0..width).map(move |k| (i, k)))
+                .map(|(i, k)| value(i, k))
+                .collect()
+        };
+        let ropes = info.ropes.len();
+        Ok(RunData {
+            rows: states.len(),
+            t: states.iter().map(|s| s.t).collect(),
+            q: flat(N, &|i, k| states[i].q[k]),
+            v: flat(N, &|i, k| states[i].v[k]),
+            u: flat(A, &|i, k| states[i].u[k]),
+            lambda: flat(M, &|i, k| states[i].lambda[k]),
+            tensions: flat(ropes, &|i, r| solution.tensions_at(i)[r]),
+            coordinates: info.coordinates.iter().map(|s| s.to_string()).collect(),
+            inputs: info.inputs.iter().map(|s| s.to_string()).collect(),
+            ropes: info.ropes.iter().map(|r| r.tension.to_string()).collect(),
+            multipliers: M,
+            summary: serde_json::to_string(&outcome.summary).map_err(|e| format!("summary: {e}"))?,
+            warnings: outcome.findings.iter().map(|f| f.to_string()).collect(),
+        })
+    }
+}
+
+/// What `models()` says of a crane beyond its catalogue entry.
+struct Traits {
+    path_order: Option<usize>,
+    formulation: &'static str,
+    internal_dimension: Option<usize>,
+}
+
+struct TraitsOf;
+
+impl Visit for TraitsOf {
+    type Output = Traits;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Traits {
+        let structure = <C::Model as CraneModel<N, M, A>>::STRUCTURE;
+        Traits {
+            path_order: structure.map(|s| s.path_order(A)),
+            formulation: Formulation::default_for::<C, N, M, A>().name(),
+            internal_dimension: Case::<C, N, M, A>::maneuver().ok().and_then(|case| {
+                let start = case.start().ok()?;
+                crane::runtime::internal::internal_dynamics(case.model(), &start)
+                    .ok()
+                    .map(|d| d.dimension)
+            }),
+        }
+    }
+}
+
+/// The built-in cranes: a list of dicts with `name`, `description`, the
+/// sizes `n` (coordinates), `m` (constraints), `a` (inputs), `reference`
+/// (an analytical reference), `minimal` (a minimal-coordinate map),
+/// `path_order` (the path derivative the inputs need), `formulation` (the
+/// default) and `internal_dimension` (the internal dynamics' dimension at
+/// the start of the default move, 0 for a flat crane).
+#[pyfunction]
+fn models(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
+    let list = PyList::empty(py);
+    for entry in BuiltIn.entries() {
+        let dict = PyDict::new(py);
+        dict.set_item("name", entry.name)?;
+        dict.set_item("description", entry.description)?;
+        dict.set_item("n", entry.n)?;
+        dict.set_item("m", entry.m)?;
+        dict.set_item("a", entry.a)?;
+        dict.set_item("reference", entry.reference)?;
+        dict.set_item("minimal", entry.minimal)?;
+        if let Some(traits) = BuiltIn.visit(entry.name, TraitsOf) {
+            dict.set_item("path_order", traits.path_order)?;
+            dict.set_item("formulation", traits.formulation)?;
+            dict.set_item("internal_dimension", traits.internal_dimension)?;
+        }
+        list.append(dict)?;
+    }
+    Ok(list)
+}
+
+/// A scenario value from Python: numbers, strings, booleans, lists and
+/// dicts of them.
+fn toml_value(value: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
+    if value.is_instance_of::<PyBool>() {
+        Ok(toml::Value::Boolean(value.extract()?))
+    } else if value.is_instance_of::<PyInt>() {
+        Ok(toml::Value::Integer(value.extract().map_err(|_| {
+            CraneError::new_err(format!("scenario: `{key}`: the integer does not fit in 64 bits"))
+        })?))
+    } else if value.is_instance_of::<PyFloat>() {
+        Ok(toml::Value::Float(value.extract()?))
+    } else if value.is_instance_of::<PyString>() {
+        Ok(toml::Value::String(value.extract()?))
+    } else if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
+        let items: PyResult<Vec<toml::Value>> = value.try_iter()?.map(|item| toml_value(&item?, key)).collect();
+        Ok(toml::Value::Array(items?))
+    } else if let Ok(dict) = value.cast::<PyDict>() {
+        Ok(toml::Value::Table(toml_table(dict, Some(key))?))
+    } else if let Ok(array) = value.call_method0("tolist") {
+        // a numpy array or scalar
+        toml_value(&array, key)
+    } else {
+        Err(CraneError::new_err(format!(
+            "scenario: `{key}`: a {} is not a scenario value (numbers, strings, lists and dicts are)",
+            value.get_type().name()?
+        )))
+    }
+}
+
+/// A dict of scenario keys as a TOML table (`parent` names the table in
+/// messages).
+fn toml_table(dict: &Bound<'_, PyDict>, parent: Option<&str>) -> PyResult<toml::Table> {
+    let mut table = toml::Table::new();
+    for (key, value) in dict.iter() {
+        let key: String = key
+            .extract()
+            .map_err(|_| CraneError::new_err("scenario: every key must be a string"))?;
+        let path = parent.map_or_else(|| key.clone(), |p| format!("{p}.{key}"));
+        table.insert(key, toml_value(&value, &path)?);
+    }
+    Ok(table)
+}
+
+/// The scenario: a path to a TOML file, a dict of the same keys, or none.
+fn scenario_of(scenario: Option<&Bound<'_, PyAny>>) -> PyResult<ScenarioFile> {
+    let Some(scenario) = scenario.filter(|s| !s.is_none()) else {
+        return Ok(ScenarioFile::default());
+    };
+    if let Ok(dict) = scenario.cast::<PyDict>() {
+        let text =
+            toml::to_string(&toml_table(dict, None)?).map_err(|e| CraneError::new_err(format!("scenario: {e}")))?;
+        return ScenarioFile::parse(&text, "the scenario dict").map_err(|e| CraneError::new_err(e.to_string()));
+    }
+    let path: PathBuf = scenario
+        .extract()
+        .map_err(|_| CraneError::new_err("scenario: expected the path of a TOML file or a dict of scenario keys"))?;
+    ScenarioFile::load(&path).map_err(|e| CraneError::new_err(e.to_string()))
+}
+
+/// Numbers by name from a dict (`parameters`, `limits`).
+fn numbers(what: &str, dict: Option<&Bound<'_, PyDict>>) -> PyResult<BTreeMap<String, f64>> {
+    let mut out = BTreeMap::new();
+    for (key, value) in dict.into_iter().flat_map(|d| d.iter()) {
+        let name: String = key
+            .extract()
+            .map_err(|_| CraneError::new_err(format!("{what}: every name must be a string")))?;
+        let value: f64 = value
+            .extract()
+            .map_err(|_| CraneError::new_err(format!("{what}: `{name}` must be a number")))?;
+        out.insert(name, value);
+    }
+    Ok(out)
+}
+
+/// An array of `rows` rows of `width` numbers, owned by Python.
+fn matrix<'py>(py: Python<'py>, values: Vec<f64>, rows: usize, width: usize) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    PyArray1::from_vec(py, values).reshape([rows, width])
+}
+
+/// One run: its states as numpy arrays (float64, one row per step), the
+/// names of their columns, the summary (the dict `crane run` writes as
+/// summary.json) and what the audit found.
+#[pyclass(frozen, name = "Run", module = "crane")]
+struct Run {
+    /// Times, s: shape (steps + 1,).
+    #[pyo3(get)]
+    t: Py<PyArray1<f64>>,
+    /// Coordinates: shape (steps + 1, n).
+    #[pyo3(get)]
+    q: Py<PyArray2<f64>>,
+    /// Velocities: shape (steps + 1, n).
+    #[pyo3(get)]
+    v: Py<PyArray2<f64>>,
+    /// Inputs: shape (steps + 1, a).
+    #[pyo3(get)]
+    u: Py<PyArray2<f64>>,
+    /// Multipliers: shape (steps + 1, m).
+    #[pyo3(get, name = "lambda_")]
+    lambda: Py<PyArray2<f64>>,
+    /// Rope tensions: shape (steps + 1, ropes).
+    #[pyo3(get)]
+    tensions: Py<PyArray2<f64>>,
+    /// The coordinates' names, the columns of `q` and `v`.
+    #[pyo3(get)]
+    coordinates: Vec<String>,
+    /// The inputs' names, the columns of `u`.
+    #[pyo3(get)]
+    inputs: Vec<String>,
+    /// The ropes' tension names, the columns of `tensions`.
+    #[pyo3(get)]
+    ropes: Vec<String>,
+    /// The summary, as summary.json has it.
+    #[pyo3(get)]
+    summary: Py<PyDict>,
+    /// What the audit found (empty for a trustworthy run).
+    #[pyo3(get)]
+    warnings: Vec<String>,
+}
+
+#[pymethods]
+impl Run {
+    fn __repr__(&self, py: Python<'_>) -> String {
+        let steps = self.t.bind(py).len().map_or(0, |n| n.saturating_sub(1));
+        let model = (self.summary.bind(py).get_item("model").ok().flatten())
+            .and_then(|m| m.extract::<String>().ok())
+            .unwrap_or_default();
+        format!(
+            "<crane.Run of {model}: {steps} steps, inputs {}, {} warnings>",
+            self.inputs.join(", "),
+            self.warnings.len()
+        )
+    }
+}
+
+/// Run `model` as `crane run` does: its default manoeuvre, changed by the
+/// `scenario` (a TOML file's path or a dict of the same keys), then by
+/// `parameters` and `limits` (dicts by name) and the keywords `dt` (s),
+/// `tf` (s), `scheme` (`backward-euler`, `bdf2` .. `bdf5`) and
+/// `formulation` (`redundant`, `minimal`, `dummy-derivative`). Returns a
+/// `crane.Run`; raises `crane.CraneError` with the tool's message.
+#[pyfunction]
+#[pyo3(signature = (model, *, dt=None, tf=None, scheme=None, formulation=None, scenario=None, parameters=None, limits=None))]
+#[allow(clippy::too_many_arguments)]
+fn run(
+    py: Python<'_>,
+    model: &str,
+    dt: Option<f64>,
+    tf: Option<f64>,
+    scheme: Option<&str>,
+    formulation: Option<&str>,
+    scenario: Option<&Bound<'_, PyAny>>,
+    parameters: Option<&Bound<'_, PyDict>>,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Run> {
+    let mut file = scenario_of(scenario)?;
+    file.parameters.extend(numbers("parameters", parameters)?);
+    file.limits.extend(numbers("limits", limits)?);
+    let overrides = Overrides {
+        dt,
+        tf,
+        formulation: formulation
+            .map(str::parse)
+            .transpose()
+            .map_err(|e: study::UnknownFormulation| CraneError::new_err(e.to_string()))?,
+        scheme: scheme
+            .map(str::parse)
+            .transpose()
+            .map_err(|e: crane::runtime::scheme::UnknownScheme| CraneError::new_err(e.to_string()))?,
+    };
+    let name = model.to_string();
+    let data = py
+        .detach(move || BuiltIn.visit(&name, RunJob { file, overrides }))
+        .ok_or_else(|| {
+            let names: Vec<&str> = BuiltIn.entries().iter().map(|e| e.name).collect();
+            CraneError::new_err(format!("unknown model `{model}`; expected one of {}", names.join(", ")))
+        })?
+        .map_err(CraneError::new_err)?;
+    let rows = data.rows;
+    let (n, a, m, r) = (
+        data.coordinates.len(),
+        data.inputs.len(),
+        data.multipliers,
+        data.ropes.len(),
+    );
+    let summary = py
+        .import("json")?
+        .call_method1("loads", (data.summary,))?
+        .cast_into::<PyDict>()
+        .map_err(|_| CraneError::new_err("summary: not a dict"))?;
+    Ok(Run {
+        t: PyArray1::from_vec(py, data.t).unbind(),
+        q: matrix(py, data.q, rows, n)?.unbind(),
+        v: matrix(py, data.v, rows, n)?.unbind(),
+        u: matrix(py, data.u, rows, a)?.unbind(),
+        lambda: matrix(py, data.lambda, rows, m)?.unbind(),
+        tensions: matrix(py, data.tensions, rows, r)?.unbind(),
+        coordinates: data.coordinates,
+        inputs: data.inputs,
+        ropes: data.ropes,
+        summary: summary.unbind(),
+        warnings: data.warnings,
+    })
+}
+
+/// Inverse dynamics of underactuated cranes: given a crane and a load path,
+/// the motor torques that move the load along it. `crane.models()` lists
+/// the built-in cranes; `crane.run(model, ...)` runs one as `crane run`
+/// does and returns a `crane.Run` of numpy arrays, its summary and what the
+/// audit found; failures raise `crane.CraneError`.
+#[pymodule]
+#[pyo3(name = "crane")]
+fn crane_py(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("CraneError", m.py().get_type::<CraneError>())?;
+    m.add_class::<Run>()?;
+    m.add_function(wrap_pyfunction!(models, m)?)?;
+    m.add_function(wrap_pyfunction!(run, m)?)?;
+    Ok(())
+}

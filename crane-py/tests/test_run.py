@@ -1,0 +1,111 @@
+"""The Python module against the command line and its own promises: the
+same numbers as `crane run` (bit for bit), scenario dicts as scenario
+files, every error a crane.CraneError with the tool's message."""
+
+import csv
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import crane
+
+ROOT = Path(__file__).resolve().parents[2]
+CLI = Path(os.environ.get("CRANE_BIN", ROOT / "target" / "release" / "crane"))
+
+
+def cli_results(tmp_path, *args):
+    """`crane run ARGS` into tmp_path/cli: its results.csv as columns."""
+    out = tmp_path / "cli"
+    subprocess.run([str(CLI), "run", *args, "--quiet", "--out", str(out)], check=True, capture_output=True)
+    with open(out / "results.csv") as f:
+        rows = list(csv.DictReader(f))
+    return {name: np.array([float(r[name]) for r in rows]) for name in rows[0]}
+
+
+def test_models_lists_the_built_in_cranes():
+    models = {m["name"]: m for m in crane.models()}
+    assert len(models) == 9
+    navy = models["navy-planar"]
+    assert (navy["n"], navy["m"], navy["a"]) == (7, 3, 2)
+    assert navy["reference"] and navy["minimal"]
+    assert navy["path_order"] == 4 and navy["formulation"] == "redundant"
+    assert navy["internal_dimension"] == 0
+    assert models["navy-3d-pulley"]["formulation"] == "dummy-derivative"
+    assert models["coupled-trolley"]["internal_dimension"] == 2
+
+
+def test_a_run_is_the_command_line_s_bit_for_bit(tmp_path):
+    r = crane.run("navy-planar", scheme="bdf4")
+    assert r.u.shape == (401, 2) and r.q.shape == (401, 7) and r.v.shape == (401, 7)
+    assert r.lambda_.shape == (401, 3) and r.tensions.shape == (401, 2) and r.t.shape == (401,)
+    assert r.u.dtype == np.float64 and r.u.flags["C_CONTIGUOUS"] and r.u.flags["OWNDATA"] is not None
+    assert r.inputs == ["u1", "u2"] and r.ropes == ["N1", "N2"] and r.coordinates[0] == "L1"
+    assert r.summary["steps"] == 400 and r.summary["scheme"] == "bdf4"
+    assert r.warnings == []
+    cli = cli_results(tmp_path, "navy-planar", "--scheme", "bdf4")
+    for k, name in enumerate(r.inputs):
+        assert np.array_equal(r.u[:, k], cli[name]), name
+    for k, name in enumerate(r.coordinates):
+        assert np.array_equal(r.q[:, k], cli[name]), name
+    for k, name in enumerate(r.ropes):
+        assert np.array_equal(r.tensions[:, k], cli[name]), name
+    assert np.array_equal(r.t, cli["t"])
+
+
+def test_a_scenario_dict_is_the_scenario_file(tmp_path):
+    keys = {"dt": 0.02, "trajectory": "poly9", "end": [-3.0, -13.0], "parameters": {"m_l": 1100.0}, "limits": {"u2": 150}}
+    text = 'dt = 0.02\ntrajectory = "poly9"\nend = [-3.0, -13.0]\n[parameters]\nm_l = 1100.0\n[limits]\nu2 = 150\n'
+    path = tmp_path / "scenario.toml"
+    path.write_text(text)
+    from_dict = crane.run("navy-planar", scenario=keys)
+    from_file = crane.run("navy-planar", scenario=str(path))
+    from_path = crane.run("navy-planar", scenario=path)
+    assert from_dict.u.shape == (201, 2)
+    assert np.array_equal(from_dict.u, from_file.u) and np.array_equal(from_dict.u, from_path.u)
+    assert from_dict.summary["torque_limits"][0]["limit"] == 150.0
+    # keywords over the scenario, as flags over the file
+    again = crane.run("navy-planar", scenario=keys, dt=0.01, parameters={"m_l": 1000.0})
+    assert again.u.shape == (401, 2)
+    assert not np.array_equal(again.u[200], from_dict.u[100])
+
+
+def test_the_audit_s_findings_are_the_warnings():
+    r = crane.run("coupled-trolley")
+    assert any("unstable internal dynamics" in w for w in r.warnings), r.warnings
+    assert "coupled-trolley" in repr(r)
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        ({"model": "no-such-crane"}, "unknown model `no-such-crane`"),
+        ({"model": "navy-planar", "dt": -0.01}, "dt"),
+        ({"model": "navy-planar", "scheme": "rk4"}, "rk4"),
+        ({"model": "navy-planar", "formulation": "exact"}, "unknown formulation `exact`"),
+        ({"model": "navy-planar", "scenario": {"dtt": 0.01}}, "dtt"),
+        ({"model": "navy-planar", "scenario": {"dt": "fast"}}, "dt"),
+        ({"model": "navy-planar", "scenario": "/no/such/file.toml"}, "/no/such/file.toml"),
+        ({"model": "navy-planar", "parameters": {"mass": 1.0}}, "mass"),
+        ({"model": "navy-planar", "parameters": {"m_l": 1e300}}, "m_l"),
+        ({"model": "navy-planar", "scenario": {"end": [80.0, -14.0]}}, "converge"),
+    ],
+)
+def test_every_error_is_a_crane_error_with_the_tool_s_message(kwargs, message):
+    model = kwargs.pop("model")
+    with pytest.raises(crane.CraneError) as error:
+        crane.run(model, **kwargs)
+    assert message in str(error.value)
+    assert isinstance(error.value, ValueError)
+    assert "\n" not in str(error.value)
+
+
+def test_results_are_arrays_the_user_owns():
+    r = crane.run("gantry-3d", dt=0.05)
+    u = r.u
+    u[0, 0] = 1e9
+    del r
+    assert u[0, 0] == 1e9
+    assert crane.run("gantry-3d", dt=0.05).u[0, 0] != 1e9
