@@ -32,6 +32,9 @@ class Run:
     """The summary `crane run` writes as summary.json."""
     warnings: list[str]
     """What the audit found: empty for a trustworthy run."""
+    def to_csv(self, path: Union[str, PathLike[str]]) -> None:
+        """Write the run as `crane run` writes results.csv (without the
+        crane's derived outputs), whole or not at all; raises CraneError."""
 
 def models() -> list[dict[str, Any]]:
     """The built-in cranes: name, description, sizes n, m, a, reference,

@@ -267,6 +267,49 @@ struct Run {
 
 #[pymethods]
 impl Run {
+    /// Write the run to `path` as `crane run` writes results.csv: `t`, the
+    /// coordinates, the inputs, `lambda1..` and the tensions, one row per
+    /// step, the numbers in the shortest form that reads back exactly (the
+    /// crane's derived outputs, which results.csv appends, are not here).
+    /// The file is written whole or not at all.
+    fn to_csv(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        use std::io::Write as _;
+        let failed = |e: std::io::Error| CraneError::new_err(format!("writing {}: {e}", path.display()));
+        let t = self.t.bind(py).readonly();
+        let columns = [&self.q, &self.u, &self.lambda, &self.tensions].map(|a| a.bind(py).readonly());
+        let mut header = vec!["t".to_string()];
+        header.extend(self.coordinates.iter().cloned());
+        header.extend(self.inputs.iter().cloned());
+        let multipliers = columns[2].as_array().ncols();
+        header.extend((1..=multipliers).map(|i| format!("lambda{i}")));
+        header.extend(self.ropes.iter().cloned());
+        let mut text = header.join(",");
+        text.push('\n');
+        let t = t.as_slice()?;
+        for (i, time) in t.iter().enumerate() {
+            text.push_str(&format!("{time}"));
+            for column in &columns {
+                let row = column.as_array();
+                for value in row.row(i) {
+                    text.push_str(&format!(",{value:e}"));
+                }
+            }
+            text.push('\n');
+        }
+        // written whole or not at all: a partial file beside it, renamed
+        let name = path
+            .file_name()
+            .ok_or_else(|| CraneError::new_err(format!("{} names no file", path.display())))?;
+        let partial = path.with_file_name(format!(".{}.partial", name.to_string_lossy()));
+        let written = std::fs::File::create(&partial)
+            .and_then(|mut file| file.write_all(text.as_bytes()))
+            .and_then(|()| std::fs::rename(&partial, &path));
+        if written.is_err() {
+            let _ = std::fs::remove_file(&partial);
+        }
+        written.map_err(failed)
+    }
+
     fn __repr__(&self, py: Python<'_>) -> String {
         let steps = self.t.bind(py).len().map_or(0, |n| n.saturating_sub(1));
         let model = (self.summary.bind(py).get_item("model").ok().flatten())

@@ -5,6 +5,8 @@ files, every error a crane.CraneError with the tool's message."""
 import csv
 import os
 import subprocess
+import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -53,6 +55,41 @@ def test_a_run_is_the_command_line_s_bit_for_bit(tmp_path):
     for k, name in enumerate(r.ropes):
         assert np.array_equal(r.tensions[:, k], cli[name]), name
     assert np.array_equal(r.t, cli["t"])
+
+
+def test_to_csv_writes_the_command_line_s_results_csv(tmp_path):
+    r = crane.run("navy-planar", scheme="bdf2")
+    r.to_csv(tmp_path / "python.csv")
+    out = tmp_path / "cli"
+    subprocess.run([str(CLI), "run", "navy-planar", "--scheme", "bdf2", "--quiet", "--out", str(out)], check=True)
+    assert (tmp_path / "python.csv").read_bytes() == (out / "results.csv").read_bytes()
+    with pytest.raises(crane.CraneError, match="writing"):
+        r.to_csv(tmp_path / "no" / "such" / "folder.csv")
+    (tmp_path / "a-folder").mkdir()
+    with pytest.raises(crane.CraneError, match="a-folder"):
+        r.to_csv(tmp_path / "a-folder")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a-folder", "cli", "python.csv"]
+
+
+def test_a_run_releases_the_gil():
+    """While a run of about a second goes on in a thread, Python's main
+    thread keeps running (with the GIL held for the run it could not)."""
+    done = threading.Event()
+    result = []
+
+    def work():
+        result.append(crane.run("navy-planar", dt=2e-5))
+        done.set()
+
+    thread = threading.Thread(target=work)
+    ticks = 0
+    thread.start()
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.001)
+    thread.join()
+    assert result[0].u.shape == (200001, 2)
+    assert ticks > 50, ticks
 
 
 def test_a_scenario_dict_is_the_scenario_file(tmp_path):
