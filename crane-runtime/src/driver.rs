@@ -43,16 +43,10 @@ where
     let mut solution = Solution::with_capacity(info, stepper.dt(), stepper.scheme_name(), steps + 1)?;
     solution.path_order_covered = stepper.path_order_covered();
     let mut lengths = vec![0.0; info.ropes.len()];
-    solution.push(stepper.model(), &start, 0, 0, &mut lengths);
+    solution.push(stepper.model(), &start, StepReport::default(), &mut lengths);
     for step in 1..=steps {
         let report = stepper.step()?;
-        solution.push(
-            stepper.model(),
-            stepper.state(),
-            report.iterations,
-            report.min_norm_steps,
-            &mut lengths,
-        );
+        solution.push(stepper.model(), stepper.state(), report, &mut lengths);
         progress(step, steps);
     }
     Ok(solution)

@@ -3,8 +3,8 @@
 //!
 //! LU with partial pivoting; when the pivots say the matrix is singular to
 //! working precision (the paper's degenerate starts, see docs/numerics.md) the
-//! solver takes the minimum-norm least-squares step instead, computed from the
-//! regularised normal equations `(J^T J + eps^2 I) dz = J^T r`.
+//! solver takes the minimum-norm least-squares step instead, the regularised
+//! `min |J dz - r|^2 + eps^2 |dz|^2` by Householder QR.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -39,8 +39,10 @@ pub struct Singular {
 #[derive(Debug, Clone)]
 pub struct DenseSolver {
     lu: DMatrix<f64>,
-    normal: DMatrix<f64>,
     rhs: DVector<f64>,
+    /// `[J; eps I]` and its right-hand side for the minimum-norm step.
+    stacked: DMatrix<f64>,
+    stacked_rhs: DVector<f64>,
     pivots: Vec<usize>,
     /// Row and column scale factors when equilibrating.
     row_scale: Vec<f64>,
@@ -49,6 +51,8 @@ pub struct DenseSolver {
     scaled: DMatrix<f64>,
     /// Smallest-to-largest pivot ratio of the last LU attempt.
     pivot_ratio: f64,
+    /// Take the minimum-norm step whatever the pivots.
+    hold: bool,
 }
 
 impl DenseSolver {
@@ -56,14 +60,16 @@ impl DenseSolver {
     pub fn new(n: usize) -> Self {
         Self {
             lu: DMatrix::zeros(n, n),
-            normal: DMatrix::zeros(n, n),
             rhs: DVector::zeros(n),
+            stacked: DMatrix::zeros(2 * n, n),
+            stacked_rhs: DVector::zeros(2 * n),
             pivots: vec![0; n],
             row_scale: vec![1.0; n],
             col_scale: vec![1.0; n],
             equilibrate: false,
             scaled: DMatrix::zeros(0, 0),
             pivot_ratio: f64::NAN,
+            hold: false,
         }
     }
 
@@ -78,6 +84,17 @@ impl DenseSolver {
             scaled: DMatrix::zeros(n, n),
             ..Self::new(n)
         }
+    }
+
+    /// Take the minimum-norm step whatever the pivots (`true`) or only on a
+    /// matrix singular to working precision (`false`, the default).
+    pub fn set_hold(&mut self, hold: bool) {
+        self.hold = hold;
+    }
+
+    /// Whether [`set_hold`](Self::set_hold) is on.
+    pub fn holds(&self) -> bool {
+        self.hold
     }
 
     /// Solve `jac x = b` in place (`b` becomes `x`). `jac` is left unchanged.
@@ -202,39 +219,79 @@ impl DenseSolver {
     /// ratio kept) when the pivots say singular.
     fn factor_and_solve_in_lu(&mut self, b: &mut DVector<f64>) -> Option<SolveKind> {
         self.pivot_ratio = lu_in_place(&mut self.lu, &mut self.pivots);
-        if self.pivot_ratio.is_finite() && self.pivot_ratio >= SINGULAR_PIVOT_RATIO {
+        if !self.hold && self.pivot_ratio.is_finite() && self.pivot_ratio >= SINGULAR_PIVOT_RATIO {
             lu_solve(&self.lu, &self.pivots, b);
             return Some(SolveKind::Lu);
         }
         None
     }
 
-    /// Minimum-norm least squares via `(J^T J + eps^2 I) x = J^T b`.
+    /// Minimum-norm least squares: `min |J x - b|^2 + eps^2 |x|^2`, by
+    /// Householder QR of the stacked `[J; eps I]` (the normal equations
+    /// `(J^T J + eps^2 I) x = J^T b` have the condition squared, and their
+    /// round-off, 1e-2 of the step in the damped directions, kept Newton
+    /// from converging on navy-3d's slack start).
     fn min_norm(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
         let pivot_ratio = self.pivot_ratio;
-        self.normal.gemm_tr(1.0, jac, jac, 0.0);
-        let largest = (0..self.normal.nrows())
-            .map(|i| self.normal[(i, i)])
-            .fold(0.0, f64::max);
+        let n = jac.nrows();
+        let largest = jac.column_iter().map(|column| column.norm()).fold(0.0, f64::max);
         if !(largest.is_finite() && largest > 0.0) {
             return Err(Singular { pivot_ratio });
         }
-        let eps2 = largest * MIN_NORM_REGULARISATION * MIN_NORM_REGULARISATION;
-        for i in 0..self.normal.nrows() {
-            self.normal[(i, i)] += eps2;
+        let eps = largest * MIN_NORM_REGULARISATION;
+        let stacked = &mut self.stacked;
+        stacked.fill(0.0);
+        stacked.view_mut((0, 0), (n, n)).copy_from(jac);
+        for i in 0..n {
+            stacked[(n + i, i)] = eps;
         }
-        self.rhs.gemv_tr(1.0, jac, b, 0.0);
-        self.lu.copy_from(&self.normal);
-        let ratio = lu_in_place(&mut self.lu, &mut self.pivots);
-        if !(ratio.is_finite() && ratio > 0.0) {
-            return Err(Singular { pivot_ratio });
-        }
-        lu_solve(&self.lu, &self.pivots, &mut self.rhs);
-        b.copy_from(&self.rhs);
+        let rhs = &mut self.stacked_rhs;
+        rhs.fill(0.0);
+        rhs.rows_mut(0, n).copy_from(b);
+        householder_solve(stacked, rhs);
+        b.copy_from(&rhs.rows(0, n));
         if b.iter().all(|v| v.is_finite()) {
             Ok(SolveKind::MinNorm)
         } else {
             Err(Singular { pivot_ratio })
+        }
+    }
+}
+
+/// Solve the least-squares problem `min |a x - b|` for `a` of full column
+/// rank (`2n x n`) in place: Householder reflections make `a` upper
+/// triangular and are applied to `b`; `x` is left in `b`'s first `n` rows.
+fn householder_solve(a: &mut DMatrix<f64>, b: &mut DVector<f64>) {
+    let (rows, n) = a.shape();
+    for k in 0..n {
+        let norm = a.view((k, k), (rows - k, 1)).norm();
+        if norm == 0.0 {
+            continue;
+        }
+        // v = a_k + sign(a_kk) |a_k| e_k, stored over column k
+        let alpha = if a[(k, k)] >= 0.0 { -norm } else { norm };
+        a[(k, k)] -= alpha;
+        let vv = a.view((k, k), (rows - k, 1)).norm_squared();
+        for j in (k + 1)..n {
+            let dot: f64 = (k..rows).map(|i| a[(i, k)] * a[(i, j)]).sum();
+            let factor = 2.0 * dot / vv;
+            for i in k..rows {
+                let v = a[(i, k)];
+                a[(i, j)] -= factor * v;
+            }
+        }
+        let dot: f64 = (k..rows).map(|i| a[(i, k)] * b[i]).sum();
+        let factor = 2.0 * dot / vv;
+        for i in k..rows {
+            b[i] -= factor * a[(i, k)];
+        }
+        a[(k, k)] = alpha;
+    }
+    for j in (0..n).rev() {
+        b[j] /= a[(j, j)];
+        let bj = b[j];
+        for i in 0..j {
+            b[i] -= a[(i, j)] * bj;
         }
     }
 }

@@ -85,6 +85,13 @@ pub trait Problem<const N: usize, const M: usize, const A: usize, const K: usize
     /// Whether Newton equilibrates the iteration matrix before each solve.
     const EQUILIBRATED: bool = false;
 
+    /// Whether a step from a state with a nearly slack rope holds the
+    /// directions the iteration matrix barely determines
+    /// ([`nearly_slack`](crate::stepper::nearly_slack)). The redundant
+    /// servo problem (eqs. 22) does; the dummy-derivative system, whose
+    /// jets the damping would hold too, and the forward dynamics do not.
+    const HOLDS_NEARLY_SLACK: bool = false;
+
     /// The crane.
     fn model(&self) -> &Self::Model;
 

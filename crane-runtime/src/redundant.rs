@@ -185,6 +185,10 @@ where
     type Model = H::Target;
     type Drive = ServoTarget<A>;
 
+    /// A massless pulley on a nearly slack rope is placed by forces of
+    /// round-off size, and the scheme differentiates its position twice.
+    const HOLDS_NEARLY_SLACK: bool = true;
+
     fn model(&self) -> &H::Target {
         &self.model
     }

@@ -17,7 +17,7 @@ use crate::newton::NewtonOptions;
 use crate::options::{Options, step_count};
 use crate::scheme::Scheme;
 use crate::solution::Solution;
-use crate::stepper::Stepper;
+use crate::stepper::{StepReport, Stepper};
 use crate::trajectory::Trajectory;
 
 /// Most points of the interpolating polynomial (degree 5).
@@ -334,10 +334,10 @@ where
     let mut stepper = Stepper::new(Forward::new(plant, inputs), start, &forward)?;
     let mut solution = Solution::with_capacity(Mdl::INFO, dt, options.scheme.name(), steps + 1)?;
     let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
-    solution.push(plant, start, 0, 0, &mut lengths);
+    solution.push(plant, start, StepReport::default(), &mut lengths);
     run(&mut stepper, steps, |_, state, report| {
         last.set(*state);
-        solution.push(plant, state, report.iterations, report.min_norm_steps, &mut lengths);
+        solution.push(plant, state, *report, &mut lengths);
         Ok(())
     })?;
     let (mut max_load_deviation, mut deviation_at_tf, mut residual_sway) = (0.0f64, 0.0f64, 0.0f64);
@@ -401,6 +401,7 @@ mod tests {
             newton_iterations: vec![0; 21],
             tensions: vec![],
             min_norm_steps: 0,
+            held_steps: 0,
             path_order_covered: None,
             shortest_ropes: vec![],
             redundant_start_steps: 0,

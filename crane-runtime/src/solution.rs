@@ -5,6 +5,7 @@ use nalgebra::SVector;
 
 use crate::error::Error;
 use crate::model::{CraneModel, ModelInfo};
+use crate::stepper::StepReport;
 
 /// The crane's state at one time: what the scheme of eqs. (22a-d) computes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,6 +42,9 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     /// at least once (singular iteration matrix, as at the paper's
     /// degenerate starts): at most the number of steps.
     pub min_norm_steps: usize,
+    /// Time steps that held the direction a nearly slack rope leaves free
+    /// ([`nearly_slack`](crate::stepper::nearly_slack)).
+    pub held_steps: usize,
     /// The highest path order the formulation that computed it covers
     /// ([`Problem::path_order_covered`](crate::problem::Problem::path_order_covered));
     /// `None` if not a servo problem's run.
@@ -73,6 +77,7 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
             newton_iterations: Vec::new(),
             tensions: Vec::new(),
             min_norm_steps: 0,
+            held_steps: 0,
             path_order_covered: None,
             shortest_ropes: vec![(f64::INFINITY, f64::NAN); ropes],
             redundant_start_steps: 0,
@@ -97,14 +102,14 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         &mut self,
         model: &Mdl,
         state: &State<N, M, A>,
-        iterations: usize,
-        min_norm_steps: usize,
+        report: StepReport,
         lengths: &mut [f64],
     ) {
         self.states.push(*state);
-        self.newton_iterations.push(iterations);
+        self.newton_iterations.push(report.iterations);
         // a step counts once however many of its iterations were singular
-        self.min_norm_steps += usize::from(min_norm_steps > 0);
+        self.min_norm_steps += usize::from(report.min_norm_steps > 0);
+        self.held_steps += usize::from(report.held);
         let ropes = self.info.ropes.len();
         let first = self.tensions.len();
         self.tensions.resize(first + ropes, 0.0);

@@ -48,12 +48,52 @@ use crate::scheme::{History, Method, extrapolation_weights};
 use crate::solution::State;
 
 /// What one step reports.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct StepReport {
     /// Newton iterations.
     pub iterations: usize,
     /// Of those, minimum-norm steps on a singular iteration matrix.
     pub min_norm_steps: usize,
+    /// Whether the step held the direction a nearly slack rope leaves free
+    /// (see [`nearly_slack`]).
+    pub held: bool,
+}
+
+/// A rope carrying less than this fraction of the largest tension leaves
+/// what it is tied to free to round-off (see [`nearly_slack`]). Measured on
+/// the paper's move slowed to 1000 s at dt = 0.001 s, the largest error of
+/// u1 against Appendix A with the steps held below a ratio of 1e-13, 1e-12,
+/// 1e-11, 1e-10 and 1e-9: 5.0, 6.9e-2, 8.3e-4, 1.9e-5 and 1.3e-6 N m (peak
+/// 43.3 N m; round-off once the hold ends, falling as the tension it ends
+/// at grows). From 1e-10 the held steps' residual made a reduced run's
+/// start on eqs. (22) fail at t = 0.002 s; 1e-11 is the largest ratio that
+/// costs no regular run anything.
+pub const HOLD_TENSION_RATIO: f64 = 1e-11;
+
+/// Whether a rope of `state` carries, in magnitude, less than
+/// [`HOLD_TENSION_RATIO`] of the largest tension (no rope: never).
+///
+/// Such a rope barely holds what it is tied to: a massless pulley on it is
+/// placed by a balance of forces of round-off size, and round-off moves it,
+/// by `eps / ratio` of the crane's size, step to step, which the scheme's
+/// second differences turn into inputs of any size (the paper's move slowed
+/// to 1000 s: 637 N m where the slow limit is 43.3 N m). A step from such a
+/// state (not the first step of a run: a start with a rope at zero tension,
+/// like the paper's, has a singular matrix whose minimum-norm solve
+/// converges to the determined solution, 8.7e-8 m off in navy-3d's pulley
+/// when held) holds the directions the iteration matrix barely determines
+/// where the predictor puts them ([`Newton::set_hold`]): the limit of a
+/// vanishing tension.
+pub fn nearly_slack<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    state: &State<N, M, A>,
+) -> bool {
+    let ropes = Mdl::INFO.ropes.len().min(M);
+    let mut tensions = [0.0; M];
+    let tensions = &mut tensions[..ropes];
+    model.rope_tensions(&state.q, &state.lambda, tensions);
+    let largest = tensions.iter().map(|n| n.abs()).fold(0.0, f64::max);
+    largest > 0.0 && tensions.iter().any(|n| n.abs() < HOLD_TENSION_RATIO * largest)
 }
 
 /// Anything that advances a crane one step at a time: a [`Stepper`], or
@@ -220,6 +260,8 @@ where
         self.problem.prepare(drive, self.history.formula(self.dt));
         let predictor = self.problem.predictor();
         self.predict(predictor);
+        let held = P::HOLDS_NEARLY_SLACK && self.steps > 0 && nearly_slack(self.problem.model(), &self.state);
+        self.newton.set_hold(held);
         let converged = match self.newton.solve(&mut self.problem, &mut self.z) {
             Ok(converged) => converged,
             // the extrapolation can overshoot where the solution turns along
@@ -246,7 +288,9 @@ where
         self.last_singular = converged.min_norm_steps > 0;
         Ok(StepReport {
             iterations: converged.iterations,
-            min_norm_steps: converged.min_norm_steps,
+            // every solve of a held step is a minimum-norm one, by choice
+            min_norm_steps: if held { 0 } else { converged.min_norm_steps },
+            held,
         })
     }
 

@@ -199,6 +199,15 @@ impl Visit for Run<'_> {
                 crane_runtime::minimal::DEGENERATE_TENSION_RATIO
             )?;
         }
+        if solution.held_steps > 0 {
+            say!(
+                "  {} of {} steps held what a nearly slack rope leaves free (a rope under {:e} of the largest \
+                 tension places nothing on it; held where the last steps put it, the limit of a vanishing tension)",
+                solution.held_steps,
+                solution.steps(),
+                crane_runtime::stepper::HOLD_TENSION_RATIO
+            )?;
+        }
         for line in highlights(summary) {
             say!("  {line}")?;
         }

@@ -103,7 +103,8 @@ pub enum Finding {
         /// How far, where, when.
         residual: super::summary::ConstraintResidual,
     },
-    /// Many steps met a singular iteration matrix ([`singular_steps`](super::summary::singular_steps)).
+    /// Many steps met a singular iteration matrix or held what a nearly
+    /// slack rope leaves free ([`singular_steps`](super::summary::singular_steps)).
     SingularSteps {
         /// The crane's name.
         model: String,
@@ -258,9 +259,10 @@ impl fmt::Display for Finding {
             Finding::ConstraintsViolated { model, residual } => write!(f, "{model}: {residual}"),
             Finding::SingularSteps { model, count, steps } => write!(
                 f,
-                "{count} of {steps} steps of {model} met an iteration matrix singular to working precision (a rope \
-                 without tension leaves a coordinate free, as when the load hangs straight below the boom tip): \
-                 the path does not determine the inputs there, and they are not a reliable result"
+                "{count} of {steps} steps of {model} met an iteration matrix singular to working precision or held \
+                 what a rope under 1e-11 of the largest tension leaves free (a rope without tension leaves a \
+                 coordinate free, as when the load hangs straight below the boom tip): the path does not determine \
+                 the inputs there, and they are not a reliable result"
             ),
             Finding::BeyondFormulation { model, needed, covered } => write!(
                 f,
@@ -391,7 +393,7 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
     if super::summary::singular_steps(summary) {
         out.push(Finding::SingularSteps {
             model,
-            count: summary.newton.min_norm_steps,
+            count: summary.newton.min_norm_steps + summary.newton.held_steps,
             steps: summary.steps,
         });
     }
@@ -457,7 +459,7 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
 /// let mut stepper = Stepper::new(problem, &start, &options).unwrap();
 /// for _ in 0..400 {
 ///     let report = stepper.step().unwrap();
-///     assert_eq!(audit.step(case.model(), stepper.state(), report.min_norm_steps > 0), None);
+///     assert_eq!(audit.step(case.model(), stepper.state(), report.min_norm_steps > 0 || report.held), None);
 /// }
 /// ```
 #[derive(Debug, Clone)]
