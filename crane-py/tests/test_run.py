@@ -78,8 +78,10 @@ def test_a_run_releases_the_gil():
     result = []
 
     def work():
-        result.append(crane.run("navy-planar", dt=2e-5))
-        done.set()
+        try:
+            result.append(crane.run("navy-planar", dt=2e-5))
+        finally:
+            done.set()
 
     thread = threading.Thread(target=work)
     ticks = 0

@@ -262,8 +262,19 @@ where
         self.predict(predictor);
         let held = P::HOLDS_NEARLY_SLACK && self.steps > 0 && nearly_slack(self.problem.model(), &self.state);
         self.newton.set_hold(held);
+        let mut held = held;
         let converged = match self.newton.solve(&mut self.problem, &mut self.z) {
             Ok(converged) => converged,
+            // a held solve that does not end (its residual still halving
+            // at the iteration limit) is taken again as a regular step
+            Err(_) if held => {
+                held = false;
+                self.newton.set_hold(false);
+                self.predict(predictor);
+                self.newton
+                    .solve(&mut self.problem, &mut self.z)
+                    .map_err(|failure| step_error(failure, t))?
+            }
             // the extrapolation can overshoot where the solution turns along
             // a weakly determined direction: retry from the last step (its
             // discretised coordinates still from the scheme's predictor)
