@@ -302,6 +302,9 @@ pub use crane_fmi as fmi;
 #[cfg(feature = "cli")]
 pub use crane_cli as cli;
 
+#[cfg(feature = "python")]
+pub mod python;
+
 /// Registries of cranes by name, and the [`registry!`] macro that makes
 /// one of a user's cranes.
 pub use crane_models::registry;

@@ -128,3 +128,9 @@ crane::registry! {
 }
 
 crane::fmi::export_fmu!(registry = MyCranes);
+
+// and a Python module of them (feature `python`): `maturin build` on this
+// crate makes the wheel `my_cranes`, whose `run("hook-crane")` is
+// `my-cranes run hook-crane` into numpy arrays
+#[cfg(feature = "python")]
+crane::python::export_module!(registry = MyCranes, name = "my_cranes");

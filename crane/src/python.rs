@@ -1,0 +1,488 @@
+//! Python modules of cranes: the inverse dynamics of the cranes of a
+//! registry from Python, a whole run at a time, into numpy arrays (feature
+//! `python`; pyo3 with the stable ABI of CPython 3.9 and later, numpy).
+//!
+//! A crate of cranes becomes a Python module with one line,
+//! [`export_module!`](crate::export_module), built into a wheel by maturin
+//! (the crate a `cdylib`, `module-name` in its `pyproject.toml` the name
+//! given here):
+//!
+//! ```ignore
+//! crane::python::export_module!(registry = MyCranes, name = "my_cranes");
+//! ```
+//!
+//! The module has what the package `crane` (the built-in cranes) has:
+//!
+//! ```python
+//! import my_cranes
+//! my_cranes.models()                         # the registry's cranes, a dict each
+//! r = my_cranes.run("user-gantry", dt=0.01)  # as `my-cranes run` runs it
+//! r.u.shape                                  # (steps + 1, inputs)
+//! r.summary["peak_torque"]                   # the dict of summary.json
+//! r.warnings                                 # what the audit found
+//! ```
+//!
+//! A run is the command line's `run`: the same scenario keys (a TOML file
+//! or a dict of the same keys), the same defaults, the same summary and
+//! audit; it calls the library, not the command line. Failures raise
+//! `CraneError` (a `ValueError`) with the tool's one-line message; runs
+//! release the GIL.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use crane_cli::scenario::{self, Overrides, ScenarioFile};
+use crane_models::registry::{Entry, Registry, Visit};
+use crane_models::study::{self, Formulation};
+use crane_models::{Case, Crane};
+use crane_runtime::CraneModel;
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyModule, PyString, PyTuple};
+
+#[doc(hidden)]
+pub use numpy;
+#[doc(hidden)]
+pub use pyo3;
+
+pub use crate::export_module;
+
+pyo3::create_exception!(
+    crane,
+    CraneError,
+    PyValueError,
+    "A run the tool could not make, or an argument it refuses: the tool's one-line message."
+);
+
+/// A run's numbers, gathered without the GIL.
+struct RunData {
+    rows: usize,
+    t: Vec<f64>,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    u: Vec<f64>,
+    lambda: Vec<f64>,
+    tensions: Vec<f64>,
+    coordinates: Vec<String>,
+    inputs: Vec<String>,
+    ropes: Vec<String>,
+    multipliers: usize,
+    summary: String,
+    warnings: Vec<String>,
+}
+
+/// `crane run` on one crane, its numbers kept.
+struct RunJob {
+    file: ScenarioFile,
+    overrides: Overrides,
+}
+
+impl Visit for RunJob {
+    type Output = Result<RunData, String>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let (case, settings) =
+            scenario::build::<C, N, M, A>(Some(&self.file), &self.overrides).map_err(|e| e.to_string())?;
+        let outcome = study::run(&case, &settings, &mut |_, _| {}).map_err(|e| e.to_string())?;
+        let solution = &outcome.solution;
+        let states = &solution.states;
+        let info = solution.info;
+        let flat = |width: usize, value: &dyn Fn(usize, usize) -> f64| -> Vec<f64> {
+            (0..states.len())
+                .flat_map(|i| (0..width).map(move |k| (i, k)))
+                .map(|(i, k)| value(i, k))
+                .collect()
+        };
+        let ropes = info.ropes.len();
+        Ok(RunData {
+            rows: states.len(),
+            t: states.iter().map(|s| s.t).collect(),
+            q: flat(N, &|i, k| states[i].q[k]),
+            v: flat(N, &|i, k| states[i].v[k]),
+            u: flat(A, &|i, k| states[i].u[k]),
+            lambda: flat(M, &|i, k| states[i].lambda[k]),
+            tensions: flat(ropes, &|i, r| solution.tensions_at(i)[r]),
+            coordinates: info.coordinates.iter().map(|s| s.to_string()).collect(),
+            inputs: info.inputs.iter().map(|s| s.to_string()).collect(),
+            ropes: info.ropes.iter().map(|r| r.tension.to_string()).collect(),
+            multipliers: M,
+            summary: serde_json::to_string(&outcome.summary).map_err(|e| format!("summary: {e}"))?,
+            warnings: outcome.findings.iter().map(|f| f.to_string()).collect(),
+        })
+    }
+}
+
+/// What `models()` says of a crane beyond its catalogue entry.
+struct Traits {
+    path_order: Option<usize>,
+    formulation: &'static str,
+    internal_dimension: Option<usize>,
+}
+
+struct TraitsOf;
+
+impl Visit for TraitsOf {
+    type Output = Traits;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Traits {
+        let structure = <C::Model as CraneModel<N, M, A>>::STRUCTURE;
+        Traits {
+            path_order: structure.map(|s| s.path_order(A)),
+            formulation: Formulation::default_for::<C, N, M, A>().name(),
+            internal_dimension: Case::<C, N, M, A>::maneuver().ok().and_then(|case| {
+                let start = case.start().ok()?;
+                crane_runtime::internal::internal_dynamics(case.model(), &start)
+                    .ok()
+                    .map(|d| d.dimension)
+            }),
+        }
+    }
+}
+
+/// What a module knows of its registry: the registry's functions, without
+/// its type (a `#[pyfunction]` cannot be generic), kept in the module as
+/// `_cranes`.
+#[derive(Clone, Copy)]
+struct Cranes {
+    entries: fn() -> Vec<Entry>,
+    traits: fn(&str) -> Option<Traits>,
+    run: fn(&str, RunJob) -> Option<Result<RunData, String>>,
+}
+
+impl Cranes {
+    fn of<R: Registry + Default>() -> Self {
+        Self {
+            entries: || R::default().entries(),
+            traits: |name| R::default().visit(name, TraitsOf),
+            run: |name, job| R::default().visit(name, job),
+        }
+    }
+
+    /// The registry of the module a function was called from.
+    fn of_module(module: &Bound<'_, PyModule>) -> PyResult<Self> {
+        let cranes = module.getattr("_cranes")?;
+        let cranes = cranes
+            .cast::<CranesObject>()
+            .map_err(|_| CraneError::new_err("the module's `_cranes` is not its registry"))?;
+        Ok(cranes.get().0)
+    }
+}
+
+/// The registry's functions as a Python object.
+#[pyclass(frozen, name = "_Cranes")]
+struct CranesObject(Cranes);
+
+/// The registry's cranes: a list of dicts with `name`, `description`, the
+/// sizes `n` (coordinates), `m` (constraints), `a` (inputs), `reference`
+/// (an analytical reference), `minimal` (a minimal-coordinate map),
+/// `path_order` (the path derivative the inputs need), `formulation` (the
+/// default) and `internal_dimension` (the internal dynamics' dimension at
+/// the start of the default move, 0 for a flat crane).
+#[pyfunction]
+#[pyo3(pass_module)]
+fn models<'py>(module: &Bound<'py, PyModule>) -> PyResult<Bound<'py, PyList>> {
+    let py = module.py();
+    let cranes = Cranes::of_module(module)?;
+    let list = PyList::empty(py);
+    for entry in (cranes.entries)() {
+        let dict = PyDict::new(py);
+        dict.set_item("name", entry.name)?;
+        dict.set_item("description", entry.description)?;
+        dict.set_item("n", entry.n)?;
+        dict.set_item("m", entry.m)?;
+        dict.set_item("a", entry.a)?;
+        dict.set_item("reference", entry.reference)?;
+        dict.set_item("minimal", entry.minimal)?;
+        if let Some(traits) = (cranes.traits)(entry.name) {
+            dict.set_item("path_order", traits.path_order)?;
+            dict.set_item("formulation", traits.formulation)?;
+            dict.set_item("internal_dimension", traits.internal_dimension)?;
+        }
+        list.append(dict)?;
+    }
+    Ok(list)
+}
+
+/// A scenario value from Python: numbers, strings, booleans, lists and
+/// dicts of them.
+fn toml_value(value: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
+    if value.is_instance_of::<PyBool>() {
+        Ok(toml::Value::Boolean(value.extract()?))
+    } else if value.is_instance_of::<PyInt>() {
+        Ok(toml::Value::Integer(value.extract().map_err(|_| {
+            CraneError::new_err(format!("scenario: `{key}`: the integer does not fit in 64 bits"))
+        })?))
+    } else if value.is_instance_of::<PyFloat>() {
+        Ok(toml::Value::Float(value.extract()?))
+    } else if value.is_instance_of::<PyString>() {
+        Ok(toml::Value::String(value.extract()?))
+    } else if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
+        let items: PyResult<Vec<toml::Value>> = value.try_iter()?.map(|item| toml_value(&item?, key)).collect();
+        Ok(toml::Value::Array(items?))
+    } else if let Ok(dict) = value.cast::<PyDict>() {
+        Ok(toml::Value::Table(toml_table(dict, Some(key))?))
+    } else if let Ok(array) = value.call_method0("tolist") {
+        // a numpy array or scalar
+        toml_value(&array, key)
+    } else {
+        Err(CraneError::new_err(format!(
+            "scenario: `{key}`: a {} is not a scenario value (numbers, strings, lists and dicts are)",
+            value.get_type().name()?
+        )))
+    }
+}
+
+/// A dict of scenario keys as a TOML table (`parent` names the table in
+/// messages).
+fn toml_table(dict: &Bound<'_, PyDict>, parent: Option<&str>) -> PyResult<toml::Table> {
+    let mut table = toml::Table::new();
+    for (key, value) in dict.iter() {
+        let key: String = key
+            .extract()
+            .map_err(|_| CraneError::new_err("scenario: every key must be a string"))?;
+        let path = parent.map_or_else(|| key.clone(), |p| format!("{p}.{key}"));
+        table.insert(key, toml_value(&value, &path)?);
+    }
+    Ok(table)
+}
+
+/// The scenario: a path to a TOML file, a dict of the same keys, or none.
+fn scenario_of(scenario: Option<&Bound<'_, PyAny>>) -> PyResult<ScenarioFile> {
+    let Some(scenario) = scenario.filter(|s| !s.is_none()) else {
+        return Ok(ScenarioFile::default());
+    };
+    if let Ok(dict) = scenario.cast::<PyDict>() {
+        let text =
+            toml::to_string(&toml_table(dict, None)?).map_err(|e| CraneError::new_err(format!("scenario: {e}")))?;
+        return ScenarioFile::parse(&text, "the scenario dict").map_err(|e| CraneError::new_err(e.to_string()));
+    }
+    let path: PathBuf = scenario
+        .extract()
+        .map_err(|_| CraneError::new_err("scenario: expected the path of a TOML file or a dict of scenario keys"))?;
+    ScenarioFile::load(&path).map_err(|e| CraneError::new_err(e.to_string()))
+}
+
+/// Numbers by name from a dict (`parameters`, `limits`).
+fn numbers(what: &str, dict: Option<&Bound<'_, PyDict>>) -> PyResult<BTreeMap<String, f64>> {
+    let mut out = BTreeMap::new();
+    for (key, value) in dict.into_iter().flat_map(|d| d.iter()) {
+        let name: String = key
+            .extract()
+            .map_err(|_| CraneError::new_err(format!("{what}: every name must be a string")))?;
+        let value: f64 = value
+            .extract()
+            .map_err(|_| CraneError::new_err(format!("{what}: `{name}` must be a number")))?;
+        out.insert(name, value);
+    }
+    Ok(out)
+}
+
+/// An array of `rows` rows of `width` numbers, owned by Python.
+fn matrix<'py>(py: Python<'py>, values: Vec<f64>, rows: usize, width: usize) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    PyArray1::from_vec(py, values).reshape([rows, width])
+}
+
+/// One run: its states as numpy arrays (float64, one row per step), the
+/// names of their columns, the summary (the dict `crane run` writes as
+/// summary.json) and what the audit found.
+#[pyclass(frozen, name = "Run", module = "crane")]
+struct Run {
+    /// Times, s: shape (steps + 1,).
+    #[pyo3(get)]
+    t: Py<PyArray1<f64>>,
+    /// Coordinates: shape (steps + 1, n).
+    #[pyo3(get)]
+    q: Py<PyArray2<f64>>,
+    /// Velocities: shape (steps + 1, n).
+    #[pyo3(get)]
+    v: Py<PyArray2<f64>>,
+    /// Inputs: shape (steps + 1, a).
+    #[pyo3(get)]
+    u: Py<PyArray2<f64>>,
+    /// Multipliers: shape (steps + 1, m).
+    #[pyo3(get, name = "lambda_")]
+    lambda: Py<PyArray2<f64>>,
+    /// Rope tensions: shape (steps + 1, ropes).
+    #[pyo3(get)]
+    tensions: Py<PyArray2<f64>>,
+    /// The coordinates' names, the columns of `q` and `v`.
+    #[pyo3(get)]
+    coordinates: Vec<String>,
+    /// The inputs' names, the columns of `u`.
+    #[pyo3(get)]
+    inputs: Vec<String>,
+    /// The ropes' tension names, the columns of `tensions`.
+    #[pyo3(get)]
+    ropes: Vec<String>,
+    /// The summary, as summary.json has it.
+    #[pyo3(get)]
+    summary: Py<PyDict>,
+    /// What the audit found (empty for a trustworthy run).
+    #[pyo3(get)]
+    warnings: Vec<String>,
+}
+
+#[pymethods]
+impl Run {
+    /// Write the run to `path` as `crane run` writes results.csv: `t`, the
+    /// coordinates, the inputs, `lambda1..` and the tensions, one row per
+    /// step, the numbers in the shortest form that reads back exactly (the
+    /// crane's derived outputs, which results.csv appends, are not here).
+    /// The file is written whole or not at all.
+    fn to_csv(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        use std::io::Write as _;
+        let failed = |e: std::io::Error| CraneError::new_err(format!("writing {}: {e}", path.display()));
+        let t = self.t.bind(py).readonly();
+        let columns = [&self.q, &self.u, &self.lambda, &self.tensions].map(|a| a.bind(py).readonly());
+        let mut header = vec!["t".to_string()];
+        header.extend(self.coordinates.iter().cloned());
+        header.extend(self.inputs.iter().cloned());
+        let multipliers = columns[2].as_array().ncols();
+        header.extend((1..=multipliers).map(|i| format!("lambda{i}")));
+        header.extend(self.ropes.iter().cloned());
+        let mut text = header.join(",");
+        text.push('\n');
+        let t = t.as_slice()?;
+        for (i, time) in t.iter().enumerate() {
+            text.push_str(&format!("{time}"));
+            for column in &columns {
+                let row = column.as_array();
+                for value in row.row(i) {
+                    text.push_str(&format!(",{value:e}"));
+                }
+            }
+            text.push('\n');
+        }
+        // written whole or not at all: a partial file beside it, renamed
+        let name = path
+            .file_name()
+            .ok_or_else(|| CraneError::new_err(format!("{} names no file", path.display())))?;
+        let partial = path.with_file_name(format!(".{}.partial", name.to_string_lossy()));
+        let written = std::fs::File::create(&partial)
+            .and_then(|mut file| file.write_all(text.as_bytes()))
+            .and_then(|()| std::fs::rename(&partial, &path));
+        if written.is_err() {
+            let _ = std::fs::remove_file(&partial);
+        }
+        written.map_err(failed)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        let steps = self.t.bind(py).len().map_or(0, |n| n.saturating_sub(1));
+        let model = (self.summary.bind(py).get_item("model").ok().flatten())
+            .and_then(|m| m.extract::<String>().ok())
+            .unwrap_or_default();
+        format!(
+            "<crane.Run of {model}: {steps} steps, inputs {}, {} warnings>",
+            self.inputs.join(", "),
+            self.warnings.len()
+        )
+    }
+}
+
+/// Run `model` as `crane run` does: its default manoeuvre, changed by the
+/// `scenario` (a TOML file's path or a dict of the same keys), then by
+/// `parameters` and `limits` (dicts by name) and the keywords `dt` (s),
+/// `tf` (s), `scheme` (`backward-euler`, `bdf2` .. `bdf5`) and
+/// `formulation` (`redundant`, `minimal`, `dummy-derivative`). Returns a
+/// `crane.Run`; raises `crane.CraneError` with the tool's message.
+#[pyfunction]
+#[pyo3(pass_module, signature = (model, *, dt=None, tf=None, scheme=None, formulation=None, scenario=None, parameters=None, limits=None))]
+#[allow(clippy::too_many_arguments)]
+fn run(
+    module: &Bound<'_, PyModule>,
+    model: &str,
+    dt: Option<f64>,
+    tf: Option<f64>,
+    scheme: Option<&str>,
+    formulation: Option<&str>,
+    scenario: Option<&Bound<'_, PyAny>>,
+    parameters: Option<&Bound<'_, PyDict>>,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Run> {
+    let py = module.py();
+    let cranes = Cranes::of_module(module)?;
+    let mut file = scenario_of(scenario)?;
+    file.parameters.extend(numbers("parameters", parameters)?);
+    file.limits.extend(numbers("limits", limits)?);
+    let overrides = Overrides {
+        dt,
+        tf,
+        formulation: formulation
+            .map(str::parse)
+            .transpose()
+            .map_err(|e: study::UnknownFormulation| CraneError::new_err(e.to_string()))?,
+        scheme: scheme
+            .map(str::parse)
+            .transpose()
+            .map_err(|e: crane_runtime::scheme::UnknownScheme| CraneError::new_err(e.to_string()))?,
+    };
+    let name = model.to_string();
+    let data = py
+        .detach(move || (cranes.run)(&name, RunJob { file, overrides }))
+        .ok_or_else(|| {
+            let names: Vec<&str> = (cranes.entries)().iter().map(|e| e.name).collect();
+            CraneError::new_err(format!("unknown model `{model}`; expected one of {}", names.join(", ")))
+        })?
+        .map_err(CraneError::new_err)?;
+    let rows = data.rows;
+    let (n, a, m, r) = (
+        data.coordinates.len(),
+        data.inputs.len(),
+        data.multipliers,
+        data.ropes.len(),
+    );
+    let summary = py
+        .import("json")?
+        .call_method1("loads", (data.summary,))?
+        .cast_into::<PyDict>()
+        .map_err(|_| CraneError::new_err("summary: not a dict"))?;
+    Ok(Run {
+        t: PyArray1::from_vec(py, data.t).unbind(),
+        q: matrix(py, data.q, rows, n)?.unbind(),
+        v: matrix(py, data.v, rows, n)?.unbind(),
+        u: matrix(py, data.u, rows, a)?.unbind(),
+        lambda: matrix(py, data.lambda, rows, m)?.unbind(),
+        tensions: matrix(py, data.tensions, rows, r)?.unbind(),
+        coordinates: data.coordinates,
+        inputs: data.inputs,
+        ropes: data.ropes,
+        summary: summary.unbind(),
+        warnings: data.warnings,
+    })
+}
+
+/// Fill `module` with the cranes of registry `R`: `models()`, `run(...)`,
+/// the class `Run` and the exception `CraneError`. What
+/// [`export_module!`](crate::export_module) calls.
+pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = module.py();
+    module.add("CraneError", py.get_type::<CraneError>())?;
+    module.add_class::<Run>()?;
+    module.add("_cranes", CranesObject(Cranes::of::<R>()))?;
+    module.add_function(wrap_pyfunction!(models, module)?)?;
+    module.add_function(wrap_pyfunction!(run, module)?)?;
+    Ok(())
+}
+
+/// Make this crate a Python module of the cranes of a registry:
+/// `export_module!(registry = MyCranes, name = "my_cranes")` defines the
+/// module's entry point (`PyInit_my_cranes`), which fills it with
+/// [`add_to_module`]. The crate must be a `cdylib` that depends on this
+/// facade under the name `crane` with its feature `python`; maturin builds
+/// the wheel (`module-name = "my_cranes"` in `pyproject.toml`).
+#[macro_export]
+macro_rules! export_module {
+    (registry = $registry:ty, name = $name:literal $(,)?) => {
+        /// Inverse dynamics of underactuated cranes: `models()` lists the
+        /// cranes, `run(model, ...)` runs one and returns a `Run` of numpy
+        /// arrays, its summary and what the audit found; failures raise
+        /// `CraneError`.
+        #[$crate::python::pyo3::pymodule]
+        #[pyo3(crate = "crane::python::pyo3", name = $name)]
+        fn __crane_python_module(
+            module: &$crate::python::pyo3::Bound<'_, $crate::python::pyo3::types::PyModule>,
+        ) -> $crate::python::pyo3::PyResult<()> {
+            $crate::python::add_to_module::<$registry>(module)
+        }
+    };
+}

@@ -1,0 +1,54 @@
+"""The user's own cranes from Python: the wheel `my_cranes` that maturin
+builds from this crate (feature `python`) runs them as `my-cranes run`
+does, bit for bit, beside the package of the built-in cranes."""
+
+import csv
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import my_cranes
+
+ROOT = Path(__file__).resolve().parents[3]
+CLI = Path(os.environ.get("MY_CRANES_BIN", ROOT / "target" / "release" / "my-cranes"))
+
+
+def test_models_lists_the_registry_s_cranes():
+    models = {m["name"]: m for m in my_cranes.models()}
+    assert list(models) == ["planar-gantry", "hook-crane"]
+    assert models["planar-gantry"]["formulation"] == "redundant"
+    # path order 6: the exact reduced formulation, as a built-in of that order
+    assert models["hook-crane"]["path_order"] == 6
+    assert models["hook-crane"]["formulation"] == "dummy-derivative"
+
+
+@pytest.mark.parametrize("model,args", [("hook-crane", ["--dt", "0.02"]), ("planar-gantry", ["--scheme", "bdf4"])])
+def test_a_run_is_the_tool_s_bit_for_bit(tmp_path, model, args):
+    keywords = {"dt": 0.02} if model == "hook-crane" else {"scheme": "bdf4"}
+    r = my_cranes.run(model, **keywords)
+    assert r.warnings == []
+    out = tmp_path / "cli"
+    subprocess.run([str(CLI), "run", model, *args, "--quiet", "--out", str(out)], check=True, capture_output=True)
+    with open(out / "results.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert r.u.shape == (len(rows), len(r.inputs))
+    for k, name in enumerate(r.inputs):
+        assert np.array_equal(r.u[:, k], [float(row[name]) for row in rows]), name
+    for k, name in enumerate(r.coordinates):
+        assert np.array_equal(r.q[:, k], [float(row[name]) for row in rows]), name
+
+
+def test_a_model_of_another_registry_is_unknown():
+    with pytest.raises(my_cranes.CraneError, match="unknown model `navy-planar`; expected one of planar-gantry, hook-crane"):
+        my_cranes.run("navy-planar")
+
+
+def test_the_built_in_package_keeps_its_own_cranes():
+    import crane
+
+    assert len(crane.models()) == 9
+    assert len(my_cranes.models()) == 2
+    assert crane.run("navy-planar").u.shape == (401, 2)
