@@ -1408,6 +1408,15 @@ fn messages_name_the_real_problem() {
         "start = [1e308, -10]\n",
         &["`x` = 1e308 is beyond 1e100"],
     );
+    // a path end beyond 1e100 ended as a non-finite Newton iterate
+    expect_error(
+        "navy-planar",
+        "end = [1e300, -5.0]\n",
+        &[
+            "the load path's `x` = 1.2202477546958927e289 at t = 0.01 s is beyond 1e100",
+            "`start` and `end`",
+        ],
+    );
     expect_error(
         "navy-planar",
         "start = [1, -10]\n",

@@ -244,14 +244,13 @@ where
     }
 
     fn check_drive(&self, gamma: &PathJets<A>, t: f64) -> Result<(), Error> {
-        if gamma.iter().all(|x| x.iter().all(|v| v.is_finite())) {
-            Ok(())
-        } else {
-            Err(Error::NonFinite {
+        if !gamma.iter().all(|x| x.iter().all(|v| v.is_finite())) {
+            return Err(Error::NonFinite {
                 quantity: "load path derivatives gamma^(k)(t)",
                 t,
-            })
+            });
         }
+        crate::redundant::check_path_position(&gamma[0], t, &H::Target::INFO.coordinates[N - A..])
     }
 
     /// The start's coordinates, velocities, multipliers and inputs as jets

@@ -42,6 +42,21 @@ pub enum Error {
         /// Its value.
         value: f64,
     },
+    /// The load path takes a coordinate so far that the constraints (squares
+    /// of lengths) cannot be evaluated in f64.
+    #[error(
+        "the load path's `{coordinate}` = {value:e} at t = {} s is beyond 1e100: its square would overflow; check the \
+         path's `start` and `end`",
+        Seconds::of(.t)
+    )]
+    PathOutOfRange {
+        /// The load coordinate's name.
+        coordinate: &'static str,
+        /// Its value on the path.
+        value: f64,
+        /// When.
+        t: f64,
+    },
     /// The time step is not a finite positive number.
     #[error("invalid time step dt = {dt:?}: it must be finite and at least 1e-6 s")]
     InvalidTimeStep {

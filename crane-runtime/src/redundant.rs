@@ -116,14 +116,35 @@ fn write_unknowns<const N: usize, const M: usize, const A: usize>(
 }
 
 /// Refuse a NaN or infinite load target.
-pub(crate) fn check_target<const A: usize>(target: &ServoTarget<A>, t: f64) -> Result<(), Error> {
-    if target.iter().all(|x| x.iter().all(|v| v.is_finite())) {
-        Ok(())
-    } else {
-        Err(Error::NonFinite {
+pub(crate) fn check_target<const A: usize>(
+    target: &ServoTarget<A>,
+    t: f64,
+    load: &[&'static str],
+) -> Result<(), Error> {
+    if !target.iter().all(|x| x.iter().all(|v| v.is_finite())) {
+        return Err(Error::NonFinite {
             quantity: "load target gamma(t)",
             t,
-        })
+        });
+    }
+    check_path_position(&target[0], t, load)
+}
+
+/// Refuse a load position beyond 1e100 (`load`: the load coordinates'
+/// names): the constraints' squares of lengths would overflow, and the
+/// step would end as a non-finite Newton iterate.
+pub(crate) fn check_path_position<const A: usize>(
+    position: &SVector<f64, A>,
+    t: f64,
+    load: &[&'static str],
+) -> Result<(), Error> {
+    match position.iter().position(|x| x.abs() > 1e100) {
+        Some(k) => Err(Error::PathOutOfRange {
+            coordinate: load.get(k).copied().unwrap_or("load coordinate"),
+            value: position[k],
+            t,
+        }),
+        None => Ok(()),
     }
 }
 
@@ -209,7 +230,7 @@ where
     }
 
     fn check_drive(&self, target: &ServoTarget<A>, t: f64) -> Result<(), Error> {
-        check_target(target, t)
+        check_target(target, t, &H::Target::INFO.coordinates[N - A..])
     }
 
     fn start(&mut self, start: &State<N, M, A>, dt: f64, z: &mut DVector<f64>) -> Result<Start<N>, Error> {

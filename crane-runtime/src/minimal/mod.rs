@@ -157,7 +157,7 @@ where
     }
 
     fn check_drive(&self, target: &ServoTarget<A>, t: f64) -> Result<(), Error> {
-        check_target(target, t)
+        check_target(target, t, &H::Target::INFO.coordinates[N - A..])
     }
 
     /// `mu0, mu0'` of the redundant start ([`minimal_start`]); the split must
