@@ -36,6 +36,20 @@ class Run:
         """Write the run as `crane run` writes results.csv (without the
         crane's derived outputs), whole or not at all; raises CraneError."""
 
+class Stepper:
+    """A crane one step at a time, from the start `run` takes; its steps are
+    the run's, bit for bit. A state is a dict of `t` (float) and numpy
+    arrays `q`, `v`, `u`, `lambda_`, `tensions`."""
+
+    dt: float
+    """The time step, s."""
+    state: dict[str, Any]
+    """The state after the last step (the start before the first)."""
+    def step(self) -> dict[str, Any]:
+        """One step; the new state. Raises CraneError if it fails."""
+    def step_to(self, t: float) -> dict[str, Any]:
+        """Advance to the step at `t` (a step time not before the current one); the state there."""
+
 def models() -> list[dict[str, Any]]:
     """The built-in cranes: name, description, sizes n, m, a, reference,
     minimal, path_order, formulation (the default) and internal_dimension."""
@@ -52,3 +66,14 @@ def run(
     limits: Optional[Mapping[str, float]] = None,
 ) -> Run:
     """Run `model` as `crane run` does (see the module's docs); raises CraneError."""
+
+def stepper(
+    model: str,
+    *,
+    dt: Optional[float] = None,
+    scheme: Optional[str] = None,
+    formulation: Optional[str] = None,
+    scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
+    parameters: Optional[Mapping[str, float]] = None,
+) -> Stepper:
+    """A Stepper of `model` (formulations `redundant` and `dummy-derivative`); raises CraneError."""

@@ -148,3 +148,35 @@ def test_results_are_arrays_the_user_owns():
     del r
     assert u[0, 0] == 1e9
     assert crane.run("gantry-3d", dt=0.05).u[0, 0] != 1e9
+
+
+@pytest.mark.parametrize("model,formulation", [("navy-planar", None), ("navy-3d-pulley", None), ("gantry-3d", "dummy-derivative")])
+def test_a_stepper_takes_the_run_s_steps_bit_for_bit(model, formulation):
+    """Step by step, the states of a whole run (eqs. 22 on navy-planar, the
+    reduced system on the cranes that default to it or ask for it)."""
+    r = crane.run(model, formulation=formulation, scheme="bdf2")
+    s = crane.stepper(model, formulation=formulation, scheme="bdf2")
+    assert s.dt == r.summary["dt"]
+    first = s.state
+    assert first["t"] == r.t[0] and np.array_equal(first["q"], r.q[0])
+    for i in range(1, 51):
+        state = s.step()
+        assert state["t"] == r.t[i]
+        for key, column in [("q", r.q), ("v", r.v), ("u", r.u), ("lambda_", r.lambda_), ("tensions", r.tensions)]:
+            assert np.array_equal(state[key], column[i]), (i, key)
+    state = s.step_to(r.t[-1])
+    assert np.array_equal(state["u"], r.u[-1]) and np.array_equal(s.state["q"], r.q[-1])
+
+
+def test_a_stepper_says_what_it_cannot_do():
+    with pytest.raises(crane.CraneError, match="unknown model `nope`; expected one of navy-planar"):
+        crane.stepper("nope")
+    with pytest.raises(crane.CraneError, match="a stepper runs the redundant and the dummy-derivative formulation"):
+        crane.stepper("navy-planar", formulation="minimal")
+    s = crane.stepper("navy-planar", dt=0.01)
+    s.step_to(0.5)
+    with pytest.raises(crane.CraneError, match="not a step time at or after t = 0.5 s"):
+        s.step_to(0.2)
+    with pytest.raises(crane.CraneError, match="not a step time"):
+        s.step_to(0.505)
+    assert s.state["t"] == pytest.approx(0.5, abs=1e-12)

@@ -35,7 +35,9 @@ use crane_cli::scenario::{self, Overrides, ScenarioFile};
 use crane_models::registry::{Entry, Registry, Visit};
 use crane_models::study::{self, Formulation};
 use crane_models::{Case, Crane};
-use crane_runtime::CraneModel;
+use crane_runtime::redundant::Redundant;
+use crane_runtime::stepper::{Advance, Stepper};
+use crane_runtime::{CraneModel, Options, dummy_derivative};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -146,6 +148,7 @@ struct Cranes {
     entries: fn() -> Vec<Entry>,
     traits: fn(&str) -> Option<Traits>,
     run: fn(&str, RunJob) -> Option<Result<RunData, String>>,
+    stepper: fn(&str, StepperJob) -> Option<<StepperJob as Visit>::Output>,
 }
 
 impl Cranes {
@@ -154,6 +157,7 @@ impl Cranes {
             entries: || R::default().entries(),
             traits: |name| R::default().visit(name, TraitsOf),
             run: |name, job| R::default().visit(name, job),
+            stepper: |name, job| R::default().visit(name, job),
         }
     }
 
@@ -401,28 +405,11 @@ fn run(
 ) -> PyResult<Run> {
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
-    let mut file = scenario_of(scenario)?;
-    file.parameters.extend(numbers("parameters", parameters)?);
-    file.limits.extend(numbers("limits", limits)?);
-    let overrides = Overrides {
-        dt,
-        tf,
-        formulation: formulation
-            .map(str::parse)
-            .transpose()
-            .map_err(|e: study::UnknownFormulation| CraneError::new_err(e.to_string()))?,
-        scheme: scheme
-            .map(str::parse)
-            .transpose()
-            .map_err(|e: crane_runtime::scheme::UnknownScheme| CraneError::new_err(e.to_string()))?,
-    };
+    let (file, overrides) = job(dt, tf, scheme, formulation, scenario, parameters, limits)?;
     let name = model.to_string();
     let data = py
         .detach(move || (cranes.run)(&name, RunJob { file, overrides }))
-        .ok_or_else(|| {
-            let names: Vec<&str> = (cranes.entries)().iter().map(|e| e.name).collect();
-            CraneError::new_err(format!("unknown model `{model}`; expected one of {}", names.join(", ")))
-        })?
+        .ok_or_else(|| unknown_model(&cranes, model))?
         .map_err(CraneError::new_err)?;
     let rows = data.rows;
     let (n, a, m, r) = (
@@ -451,8 +438,215 @@ fn run(
     })
 }
 
+/// The scenario and the flags of a run or a stepper from the keywords.
+#[allow(clippy::too_many_arguments)]
+fn job(
+    dt: Option<f64>,
+    tf: Option<f64>,
+    scheme: Option<&str>,
+    formulation: Option<&str>,
+    scenario: Option<&Bound<'_, PyAny>>,
+    parameters: Option<&Bound<'_, PyDict>>,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<(ScenarioFile, Overrides)> {
+    let mut file = scenario_of(scenario)?;
+    file.parameters.extend(numbers("parameters", parameters)?);
+    file.limits.extend(numbers("limits", limits)?);
+    let overrides = Overrides {
+        dt,
+        tf,
+        formulation: formulation
+            .map(str::parse)
+            .transpose()
+            .map_err(|e: study::UnknownFormulation| CraneError::new_err(e.to_string()))?,
+        scheme: scheme
+            .map(str::parse)
+            .transpose()
+            .map_err(|e: crane_runtime::scheme::UnknownScheme| CraneError::new_err(e.to_string()))?,
+    };
+    Ok((file, overrides))
+}
+
+/// The error for a model the registry does not have.
+fn unknown_model(cranes: &Cranes, model: &str) -> PyErr {
+    let names: Vec<&str> = (cranes.entries)().iter().map(|e| e.name).collect();
+    CraneError::new_err(format!("unknown model `{model}`; expected one of {}", names.join(", ")))
+}
+
+/// One state of a crane, its tensions with it, whatever its sizes.
+struct StateData {
+    t: f64,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    u: Vec<f64>,
+    lambda: Vec<f64>,
+    tensions: Vec<f64>,
+}
+
+/// A stepper of any crane behind one interface (a Python class cannot be
+/// generic over the crane's sizes).
+trait AnyStepper {
+    /// One step.
+    fn step(&mut self) -> Result<(), String>;
+    /// The state after the last step.
+    fn state(&self) -> StateData;
+    /// The time step.
+    fn dt(&self) -> f64;
+}
+
+/// A crane's stepper (eqs. 22 or the reduced system) behind [`AnyStepper`].
+struct Erased<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    Box<dyn Advance<N, M, A, Model = Mdl>>,
+);
+
+impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> AnyStepper for Erased<Mdl, N, M, A> {
+    fn step(&mut self) -> Result<(), String> {
+        self.0.step().map(|_| ()).map_err(|e| e.to_string())
+    }
+
+    fn state(&self) -> StateData {
+        let state = self.0.state();
+        let mut tensions = vec![0.0; Mdl::INFO.ropes.len()];
+        self.0.model().rope_tensions(&state.q, &state.lambda, &mut tensions);
+        StateData {
+            t: state.t,
+            q: state.q.iter().copied().collect(),
+            v: state.v.iter().copied().collect(),
+            u: state.u.iter().copied().collect(),
+            lambda: state.lambda.iter().copied().collect(),
+            tensions,
+        }
+    }
+
+    fn dt(&self) -> f64 {
+        self.0.dt()
+    }
+}
+
+/// The stepper of one crane, from the start `crane run` takes.
+struct StepperJob {
+    file: ScenarioFile,
+    overrides: Overrides,
+}
+
+impl Visit for StepperJob {
+    type Output = Result<Box<dyn AnyStepper>, String>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let (case, settings) =
+            scenario::build::<C, N, M, A>(Some(&self.file), &self.overrides).map_err(|e| e.to_string())?;
+        let start = case.start().map_err(|e| e.to_string())?;
+        let options = Options::new(settings.dt, case.tf())
+            .map_err(|e| e.to_string())?
+            .with_scheme(settings.scheme);
+        let advance: Box<dyn Advance<N, M, A, Model = C::Model>> = match settings.formulation {
+            Formulation::DummyDerivative => {
+                dummy_derivative::boxed_stepper(Box::new(case.model), case.path, &start, &options)
+                    .map_err(|e| study::StudyError::of_crane(C::NAME, e).to_string())?
+            }
+            Formulation::Redundant => Box::new(
+                Stepper::new(Redundant::new(Box::new(case.model), case.path), &start, &options)
+                    .map_err(|e| e.to_string())?,
+            ),
+            Formulation::Minimal => {
+                return Err(
+                    "a stepper runs the redundant and the dummy-derivative formulation; the minimal one runs \
+                     whole: run(..., formulation=\"minimal\")"
+                        .to_string(),
+                );
+            }
+        };
+        Ok(Box::new(Erased(advance)))
+    }
+}
+
+/// A crane one step at a time, for a control loop: `step()` advances one
+/// step and returns the state, `step_to(t)` advances to the step at `t`;
+/// `state` is the state after the last step (the start before the first).
+/// A state is a dict of `t` and numpy arrays `q`, `v`, `u`, `lambda_`,
+/// `tensions`. The steps are those of `run` with the same keywords, bit for
+/// bit.
+#[pyclass(unsendable, name = "Stepper", module = "crane")]
+struct PyStepper {
+    inner: Box<dyn AnyStepper>,
+}
+
+impl PyStepper {
+    fn state_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let state = self.inner.state();
+        let dict = PyDict::new(py);
+        dict.set_item("t", state.t)?;
+        dict.set_item("q", PyArray1::from_vec(py, state.q))?;
+        dict.set_item("v", PyArray1::from_vec(py, state.v))?;
+        dict.set_item("u", PyArray1::from_vec(py, state.u))?;
+        dict.set_item("lambda_", PyArray1::from_vec(py, state.lambda))?;
+        dict.set_item("tensions", PyArray1::from_vec(py, state.tensions))?;
+        Ok(dict)
+    }
+}
+
+#[pymethods]
+impl PyStepper {
+    /// One step; returns the new state. Raises `CraneError` if the step
+    /// fails (the stepper is then left at the last good state).
+    fn step<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.inner.step().map_err(CraneError::new_err)?;
+        self.state_dict(py)
+    }
+
+    /// Advance to the step at time `t` (a step time `t0 + k dt` not before
+    /// the current one); returns the state there.
+    fn step_to<'py>(&mut self, py: Python<'py>, t: f64) -> PyResult<Bound<'py, PyDict>> {
+        let (now, dt) = (self.inner.state().t, self.inner.dt());
+        let steps = ((t - now) / dt).round();
+        if !(steps >= 0.0 && (t - now - steps * dt).abs() <= 1e-9 * dt * steps.max(1.0)) {
+            return Err(CraneError::new_err(format!(
+                "t = {t} s is not a step time at or after t = {now} s (the steps are {dt} s apart)"
+            )));
+        }
+        for _ in 0..steps as usize {
+            self.inner.step().map_err(CraneError::new_err)?;
+        }
+        self.state_dict(py)
+    }
+
+    /// The state after the last step (the start before the first).
+    #[getter]
+    fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.state_dict(py)
+    }
+
+    /// The time step, s.
+    #[getter]
+    fn dt(&self) -> f64 {
+        self.inner.dt()
+    }
+}
+
+/// A stepper of `model` from the start `run` takes, with the same keywords
+/// (`dt`, `scheme`, `formulation`, `scenario`, `parameters`): a
+/// `Stepper`. Raises `CraneError` with the tool's message.
+#[pyfunction]
+#[pyo3(pass_module, signature = (model, *, dt=None, scheme=None, formulation=None, scenario=None, parameters=None))]
+fn stepper(
+    module: &Bound<'_, PyModule>,
+    model: &str,
+    dt: Option<f64>,
+    scheme: Option<&str>,
+    formulation: Option<&str>,
+    scenario: Option<&Bound<'_, PyAny>>,
+    parameters: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PyStepper> {
+    let cranes = Cranes::of_module(module)?;
+    let (file, overrides) = job(dt, None, scheme, formulation, scenario, parameters, None)?;
+    let inner = (cranes.stepper)(model, StepperJob { file, overrides })
+        .ok_or_else(|| unknown_model(&cranes, model))?
+        .map_err(CraneError::new_err)?;
+    Ok(PyStepper { inner })
+}
+
 /// Fill `module` with the cranes of registry `R`: `models()`, `run(...)`,
-/// the class `Run` and the exception `CraneError`. What
+/// `stepper(...)`, the classes `Run` and `Stepper` and the exception
+/// `CraneError`. What
 /// [`export_module!`](crate::export_module) calls.
 pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = module.py();
@@ -461,6 +655,8 @@ pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyR
     module.add("_cranes", CranesObject(Cranes::of::<R>()))?;
     module.add_function(wrap_pyfunction!(models, module)?)?;
     module.add_function(wrap_pyfunction!(run, module)?)?;
+    module.add_class::<PyStepper>()?;
+    module.add_function(wrap_pyfunction!(stepper, module)?)?;
     Ok(())
 }
 

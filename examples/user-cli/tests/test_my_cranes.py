@@ -52,3 +52,12 @@ def test_the_built_in_package_keeps_its_own_cranes():
     assert len(crane.models()) == 9
     assert len(my_cranes.models()) == 2
     assert crane.run("navy-planar").u.shape == (401, 2)
+
+
+def test_a_stepper_of_the_user_s_crane_takes_the_run_s_steps():
+    """The hook crane's exact reduced formulation, one step at a time."""
+    r = my_cranes.run("hook-crane", dt=0.02)
+    s = my_cranes.stepper("hook-crane", dt=0.02)
+    for i in range(1, 21):
+        assert np.array_equal(s.step()["u"], r.u[i]), i
+    assert np.array_equal(s.step_to(r.t[-1])["u"], r.u[-1])
