@@ -91,6 +91,9 @@ fn assert_descriptive(error: &Error) {
         Error::TooManySteps { .. } => message.contains("steps cannot be held"),
         Error::PathOrderTooHigh { .. } => message.contains("derivative of order"),
         Error::StartOutOfRange { coordinate, .. } => message.contains(&format!("`{coordinate}`")),
+        Error::PathOutOfRange { coordinate, .. } => {
+            message.contains(&format!("`{coordinate}`")) && message.contains("t = ")
+        }
         Error::MinimalStartNotFound { .. } | Error::EquilibriumNotFound { .. } => message.contains("residual"),
         Error::MinimalGuessSize { expected, .. } => message.contains(&format!("the map has {expected}")),
         Error::NoDummyDerivatives { model, .. } => message.contains(&format!("`{model}`")),
