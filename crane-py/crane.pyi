@@ -32,6 +32,9 @@ class Run:
     """The summary `crane run` writes as summary.json."""
     warnings: list[str]
     """What the audit found: empty for a trustworthy run."""
+    replay: Optional[dict[str, Any]]
+    """With replay=True: the forward run of the computed inputs, a dict of
+    `t`, `q`, `v`, `u`, `lambda_`, `tensions` (numpy arrays); else None."""
     def to_csv(self, path: Union[str, PathLike[str]]) -> None:
         """Write the run as `crane run` writes results.csv (without the
         crane's derived outputs), whole or not at all; raises CraneError."""
@@ -64,6 +67,10 @@ def run(
     scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
     parameters: Optional[Mapping[str, float]] = None,
     limits: Optional[Mapping[str, float]] = None,
+    replay: bool = False,
+    plant: Optional[Mapping[str, float]] = None,
+    feedback: Union[str, tuple[float, float], None] = None,
+    settle: Optional[float] = None,
 ) -> Run:
     """Run `model` as `crane run` does (see the module's docs); raises CraneError."""
 

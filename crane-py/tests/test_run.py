@@ -180,3 +180,44 @@ def test_a_stepper_says_what_it_cannot_do():
     with pytest.raises(crane.CraneError, match="not a step time"):
         s.step_to(0.505)
     assert s.state["t"] == pytest.approx(0.5, abs=1e-12)
+
+
+def test_a_replay_is_the_command_line_s(tmp_path):
+    """replay=True drives the forward dynamics with the computed inputs as
+    `crane run --replay` does: the same states as its replay.csv, bit for
+    bit, the summary's "replay" and the audit's warning on a plant 30 %
+    heavier than the planner's."""
+    r = crane.run("navy-planar", scheme="bdf4", replay=True, plant={"m_l": 130.0}, feedback="default")
+    out = tmp_path / "cli"
+    subprocess.run(
+        [str(CLI), "run", "navy-planar", "--scheme", "bdf4", "--replay", "--plant", "m_l=130", "--feedback", "default", "--quiet", "--out", str(out)],
+        check=True,
+        capture_output=True,
+    )
+    with open(out / "replay.csv") as f:
+        rows = list(csv.DictReader(f))
+    replay = r.replay
+    assert replay["t"].shape == (len(rows),) and replay["q"].shape == (len(rows), 7)
+    assert np.array_equal(replay["t"], [float(row["t"]) for row in rows])
+    for k, name in enumerate(r.coordinates):
+        assert np.array_equal(replay["q"][:, k], [float(row[name]) for row in rows]), name
+    assert r.summary["replay"]["plant"] == {"m_l": 130.0}
+    assert r.summary["replay"]["feedback"].startswith("default")
+    assert any("does not arrive" in w for w in r.warnings), r.warnings
+    # the planner's own plant with BDF-4: the load arrives
+    exact = crane.run("navy-planar", scheme="bdf4", replay=True)
+    assert exact.warnings == [] and exact.summary["replay"]["residual_sway"] < 1e-3
+    assert crane.run("navy-planar").replay is None
+
+
+def test_a_replay_s_keywords_are_checked():
+    with pytest.raises(crane.CraneError, match="apply only to a replay: add replay=True"):
+        crane.run("navy-planar", plant={"m_l": 130.0})
+    with pytest.raises(crane.CraneError, match="apply only to a replay: add replay=True"):
+        crane.run("navy-planar", scenario={"plant": {"m_l": 130.0}})
+    with pytest.raises(crane.CraneError, match="feedback `soft`"):
+        crane.run("navy-planar", replay=True, feedback="soft")
+    with pytest.raises(crane.CraneError, match="settle = -1"):
+        crane.run("navy-planar", replay=True, settle=-1.0)
+    with pytest.raises(crane.CraneError, match="plant: `m_l` must be a number"):
+        crane.run("navy-planar", replay=True, plant={"m_l": "heavy"})

@@ -33,11 +33,12 @@ use std::path::PathBuf;
 
 use crane_cli::scenario::{self, Overrides, ScenarioFile};
 use crane_models::registry::{Entry, Registry, Visit};
+use crane_models::study::replay::{FeedbackSpec, ReplayRequest};
 use crane_models::study::{self, Formulation};
 use crane_models::{Case, Crane};
 use crane_runtime::redundant::Redundant;
 use crane_runtime::stepper::{Advance, Stepper};
-use crane_runtime::{CraneModel, Options, dummy_derivative};
+use crane_runtime::{CraneModel, Options, Solution, dummy_derivative};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -57,8 +58,8 @@ pyo3::create_exception!(
     "A run the tool could not make, or an argument it refuses: the tool's one-line message."
 );
 
-/// A run's numbers, gathered without the GIL.
-struct RunData {
+/// The states of a run as columns, row-major (one row per state).
+struct Columns {
     rows: usize,
     t: Vec<f64>,
     q: Vec<f64>,
@@ -66,6 +67,34 @@ struct RunData {
     u: Vec<f64>,
     lambda: Vec<f64>,
     tensions: Vec<f64>,
+}
+
+impl Columns {
+    fn of<const N: usize, const M: usize, const A: usize>(solution: &Solution<N, M, A>) -> Self {
+        let states = &solution.states;
+        let flat = |width: usize, value: &dyn Fn(usize, usize) -> f64| -> Vec<f64> {
+            (0..states.len())
+                .flat_map(|i| (0..width).map(move |k| (i, k)))
+                .map(|(i, k)| value(i, k))
+                .collect()
+        };
+        Self {
+            rows: states.len(),
+            t: states.iter().map(|s| s.t).collect(),
+            q: flat(N, &|i, k| states[i].q[k]),
+            v: flat(N, &|i, k| states[i].v[k]),
+            u: flat(A, &|i, k| states[i].u[k]),
+            lambda: flat(M, &|i, k| states[i].lambda[k]),
+            tensions: flat(solution.info.ropes.len(), &|i, r| solution.tensions_at(i)[r]),
+        }
+    }
+}
+
+/// A run's numbers, gathered without the GIL.
+struct RunData {
+    columns: Columns,
+    /// The replay the summary describes (with feedback if asked for).
+    replay: Option<Columns>,
     coordinates: Vec<String>,
     inputs: Vec<String>,
     ropes: Vec<String>,
@@ -74,10 +103,11 @@ struct RunData {
     warnings: Vec<String>,
 }
 
-/// `crane run` on one crane, its numbers kept.
+/// `crane run` on one crane, its numbers kept; with a replay if asked.
 struct RunJob {
     file: ScenarioFile,
     overrides: Overrides,
+    replay: Option<ReplayRequest>,
 }
 
 impl Visit for RunJob {
@@ -85,25 +115,31 @@ impl Visit for RunJob {
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
         let (case, settings) =
             scenario::build::<C, N, M, A>(Some(&self.file), &self.overrides).map_err(|e| e.to_string())?;
-        let outcome = study::run(&case, &settings, &mut |_, _| {}).map_err(|e| e.to_string())?;
-        let solution = &outcome.solution;
-        let states = &solution.states;
-        let info = solution.info;
-        let flat = |width: usize, value: &dyn Fn(usize, usize) -> f64| -> Vec<f64> {
-            (0..states.len())
-                .flat_map(|i| (0..width).map(move |k| (i, k)))
-                .map(|(i, k)| value(i, k))
-                .collect()
-        };
-        let ropes = info.ropes.len();
+        if self.replay.is_none() && !settings.plant.is_empty() {
+            let names: Vec<&str> = settings.plant.iter().map(|(name, _)| name.as_str()).collect();
+            return Err(format!(
+                "the plant's parameters ({}) apply only to a replay: add replay=True",
+                names.join(", ")
+            ));
+        }
+        let mut outcome = study::run(&case, &settings, &mut |_, _| {}).map_err(|e| e.to_string())?;
+        if let Some(request) = self.replay {
+            // the scenario's [plant] first, then the keywords'
+            let request = ReplayRequest {
+                plant: settings.plant.iter().cloned().chain(request.plant).collect(),
+                ..request
+            };
+            outcome
+                .replay(&case, &request)
+                .map_err(|e| format!("the replay failed: {e}"))?;
+        }
+        let info = outcome.solution.info;
         Ok(RunData {
-            rows: states.len(),
-            t: states.iter().map(|s| s.t).collect(),
-            q: flat(N, &|i, k| states[i].q[k]),
-            v: flat(N, &|i, k| states[i].v[k]),
-            u: flat(A, &|i, k| states[i].u[k]),
-            lambda: flat(M, &|i, k| states[i].lambda[k]),
-            tensions: flat(ropes, &|i, r| solution.tensions_at(i)[r]),
+            columns: Columns::of(&outcome.solution),
+            replay: outcome
+                .replay
+                .as_ref()
+                .map(|replay| Columns::of(&replay.result().solution)),
             coordinates: info.coordinates.iter().map(|s| s.to_string()).collect(),
             inputs: info.inputs.iter().map(|s| s.to_string()).collect(),
             ropes: info.ropes.iter().map(|r| r.tension.to_string()).collect(),
@@ -323,6 +359,11 @@ struct Run {
     /// What the audit found (empty for a trustworthy run).
     #[pyo3(get)]
     warnings: Vec<String>,
+    /// With `replay=True`: the forward run of the computed inputs (with the
+    /// feedback if one was asked for), a dict of `t`, `q`, `v`, `u`,
+    /// `lambda_`, `tensions` like the run's own; else None.
+    #[pyo3(get)]
+    replay: Option<Py<PyDict>>,
 }
 
 #[pymethods]
@@ -387,10 +428,19 @@ impl Run {
 /// `scenario` (a TOML file's path or a dict of the same keys), then by
 /// `parameters` and `limits` (dicts by name) and the keywords `dt` (s),
 /// `tf` (s), `scheme` (`backward-euler`, `bdf2` .. `bdf5`) and
-/// `formulation` (`redundant`, `minimal`, `dummy-derivative`). Returns a
-/// `crane.Run`; raises `crane.CraneError` with the tool's message.
+/// `formulation` (`redundant`, `minimal`, `dummy-derivative`). With
+/// `replay=True` the computed inputs also drive the forward dynamics, as
+/// `crane run --replay` does: on a plant whose parameters `plant` (a dict
+/// by name, after the scenario's `[plant]`) changes, with the feedback
+/// `feedback` (`"default"` or `(kp, kd)`) and the settling window `settle`
+/// (s); `Run.replay` then holds it, and the summary and warnings say how it
+/// went. Returns a `crane.Run`; raises `crane.CraneError` with the tool's
+/// message.
 #[pyfunction]
-#[pyo3(pass_module, signature = (model, *, dt=None, tf=None, scheme=None, formulation=None, scenario=None, parameters=None, limits=None))]
+#[pyo3(pass_module, signature = (
+    model, *, dt=None, tf=None, scheme=None, formulation=None, scenario=None, parameters=None, limits=None,
+    replay=false, plant=None, feedback=None, settle=None
+))]
 #[allow(clippy::too_many_arguments)]
 fn run(
     module: &Bound<'_, PyModule>,
@@ -402,16 +452,29 @@ fn run(
     scenario: Option<&Bound<'_, PyAny>>,
     parameters: Option<&Bound<'_, PyDict>>,
     limits: Option<&Bound<'_, PyDict>>,
+    replay: bool,
+    plant: Option<&Bound<'_, PyDict>>,
+    feedback: Option<&Bound<'_, PyAny>>,
+    settle: Option<f64>,
 ) -> PyResult<Run> {
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
     let (file, overrides) = job(dt, tf, scheme, formulation, scenario, parameters, limits)?;
+    let request = replay_request(replay, plant, feedback, settle)?;
     let name = model.to_string();
     let data = py
-        .detach(move || (cranes.run)(&name, RunJob { file, overrides }))
+        .detach(move || {
+            (cranes.run)(
+                &name,
+                RunJob {
+                    file,
+                    overrides,
+                    replay: request,
+                },
+            )
+        })
         .ok_or_else(|| unknown_model(&cranes, model))?
         .map_err(CraneError::new_err)?;
-    let rows = data.rows;
     let (n, a, m, r) = (
         data.coordinates.len(),
         data.inputs.len(),
@@ -423,19 +486,84 @@ fn run(
         .call_method1("loads", (data.summary,))?
         .cast_into::<PyDict>()
         .map_err(|_| CraneError::new_err("summary: not a dict"))?;
+    let columns = data.columns;
+    let rows = columns.rows;
+    let replay = match data.replay {
+        Some(replay) => {
+            let rows = replay.rows;
+            let dict = PyDict::new(py);
+            dict.set_item("t", PyArray1::from_vec(py, replay.t))?;
+            dict.set_item("q", matrix(py, replay.q, rows, n)?)?;
+            dict.set_item("v", matrix(py, replay.v, rows, n)?)?;
+            dict.set_item("u", matrix(py, replay.u, rows, a)?)?;
+            dict.set_item("lambda_", matrix(py, replay.lambda, rows, m)?)?;
+            dict.set_item("tensions", matrix(py, replay.tensions, rows, r)?)?;
+            Some(dict.unbind())
+        }
+        None => None,
+    };
     Ok(Run {
-        t: PyArray1::from_vec(py, data.t).unbind(),
-        q: matrix(py, data.q, rows, n)?.unbind(),
-        v: matrix(py, data.v, rows, n)?.unbind(),
-        u: matrix(py, data.u, rows, a)?.unbind(),
-        lambda: matrix(py, data.lambda, rows, m)?.unbind(),
-        tensions: matrix(py, data.tensions, rows, r)?.unbind(),
+        t: PyArray1::from_vec(py, columns.t).unbind(),
+        q: matrix(py, columns.q, rows, n)?.unbind(),
+        v: matrix(py, columns.v, rows, n)?.unbind(),
+        u: matrix(py, columns.u, rows, a)?.unbind(),
+        lambda: matrix(py, columns.lambda, rows, m)?.unbind(),
+        tensions: matrix(py, columns.tensions, rows, r)?.unbind(),
         coordinates: data.coordinates,
         inputs: data.inputs,
         ropes: data.ropes,
         summary: summary.unbind(),
         warnings: data.warnings,
+        replay,
     })
+}
+
+/// The replay `run` asks for: none without `replay=True` (then `plant`,
+/// `feedback` and `settle` are refused), else its plant, feedback and
+/// settling window.
+fn replay_request(
+    replay: bool,
+    plant: Option<&Bound<'_, PyDict>>,
+    feedback: Option<&Bound<'_, PyAny>>,
+    settle: Option<f64>,
+) -> PyResult<Option<ReplayRequest>> {
+    let feedback = feedback.filter(|f| !f.is_none());
+    if !replay {
+        if plant.is_some() || feedback.is_some() || settle.is_some() {
+            return Err(CraneError::new_err(
+                "`plant`, `feedback` and `settle` apply only to a replay: add replay=True",
+            ));
+        }
+        return Ok(None);
+    }
+    let feedback = match feedback {
+        None => None,
+        Some(value) => {
+            let text = if let Ok(text) = value.extract::<String>() {
+                text
+            } else if let Ok((kp, kd)) = value.extract::<(f64, f64)>() {
+                format!("{kp},{kd}")
+            } else {
+                return Err(CraneError::new_err("feedback: expected \"default\" or a pair (kp, kd)"));
+            };
+            Some(
+                text.parse::<FeedbackSpec>()
+                    .map_err(|e| CraneError::new_err(format!("feedback `{text}`: {e}")))?,
+            )
+        }
+    };
+    if let Some(settle) = settle
+        && !(settle > 0.0 && settle.is_finite())
+    {
+        return Err(CraneError::new_err(format!(
+            "settle = {settle}: the settling window must be a positive number of seconds"
+        )));
+    }
+    Ok(Some(ReplayRequest {
+        plant: numbers("plant", plant)?.into_iter().collect(),
+        settle,
+        feedback,
+    }))
 }
 
 /// The scenario and the flags of a run or a stepper from the keywords.
