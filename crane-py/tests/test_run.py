@@ -221,3 +221,27 @@ def test_a_replay_s_keywords_are_checked():
         crane.run("navy-planar", replay=True, settle=-1.0)
     with pytest.raises(crane.CraneError, match="plant: `m_l` must be a number"):
         crane.run("navy-planar", replay=True, plant={"m_l": "heavy"})
+
+
+def test_nothing_is_left_open():
+    """Runs, replays, steppers and failed runs leave no thread, file or
+    other descriptor behind (counted in /proc/self/fd, where Linux lists
+    this process's open descriptors)."""
+    fds = Path("/proc/self/fd")
+    if not fds.exists():
+        pytest.skip("no /proc/self/fd on this system")
+
+    def work():
+        crane.run("navy-planar", dt=0.02)
+        crane.run("navy-planar", scheme="bdf4", replay=True)
+        s = crane.stepper("navy-3d-pulley")
+        s.step_to(0.5)
+        with pytest.raises(crane.CraneError):
+            crane.run("navy-planar", scenario={"end": [1e300, -5.0]})
+
+    work()  # the first call may load what stays loaded
+    threads, open_fds = threading.active_count(), len(list(fds.iterdir()))
+    for _ in range(5):
+        work()
+    assert threading.active_count() == threads
+    assert len(list(fds.iterdir())) == open_fds
