@@ -391,11 +391,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
             };
             let report = result.map_err(|e| e.to_string())?;
             let stepper = run.stepper.advance();
-            if let Some(finding) = run.audit.step(
-                stepper.model(),
-                stepper.state(),
-                report.min_norm_steps > 0 || report.held,
-            ) {
+            if let Some(finding) = run.audit.step(stepper.model(), stepper.state(), report.left_free()) {
                 if finding.severity() == Severity::Error {
                     return Err(finding.to_string());
                 }

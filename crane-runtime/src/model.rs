@@ -444,3 +444,19 @@ pub fn check_parameters<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize
     }
     Ok(())
 }
+
+/// Whether `test(n, largest)` holds for some rope tension `n` of `state`,
+/// with `largest` the largest tension in magnitude (no rope: never): the
+/// one place that asks how slack a crane's ropes are.
+pub(crate) fn any_rope_tension<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    state: &crate::solution::State<N, M, A>,
+    test: impl Fn(f64, f64) -> bool,
+) -> bool {
+    let ropes = Mdl::INFO.ropes.len().min(M);
+    let mut tensions = [0.0; M];
+    let tensions = &mut tensions[..ropes];
+    model.rope_tensions(&state.q, &state.lambda, tensions);
+    let largest = tensions.iter().map(|n| n.abs()).fold(0.0, f64::max);
+    tensions.iter().any(|&n| test(n, largest))
+}

@@ -132,9 +132,9 @@ impl NewtonFailure {
 
 /// How far above the residual tolerance a held solve may stop (see
 /// [`Newton::set_hold`]): the residual left along a held direction, a force
-/// of round-off size against a rope carrying less than 1e-5 of the largest
-/// tension (measured on navy-3d's slack start at dt = 0.01: 7.5e-13, where
-/// the tolerance is 1e-13).
+/// of round-off size against a nearly slack rope (measured where navy-3d's
+/// slack start was held at dt = 0.01 s: 7.5e-13, where the tolerance is
+/// 1e-13).
 pub const HELD_RESIDUAL: f64 = 1e3;
 
 /// Newton's method with preallocated workspace: `solve` does not allocate.

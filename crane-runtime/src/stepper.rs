@@ -39,8 +39,8 @@
 use nalgebra::{DVector, SVector};
 
 use crate::error::Error;
-use crate::model::CraneModel;
 use crate::model::check_parameters;
+use crate::model::{CraneModel, any_rope_tension};
 use crate::newton::{Newton, NewtonFailure};
 use crate::options::Options;
 use crate::problem::{Accepted, Follow, Predictor, Problem};
@@ -57,6 +57,15 @@ pub struct StepReport {
     /// Whether the step held the direction a nearly slack rope leaves free
     /// (see [`nearly_slack`]).
     pub held: bool,
+}
+
+impl StepReport {
+    /// Whether the path left something free at this step: Newton met a
+    /// singular iteration matrix, or the step held what a nearly slack
+    /// rope leaves free.
+    pub fn left_free(&self) -> bool {
+        self.min_norm_steps > 0 || self.held
+    }
 }
 
 /// A rope carrying less than this fraction of the largest tension leaves
@@ -88,12 +97,7 @@ pub fn nearly_slack<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, co
     model: &Mdl,
     state: &State<N, M, A>,
 ) -> bool {
-    let ropes = Mdl::INFO.ropes.len().min(M);
-    let mut tensions = [0.0; M];
-    let tensions = &mut tensions[..ropes];
-    model.rope_tensions(&state.q, &state.lambda, tensions);
-    let largest = tensions.iter().map(|n| n.abs()).fold(0.0, f64::max);
-    largest > 0.0 && tensions.iter().any(|n| n.abs() < HOLD_TENSION_RATIO * largest)
+    any_rope_tension(model, state, |n, largest| n.abs() < HOLD_TENSION_RATIO * largest)
 }
 
 /// Anything that advances a crane one step at a time: a [`Stepper`], or
@@ -260,9 +264,8 @@ where
         self.problem.prepare(drive, self.history.formula(self.dt));
         let predictor = self.problem.predictor();
         self.predict(predictor);
-        let held = P::HOLDS_NEARLY_SLACK && self.steps > 0 && nearly_slack(self.problem.model(), &self.state);
+        let mut held = P::HOLDS_NEARLY_SLACK && self.steps > 0 && nearly_slack(self.problem.model(), &self.state);
         self.newton.set_hold(held);
-        let mut held = held;
         let converged = match self.newton.solve(&mut self.problem, &mut self.z) {
             Ok(converged) => converged,
             // a held solve that does not end (its residual still halving

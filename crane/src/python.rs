@@ -90,6 +90,32 @@ impl Columns {
     }
 }
 
+/// Columns as numpy arrays, owned by Python.
+struct Arrays<'py> {
+    t: Bound<'py, PyArray1<f64>>,
+    q: Bound<'py, PyArray2<f64>>,
+    v: Bound<'py, PyArray2<f64>>,
+    u: Bound<'py, PyArray2<f64>>,
+    lambda: Bound<'py, PyArray2<f64>>,
+    tensions: Bound<'py, PyArray2<f64>>,
+}
+
+impl Columns {
+    /// The arrays, `[n, a, m, ropes]` the widths of `q` and `v`, `u`,
+    /// `lambda` and `tensions`.
+    fn into_arrays(self, py: Python<'_>, [n, a, m, r]: [usize; 4]) -> PyResult<Arrays<'_>> {
+        let rows = self.rows;
+        Ok(Arrays {
+            t: PyArray1::from_vec(py, self.t),
+            q: matrix(py, self.q, rows, n)?,
+            v: matrix(py, self.v, rows, n)?,
+            u: matrix(py, self.u, rows, a)?,
+            lambda: matrix(py, self.lambda, rows, m)?,
+            tensions: matrix(py, self.tensions, rows, r)?,
+        })
+    }
+}
+
 /// A run's numbers, gathered without the GIL.
 struct RunData {
     columns: Columns,
@@ -475,40 +501,39 @@ fn run(
         })
         .ok_or_else(|| unknown_model(&cranes, model))?
         .map_err(CraneError::new_err)?;
-    let (n, a, m, r) = (
+    let widths = [
         data.coordinates.len(),
         data.inputs.len(),
         data.multipliers,
         data.ropes.len(),
-    );
+    ];
     let summary = py
         .import("json")?
         .call_method1("loads", (data.summary,))?
         .cast_into::<PyDict>()
         .map_err(|_| CraneError::new_err("summary: not a dict"))?;
-    let columns = data.columns;
-    let rows = columns.rows;
     let replay = match data.replay {
         Some(replay) => {
-            let rows = replay.rows;
+            let arrays = replay.into_arrays(py, widths)?;
             let dict = PyDict::new(py);
-            dict.set_item("t", PyArray1::from_vec(py, replay.t))?;
-            dict.set_item("q", matrix(py, replay.q, rows, n)?)?;
-            dict.set_item("v", matrix(py, replay.v, rows, n)?)?;
-            dict.set_item("u", matrix(py, replay.u, rows, a)?)?;
-            dict.set_item("lambda_", matrix(py, replay.lambda, rows, m)?)?;
-            dict.set_item("tensions", matrix(py, replay.tensions, rows, r)?)?;
+            dict.set_item("t", arrays.t)?;
+            dict.set_item("q", arrays.q)?;
+            dict.set_item("v", arrays.v)?;
+            dict.set_item("u", arrays.u)?;
+            dict.set_item("lambda_", arrays.lambda)?;
+            dict.set_item("tensions", arrays.tensions)?;
             Some(dict.unbind())
         }
         None => None,
     };
+    let arrays = data.columns.into_arrays(py, widths)?;
     Ok(Run {
-        t: PyArray1::from_vec(py, columns.t).unbind(),
-        q: matrix(py, columns.q, rows, n)?.unbind(),
-        v: matrix(py, columns.v, rows, n)?.unbind(),
-        u: matrix(py, columns.u, rows, a)?.unbind(),
-        lambda: matrix(py, columns.lambda, rows, m)?.unbind(),
-        tensions: matrix(py, columns.tensions, rows, r)?.unbind(),
+        t: arrays.t.unbind(),
+        q: arrays.q.unbind(),
+        v: arrays.v.unbind(),
+        u: arrays.u.unbind(),
+        lambda: arrays.lambda.unbind(),
+        tensions: arrays.tensions.unbind(),
         coordinates: data.coordinates,
         inputs: data.inputs,
         ropes: data.ropes,

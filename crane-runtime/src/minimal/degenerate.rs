@@ -11,7 +11,7 @@ use nalgebra::{DVector, SVector};
 use super::Minimal;
 use super::coordinates::minimal_coordinates;
 use crate::error::Error;
-use crate::model::{CraneModel, MinimalMap};
+use crate::model::{CraneModel, MinimalMap, any_rope_tension};
 use crate::problem::Follow;
 use crate::scheme::StepFormula;
 use crate::solution::State;
@@ -32,12 +32,7 @@ pub(crate) fn degenerate<Mdl: CraneModel<N, M, A>, const N: usize, const M: usiz
     model: &Mdl,
     state: &State<N, M, A>,
 ) -> bool {
-    let ropes = Mdl::INFO.ropes;
-    let mut tensions = [0.0; M];
-    let tensions = &mut tensions[..ropes.len().min(M)];
-    model.rope_tensions(&state.q, &state.lambda, tensions);
-    let largest = tensions.iter().map(|n| n.abs()).fold(0.0, f64::max);
-    tensions.iter().any(|&n| !(n >= DEGENERATE_TENSION_RATIO * largest))
+    any_rope_tension(model, state, |n, largest| !(n >= DEGENERATE_TENSION_RATIO * largest))
 }
 
 impl<H, Tr, const N: usize, const M: usize, const A: usize, const F: usize> Follow<N, M, A, F>

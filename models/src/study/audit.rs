@@ -260,9 +260,10 @@ impl fmt::Display for Finding {
             Finding::SingularSteps { model, count, steps } => write!(
                 f,
                 "{count} of {steps} steps of {model} met an iteration matrix singular to working precision or held \
-                 what a rope under 1e-11 of the largest tension leaves free (a rope without tension leaves a \
+                 what a rope under {:e} of the largest tension leaves free (a rope without tension leaves a \
                  coordinate free, as when the load hangs straight below the boom tip): the path does not determine \
-                 the inputs there, and they are not a reliable result"
+                 the inputs there, and they are not a reliable result",
+                crane_runtime::stepper::HOLD_TENSION_RATIO
             ),
             Finding::BeyondFormulation { model, needed, covered } => write!(
                 f,
@@ -459,7 +460,7 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
 /// let mut stepper = Stepper::new(problem, &start, &options).unwrap();
 /// for _ in 0..400 {
 ///     let report = stepper.step().unwrap();
-///     assert_eq!(audit.step(case.model(), stepper.state(), report.min_norm_steps > 0 || report.held), None);
+///     assert_eq!(audit.step(case.model(), stepper.state(), report.left_free()), None);
 /// }
 /// ```
 #[derive(Debug, Clone)]
