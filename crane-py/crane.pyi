@@ -1,7 +1,7 @@
 """Inverse dynamics of underactuated cranes: whole runs into numpy arrays."""
 
 from os import PathLike
-from typing import Any, Mapping, Optional, Union
+from typing import Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -84,3 +84,47 @@ def stepper(
     parameters: Optional[Mapping[str, float]] = None,
 ) -> Stepper:
     """A Stepper of `model` (formulations `redundant` and `dummy-derivative`); raises CraneError."""
+
+def fastest(
+    model: str,
+    *,
+    limits: Optional[Mapping[str, float]] = None,
+    min_tension: Optional[Mapping[str, float]] = None,
+    scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
+    parameters: Optional[Mapping[str, float]] = None,
+    scheme: Optional[str] = None,
+    dt: Optional[float] = None,
+    tolerance: Optional[float] = None,
+) -> dict[str, Any]:
+    """The shortest feasible duration as `crane fastest` finds it: the dict
+    of fastest.json with `run`, the run at the answer (a dict of arrays);
+    raises CraneError."""
+
+def sweep(
+    model: str,
+    grid: Optional[Mapping[str, Sequence[float]]] = None,
+    *,
+    durations: Optional[Sequence[float]] = None,
+    limits: Optional[Mapping[str, float]] = None,
+    min_tension: Optional[Mapping[str, float]] = None,
+    scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
+    parameters: Optional[Mapping[str, float]] = None,
+    scheme: Optional[str] = None,
+    dt: Optional[float] = None,
+) -> dict[str, Any]:
+    """Every combination of `grid` and `durations` as `crane sweep` runs it:
+    sweep.csv's columns (float64 and bool arrays, lists of strings for
+    `error` and `audit`); raises CraneError."""
+
+def convergence(
+    model: str,
+    *,
+    dts: Optional[Sequence[float]] = None,
+    scheme: Optional[str] = None,
+    formulation: Optional[str] = None,
+    scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
+    parameters: Optional[Mapping[str, float]] = None,
+) -> dict[str, Any]:
+    """The error of u at t = 1.5 s for each step as `crane convergence`
+    measures it: arrays `dt`, `e_u`, `order`, the list `audit`, and
+    `reference`, `formulation`, `scheme`; raises CraneError."""

@@ -224,11 +224,13 @@ def test_a_replay_s_keywords_are_checked():
 
 
 def test_nothing_is_left_open():
-    """Runs, replays, steppers and failed runs leave no thread, file or
-    other descriptor behind (counted in /proc/self/fd, where Linux lists
-    this process's open descriptors)."""
-    fds = Path("/proc/self/fd")
-    if not fds.exists():
+    """Runs, replays, steppers, sweeps and failed runs leave no thread, file
+    or other descriptor behind (counted in /proc/self/fd and
+    /proc/self/task, where Linux lists this process's open descriptors and
+    its threads, the native ones included: a sweep's worker pool is made
+    once and kept)."""
+    fds, tasks = Path("/proc/self/fd"), Path("/proc/self/task")
+    if not fds.exists() or not tasks.exists():
         pytest.skip("no /proc/self/fd on this system")
 
     def work():
@@ -238,10 +240,13 @@ def test_nothing_is_left_open():
         s.step_to(0.5)
         with pytest.raises(crane.CraneError):
             crane.run("navy-planar", scenario={"end": [1e300, -5.0]})
+        crane.sweep("navy-planar", {"m_l": [90.0, 110.0]}, durations=[3.5, 4.0])
 
     work()  # the first call may load what stays loaded
     threads, open_fds = threading.active_count(), len(list(fds.iterdir()))
+    native = len(list(tasks.iterdir()))
     for _ in range(5):
         work()
     assert threading.active_count() == threads
     assert len(list(fds.iterdir())) == open_fds
+    assert len(list(tasks.iterdir())) == native

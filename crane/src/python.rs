@@ -20,6 +20,10 @@
 //! r.u.shape                                  # (steps + 1, inputs)
 //! r.summary["peak_torque"]                   # the dict of summary.json
 //! r.warnings                                 # what the audit found
+//! s = my_cranes.stepper("user-gantry")       # one step at a time
+//! my_cranes.fastest("user-gantry", limits={"u1": 100.0})   # as `my-cranes fastest`
+//! my_cranes.sweep("user-gantry", {"m_l": [100.0, 200.0]})  # sweep.csv's columns
+//! my_cranes.convergence("user-gantry")                     # convergence.csv's
 //! ```
 //!
 //! A run is the command line's `run`: the same scenario keys (a TOML file
@@ -50,6 +54,8 @@ pub use numpy;
 pub use pyo3;
 
 pub use crate::export_module;
+
+mod plan;
 
 pyo3::create_exception!(
     crane,
@@ -114,6 +120,29 @@ impl Columns {
             tensions: matrix(py, self.tensions, rows, r)?,
         })
     }
+}
+
+impl Columns {
+    /// The arrays as a dict of `t`, `q`, `v`, `u`, `lambda_`, `tensions`.
+    fn into_dict(self, py: Python<'_>, widths: [usize; 4]) -> PyResult<Bound<'_, PyDict>> {
+        let arrays = self.into_arrays(py, widths)?;
+        let dict = PyDict::new(py);
+        dict.set_item("t", arrays.t)?;
+        dict.set_item("q", arrays.q)?;
+        dict.set_item("v", arrays.v)?;
+        dict.set_item("u", arrays.u)?;
+        dict.set_item("lambda_", arrays.lambda)?;
+        dict.set_item("tensions", arrays.tensions)?;
+        Ok(dict)
+    }
+}
+
+/// A JSON object (a summary, a report) as a Python dict.
+fn json_dict<'py>(py: Python<'py>, json: String, what: &str) -> PyResult<Bound<'py, PyDict>> {
+    py.import("json")?
+        .call_method1("loads", (json,))?
+        .cast_into::<PyDict>()
+        .map_err(|_| CraneError::new_err(format!("{what}: not a dict")))
 }
 
 /// A run's numbers, gathered without the GIL.
@@ -211,6 +240,9 @@ struct Cranes {
     traits: fn(&str) -> Option<Traits>,
     run: fn(&str, RunJob) -> Option<Result<RunData, String>>,
     stepper: fn(&str, StepperJob) -> Option<<StepperJob as Visit>::Output>,
+    fastest: fn(&str, plan::FastestJob) -> Option<<plan::FastestJob as Visit>::Output>,
+    sweep: fn(&str, plan::SweepJob) -> Option<<plan::SweepJob as Visit>::Output>,
+    convergence: fn(&str, plan::ConvergenceJob) -> Option<<plan::ConvergenceJob as Visit>::Output>,
 }
 
 impl Cranes {
@@ -220,6 +252,9 @@ impl Cranes {
             traits: |name| R::default().visit(name, TraitsOf),
             run: |name, job| R::default().visit(name, job),
             stepper: |name, job| R::default().visit(name, job),
+            fastest: |name, job| R::default().visit(name, job),
+            sweep: |name, job| R::default().visit(name, job),
+            convergence: |name, job| R::default().visit(name, job),
         }
     }
 
@@ -507,23 +542,9 @@ fn run(
         data.multipliers,
         data.ropes.len(),
     ];
-    let summary = py
-        .import("json")?
-        .call_method1("loads", (data.summary,))?
-        .cast_into::<PyDict>()
-        .map_err(|_| CraneError::new_err("summary: not a dict"))?;
+    let summary = json_dict(py, data.summary, "summary")?;
     let replay = match data.replay {
-        Some(replay) => {
-            let arrays = replay.into_arrays(py, widths)?;
-            let dict = PyDict::new(py);
-            dict.set_item("t", arrays.t)?;
-            dict.set_item("q", arrays.q)?;
-            dict.set_item("v", arrays.v)?;
-            dict.set_item("u", arrays.u)?;
-            dict.set_item("lambda_", arrays.lambda)?;
-            dict.set_item("tensions", arrays.tensions)?;
-            Some(dict.unbind())
-        }
+        Some(replay) => Some(replay.into_dict(py, widths)?.unbind()),
         None => None,
     };
     let arrays = data.columns.into_arrays(py, widths)?;
@@ -798,8 +819,8 @@ fn stepper(
 }
 
 /// Fill `module` with the cranes of registry `R`: `models()`, `run(...)`,
-/// `stepper(...)`, the classes `Run` and `Stepper` and the exception
-/// `CraneError`. What
+/// `stepper(...)`, `fastest(...)`, `sweep(...)`, `convergence(...)`, the
+/// classes `Run` and `Stepper` and the exception `CraneError`. What
 /// [`export_module!`](crate::export_module) calls.
 pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = module.py();
@@ -810,6 +831,9 @@ pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyR
     module.add_function(wrap_pyfunction!(run, module)?)?;
     module.add_class::<PyStepper>()?;
     module.add_function(wrap_pyfunction!(stepper, module)?)?;
+    module.add_function(wrap_pyfunction!(plan::fastest, module)?)?;
+    module.add_function(wrap_pyfunction!(plan::sweep, module)?)?;
+    module.add_function(wrap_pyfunction!(plan::convergence, module)?)?;
     Ok(())
 }
 

@@ -27,6 +27,7 @@
 //! ```
 
 use rayon::prelude::*;
+use serde::Serialize;
 
 use crane_runtime::{CraneModel, Options, Scheme, Solution};
 
@@ -34,6 +35,9 @@ use crate::case::Case;
 use crate::crane::Crane;
 use crate::path::{Path, PathSpec};
 use crate::study::summary::slack_allowance;
+
+mod report;
+pub use report::{Column, LimitReport, Report, check_grid, sweep_columns};
 
 /// Torque limits `|u_k| <= limit` and tension floors `N_r >= floor`, by
 /// input and rope index.
@@ -70,6 +74,34 @@ impl Default for Settings {
             tolerance: 1e-3,
             interval_points: 8,
         }
+    }
+}
+
+impl Settings {
+    /// The defaults with what is given: `dt` a step a run can take
+    /// ([`Options::stepping`]), `tolerance` positive.
+    ///
+    /// ```
+    /// use crane_models::plan::Settings;
+    /// let settings = Settings::with(Some(0.01), None, None).unwrap();
+    /// assert_eq!((settings.dt, settings.tolerance), (0.01, 1e-3));
+    /// assert!(Settings::with(Some(-0.01), None, None).is_err());
+    /// assert!(Settings::with(None, None, Some(0.0)).is_err());
+    /// ```
+    pub fn with(dt: Option<f64>, scheme: Option<Scheme>, tolerance: Option<f64>) -> Result<Self, PlanError> {
+        let defaults = Self::default();
+        let dt = dt.unwrap_or(defaults.dt);
+        Options::stepping(dt).map_err(|e| PlanError::Settings(format!("dt: {e}")))?;
+        let tolerance = tolerance.unwrap_or(defaults.tolerance);
+        if !(tolerance > 0.0 && tolerance.is_finite()) {
+            return Err(PlanError::Settings(format!("tolerance {tolerance} must be positive")));
+        }
+        Ok(Self {
+            dt,
+            scheme: scheme.unwrap_or(defaults.scheme),
+            tolerance,
+            ..defaults
+        })
     }
 }
 
@@ -409,8 +441,8 @@ fn evaluate_model<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
 /// crane that has them structurally: 11 (a run of
 /// [`study::run`](crate::study::run) has 101; an evaluation is one of many,
 /// and unstable internal dynamics show at every state). A crane without
-/// them by structure has none at any state, and is not sampled (the
-/// sampling's SVDs would double the cost of an evaluation).
+/// them by structure is not sampled
+/// ([`summarize_run`](crate::study::summarize_run)).
 pub const DIAGNOSIS_SAMPLES: usize = 10;
 
 /// What the [`audit`](crate::study::audit()) of `solution`, a run of `case`,
@@ -427,9 +459,7 @@ fn findings<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         formulation: study::Formulation::default_for::<C, N, M, A>(),
         ..RunSettings::default()
     };
-    let flat = <C::Model as CraneModel<N, M, A>>::STRUCTURE.is_some_and(|s| s.dimension == 0);
-    let samples = if flat { 0 } else { DIAGNOSIS_SAMPLES };
-    let summary = study::summarize_run(case, &settings, solution, 0.0, samples);
+    let summary = study::summarize_run(case, &settings, solution, 0.0, DIAGNOSIS_SAMPLES);
     study::audit(&summary)
         .iter()
         .filter(|f| !matches!(f, Finding::SlackRope(_) | Finding::PathTooRough { .. }))
@@ -438,7 +468,7 @@ fn findings<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
 }
 
 /// What the interval check found.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct IntervalCheck {
     /// Durations checked across the bracket.
     pub points: usize,
@@ -486,6 +516,9 @@ pub enum PlanError {
     /// A tension floor on a rope the crane does not have, or not finite.
     #[error("{0}")]
     TensionFloor(String),
+    /// A sweep's grid that cannot be run ([`check_grid`]).
+    #[error("{0}")]
+    Grid(String),
     /// Even `duration` (the longest tried) violates a limit.
     #[error("no feasible duration up to {duration:.3} s: {reason}")]
     NoFeasibleDuration {

@@ -9,8 +9,7 @@ use crane_models::plan::{self, Limits, MAX_SWEEP_POINTS, Settings};
 use crane_models::registry::{Registry, Visit};
 use crane_models::study::Formulation;
 use crane_models::{Case, Crane};
-use crane_runtime::{CraneModel, Options, Scheme};
-use serde_json::json;
+use crane_runtime::{CraneModel, Scheme};
 
 use super::{name_values, out_dir};
 use crate::output::Staged;
@@ -94,19 +93,7 @@ impl PlanFlags {
 
     /// The planner's settings from the flags (BDF-4, dt 0.05 s, 1 ms by default).
     fn settings(&self, tolerance: Option<f64>) -> Result<Settings, CliError> {
-        let defaults = Settings::default();
-        let dt = self.dt.unwrap_or(defaults.dt);
-        let tolerance = tolerance.unwrap_or(defaults.tolerance);
-        Options::stepping(dt).map_err(|e| CliError::Planning(format!("--dt: {e}")))?;
-        if !(tolerance > 0.0 && tolerance.is_finite()) {
-            return Err(CliError::Planning(format!("--tolerance {tolerance} must be positive")));
-        }
-        Ok(Settings {
-            dt,
-            scheme: self.scheme.unwrap_or(defaults.scheme),
-            tolerance,
-            ..defaults
-        })
+        Settings::with(self.dt, self.scheme, tolerance).map_err(|e| CliError::Planning(format!("--{e}")))
     }
 }
 
@@ -171,21 +158,8 @@ impl Visit for Sweep<'_> {
             .iter()
             .map(|p| range("--param", p))
             .collect::<Result<Vec<_>, _>>()?;
-        for (i, (name, _)) in params.iter().enumerate() {
-            if params[..i].iter().any(|(other, _)| other == name) {
-                return Err(CliError::Planning(format!(
-                    "--param `{name}` is given twice: sweep each parameter once"
-                )));
-            }
-        }
-        let points =
-            params.iter().map(|(_, values)| values.len() as f64).product::<f64>() * self.durations.len().max(1) as f64;
-        if points > plan::MAX_SWEEP_POINTS as f64 {
-            return Err(CliError::Planning(format!(
-                "the sweep has {points:.0} points, each a run; at most {} can be held",
-                plan::MAX_SWEEP_POINTS
-            )));
-        }
+        plan::check_grid::<C::Model, N, M, A>(&params, &self.durations)
+            .map_err(|e| CliError::Planning(e.to_string()))?;
         grid(
             &case,
             &params,
@@ -307,11 +281,6 @@ fn over_cells<T>(xs: &[f64], ys: &[f64], f: impl Fn(f64, f64) -> T) -> Vec<Vec<T
     ys.iter().map(|&y| xs.iter().map(|&x| f(x, y)).collect()).collect()
 }
 
-/// A binding as JSON.
-fn binding_json(b: &plan::Binding) -> serde_json::Value {
-    json!({ "name": b.name, "kind": if b.tension { "min-tension" } else { "limit" }, "limit": b.limit, "value": b.value, "at": b.at })
-}
-
 /// Search, write fastest.json and the plots, print.
 fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
@@ -324,28 +293,13 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let best = plan::fastest(case, limits, settings).map_err(|e| CliError::Planning(e.to_string()))?;
     let wall = clock.elapsed().as_secs_f64();
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
-    // the formulation of every evaluation; a reduced run is exact at each
-    // step and uses no scheme
-    let formulation = Formulation::default_for::<C, N, M, A>();
-    let method = if formulation.discretised() {
-        format!("{formulation}, {}", settings.scheme)
+    let report = best.report::<C>(settings, wall);
+    // a reduced run is exact at each step and uses no scheme
+    let method = if Formulation::default_for::<C, N, M, A>().discretised() {
+        format!("{}, {}", report.formulation, settings.scheme)
     } else {
-        formulation.to_string()
+        report.formulation.to_string()
     };
-    let report = json!({
-        "model": C::NAME,
-        "duration": best.duration,
-        "binding": binding_json(&best.binding),
-        "limits": best.at_answer.iter().map(binding_json).collect::<Vec<_>>(),
-        "bracket": [best.bracket.0, best.bracket.1],
-        "evaluations": best.evaluations,
-        "interval": { "points": best.interval.points, "holds": best.interval.holds, "counterexample": best.interval.counterexample },
-        "formulation": formulation.name(),
-        "scheme": settings.scheme.name(),
-        "dt": settings.dt,
-        "tolerance": settings.tolerance,
-        "wall_s": wall,
-    });
     let text = serde_json::to_string_pretty(&report).map_err(|e| CliError::Output {
         what: "fastest.json".into(),
         message: e.to_string(),
@@ -443,14 +397,6 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     quiet: bool,
 ) -> Result<(), CliError> {
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
-    for (name, _) in params {
-        if !info.parameters.contains(&name.as_str()) {
-            return Err(CliError::Planning(format!(
-                "--param {name}: no such parameter; the parameters are {}",
-                info.parameters.join(", ")
-            )));
-        }
-    }
     let spec = case.path().spec();
     let count = params.iter().map(|(_, v)| v.len()).product::<usize>() * durations.len().max(1);
     let bar = (!quiet && std::io::IsTerminal::is_terminal(&std::io::stdout())).then(|| {
@@ -472,31 +418,23 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         bar.finish_and_clear();
     }
     let wall = clock.elapsed().as_secs_f64();
-    let mut header: Vec<String> = params.iter().map(|(n, _)| n.clone()).collect();
-    header.push("duration".into());
-    header.extend(info.inputs.iter().map(|u| format!("peak_{u}")));
-    header.extend(info.ropes.iter().map(|r| format!("min_{}", r.tension)));
-    header.extend(["feasible".into(), "error".into(), "audit".into()]);
+    let names: Vec<String> = params.iter().map(|(n, _)| n.clone()).collect();
+    let columns = plan::sweep_columns::<C::Model, N, M, A>(&names, &points);
     let mut writer = csv::Writer::from_writer(Vec::new());
     let failed_csv = |e: csv::Error| CliError::Output {
         what: "sweep.csv".into(),
         message: e.to_string(),
     };
-    writer.write_record(&header).map_err(failed_csv)?;
-    for p in &points {
-        let mut row: Vec<String> = p.values.iter().map(|v| format!("{v:?}")).collect();
-        row.push(format!("{:?}", p.duration));
-        let e = &p.evaluation;
-        for k in 0..A {
-            row.push(e.peak_u.get(k).map(|x| format!("{:?}", x.0)).unwrap_or_default());
-        }
-        for r in 0..info.ropes.len() {
-            row.push(e.min_tension.get(r).map(|x| format!("{:?}", x.0)).unwrap_or_default());
-        }
-        row.push(p.feasible.to_string());
-        row.push(e.error.clone().unwrap_or_default());
-        row.push(e.findings.join("; "));
-        writer.write_record(&row).map_err(failed_csv)?;
+    writer
+        .write_record(columns.iter().map(|(name, _)| name))
+        .map_err(failed_csv)?;
+    for i in 0..points.len() {
+        let row = columns.iter().map(|(_, column)| match column {
+            plan::Column::Numbers(values) => values[i].map(|x| format!("{x:?}")).unwrap_or_default(),
+            plan::Column::Flags(values) => values[i].to_string(),
+            plan::Column::Texts(values) => values[i].clone(),
+        });
+        writer.write_record(row).map_err(failed_csv)?;
     }
     let bytes = writer.into_inner().map_err(|e| CliError::Output {
         what: "sweep.csv".into(),

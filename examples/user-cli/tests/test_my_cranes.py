@@ -61,3 +61,27 @@ def test_a_stepper_of_the_user_s_crane_takes_the_run_s_steps():
     for i in range(1, 21):
         assert np.array_equal(s.step()["u"], r.u[i]), i
     assert np.array_equal(s.step_to(r.t[-1])["u"], r.u[-1])
+
+
+def test_a_sweep_of_the_user_s_crane_is_the_tool_s(tmp_path):
+    """The hook crane's load mass swept in its exact reduced formulation,
+    as `my-cranes sweep` sweeps it: sweep.csv's peaks bit for bit."""
+    s = my_cranes.sweep("hook-crane", {"m_l": [300.0, 400.0]})
+    out = tmp_path / "cli"
+    subprocess.run([str(CLI), "sweep", "hook-crane", "--param", "m_l=300:400:2", "--quiet", "--out", str(out)],
+                   check=True, capture_output=True)
+    with open(out / "sweep.csv") as f:
+        rows = list(csv.DictReader(f))
+    for name in ["m_l", "duration", "peak_u1", "peak_u2"]:
+        assert np.array_equal(s[name], [float(row[name]) for row in rows]), name
+    assert list(s["feasible"]) == [row["feasible"] == "true" for row in rows]
+    # a heavier load needs a larger hoist torque
+    assert s["peak_u2"][1] > s["peak_u2"][0]
+
+
+def test_the_user_s_crane_converges_to_its_exact_inputs():
+    """Eqs. (22) with BDF-2 against the hook crane's exact reduced inputs."""
+    c = my_cranes.convergence("hook-crane", formulation="redundant", scheme="bdf2", dts=[0.02, 0.01, 0.005])
+    assert c["reference"] == "the exact inputs of the dummy-derivative formulation"
+    assert np.all(np.diff(c["e_u"]) < 0)
+    assert abs(c["order"][-1] - 2.0) < 0.2

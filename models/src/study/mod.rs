@@ -307,13 +307,21 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     })
 }
 
-/// The states at which [`run`] diagnoses the internal dynamics: 101.
+/// The states at which [`run`] diagnoses the internal dynamics of a crane
+/// that has them by structure: 101.
 pub const DIAGNOSIS_SAMPLES: usize = 100;
 
 /// The summary of `solution`, a run of `case` under `settings` that took
 /// `wall` seconds: peaks, ropes, limits, errors against the reference, the
 /// internal dynamics at `samples + 1` states, the path's smoothness and
 /// the distance from the constraints; what [`audit()`] reads.
+///
+/// A crane flat by structure (internal dynamics of dimension 0, Pryce's
+/// count) is not sampled: where its system Jacobian is regular a sample can
+/// only confirm dimension 0, and where it is singular the frozen-time
+/// projection reports spurious eigenvalues, so the samples would cost
+/// (more than the run itself for a small crane) and say nothing the audit
+/// uses.
 pub fn summarize_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
     settings: &RunSettings,
@@ -335,7 +343,8 @@ pub fn summarize_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
     for (unit, declared) in summary.input_units.iter_mut().zip(C::input_units()) {
         *unit = declared.to_string();
     }
-    summary.internal_dynamics = diagnose(case.model(), solution, samples);
+    let flat = <C::Model as CraneModel<N, M, A>>::STRUCTURE.is_some_and(|s| s.dimension == 0);
+    summary.internal_dynamics = diagnose(case.model(), solution, if flat { 0 } else { samples });
     summary.path_smoothness =
         path_smoothness::<C::Model, _, N, M, A>(case.path()).map(|smooth| PathSmoothnessSummary {
             needed: smooth.needed,

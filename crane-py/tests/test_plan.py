@@ -1,0 +1,112 @@
+"""The studies of many runs from Python (fastest, sweep, convergence)
+against the command line's fastest.json, sweep.csv and convergence.csv:
+the same numbers bit for bit, and every refusal a crane.CraneError."""
+
+import csv
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import crane
+
+ROOT = Path(__file__).resolve().parents[2]
+CLI = Path(os.environ.get("CRANE_BIN", ROOT / "target" / "release" / "crane"))
+
+
+def cli(tmp_path, *args):
+    """`crane ARGS --out tmp_path/cli`: the output directory."""
+    out = tmp_path / "cli"
+    subprocess.run([str(CLI), *args, "--out", str(out)], check=True, capture_output=True)
+    return out
+
+
+def csv_columns(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {name: [r[name] for r in rows] for name in rows[0]}
+
+
+def test_fastest_is_the_command_line_s(tmp_path):
+    f = crane.fastest("navy-planar", limits={"u2": 150.0}, min_tension={"N2": 100.0})
+    out = cli(tmp_path, "fastest", "navy-planar", "--limit", "u2=150", "--min-tension", "N2=100")
+    expected = json.loads((out / "fastest.json").read_text())
+    for key in ["duration", "binding", "limits", "bracket", "evaluations", "interval", "formulation", "scheme", "dt"]:
+        assert f[key] == expected[key], key
+    # the paper's move at |u2| <= 150 N m: 3.3 s, bound by the slack rope
+    # N1 (the duration halves from 4 s and bisects to 1 ms)
+    assert 3.3 < f["duration"] < 3.32 and f["bracket"][1] - f["bracket"][0] <= 1e-3
+    run = f["run"]
+    # the run at the answer: BDF-4 at the step that divides the duration
+    assert run["u"].shape == (len(run["t"]), 2) and run["t"][-1] == pytest.approx(f["duration"] + 0.0, abs=1e-12)
+    assert np.max(np.abs(run["u"][:, 1])) <= 150.0
+
+
+def test_a_sweep_is_the_command_line_s_sweep_csv(tmp_path):
+    s = crane.sweep("navy-planar", {"m_l": np.linspace(80.0, 120.0, 3)}, durations=[3.0, 4.0], limits={"u2": 150.0})
+    out = cli(tmp_path, "sweep", "navy-planar", "--param", "m_l=80:120:3", "--duration", "3:4:2", "--limit",
+              "u2=150", "--quiet")
+    expected = csv_columns(out / "sweep.csv")
+    assert list(s) == list(expected)
+    for name, values in expected.items():
+        if name in ("error", "audit"):
+            assert s[name] == values, name
+        elif name == "feasible":
+            assert s[name].dtype == np.bool_ and list(s[name]) == [v == "true" for v in values]
+        else:
+            assert s[name].dtype == np.float64
+            assert np.array_equal(s[name], np.array([float(v) for v in values])), name
+    # in 3 s rope N1 goes slack whatever the load's mass; in 4 s it stays
+    # taut, and |u2| stays below 150 N m up to 120 kg
+    assert list(s["feasible"]) == [False, True] * 3
+    assert np.all(s["min_N1"][::2] < -60.0) and s["peak_u2"][-1] < 150.0
+
+
+def test_convergence_is_the_command_line_s(tmp_path):
+    c = crane.convergence("navy-planar", scheme="bdf2")
+    out = cli(tmp_path, "convergence", "navy-planar", "--scheme", "bdf2")
+    expected = csv_columns(out / "convergence.csv")
+    assert np.array_equal(c["dt"], np.array([float(v) for v in expected["dt"]]))
+    assert np.array_equal(c["e_u"], np.array([float(v) for v in expected["e_u"]]))
+    order = np.array([float(v) if v else np.nan for v in expected["order"]])
+    assert np.array_equal(c["order"], order, equal_nan=True)
+    assert c["audit"] == expected["audit"] == [""] * 6
+    assert c["reference"] == "the analytical reference" and c["scheme"] == "bdf2"
+    # BDF-2 is of order 2 (the paper's Fig. 7)
+    assert abs(c["order"][-1] - 2.0) < 0.05
+
+
+def test_a_study_of_given_steps_and_a_reduced_reference():
+    # tower-crane has no analytical reference: the exact reduced inputs are it
+    c = crane.convergence("tower-crane", dts=[0.02, 0.01], scheme="bdf1")
+    assert c["reference"] == "the exact inputs of the dummy-derivative formulation"
+    assert list(c["dt"]) == [0.02, 0.01]
+    # backward Euler halves its error with the step
+    assert abs(c["order"][1] - 1.0) < 0.1
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda: crane.sweep("navy-planar", {"m_x": [1.0]}), "no such parameter"),
+        (lambda: crane.sweep("navy-planar", {"m_l": [1.0], "J1": [1.0]}, durations=[0.0]), "must be positive"),
+        (lambda: crane.sweep("navy-planar"), "nothing to sweep"),
+        (lambda: crane.sweep("navy-planar", {"m_l": "heavy"}), "must be a sequence of numbers"),
+        (lambda: crane.sweep("navy-planar", {"m_l": [float("nan")]}), "must be finite"),
+        (lambda: crane.fastest("navy-planar", limits={"u9": 1.0}), "no input `u9`"),
+        (lambda: crane.fastest("navy-planar", limits={"u2": -1.0}), "u2"),
+        (lambda: crane.fastest("navy-planar", min_tension={"N9": 1.0}), "no such rope tension"),
+        (lambda: crane.fastest("navy-planar", limits={"u2": 150.0}, dt=-0.01), "dt"),
+        (lambda: crane.fastest("navy-planar", limits={"u2": 150.0}, tolerance=0.0), "tolerance 0"),
+        (lambda: crane.fastest("navy-planar", limits={"u2": 1e-3}), "no feasible duration"),
+        (lambda: crane.fastest("no-such-crane", limits={"u2": 150.0}), "unknown model"),
+        (lambda: crane.convergence("navy-planar", dts=[]), "at least one time step"),
+        (lambda: crane.convergence("coupled-trolley"), "internal dynamics of dimension 2"),
+    ],
+)
+def test_refusals_raise_with_the_tool_s_message(call, message):
+    with pytest.raises(crane.CraneError, match=message):
+        call()

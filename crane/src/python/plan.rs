@@ -1,0 +1,322 @@
+//! The studies of many runs from Python: `fastest` (the shortest feasible
+//! duration), `sweep` (a grid of parameters and durations) and
+//! `convergence` (the error of `u` as the step shrinks), as the command
+//! line's `crane fastest`, `crane sweep` and `crane convergence` compute
+//! them, into dicts of numpy arrays.
+
+use std::time::Instant;
+
+use crane_cli::scenario::{self, Overrides, ScenarioFile};
+use crane_models::Crane;
+use crane_models::plan::{self, Column, Limits, Settings};
+use crane_models::registry::Visit;
+use crane_models::study::convergence::{DTS, reference_inputs, study_against};
+use crane_runtime::CraneModel;
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyModule};
+
+use super::{Columns, CraneError, Cranes, job, json_dict, numbers, scenario_of, unknown_model};
+
+/// The limits of a planning call for crane `C`: the scenario's `[limits]`
+/// with the `limits` keyword's (both by input name), the `min_tension`
+/// floors; every other rope taut.
+fn limits<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    scenario_limits: &[(usize, f64)],
+    min_tension: &[(String, f64)],
+) -> Result<Limits, String> {
+    Limits::by_name::<C::Model, N, M, A>(scenario_limits, &[], min_tension).map_err(|e| match e {
+        plan::PlanError::TensionFloor(message) => format!("min_tension: {message}"),
+        other => format!("limits: {other}"),
+    })
+}
+
+/// The scenario and the planner's settings from the keywords.
+struct PlanInputs {
+    file: ScenarioFile,
+    min_tension: Vec<(String, f64)>,
+    settings: Settings,
+}
+
+impl PlanInputs {
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        scenario: Option<&Bound<'_, PyAny>>,
+        parameters: Option<&Bound<'_, PyDict>>,
+        limits: Option<&Bound<'_, PyDict>>,
+        min_tension: Option<&Bound<'_, PyDict>>,
+        scheme: Option<&str>,
+        dt: Option<f64>,
+        tolerance: Option<f64>,
+    ) -> PyResult<Self> {
+        let mut file = scenario_of(scenario)?;
+        file.parameters.extend(numbers("parameters", parameters)?);
+        file.limits.extend(numbers("limits", limits)?);
+        let scheme = scheme
+            .map(str::parse)
+            .transpose()
+            .map_err(|e: crane_runtime::scheme::UnknownScheme| CraneError::new_err(e.to_string()))?;
+        let settings = Settings::with(dt, scheme, tolerance).map_err(|e| CraneError::new_err(e.to_string()))?;
+        Ok(Self {
+            file,
+            min_tension: numbers("min_tension", min_tension)?.into_iter().collect(),
+            settings,
+        })
+    }
+}
+
+/// `crane fastest` on one crane.
+pub(super) struct FastestJob(PlanInputs);
+
+/// The answer of a search: its report (JSON) and the run there.
+pub(super) struct FastestData {
+    report: String,
+    run: Columns,
+    widths: [usize; 4],
+}
+
+impl Visit for FastestJob {
+    type Output = Result<FastestData, String>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let PlanInputs {
+            file,
+            min_tension,
+            settings,
+        } = self.0;
+        let (case, run) =
+            scenario::build::<C, N, M, A>(Some(&file), &Overrides::default()).map_err(|e| e.to_string())?;
+        let limits = limits::<C, N, M, A>(&run.limits, &min_tension)?;
+        let clock = Instant::now();
+        let best = plan::fastest(&case, &limits, &settings).map_err(|e| e.to_string())?;
+        let report = best.report::<C>(&settings, clock.elapsed().as_secs_f64());
+        let info = <C::Model as CraneModel<N, M, A>>::INFO;
+        Ok(FastestData {
+            report: serde_json::to_string(&report).map_err(|e| format!("report: {e}"))?,
+            run: Columns::of(&best.solution),
+            widths: [N, A, M, info.ropes.len()],
+        })
+    }
+}
+
+/// The shortest duration of the move's shape (the scenario's start, end
+/// and profile, or the default move's, scaled in time) for which every
+/// input stays within its limit (`limits`, |u| by input name, with the
+/// scenario's `[limits]`) and every rope's tension at or above its floor
+/// (`min_tension` by tension name; a rope without one must stay taut), as
+/// `crane fastest` finds it: BDF-4 at `dt` <= 0.05 s, bisection to
+/// `tolerance` = 1 ms by default. Returns the dict of fastest.json
+/// (`duration`, `binding`, `limits`, `bracket`, `evaluations`, `interval`,
+/// `formulation`, `scheme`, `dt`, `tolerance`, `wall_s`) with `run`, the
+/// run at the answer (a dict of `t`, `q`, `v`, `u`, `lambda_`, `tensions`).
+/// Raises `CraneError` with the tool's message.
+#[pyfunction]
+#[pyo3(pass_module, signature = (
+    model, *, limits=None, min_tension=None, scenario=None, parameters=None, scheme=None, dt=None, tolerance=None
+))]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn fastest<'py>(
+    module: &Bound<'py, PyModule>,
+    model: &str,
+    limits: Option<&Bound<'_, PyDict>>,
+    min_tension: Option<&Bound<'_, PyDict>>,
+    scenario: Option<&Bound<'_, PyAny>>,
+    parameters: Option<&Bound<'_, PyDict>>,
+    scheme: Option<&str>,
+    dt: Option<f64>,
+    tolerance: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let py = module.py();
+    let cranes = Cranes::of_module(module)?;
+    let inputs = PlanInputs::new(scenario, parameters, limits, min_tension, scheme, dt, tolerance)?;
+    let name = model.to_string();
+    let data = py
+        .detach(move || (cranes.fastest)(&name, FastestJob(inputs)))
+        .ok_or_else(|| unknown_model(&cranes, model))?
+        .map_err(CraneError::new_err)?;
+    let dict = json_dict(py, data.report, "report")?;
+    dict.set_item("run", data.run.into_dict(py, data.widths)?)?;
+    Ok(dict)
+}
+
+/// `crane sweep` on one crane.
+pub(super) struct SweepJob {
+    inputs: PlanInputs,
+    grid: Vec<(String, Vec<f64>)>,
+    durations: Vec<f64>,
+}
+
+impl Visit for SweepJob {
+    type Output = Result<Vec<(String, Column)>, String>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let PlanInputs {
+            file,
+            min_tension,
+            settings,
+        } = self.inputs;
+        let (case, run) =
+            scenario::build::<C, N, M, A>(Some(&file), &Overrides::default()).map_err(|e| e.to_string())?;
+        let limits = limits::<C, N, M, A>(&run.limits, &min_tension)?;
+        plan::check_grid::<C::Model, N, M, A>(&self.grid, &self.durations).map_err(|e| format!("grid: {e}"))?;
+        let points = plan::sweep(&case, &self.grid, &self.durations, &limits, &settings, &|| {});
+        let names: Vec<String> = self.grid.iter().map(|(name, _)| name.clone()).collect();
+        Ok(plan::sweep_columns::<C::Model, N, M, A>(&names, &points))
+    }
+}
+
+/// A sweep of `model` over `grid` (a dict of parameter name to the values
+/// to take, e.g. `{"m_l": numpy.linspace(80, 120, 5)}`) and `durations`
+/// (the move's own if none), every combination a run, as `crane sweep`
+/// computes it (in parallel, BDF-4 at `dt` <= 0.05 s by default), each
+/// point judged against `limits` and `min_tension` as `fastest` judges a
+/// duration. Returns the columns of sweep.csv as a dict: one float64 array
+/// per swept parameter, `duration`, `peak_<input>` and `min_<tension>`
+/// (NaN where the run failed), `feasible` (a bool array), and the lists of
+/// strings `error` (why a run failed) and `audit` (what the audit found).
+#[pyfunction]
+#[pyo3(pass_module, signature = (
+    model, grid=None, *, durations=None, limits=None, min_tension=None, scenario=None, parameters=None, scheme=None,
+    dt=None
+))]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn sweep<'py>(
+    module: &Bound<'py, PyModule>,
+    model: &str,
+    grid: Option<&Bound<'_, PyDict>>,
+    durations: Option<Vec<f64>>,
+    limits: Option<&Bound<'_, PyDict>>,
+    min_tension: Option<&Bound<'_, PyDict>>,
+    scenario: Option<&Bound<'_, PyAny>>,
+    parameters: Option<&Bound<'_, PyDict>>,
+    scheme: Option<&str>,
+    dt: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let py = module.py();
+    let cranes = Cranes::of_module(module)?;
+    let inputs = PlanInputs::new(scenario, parameters, limits, min_tension, scheme, dt, None)?;
+    let mut swept = Vec::new();
+    for (key, values) in grid.into_iter().flat_map(|g| g.iter()) {
+        let name: String = key
+            .extract()
+            .map_err(|_| CraneError::new_err("grid: every name must be a string"))?;
+        let values: Vec<f64> = values
+            .extract()
+            .map_err(|_| CraneError::new_err(format!("grid: `{name}` must be a sequence of numbers")))?;
+        swept.push((name, values));
+    }
+    let durations = durations.unwrap_or_default();
+    if swept.is_empty() && durations.len() < 2 {
+        return Err(CraneError::new_err(
+            "nothing to sweep: give grid={name: values} or at least two durations",
+        ));
+    }
+    let name = model.to_string();
+    let job = SweepJob {
+        inputs,
+        grid: swept,
+        durations,
+    };
+    let columns = py
+        .detach(move || (cranes.sweep)(&name, job))
+        .ok_or_else(|| unknown_model(&cranes, model))?
+        .map_err(CraneError::new_err)?;
+    let dict = PyDict::new(py);
+    for (name, column) in columns {
+        match column {
+            Column::Numbers(values) => {
+                let values = values.into_iter().map(|v| v.unwrap_or(f64::NAN)).collect();
+                dict.set_item(name, PyArray1::from_vec(py, values))?
+            }
+            Column::Flags(values) => dict.set_item(name, PyArray1::from_vec(py, values))?,
+            Column::Texts(values) => dict.set_item(name, values)?,
+        }
+    }
+    Ok(dict)
+}
+
+/// `crane convergence` on one crane.
+pub(super) struct ConvergenceJob {
+    file: ScenarioFile,
+    overrides: Overrides,
+    dts: Vec<f64>,
+}
+
+/// The rows of a convergence study and what it measured against.
+pub(super) struct ConvergenceData {
+    dt: Vec<f64>,
+    e_u: Vec<f64>,
+    order: Vec<f64>,
+    audit: Vec<String>,
+    reference: &'static str,
+    formulation: &'static str,
+    scheme: &'static str,
+}
+
+impl Visit for ConvergenceJob {
+    type Output = Result<ConvergenceData, String>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let (case, settings) =
+            scenario::build::<C, N, M, A>(Some(&self.file), &self.overrides).map_err(|e| e.to_string())?;
+        let (reference, against) = reference_inputs(&case).map_err(|e| e.to_string())?;
+        let rows = study_against(
+            &case,
+            &reference,
+            settings.formulation,
+            settings.scheme,
+            &self.dts,
+            |_| {},
+        )
+        .map_err(|e| e.to_string())?;
+        Ok(ConvergenceData {
+            dt: rows.iter().map(|r| r.dt).collect(),
+            e_u: rows.iter().map(|r| r.e_u).collect(),
+            order: rows.iter().map(|r| r.order.unwrap_or(f64::NAN)).collect(),
+            audit: rows.iter().map(|r| r.findings.join("; ")).collect(),
+            reference: against.describe(),
+            formulation: settings.formulation.name(),
+            scheme: settings.scheme.name(),
+        })
+    }
+}
+
+/// The convergence study of `crane convergence`: the relative error of `u`
+/// at t = 1.5 s (eq. 48) against the crane's analytical reference, or the
+/// exact inputs of its reduced formulation, for each step in `dts`
+/// (0.1 ... 0.001 s by default), with the observed order between
+/// neighbouring steps. Returns a dict of float64 arrays `dt`, `e_u` and
+/// `order` (NaN for the first row and where an error is at round-off), the
+/// list `audit` (what the audit found of each row's run, empty if
+/// nothing), and the strings `reference`, `formulation`, `scheme`.
+#[pyfunction]
+#[pyo3(pass_module, signature = (model, *, dts=None, scheme=None, formulation=None, scenario=None, parameters=None))]
+pub(super) fn convergence<'py>(
+    module: &Bound<'py, PyModule>,
+    model: &str,
+    dts: Option<Vec<f64>>,
+    scheme: Option<&str>,
+    formulation: Option<&str>,
+    scenario: Option<&Bound<'_, PyAny>>,
+    parameters: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let py = module.py();
+    let cranes = Cranes::of_module(module)?;
+    let (file, overrides) = job(None, None, scheme, formulation, scenario, parameters, None)?;
+    let dts = dts.unwrap_or_else(|| DTS.to_vec());
+    if dts.is_empty() {
+        return Err(CraneError::new_err("dts: give at least one time step"));
+    }
+    let name = model.to_string();
+    let job = ConvergenceJob { file, overrides, dts };
+    let data = py
+        .detach(move || (cranes.convergence)(&name, job))
+        .ok_or_else(|| unknown_model(&cranes, model))?
+        .map_err(CraneError::new_err)?;
+    let dict = PyDict::new(py);
+    dict.set_item("dt", PyArray1::from_vec(py, data.dt))?;
+    dict.set_item("e_u", PyArray1::from_vec(py, data.e_u))?;
+    dict.set_item("order", PyArray1::from_vec(py, data.order))?;
+    dict.set_item("audit", data.audit)?;
+    dict.set_item("reference", data.reference)?;
+    dict.set_item("formulation", data.formulation)?;
+    dict.set_item("scheme", data.scheme)?;
+    Ok(dict)
+}
