@@ -403,7 +403,14 @@ fn convergence_and_bench_take_the_scheme() {
     let json: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
     assert_eq!(json["scheme"], "bdf4");
     assert_eq!(json["steps"], 400);
+    assert_eq!(json["timed"], "simulation");
     assert!(json["median_step_s"].as_f64().unwrap() > 0.0);
+    // the whole run: the same 400 steps with their summary and audit
+    let result = crane(&["bench", "navy-planar", "--study", "--repeat", "2", "--json"]);
+    assert!(result.status.success());
+    let json: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
+    assert_eq!(json["timed"], "run, summary and audit");
+    assert_eq!(json["steps"], 400);
 }
 
 /// `results.csv` of a run, as (header, rows of numbers).

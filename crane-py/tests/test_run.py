@@ -57,6 +57,27 @@ def test_a_run_is_the_command_line_s_bit_for_bit(tmp_path):
     assert np.array_equal(r.t, cli["t"])
 
 
+def test_the_summary_is_summary_json(tmp_path):
+    """The summary is summary.json's dict, the wall time aside, for a run
+    and a replay on another plant."""
+    import json
+
+    for args, keywords in [
+        ([], {}),
+        (["--scheme", "bdf4", "--replay", "--plant", "m_l=130"], {"scheme": "bdf4", "replay": True,
+                                                                    "plant": {"m_l": 130.0}}),
+    ]:
+        r = crane.run("navy-planar", **keywords)
+        out = tmp_path / "cli"
+        subprocess.run([str(CLI), "run", "navy-planar", *args, "--quiet", "--out", str(out)], check=True,
+                       capture_output=True)
+        expected = json.loads((out / "summary.json").read_text())
+        assert set(r.summary) == set(expected)
+        for key in expected:
+            if key != "wall_time_s":
+                assert r.summary[key] == expected[key], key
+
+
 def test_to_csv_writes_the_command_line_s_results_csv(tmp_path):
     r = crane.run("navy-planar", scheme="bdf2")
     r.to_csv(tmp_path / "python.csv")

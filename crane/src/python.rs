@@ -154,7 +154,7 @@ struct RunData {
     inputs: Vec<String>,
     ropes: Vec<String>,
     multipliers: usize,
-    summary: String,
+    summary: crane_models::study::Summary,
     warnings: Vec<String>,
 }
 
@@ -199,7 +199,7 @@ impl Visit for RunJob {
             inputs: info.inputs.iter().map(|s| s.to_string()).collect(),
             ropes: info.ropes.iter().map(|r| r.tension.to_string()).collect(),
             multipliers: M,
-            summary: serde_json::to_string(&outcome.summary).map_err(|e| format!("summary: {e}"))?,
+            summary: outcome.summary,
             warnings: outcome.findings.iter().map(|f| f.to_string()).collect(),
         })
     }
@@ -542,7 +542,10 @@ fn run(
         data.multipliers,
         data.ropes.len(),
     ];
-    let summary = json_dict(py, data.summary, "summary")?;
+    let summary = pythonize::pythonize(py, &data.summary)
+        .map_err(|e| CraneError::new_err(format!("summary: {e}")))?
+        .cast_into::<PyDict>()
+        .map_err(|_| CraneError::new_err("summary: not a dict"))?;
     let replay = match data.replay {
         Some(replay) => Some(replay.into_dict(py, widths)?.unbind()),
         None => None,

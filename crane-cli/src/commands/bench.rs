@@ -1,12 +1,14 @@
 //! `crane bench`: time repeated runs of a crane's default manoeuvre without
-//! writing files.
+//! writing files: the simulation alone, or (`--study`) the whole run as
+//! `crane run` and the Python package's `run` compute it (the simulation,
+//! its summary and its audit).
 
 use std::time::Instant;
 
 use crane_models::registry::{Registry, Visit};
-use crane_models::study::{DEFAULT_DT, Formulation};
+use crane_models::study::{self, DEFAULT_DT, Formulation, RunSettings};
 use crane_models::{Case, Crane};
-use crane_runtime::{Options, Scheme};
+use crane_runtime::{Options, Scheme, Solution};
 
 use super::{formulation_help, scheme_help};
 use crate::scenario::{self, Overrides};
@@ -36,26 +38,24 @@ pub struct BenchArgs {
     formulation: Option<Formulation>,
     #[arg(long, value_name = "SCHEME", help = scheme_help(Scheme::default()))]
     scheme: Option<Scheme>,
+    /// Time the whole run: the simulation with its summary and audit, what
+    /// `crane run` computes before it writes its files.
+    #[arg(long)]
+    study: bool,
 }
 
 struct Bench {
     overrides: Overrides,
     repeat: usize,
     json: bool,
+    study: bool,
 }
 
 impl Visit for Bench {
     type Output = Result<(), CliError>;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
         let (case, settings) = scenario::build::<C, N, M, A>(None, &self.overrides)?;
-        time(
-            &case,
-            settings.formulation,
-            settings.scheme,
-            settings.dt,
-            self.repeat,
-            self.json,
-        )
+        time(&case, &settings, self.repeat, self.json, self.study)
     }
 }
 
@@ -73,18 +73,19 @@ pub fn bench<R: Registry>(tool: &Tool<R>, args: BenchArgs) -> Result<(), CliErro
             overrides,
             repeat: args.repeat,
             json: args.json,
+            study: args.study,
         },
     )
 }
 
-/// Time `repeat` runs of one case (after one untimed run).
+/// Time `repeat` runs of one case (after one untimed run): the simulation,
+/// or with `study` the whole run ([`study::run`]).
 fn time<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
-    formulation: Formulation,
-    scheme: Scheme,
-    dt: f64,
+    settings: &RunSettings,
     repeat: usize,
     json: bool,
+    study: bool,
 ) -> Result<(), CliError> {
     if repeat == 0 {
         return Err(CliError::NoRepeats);
@@ -93,32 +94,41 @@ fn time<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         return Err(CliError::TooManyRepeats(repeat));
     }
     let name = C::NAME;
+    let (formulation, scheme, dt) = (settings.formulation, settings.scheme, settings.dt);
     let start = case.start()?;
     let options = Options::new(dt, case.tf())?.with_scheme(scheme);
+    let run = || -> Result<Solution<N, M, A>, CliError> {
+        Ok(if study {
+            study::run(case, settings, &mut |_, _| {})?.solution
+        } else {
+            formulation.simulate(case, &start, &options, &mut |_, _| {})?
+        })
+    };
     let mut times = Vec::with_capacity(repeat);
     let mut steps = 0;
     let mut iterations = 0.0;
-    formulation.simulate(case, &start, &options, &mut |_, _| {})?; // warm-up
+    run()?; // warm-up
     for _ in 0..repeat {
         let clock = Instant::now();
-        let solution = formulation.simulate(case, &start, &options, &mut |_, _| {})?;
+        let solution = run()?;
         times.push(clock.elapsed().as_secs_f64());
         steps = solution.steps();
         iterations = solution.mean_newton_iterations();
     }
     times.sort_by(f64::total_cmp);
     let median = times[times.len() / 2];
+    let timed = if study { "run, summary and audit" } else { "simulation" };
     if json {
         let value = serde_json::json!({
             "model": name, "formulation": formulation.name(), "scheme": scheme.name(), "dt": dt, "steps": steps,
-            "repeat": repeat, "median_run_s": median, "median_step_s": median / steps as f64,
+            "repeat": repeat, "timed": timed, "median_run_s": median, "median_step_s": median / steps as f64,
             "mean_newton_iterations": iterations,
         });
         say!("{value}")?;
     } else {
         say!(
-            "{name} ({}, {scheme}): dt = {dt} s, {steps} steps, {repeat} runs: median {:.3} ms per run, {:.2} us per \
-             step, {:.2} Newton iterations per step",
+            "{name} ({}, {scheme}): dt = {dt} s, {steps} steps, {repeat} runs ({timed}): median {:.3} ms per run, \
+             {:.2} us per step, {:.2} Newton iterations per step",
             formulation.name(),
             median * 1e3,
             median / steps as f64 * 1e6,
