@@ -96,7 +96,9 @@
 //! constraints must be independent (their gradients are compared at
 //! pseudo-random configurations; a duplicated or combined constraint is an
 //! error naming the constraints it depends on), a rope's constraint must
-//! involve its length, and a kinetic energy with a configuration-dependent
+//! involve its length and change with it the same way wherever the length
+//! is positive (a trolley's position declared as the length is an error),
+//! and a kinetic energy with a configuration-dependent
 //! mass matrix in an angle is shown its rewrite in the load's position. A
 //! coordinate that carries a constant force (a weight) but has no inertia
 //! compiles with a warning at the force (`use of deprecated constant
@@ -145,6 +147,7 @@ fn expand(input: TokenStream) -> TokenStream {
             let kernels = model::Kernels::derive(&mut model);
             if let Some(error) = check::negative_inertia(&decl, &model, &kernels)
                 .or_else(|| check::ropes_depend_on_their_lengths(&decl, &model, &kernels))
+                .or_else(|| check::ropes_pull_along_their_lengths(&decl, &model, &kernels))
                 .or_else(|| check::dependent_constraints(&model, &kernels))
             {
                 let mut tokens = error.to_compile_error();

@@ -35,7 +35,10 @@ use crate::model::{Model, Param};
 use crate::parse::Declaration;
 pub(crate) use attributes::crane_options;
 use attributes::first_doc_line;
-pub use physics::{Lint, dependent_constraints, negative_inertia, physics_lints, ropes_depend_on_their_lengths};
+pub use physics::{
+    Lint, dependent_constraints, negative_inertia, physics_lints, ropes_depend_on_their_lengths,
+    ropes_pull_along_their_lengths,
+};
 use resolve::{Lowerer, Place, declare_names};
 use rules::{check_constraints, check_counts, check_forces, check_kinetic, required_constraints, required_sections};
 use sample::check_sample;

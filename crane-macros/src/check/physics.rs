@@ -93,32 +93,12 @@ const DEPENDENT: f64 = 1e-8;
 /// Without this the run stops at its first step with a Jacobian whose
 /// multipliers are not unique.
 pub fn dependent_constraints(model: &Model, kernels: &Kernels) -> Option<syn::Error> {
-    let (m, n) = (model.m(), model.n());
-    let params: Vec<f64> = model
-        .params
-        .iter()
-        .map(|p| model.arena.eval(p.value, &|_| f64::NAN))
-        .collect();
-    let mut rng = 0x2545_f491_4f6c_dd1d_u64;
+    let m = model.m();
     // per constraint: at every point tried it was dependent, and on which
     let mut dependent = vec![true; m];
     let mut on = vec![vec![false; m]; m];
     let mut points = 0;
-    for _ in 0..TRIALS {
-        // coordinates in +-[0.3, 1.7]: away from zero, where lengths and
-        // angles of real cranes are, and of either sign
-        let q: Vec<f64> = (0..n)
-            .map(|_| {
-                let (a, b) = (next_uniform(&mut rng), next_uniform(&mut rng));
-                let magnitude = 0.3 + 1.4 * a;
-                if b < 0.25 { -magnitude } else { magnitude }
-            })
-            .collect();
-        let env = |s: Sym| match s {
-            Sym::Coord(i) => q[i as usize],
-            Sym::Param(i) => params[i as usize],
-            _ => f64::NAN,
-        };
+    for env in configurations(model) {
         let rows: Vec<Vec<f64>> = (kernels.jacobian.iter())
             .map(|row| row.iter().map(|&e| model.arena.eval(e, &env)).collect())
             .collect();
@@ -163,6 +143,73 @@ pub fn dependent_constraints(model: &Model, kernels: &Kernels) -> Option<syn::Er
         )
     };
     Some(syn::Error::new(name.span(), message))
+}
+
+/// [`TRIALS`] pseudo-random configurations (the same ones at every
+/// compilation), each as the values of the symbols: coordinates in
+/// `+-[0.3, 1.7]` (away from zero, where lengths and angles of real cranes
+/// are, and of either sign), parameters at their defaults.
+fn configurations(model: &Model) -> impl Iterator<Item = impl Fn(Sym) -> f64> {
+    let n = model.n();
+    let params: Vec<f64> = model
+        .params
+        .iter()
+        .map(|p| model.arena.eval(p.value, &|_| f64::NAN))
+        .collect();
+    let mut rng = 0x2545_f491_4f6c_dd1d_u64;
+    (0..TRIALS).map(move |_| {
+        let q: Vec<f64> = (0..n)
+            .map(|_| {
+                let (a, b) = (next_uniform(&mut rng), next_uniform(&mut rng));
+                let magnitude = 0.3 + 1.4 * a;
+                if b < 0.25 { -magnitude } else { magnitude }
+            })
+            .collect();
+        let params = params.clone();
+        move |s: Sym| match s {
+            Sym::Coord(i) => q[i as usize],
+            Sym::Param(i) => params[i as usize],
+            _ => f64::NAN,
+        }
+    })
+}
+
+/// A rope's length must be its length: the constraint loosens (or
+/// tightens) as the length grows, the same way at every configuration where
+/// the length is positive, since it relates the length to the distance
+/// between the rope's ends. A length along which the constraint changes
+/// either way (a trolley's position `s` in `0.5*((x - s)^2 + z^2 - L^2)`
+/// marked `#[rope(N = s)]`) gives `-lambda dg/ds`, a horizontal force, as
+/// the rope's tension: an error at the rope's tension name.
+pub fn ropes_pull_along_their_lengths(decl: &Declaration, model: &Model, kernels: &Kernels) -> Option<syn::Error> {
+    let constraints = &decl.sections.constraints.as_ref()?.body;
+    let declared = constraints.iter().filter_map(|c| c.rope.as_ref().map(|r| (c, r)));
+    for (((constraint, rope), (_, lowered)), &along) in declared.zip(model.ropes()).zip(&kernels.rope_along) {
+        // the signs of dg/dL where L > 0
+        let (mut loosens, mut tightens) = (false, false);
+        for env in configurations(model) {
+            let (length, rate) = (model.arena.eval(lowered.length, &env), model.arena.eval(along, &env));
+            if length > 0.0 && rate.is_finite() {
+                loosens |= rate < 0.0;
+                tightens |= rate > 0.0;
+            }
+        }
+        if loosens && tightens {
+            let length = &rope.length;
+            return Some(syn::Error::new(
+                rope.tension.span(),
+                format!(
+                    "`{length}` is not the length of rope `{}`: constraint `{}` grows with it at some \
+                     configurations and shrinks at others, so `-lambda dg/d{length}` is no rope's pull; a rope's \
+                     length is what its winch pays out (or a sling's length), and its constraint relates it to \
+                     the distance between the rope's ends, e.g. `0.5*((x - s)^2 + z^2 - L^2)` with \
+                     `#[rope(N = L)]`",
+                    rope.tension, constraint.name
+                ),
+            ));
+        }
+    }
+    None
 }
 
 /// The coefficients `c` with `row = sum_j c_j rows[j]` when `row` is such a
