@@ -55,7 +55,7 @@ use nalgebra::{DMatrix, DVector, SVector};
 use crate::driver::record;
 use crate::error::Error;
 use crate::init;
-use crate::linsolve::DenseSolver;
+use crate::linsolve::{DenseSolver, Triangular};
 use crate::minimal::degenerate;
 use crate::model::{CraneModel, DummyDerivatives, NoDummyDerivatives, VisitDummyDerivatives};
 use crate::newton::{NonlinearSystem, normalised_residual};
@@ -90,6 +90,8 @@ pub struct DummyDerivative<H, Tr, const N: usize, const M: usize, const A: usize
     blocks: Vec<Range<usize>>,
     /// The jets of the last accepted step.
     last: DVector<f64>,
+    /// Solve the linear systems whole, not stage by stage.
+    whole: bool,
 }
 
 impl<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> DummyDerivative<H, Tr, N, M, A, J>
@@ -118,7 +120,44 @@ where
             slots,
             blocks: vec![Range { start: 0, end: J }],
             last: DVector::zeros(J),
+            whole: false,
         }
+    }
+
+    /// The same problem with its Newton matrices solved whole (one LU of
+    /// all `J` unknowns), not stage by stage: the check of
+    /// [`stages`](Self::stages), for tests.
+    pub fn solved_whole(mut self) -> Self {
+        self.whole = true;
+        self
+    }
+
+    /// The stages of the system (Pryce's): the `k`-th derivative of
+    /// equation `i`, differentiated `d_i` times, is in stage `k - d_i`, the
+    /// `l`-th jet of an unknown with offset `c_j` in stage `l - c_j`; an
+    /// equation of a stage involves the jets of that stage and of earlier
+    /// ones only (`c_j - d_i` bounds the derivative of unknown `j` in
+    /// equation `i`), so the Jacobian is block lower triangular, its
+    /// diagonal blocks square blocks of Pryce's system Jacobian. `None` for
+    /// a crane without a structure, or one whose counts do not match.
+    pub fn stages() -> Option<Triangular> {
+        let structure = <H::Target as CraneModel<N, M, A>>::STRUCTURE?;
+        let offsets = <H::Target as DummyDerivatives<N, M, A, J>>::OFFSETS;
+        let stage = |offset: u8| (0..=offset).map(move |k| i32::from(k) - i32::from(offset));
+        let rows: Vec<i32> = structure
+            .equations
+            .get(..N + M)?
+            .iter()
+            .flat_map(|&d| stage(d))
+            .collect();
+        let cols: Vec<i32> = (0..N + M + A)
+            .filter(|j| !(Self::P..N).contains(j))
+            .map(|j| offsets.get(j).copied())
+            .collect::<Option<Vec<u8>>>()?
+            .into_iter()
+            .flat_map(stage)
+            .collect();
+        (rows.len() == J && cols.len() == J).then(|| Triangular::from_stages(&rows, &cols))?
     }
 
     /// The load path.
@@ -203,6 +242,12 @@ where
 
     fn blocks(&self) -> &[Range<usize>] {
         &self.blocks
+    }
+
+    /// Stage by stage ([`stages`](Self::stages)) unless
+    /// [`solved_whole`](Self::solved_whole).
+    fn triangular(&self) -> Option<Triangular> {
+        if self.whole { None } else { Self::stages() }
     }
 }
 

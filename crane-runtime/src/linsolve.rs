@@ -4,7 +4,12 @@
 //! LU with partial pivoting; when the pivots say the matrix is singular to
 //! working precision (the paper's degenerate starts, see docs/numerics.md) the
 //! solver takes the minimum-norm least-squares step instead, the regularised
-//! `min |J dz - r|^2 + eps^2 |dz|^2` by Householder QR.
+//! `min |J dz - r|^2 + eps^2 |dz|^2` by Householder QR. A matrix with a known
+//! block lower triangular form ([`Triangular`]) is solved block by block,
+//! each diagonal block factored on its own (the dummy-derivative system's
+//! stages: a 26 x 26 LU becomes four of at most 10 x 10 on navy-planar).
+
+use std::ops::Range;
 
 use nalgebra::{DMatrix, DVector};
 
@@ -35,6 +40,146 @@ pub struct Singular {
     pub pivot_ratio: f64,
 }
 
+/// The block lower triangular form of a square matrix: with its rows and
+/// columns reordered (`rows[k]`, `cols[k]`: the original index of the
+/// `k`-th), every entry above the square diagonal blocks is zero, so
+/// `J x = b` is solved one block after another, each with the blocks
+/// before it known.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Triangular {
+    rows: Vec<usize>,
+    cols: Vec<usize>,
+    blocks: Vec<Range<usize>>,
+}
+
+impl Triangular {
+    /// The form that orders rows and columns by stage (each stable in
+    /// index within its stage): `row_stage[i]`, `col_stage[j]` the stage of
+    /// row `i` and column `j`, where a row depends only on the columns of
+    /// its stage and of earlier (smaller) ones. `None` when the counts
+    /// differ or a stage has not as many rows as columns.
+    ///
+    /// ```
+    /// use crane_runtime::linsolve::Triangular;
+    /// // rows 0, 2 in stage 0, row 1 in stage -1; columns likewise
+    /// let form = Triangular::from_stages(&[0, -1, 0], &[-1, 0, 0]).unwrap();
+    /// assert_eq!(form.block_sizes().collect::<Vec<_>>(), [1, 2]);
+    /// assert!(Triangular::from_stages(&[0, 0], &[0, -1]).is_none());
+    /// ```
+    pub fn from_stages(row_stage: &[i32], col_stage: &[i32]) -> Option<Self> {
+        if row_stage.len() != col_stage.len() {
+            return None;
+        }
+        let mut stages: Vec<i32> = row_stage.to_vec();
+        stages.sort_unstable();
+        stages.dedup();
+        let (mut rows, mut cols, mut blocks) = (Vec::new(), Vec::new(), Vec::new());
+        for stage in stages {
+            let start = rows.len();
+            rows.extend((0..row_stage.len()).filter(|&i| row_stage[i] == stage));
+            cols.extend((0..col_stage.len()).filter(|&j| col_stage[j] == stage));
+            if rows.len() != cols.len() {
+                return None;
+            }
+            blocks.push(start..rows.len());
+        }
+        (cols.len() == col_stage.len()).then_some(Self { rows, cols, blocks })
+    }
+
+    /// The sizes of the diagonal blocks, in the order they are solved.
+    pub fn block_sizes(&self) -> impl Iterator<Item = usize> + '_ {
+        self.blocks.iter().map(|b| b.len())
+    }
+
+    /// The largest entry of `jac` above the diagonal blocks, in magnitude
+    /// (0 for a matrix of this form).
+    pub fn largest_above(&self, jac: &DMatrix<f64>) -> f64 {
+        let mut largest = 0.0f64;
+        for block in &self.blocks {
+            for &row in &self.rows[block.clone()] {
+                for &col in &self.cols[block.end..] {
+                    largest = largest.max(jac[(row, col)].abs());
+                }
+            }
+        }
+        largest
+    }
+}
+
+/// A solver per diagonal block of a [`Triangular`] form, and its workspace.
+#[derive(Debug, Clone)]
+struct BlockSolver {
+    form: Triangular,
+    solvers: Vec<DenseSolver>,
+    matrices: Vec<DMatrix<f64>>,
+    rhs: Vec<DVector<f64>>,
+    /// The solution in the form's column order.
+    x: DVector<f64>,
+}
+
+impl BlockSolver {
+    fn new(form: Triangular, equilibrate: bool) -> Self {
+        let sizes: Vec<usize> = form.block_sizes().collect();
+        Self {
+            solvers: (sizes.iter())
+                .map(|&n| {
+                    if equilibrate {
+                        DenseSolver::equilibrated(n)
+                    } else {
+                        DenseSolver::new(n)
+                    }
+                })
+                .collect(),
+            matrices: sizes.iter().map(|&n| DMatrix::zeros(n, n)).collect(),
+            rhs: sizes.iter().map(|&n| DVector::zeros(n)).collect(),
+            x: DVector::zeros(form.rows.len()),
+            form,
+        }
+    }
+
+    /// Solve `jac x = b` block by block (`b` becomes `x`), each block's
+    /// scales found anew (`rescale`) or kept from the last solve; `false`
+    /// (and `b` untouched) when a diagonal block is singular to working
+    /// precision.
+    fn solve(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
+        let form = &self.form;
+        let n = jac.nrows();
+        let entries = jac.as_slice(); // by columns
+        for (k, block) in form.blocks.iter().enumerate() {
+            let (matrix, rhs) = (&mut self.matrices[k], &mut self.rhs[k]);
+            let rows = &form.rows[block.clone()];
+            for (value, &row) in rhs.iter_mut().zip(rows) {
+                *value = b[row];
+            }
+            // the blocks before, known: each row's terms in column order
+            for (&col, &x) in form.cols[..block.start].iter().zip(self.x.iter()) {
+                let column = &entries[col * n..(col + 1) * n];
+                for (value, &row) in rhs.iter_mut().zip(rows) {
+                    *value -= column[row] * x;
+                }
+            }
+            for (target, &col) in matrix
+                .as_mut_slice()
+                .chunks_exact_mut(block.len())
+                .zip(&form.cols[block.clone()])
+            {
+                let column = &entries[col * n..(col + 1) * n];
+                for (t, &row) in target.iter_mut().zip(rows) {
+                    *t = column[row];
+                }
+            }
+            if !self.solvers[k].solve_lu(matrix, rhs, rescale) {
+                return false;
+            }
+            self.x.rows_mut(block.start, block.len()).copy_from(rhs);
+        }
+        for (&col, &x) in form.cols.iter().zip(self.x.iter()) {
+            b[col] = x;
+        }
+        true
+    }
+}
+
 /// Workspace for solving `J x = b` with `J` square of a fixed size.
 #[derive(Debug, Clone)]
 pub struct DenseSolver {
@@ -53,6 +198,11 @@ pub struct DenseSolver {
     pivot_ratio: f64,
     /// Take the minimum-norm step whatever the pivots.
     hold: bool,
+    /// The blocks of a block lower triangular matrix, if it is one.
+    blocks: Option<Box<BlockSolver>>,
+    /// Whether the scales are the last `solve`'s (not when its blocks
+    /// solved it).
+    scales_found: bool,
 }
 
 impl DenseSolver {
@@ -70,7 +220,22 @@ impl DenseSolver {
             scaled: DMatrix::zeros(0, 0),
             pivot_ratio: f64::NAN,
             hold: false,
+            blocks: None,
+            scales_found: false,
         }
+    }
+
+    /// Solve every matrix as one of the block lower triangular `form` (of
+    /// this solver's size), block by block; a matrix one of whose diagonal
+    /// blocks is singular to working precision is solved whole as before,
+    /// and so is every matrix while [`set_hold`](Self::set_hold) is on.
+    pub fn set_triangular(&mut self, form: Triangular) {
+        self.blocks = Some(Box::new(BlockSolver::new(form, self.equilibrate)));
+    }
+
+    /// The form [`set_triangular`](Self::set_triangular) set, if any.
+    pub fn triangular(&self) -> Option<&Triangular> {
+        self.blocks.as_ref().map(|b| &b.form)
     }
 
     /// Workspace that first equilibrates each matrix: columns, then rows,
@@ -99,8 +264,13 @@ impl DenseSolver {
 
     /// Solve `jac x = b` in place (`b` becomes `x`). `jac` is left unchanged.
     pub fn solve(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
+        if self.solve_blocks(jac, b, true) {
+            self.scales_found = false;
+            return Ok(SolveKind::Lu);
+        }
         if self.equilibrate {
             self.find_scales(jac);
+            self.scales_found = true;
         }
         self.solve_scaled(jac, b)
     }
@@ -110,7 +280,50 @@ impl DenseSolver {
     /// have matrices of the same sizes as its first, and finding the factors
     /// costs a tenth of a minimal step).
     pub fn solve_with_last_scales(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
+        if self.solve_blocks(jac, b, false) {
+            return Ok(SolveKind::Lu);
+        }
+        if self.equilibrate && !self.scales_found {
+            // the last solve was by blocks: the whole matrix has no scales yet
+            self.find_scales(jac);
+            self.scales_found = true;
+        }
         self.solve_scaled(jac, b)
+    }
+
+    /// The block-by-block solve of a [`Triangular`] matrix, if the solver
+    /// has a form, does not hold, and no diagonal block is singular.
+    fn solve_blocks(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
+        match self.blocks.as_mut() {
+            Some(blocks) if !self.hold => blocks.solve(jac, b, rescale),
+            _ => false,
+        }
+    }
+
+    /// LU alone (no minimum-norm step): `false` when `jac` is singular to
+    /// working precision (then `b` is spoilt); the scales found anew
+    /// (`rescale`) or kept.
+    fn solve_lu(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
+        if !self.equilibrate {
+            self.lu.copy_from(jac);
+            return self.factor_and_solve_in_lu(b).is_some();
+        }
+        if rescale {
+            self.find_scales(jac);
+        }
+        let mut lu = std::mem::take(&mut self.lu);
+        self.write_scaled(jac, &mut lu);
+        self.lu = lu;
+        for (x, row) in b.iter_mut().zip(&self.row_scale) {
+            *x *= row;
+        }
+        if self.factor_and_solve_in_lu(b).is_none() {
+            return false;
+        }
+        for (x, col) in b.iter_mut().zip(&self.col_scale) {
+            *x *= col;
+        }
+        true
     }
 
     /// `|jac^-1|_1`, the largest column sum of the inverse, from one LU of
@@ -325,11 +538,11 @@ fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize]) -> f64 {
     let (mut smallest, mut largest) = (f64::INFINITY, 0.0f64);
     for k in 0..n {
         // pivot search in column k
-        let column = a.column(k);
+        let column = &a.as_slice()[k * n..(k + 1) * n];
         let mut p = k;
         let mut best = column[k].abs();
-        for i in (k + 1)..n {
-            let v = column[i].abs();
+        for (i, v) in column.iter().enumerate().skip(k + 1) {
+            let v = v.abs();
             if v > best {
                 best = v;
                 p = i;
@@ -347,16 +560,19 @@ fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize]) -> f64 {
         if p != k {
             a.swap_rows(k, p);
         }
-        let inv = 1.0 / a[(k, k)];
-        for i in (k + 1)..n {
-            a[(i, k)] *= inv;
+        // the matrix by columns: column j is data[j n .. (j + 1) n]
+        let data = a.as_mut_slice();
+        let inv = 1.0 / data[k * n + k];
+        for x in &mut data[k * n + k + 1..(k + 1) * n] {
+            *x *= inv;
         }
-        for j in (k + 1)..n {
-            let akj = a[(k, j)];
+        let (left, right) = data.split_at_mut((k + 1) * n);
+        let multipliers = &left[k * n + k + 1..];
+        for column in right.chunks_exact_mut(n) {
+            let akj = column[k];
             if akj != 0.0 {
-                for i in (k + 1)..n {
-                    let lik = a[(i, k)];
-                    a[(i, j)] -= lik * akj;
+                for (x, &lik) in column[k + 1..].iter_mut().zip(multipliers) {
+                    *x -= lik * akj;
                 }
             }
         }
@@ -370,19 +586,20 @@ fn lu_solve(lu: &DMatrix<f64>, pivots: &[usize], b: &mut DVector<f64>) {
     for k in 0..n {
         b.swap_rows(k, pivots[k]);
     }
+    let (data, x) = (lu.as_slice(), b.as_mut_slice());
     for j in 0..n {
-        let bj = b[j];
+        let bj = x[j];
         if bj != 0.0 {
-            for i in (j + 1)..n {
-                b[i] -= lu[(i, j)] * bj;
+            for (xi, &l) in x[j + 1..].iter_mut().zip(&data[j * n + j + 1..(j + 1) * n]) {
+                *xi -= l * bj;
             }
         }
     }
     for j in (0..n).rev() {
-        b[j] /= lu[(j, j)];
-        let bj = b[j];
-        for i in 0..j {
-            b[i] -= lu[(i, j)] * bj;
+        x[j] /= data[j * n + j];
+        let bj = x[j];
+        for (xi, &u) in x[..j].iter_mut().zip(&data[j * n..j * n + j]) {
+            *xi -= u * bj;
         }
     }
 }

@@ -8,7 +8,7 @@ use std::ops::Range;
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::linsolve::{DenseSolver, SolveKind};
+use crate::linsolve::{DenseSolver, SolveKind, Triangular};
 
 /// A square nonlinear system `r(z) = 0`.
 pub trait NonlinearSystem {
@@ -23,6 +23,13 @@ pub trait NonlinearSystem {
     /// Blocks of unknowns that each get their own relative stopping test
     /// (e.g. coordinates, scaled inputs, scaled multipliers).
     fn blocks(&self) -> &[Range<usize>];
+
+    /// The block lower triangular form of the Jacobian, if it has one
+    /// whatever `z` (then the linear solves take it block by block); `None`
+    /// (the default): a dense Jacobian.
+    fn triangular(&self) -> Option<Triangular> {
+        None
+    }
 }
 
 /// The residual normalised row by row, `max_i |r_i| / max(floor(i), sum_j
@@ -38,16 +45,28 @@ pub fn normalised_residual(
     z: &DVector<f64>,
     floor: impl Fn(usize) -> f64,
 ) -> f64 {
+    // row sums in column order over chunks of rows (the matrix is stored by
+    // columns): each row's sum adds its terms in the order j = 0, 1, ...
+    const CHUNK: usize = 32;
+    let (rows, entries) = (jac.nrows(), jac.as_slice());
     let mut normalised = 0.0f64;
-    for i in 0..r.len() {
-        let scale = (0..z.len())
-            .map(|j| (jac[(i, j)] * z[j]).abs())
-            .sum::<f64>()
-            .max(floor(i));
-        if scale > 0.0 {
-            normalised = normalised.max(r[i].abs() / scale);
-        } else {
-            normalised = normalised.max(r[i].abs());
+    for first in (0..r.len()).step_by(CHUNK) {
+        let len = CHUNK.min(r.len() - first);
+        let mut sums = [0.0f64; CHUNK];
+        for (j, &zj) in z.iter().enumerate() {
+            let column = &entries[j * rows + first..j * rows + first + len];
+            for (sum, &entry) in sums.iter_mut().zip(column) {
+                *sum += (entry * zj).abs();
+            }
+        }
+        for (k, &sum) in sums[..len].iter().enumerate() {
+            let i = first + k;
+            let scale = sum.max(floor(i));
+            if scale > 0.0 {
+                normalised = normalised.max(r[i].abs() / scale);
+            } else {
+                normalised = normalised.max(r[i].abs());
+            }
         }
     }
     normalised
@@ -172,6 +191,17 @@ impl Newton {
     /// falling at most [`HELD_RESIDUAL`] times the residual tolerance.
     pub fn set_hold(&mut self, hold: bool) {
         self.solver.set_hold(hold);
+    }
+
+    /// Solve the linear systems of every iteration as ones of the block
+    /// lower triangular `form` ([`DenseSolver::set_triangular`]).
+    pub fn set_triangular(&mut self, form: Triangular) {
+        self.solver.set_triangular(form);
+    }
+
+    /// The linear solver's form, if any.
+    pub fn triangular(&self) -> Option<&Triangular> {
+        self.solver.triangular()
     }
 
     /// The tolerances in use.

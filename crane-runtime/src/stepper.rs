@@ -177,11 +177,14 @@ where
         let mut z = DVector::zeros(dim);
         let at = problem.start(start, dt, &mut z)?;
         let history = History::new(*options.scheme(), at.y0, at.v0, at.at_rest);
-        let newton = if P::EQUILIBRATED {
+        let mut newton = if P::EQUILIBRATED {
             Newton::equilibrated(dim, *options.newton())
         } else {
             Newton::new(dim, *options.newton())
         };
+        if let Some(form) = problem.triangular() {
+            newton.set_triangular(form);
+        }
         Ok(Self {
             problem,
             history,
