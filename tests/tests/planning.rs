@@ -236,3 +236,43 @@ fn limits_that_do_not_bind_before_the_runs_fail_are_an_error() {
         other => panic!("expected RunFailsFirst, got {:?}", other.map(|f| f.duration)),
     }
 }
+
+/// A parameter far from the crane's default moves the start far from
+/// `p0`: the double pendulum's sling of 2.5 m instead of 2 m leaves its
+/// hook 0.5 m off, where Newton from `p0` does not find the static
+/// equilibrium; continuation in the parameters does, and it is the one at
+/// rest by hand: everything straight below the trolley, the hook `l_s`
+/// above the load at (0, -6), the hoist rope as long as the hook is deep.
+/// A sweep over the sling's length then runs every point it used to fail.
+#[test]
+fn a_start_far_from_p0_is_found_by_continuation_in_the_parameters() {
+    use crane_models::double_pendulum::Description;
+    use crane_runtime::CraneModel;
+    let default = Case::<Description, 6, 2, 2>::maneuver().unwrap();
+    let mut model = *default.model();
+    model.set_parameter("l_s", 2.5).unwrap();
+    let case =
+        Case::<Description, 6, 2, 2>::from_parts(model, default.path().clone(), default.p0.clone(), default.tf());
+    let direct = crane_runtime::init::static_equilibrium(&model, case.path(), 0.0, &case.p0);
+    assert!(
+        matches!(direct, Err(crane_runtime::Error::EquilibriumNotFound { .. })),
+        "{direct:?}"
+    );
+    let start = case.consistent_start(0.0).unwrap();
+    // q = [s, L, xh, zh, x, z]; at rest, to Newton's tolerance (1e-11 of
+    // each block's size)
+    let expected = [0.0, 3.5, 0.0, -3.5, 0.0, -6.0];
+    for (q, e) in start.q.iter().zip(expected) {
+        assert!((q - e).abs() < 1e-9, "{:?}", start.q);
+    }
+    let params = vec![("l_s".to_string(), vec![1.5, 2.5, 3.0])];
+    let points = sweep(&default, &params, &[], &Limits::default(), &Settings::default(), &|| {});
+    for p in &points {
+        assert!(
+            p.evaluation.error.is_none(),
+            "l_s = {:?}: {:?}",
+            p.values,
+            p.evaluation.error
+        );
+    }
+}
