@@ -301,8 +301,8 @@ impl DenseSolver {
     }
 
     /// LU alone (no minimum-norm step): `false` when `jac` is singular to
-    /// working precision (then `b` is spoilt); the scales found anew
-    /// (`rescale`) or kept.
+    /// working precision (then `b` is left as it was, scaled by the rows
+    /// when equilibrating); the scales found anew (`rescale`) or kept.
     fn solve_lu(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
         if !self.equilibrate {
             self.lu.copy_from(jac);
@@ -390,42 +390,26 @@ impl DenseSolver {
         }
     }
 
+    /// LU (with the scales of the last [`find_scales`](Self::find_scales)
+    /// when equilibrating) and the solve; the minimum-norm step (of the
+    /// scaled system when equilibrating) when the matrix is singular to
+    /// working precision.
     fn solve_scaled(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
+        if self.solve_lu(jac, b, false) {
+            return Ok(SolveKind::Lu);
+        }
         if !self.equilibrate {
-            self.lu.copy_from(jac);
-            return self.factor_and_solve(jac, b);
+            return self.min_norm(jac, b);
         }
-        let mut lu = std::mem::take(&mut self.lu);
-        self.write_scaled(jac, &mut lu);
-        self.lu = lu;
-        for (x, row) in b.iter_mut().zip(&self.row_scale) {
-            *x *= row;
-        }
-        let outcome = match self.factor_and_solve_in_lu(b) {
-            Some(kind) => Ok(kind),
-            None => {
-                // singular to working precision: the minimum-norm step of the
-                // scaled system
-                let mut scaled = std::mem::take(&mut self.scaled);
-                self.write_scaled(jac, &mut scaled);
-                let outcome = self.min_norm(&scaled, b);
-                self.scaled = scaled;
-                outcome
-            }
-        };
+        // `b` is scaled by the rows, as the LU left it
+        let mut scaled = std::mem::take(&mut self.scaled);
+        self.write_scaled(jac, &mut scaled);
+        let outcome = self.min_norm(&scaled, b);
+        self.scaled = scaled;
         for (x, col) in b.iter_mut().zip(&self.col_scale) {
             *x *= col;
         }
         outcome
-    }
-
-    /// Factor `self.lu` (a copy of `jac`) and solve; the minimum-norm step
-    /// of `jac` when it is singular to working precision.
-    fn factor_and_solve(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
-        match self.factor_and_solve_in_lu(b) {
-            Some(kind) => Ok(kind),
-            None => self.min_norm(jac, b),
-        }
     }
 
     /// LU of `self.lu` in place and the solve, or `None` (with the pivot

@@ -522,20 +522,12 @@ fn run(
     let cranes = Cranes::of_module(module)?;
     let (file, overrides) = job(dt, tf, scheme, formulation, scenario, parameters, limits)?;
     let request = replay_request(replay, plant, feedback, settle)?;
-    let name = model.to_string();
-    let data = py
-        .detach(move || {
-            (cranes.run)(
-                &name,
-                RunJob {
-                    file,
-                    overrides,
-                    replay: request,
-                },
-            )
-        })
-        .ok_or_else(|| unknown_model(&cranes, model))?
-        .map_err(CraneError::new_err)?;
+    let job = RunJob {
+        file,
+        overrides,
+        replay: request,
+    };
+    let data = visit_detached(py, &cranes, cranes.run, model, job)?;
     let widths = [
         data.coordinates.len(),
         data.inputs.len(),
@@ -642,6 +634,21 @@ fn job(
             .map_err(|e: crane_runtime::scheme::UnknownScheme| CraneError::new_err(e.to_string()))?,
     };
     Ok((file, overrides))
+}
+
+/// `job` on the crane `model` by `visit`, one of the registry's functions
+/// in [`Cranes`], with the GIL released; a model the registry does not have,
+/// or the job's failure, as `CraneError`.
+fn visit_detached<J: Send, O: Send>(
+    py: Python<'_>,
+    cranes: &Cranes,
+    visit: fn(&str, J) -> Option<Result<O, String>>,
+    model: &str,
+    job: J,
+) -> PyResult<O> {
+    py.detach(|| visit(model, job))
+        .ok_or_else(|| unknown_model(cranes, model))?
+        .map_err(CraneError::new_err)
 }
 
 /// The error for a model the registry does not have.

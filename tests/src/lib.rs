@@ -5,6 +5,7 @@ pub mod counting;
 pub mod floor;
 pub mod handwritten;
 pub mod kit;
+pub mod stages;
 
 #[cfg(test)]
 mod navy_planar_reference;

@@ -356,3 +356,15 @@ fn a_rope_that_pushes_all_along_points_at_gravity() {
     assert!(summary.ropes[0].min_tension > 0.0);
     assert!(study::audit(&summary).is_empty());
 }
+
+/// The hook crane's reduced system (path order 6) solved stage by stage as
+/// whole, as the built-ins' are (`tests/tests/stages.rs`).
+#[test]
+fn a_user_s_crane_of_path_order_6_is_solved_stage_by_stage_as_whole() {
+    use crane_models::registry::Visit;
+    let c = crane_tests::stages::OnCrane.visit::<Hook, 6, 2, 2>().unwrap();
+    crane_tests::stages::check(&c);
+    assert_eq!(c.steps, 800);
+    // 22 jets of 8 unknowns in five stages: an LU of at most 8 x 8 each
+    assert_eq!(c.blocks, [3, 3, 6, 6, 8]);
+}

@@ -158,8 +158,6 @@ impl Visit for Sweep<'_> {
             .iter()
             .map(|p| range("--param", p))
             .collect::<Result<Vec<_>, _>>()?;
-        plan::check_grid::<C::Model, N, M, A>(&params, &self.durations)
-            .map_err(|e| CliError::Planning(e.to_string()))?;
         grid(
             &case,
             &params,
@@ -386,7 +384,8 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     Ok(())
 }
 
-/// The grid in parallel, sweep.csv and (two swept quantities) a heat map.
+/// The grid, checked first ([`plan::check_grid`]), in parallel; sweep.csv and
+/// (two swept quantities) a heat map.
 fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
     params: &[(String, Vec<f64>)],
@@ -397,8 +396,9 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     quiet: bool,
 ) -> Result<(), CliError> {
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
+    let count =
+        plan::check_grid::<C::Model, N, M, A>(params, durations).map_err(|e| CliError::Planning(e.to_string()))?;
     let spec = case.path().spec();
-    let count = params.iter().map(|(_, v)| v.len()).product::<usize>() * durations.len().max(1);
     let bar = (!quiet && std::io::IsTerminal::is_terminal(&std::io::stdout())).then(|| {
         let bar = indicatif::ProgressBar::new(count as u64);
         if let Ok(style) = indicatif::ProgressStyle::with_template("sweep [{bar:40}] {pos}/{len} points, {eta} left") {

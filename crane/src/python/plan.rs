@@ -7,29 +7,16 @@
 use std::time::Instant;
 
 use crane_cli::scenario::{self, Overrides, ScenarioFile};
-use crane_models::Crane;
 use crane_models::plan::{self, Column, Limits, Settings};
 use crane_models::registry::Visit;
 use crane_models::study::convergence::{DTS, reference_inputs, study_against};
+use crane_models::{Case, Crane};
 use crane_runtime::CraneModel;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyModule};
 
-use super::{Columns, CraneError, Cranes, job, json_dict, numbers, scenario_of, unknown_model};
-
-/// The limits of a planning call for crane `C`: the scenario's `[limits]`
-/// with the `limits` keyword's (both by input name), the `min_tension`
-/// floors; every other rope taut.
-fn limits<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    scenario_limits: &[(usize, f64)],
-    min_tension: &[(String, f64)],
-) -> Result<Limits, String> {
-    Limits::by_name::<C::Model, N, M, A>(scenario_limits, &[], min_tension).map_err(|e| match e {
-        plan::PlanError::TensionFloor(message) => format!("min_tension: {message}"),
-        other => format!("limits: {other}"),
-    })
-}
+use super::{Columns, CraneError, Cranes, job, json_dict, numbers, visit_detached};
 
 /// The scenario and the planner's settings from the keywords.
 struct PlanInputs {
@@ -49,19 +36,30 @@ impl PlanInputs {
         dt: Option<f64>,
         tolerance: Option<f64>,
     ) -> PyResult<Self> {
-        let mut file = scenario_of(scenario)?;
-        file.parameters.extend(numbers("parameters", parameters)?);
-        file.limits.extend(numbers("limits", limits)?);
-        let scheme = scheme
-            .map(str::parse)
-            .transpose()
-            .map_err(|e: crane_runtime::scheme::UnknownScheme| CraneError::new_err(e.to_string()))?;
-        let settings = Settings::with(dt, scheme, tolerance).map_err(|e| CraneError::new_err(e.to_string()))?;
+        let (file, overrides) = job(None, None, scheme, None, scenario, parameters, limits)?;
+        let settings =
+            Settings::with(dt, overrides.scheme, tolerance).map_err(|e| CraneError::new_err(e.to_string()))?;
         Ok(Self {
             file,
             min_tension: numbers("min_tension", min_tension)?.into_iter().collect(),
             settings,
         })
+    }
+
+    /// The case of crane `C` and its limits: the scenario's `[limits]`
+    /// with the `limits` keyword's (both by input name), the `min_tension`
+    /// floors; every other rope taut.
+    fn case_and_limits<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+        &self,
+    ) -> Result<(Case<C, N, M, A>, Limits), String> {
+        let (case, run) =
+            scenario::build::<C, N, M, A>(Some(&self.file), &Overrides::default()).map_err(|e| e.to_string())?;
+        let limits =
+            Limits::by_name::<C::Model, N, M, A>(&run.limits, &[], &self.min_tension).map_err(|e| match e {
+                plan::PlanError::TensionFloor(message) => format!("min_tension: {message}"),
+                other => format!("limits: {other}"),
+            })?;
+        Ok((case, limits))
     }
 }
 
@@ -78,14 +76,8 @@ pub(super) struct FastestData {
 impl Visit for FastestJob {
     type Output = Result<FastestData, String>;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
-        let PlanInputs {
-            file,
-            min_tension,
-            settings,
-        } = self.0;
-        let (case, run) =
-            scenario::build::<C, N, M, A>(Some(&file), &Overrides::default()).map_err(|e| e.to_string())?;
-        let limits = limits::<C, N, M, A>(&run.limits, &min_tension)?;
+        let (case, limits) = self.0.case_and_limits::<C, N, M, A>()?;
+        let settings = self.0.settings;
         let clock = Instant::now();
         let best = plan::fastest(&case, &limits, &settings).map_err(|e| e.to_string())?;
         let report = best.report::<C>(&settings, clock.elapsed().as_secs_f64());
@@ -128,11 +120,7 @@ pub(super) fn fastest<'py>(
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
     let inputs = PlanInputs::new(scenario, parameters, limits, min_tension, scheme, dt, tolerance)?;
-    let name = model.to_string();
-    let data = py
-        .detach(move || (cranes.fastest)(&name, FastestJob(inputs)))
-        .ok_or_else(|| unknown_model(&cranes, model))?
-        .map_err(CraneError::new_err)?;
+    let data = visit_detached(py, &cranes, cranes.fastest, model, FastestJob(inputs))?;
     let dict = json_dict(py, data.report, "report")?;
     dict.set_item("run", data.run.into_dict(py, data.widths)?)?;
     Ok(dict)
@@ -148,14 +136,8 @@ pub(super) struct SweepJob {
 impl Visit for SweepJob {
     type Output = Result<Vec<(String, Column)>, String>;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
-        let PlanInputs {
-            file,
-            min_tension,
-            settings,
-        } = self.inputs;
-        let (case, run) =
-            scenario::build::<C, N, M, A>(Some(&file), &Overrides::default()).map_err(|e| e.to_string())?;
-        let limits = limits::<C, N, M, A>(&run.limits, &min_tension)?;
+        let (case, limits) = self.inputs.case_and_limits::<C, N, M, A>()?;
+        let settings = self.inputs.settings;
         plan::check_grid::<C::Model, N, M, A>(&self.grid, &self.durations).map_err(|e| format!("grid: {e}"))?;
         let points = plan::sweep(&case, &self.grid, &self.durations, &limits, &settings, &|| {});
         let names: Vec<String> = self.grid.iter().map(|(name, _)| name.clone()).collect();
@@ -209,16 +191,12 @@ pub(super) fn sweep<'py>(
             "nothing to sweep: give grid={name: values} or at least two durations",
         ));
     }
-    let name = model.to_string();
     let job = SweepJob {
         inputs,
         grid: swept,
         durations,
     };
-    let columns = py
-        .detach(move || (cranes.sweep)(&name, job))
-        .ok_or_else(|| unknown_model(&cranes, model))?
-        .map_err(CraneError::new_err)?;
+    let columns = visit_detached(py, &cranes, cranes.sweep, model, job)?;
     let dict = PyDict::new(py);
     for (name, column) in columns {
         match column {
@@ -304,12 +282,8 @@ pub(super) fn convergence<'py>(
     if dts.is_empty() {
         return Err(CraneError::new_err("dts: give at least one time step"));
     }
-    let name = model.to_string();
     let job = ConvergenceJob { file, overrides, dts };
-    let data = py
-        .detach(move || (cranes.convergence)(&name, job))
-        .ok_or_else(|| unknown_model(&cranes, model))?
-        .map_err(CraneError::new_err)?;
+    let data = visit_detached(py, &cranes, cranes.convergence, model, job)?;
     let dict = PyDict::new(py);
     dict.set_item("dt", PyArray1::from_vec(py, data.dt))?;
     dict.set_item("e_u", PyArray1::from_vec(py, data.e_u))?;

@@ -1,0 +1,124 @@
+//! The reduced (dummy-derivative) system solved stage by stage against the
+//! same system solved whole (one LU of all the jets): a run of a crane's
+//! default move both ways, with what they measured ([`Comparison`]) and the
+//! checks ([`check`]).
+
+use crane_models::registry::Visit;
+use crane_models::{Case, Crane};
+use crane_runtime::dummy_derivative::DummyDerivative;
+use crane_runtime::model::{DummyDerivatives, VisitDummyDerivatives};
+use crane_runtime::nalgebra::{DMatrix, SVector};
+use crane_runtime::{CraneModel, Options, Stepper, Trajectory};
+
+/// What a run stage by stage and the same run solved whole measured.
+#[derive(Debug)]
+pub struct Comparison {
+    /// The crane's name.
+    pub crane: &'static str,
+    /// The diagonal blocks' sizes, in the order they are solved.
+    pub blocks: Vec<usize>,
+    /// The largest Jacobian entry above the blocks over the run's states.
+    pub above: f64,
+    /// The largest difference of an input between the two runs, relative
+    /// to the largest input.
+    pub difference: f64,
+    /// Newton iterations of the two runs.
+    pub iterations: (usize, usize),
+    pub steps: usize,
+}
+
+/// The comparison on one case, with the reduced system's size `J`.
+struct Compare<'a, C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> {
+    case: &'a Case<C, N, M, A>,
+}
+
+impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> VisitDummyDerivatives<C::Model, N, M, A>
+    for Compare<'_, C, N, M, A>
+{
+    type Output = Comparison;
+    fn visit<const J: usize>(self) -> Comparison
+    where
+        C::Model: DummyDerivatives<N, M, A, J>,
+    {
+        let (model, path) = (self.case.model(), self.case.path());
+        let form = DummyDerivative::<&C::Model, &crane_models::Path<A>, N, M, A, J>::stages()
+            .unwrap_or_else(|| panic!("{}: no stages", C::NAME));
+        let start = self.case.start().unwrap();
+        let options = Options::new(0.01, self.case.tf()).unwrap();
+        let mut staged = Stepper::new(DummyDerivative::new(model, path), &start, &options).unwrap();
+        let mut whole = Stepper::new(DummyDerivative::new(model, path).solved_whole(), &start, &options).unwrap();
+        let (mut above, mut difference, mut largest) = (0.0f64, 0.0f64, 0.0f64);
+        let mut iterations = (0, 0);
+        let mut steps = 0;
+        while staged.state().t < self.case.tf() - 1e-9 {
+            iterations.0 += staged.step().unwrap().iterations;
+            iterations.1 += whole.step().unwrap().iterations;
+            steps += 1;
+            let (a, b) = (staged.state(), whole.state());
+            largest = largest.max(b.u.amax());
+            difference = difference.max((a.u - b.u).amax());
+            // the Jacobian at the step's path derivatives and at jets whose
+            // low orders are the state's and whose higher ones are made up:
+            // the blocks above are zero whatever the jets
+            let t = a.t;
+            let gamma: Vec<SVector<f64, A>> = (0..=<C::Model as DummyDerivatives<N, M, A, J>>::PATH_ORDER)
+                .map(|k| path.derivative(t, k))
+                .collect();
+            let jets = SVector::<f64, J>::from_fn(|i, _| 1.0 + (i as f64 * 0.37 + t).sin());
+            let (_, jacobian) = model.dummy_derivative_system(&gamma, &jets);
+            above = above.max(form.largest_above(&DMatrix::from_column_slice(J, J, jacobian.as_slice())));
+        }
+        Comparison {
+            crane: C::NAME,
+            blocks: form.block_sizes().collect(),
+            above,
+            difference: difference / largest,
+            iterations,
+            steps,
+        }
+    }
+}
+
+/// The comparison on a crane's default move, if it has a reduced system
+/// (a [`Visit`] of a registry, or `OnCrane.visit::<C, N, M, A>()`).
+pub struct OnCrane;
+
+impl Visit for OnCrane {
+    type Output = Option<Comparison>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let case = Case::<C, N, M, A>::maneuver().unwrap();
+        <C::Model as CraneModel<N, M, A>>::visit_dummy_derivatives(Compare { case: &case }).ok()
+    }
+}
+
+/// Bound on the difference of the inputs: both runs stop Newton at a
+/// normalised residual of 1e-13 or a correction below 1e-10 relative, the
+/// error left of the order of its square; what differs is the round-off of
+/// the linear solves (an LU of each stage against one of the whole), a few
+/// ulps of the condition (below 10 equilibrated on the double pendulum).
+pub const ROUND_OFF: f64 = 1e-12;
+
+/// The comparison's checks: no entry above the blocks, the inputs the
+/// same to [`ROUND_OFF`], as many Newton iterations (within 1 %), more than
+/// one stage.
+pub fn check(c: &Comparison) {
+    println!("{c:?}");
+    assert_eq!(c.above, 0.0, "{}: entries above the stages' blocks", c.crane);
+    assert!(
+        c.difference <= ROUND_OFF,
+        "{}: stage by stage and whole differ by {:e}",
+        c.crane,
+        c.difference
+    );
+    // Newton ends when its correction or residual reaches round-off, which
+    // the two solves reach in their own last digits: a step may take one
+    // iteration more or less, not more than 1 in 100 of the run's
+    let (staged, whole) = (c.iterations.0 as f64, c.iterations.1 as f64);
+    assert!(
+        (staged - whole).abs() <= 0.01 * whole,
+        "{}: Newton iterations {:?}",
+        c.crane,
+        c.iterations
+    );
+    assert!(c.blocks.len() >= 2, "{}: one stage", c.crane);
+}
