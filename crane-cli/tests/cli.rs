@@ -656,6 +656,48 @@ fn a_slack_rope_is_reported_and_strict_fails_on_it() {
     );
 }
 
+/// A scenario that changes the crane or the path's start but gives no `p0`
+/// runs from the static equilibrium found from the crane's default `p0`
+/// (a guess made for the default manoeuvre); a `p0` the user gave is never
+/// moved (`inconsistent_start_names_the_constraint`).
+#[test]
+fn a_changed_crane_without_p0_starts_from_its_equilibrium() {
+    let dir = tempfile::tempdir().unwrap();
+    // the double pendulum's sling of 2.1 m instead of 2 m: at rest the hook
+    // hangs 2.1 m above the load at (0, -6), the hoist rope vertical below
+    // the trolley at s = 0; q = [s, L, xh, zh, x, z]
+    let file = dir.path().join("sling.toml");
+    std::fs::write(&file, "[parameters]\nl_s = 2.1\n").unwrap();
+    let out = run_ok(
+        "double-pendulum",
+        &["--scenario", file.to_str().unwrap()],
+        dir.path(),
+        "sling",
+    );
+    let (header, rows) = results(&out);
+    assert_eq!(header[1..7], ["s", "L", "xh", "zh", "x", "z"]);
+    for (q, expected) in rows[0][1..7].iter().zip([0.0, 3.9, 0.0, -3.9, 0.0, -6.0]) {
+        // Newton's tolerance on the start, 1e-11 of the block's size
+        assert!((q - expected).abs() < 1e-9, "{:?}", &rows[0][1..7]);
+    }
+    // navy-planar's load starting at (1, -10): the pulley hangs above it
+    let file = dir.path().join("start.toml");
+    std::fs::write(&file, "start = [1, -10]\n").unwrap();
+    let out = run_ok(
+        "navy-planar",
+        &["--scenario", file.to_str().unwrap()],
+        dir.path(),
+        "start",
+    );
+    let (header, rows) = results(&out);
+    assert_eq!(header[4..8], ["x0", "z0", "x", "z"]);
+    assert!(
+        (rows[0][4] - 1.0).abs() < 1e-9 && rows[0][6] == 1.0 && rows[0][7] == -10.0,
+        "{:?}",
+        rows[0]
+    );
+}
+
 /// A run that fails in its middle (an unreachable end point: Newton fails at
 /// t = 0.23 s) leaves no results.csv and no partial files.
 #[test]
@@ -1411,7 +1453,7 @@ fn an_interrupted_run_leaves_no_partial_file() {
 
 /// Messages that name the real problem: a start beyond 1e100 m (whose
 /// squares overflow), a scenario start that the crane's default `p0` does
-/// not fit (said so, with that p0), `--min-tension` with an example of a
+/// not fit and no equilibrium from it does (said so, with that p0), `--min-tension` with an example of a
 /// rope, a step below a microsecond.
 #[test]
 fn messages_name_the_real_problem() {
@@ -1429,10 +1471,16 @@ fn messages_name_the_real_problem() {
             "`start` and `end`",
         ],
     );
+    // the boom does not reach a load 100 m out: no equilibrium from the default p0
     expect_error(
         "navy-planar",
-        "start = [1, -10]\n",
-        &["constraint `hoist`", "the scenario gives no `p0`", "default p0 = [8.66"],
+        "start = [100, -10]\n",
+        &[
+            "constraint `hoist`",
+            "the scenario gives no `p0`",
+            "default p0 = [8.66",
+            "no static equilibrium was found from it",
+        ],
     );
     let result = crane(&["fastest", "navy-planar", "--min-tension", "garbage"]);
     assert!(String::from_utf8_lossy(&result.stderr).contains("e.g. --min-tension N1=10"));

@@ -7,7 +7,7 @@
 //! here); `do_step(t, h)` advances `h / dt` internal steps and writes the
 //! outputs, without allocating.
 
-use crane_models::study::audit::{Finding, Severity, StepAudit};
+use crane_models::study::audit::{Finding, Severity, StepAudit, unresolved_ramp};
 use crane_models::study::{Formulation, RunSpec, SpecError};
 use crane_models::{Crane, Path, PathSpec, Profile};
 use crane_runtime::options::steps_in;
@@ -321,7 +321,12 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                     .map_err(|e| e.to_string())?,
             )),
         };
-        Ok(Run::new(C::NAME, stepper, external))
+        let (run, mut findings) = Run::new(C::NAME, stepper, external);
+        // a built-in move's ramps the step cannot resolve (an external
+        // target has no ramps known in advance)
+        let ramp = spec.path.profile.tau0().filter(|_| run.external.is_none());
+        findings.extend(unresolved_ramp(ramp, settings.dt));
+        Ok((run, findings))
     }
 
     /// Copy the last state into the outputs.

@@ -416,6 +416,39 @@ fn a_regular_run_reports_nothing() {
     assert_eq!(status, [0]);
 }
 
+/// A three-phase move whose ramps (tau0 = 0.01 s) are shorter than four
+/// steps of dt = 0.01 s: the steps miss the inputs' peaks inside them
+/// (`crane run` warns the same): `fmi2ExitInitializationMode` says so as a
+/// warning, with the step that resolves them, and `status` reads 1; with
+/// tau0 = 0.04 s nothing is said.
+#[test]
+fn ramps_shorter_than_the_step_resolves_are_a_warning_at_the_start() {
+    type D = navy_planar::Description;
+    for (tau0, warned) in [(0.01, true), (0.04, false)] {
+        let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
+        fmu.setup_experiment(0.0).unwrap();
+        fmu.enter_initialization_mode().unwrap();
+        fmu.set_integer(&[1], &[1]).unwrap();
+        fmu.set_real(&[vr::<D, 7, 3, 2>(Role::Tau0)], &[tau0]).unwrap();
+        fmu.exit_initialization_mode().unwrap();
+        let warning = fmu.take_warning();
+        let mut status = [9];
+        fmu.get_integer(&[2], &mut status).unwrap();
+        if warned {
+            let warning = warning.expect("a warning at the start");
+            assert!(
+                warning.contains("the path's ramps last tau0 = 0.01 s, fewer than 4 steps of dt = 0.01 s")
+                    && warning.contains("take dt <= 0.0025 s"),
+                "{warning}"
+            );
+            assert_eq!(status, [1]);
+        } else {
+            assert_eq!(warning, None);
+            assert_eq!(status, [0]);
+        }
+    }
+}
+
 /// The load moved to straight below the boom tip (end (0, -5)) leaves rope
 /// N1 without tension and Newton's matrix singular at almost every step
 /// (`crane run` warns: 378 of 400 steps): once more than 1 % of the steps

@@ -64,7 +64,7 @@ use crate::problem::{Accepted, Follow, Predictor, Problem, Start};
 use crate::redundant::Redundant;
 use crate::scheme::{Method, StepFormula};
 use crate::solution::{Solution, State};
-use crate::stepper::{Advance, StepReport, Stepper};
+use crate::stepper::{Advance, StepReport, Stepper, nearly_slack};
 use crate::trajectory::Trajectory;
 
 /// The highest derivative of the load path a [`PathJets`] holds.
@@ -367,9 +367,14 @@ where
 /// with a slack rope, where the jets of the massless pulley are fixed only
 /// to a few digits: equilibrated condition number 3.5e13 on `navy-3d` at
 /// t = 0.01 s) where it does not, the step is the redundant problem's
-/// (eqs. 22a-d on `S`), whose history follows every reduced step exactly;
-/// [`fallback_steps`](Self::fallback_steps) counts them. A step does not
-/// allocate.
+/// (eqs. 22a-d on `S`), whose history follows every reduced step exactly.
+/// From a state where a rope carries less than
+/// [`HOLD_TENSION_RATIO`](crate::stepper::HOLD_TENSION_RATIO) of the largest
+/// tension (after the first step), the step is the redundant problem's
+/// too, which holds the directions such a rope leaves free (the slow move;
+/// the reduced system's minimum-norm steps wander off there).
+/// [`fallback_steps`](Self::fallback_steps) counts these steps. A step does
+/// not allocate.
 pub struct DummyDerivativeStepper<H, Tr, S: Method, const N: usize, const M: usize, const A: usize, const J: usize> {
     reduced: Stepper<DummyDerivative<H, Tr, N, M, A, J>, S, N, M, A, 0>,
     fallback: Stepper<Redundant<H, Tr, N, M, A>, S, N, M, A, N>,
@@ -431,6 +436,14 @@ where
 
     /// Advance one step to `t` (`t_n + dt`) with the given path derivatives.
     pub fn step_to(&mut self, t: f64, jets: &PathJets<A>) -> Result<StepReport, Error> {
+        // a rope nearly without tension leaves directions the reduced system
+        // does not fix (its matrix singular to working precision, and its
+        // minimum-norm steps wander off: inputs of 3e49 N m on a 1000 s
+        // move); the redundant step holds them where the last step left
+        // them, as a run in eqs. (22a-d) does (the first step is never held)
+        if self.reduced.steps() > 0 && nearly_slack(self.reduced.problem().model(), self.reduced.state()) {
+            return self.fallback_step(t, jets, None);
+        }
         match self.reduced.step_to(t, jets) {
             Ok(report) => {
                 self.fallback.follow(self.reduced.state())?;
@@ -439,14 +452,20 @@ where
             Err(error @ (Error::NewtonNotConverged { .. } | Error::SingularIterationMatrix { .. }))
                 if degenerate(self.reduced.problem().model(), self.reduced.state()) =>
             {
-                let target = [jets[0], jets[1], jets[2]];
-                let report = self.fallback.step_to(t, &target).map_err(|_| error)?;
-                self.reduced.follow(self.fallback.state())?;
-                self.fallback_steps += 1;
-                Ok(report)
+                self.fallback_step(t, jets, Some(error))
             }
             Err(error) => Err(error),
         }
+    }
+
+    /// The step to `t` in eqs. (22a-d), which the reduced stepper follows;
+    /// where it fails, `error` (the reduced step's) stands, if given.
+    fn fallback_step(&mut self, t: f64, jets: &PathJets<A>, error: Option<Error>) -> Result<StepReport, Error> {
+        let target = [jets[0], jets[1], jets[2]];
+        let report = self.fallback.step_to(t, &target).map_err(|e| error.unwrap_or(e))?;
+        self.reduced.follow(self.fallback.state())?;
+        self.fallback_steps += 1;
+        Ok(report)
     }
 }
 

@@ -334,17 +334,30 @@ where
                 residual: r.amax(),
             });
         }
-        // backtracking on the residual norm
+        // backtracking on the residual norm, each equation in the units of
+        // its row of the equilibrated Jacobian: unscaled, the force balance
+        // (1e4 N) outweighs the constraints (m^2), and the second-order
+        // force residual of a full step (the multipliers' change times the
+        // coordinates') refused steps that solve the constraints; a sling
+        // 0.1 m longer than p0 assumes then took 51 steps of 1/32 each
+        let scaled_norm = |r: &DVector<f64>| {
+            r.iter()
+                .zip(&row_scale)
+                .map(|(x, s)| (x * s).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        };
+        let current = scaled_norm(&r);
         let mut alpha = 1.0;
         loop {
             let trial = &z + &step * alpha;
             let (r_trial, jac_trial) = assemble(&trial);
-            let trial_norm = r_trial.norm();
-            if trial_norm.is_finite() && (trial_norm < norm || alpha < 1e-3) {
+            let trial_norm = scaled_norm(&r_trial);
+            if trial_norm.is_finite() && (trial_norm < current || alpha < 1e-3) {
                 z = trial;
+                norm = r_trial.norm();
                 r = r_trial;
                 jac = jac_trial;
-                norm = trial_norm;
                 break;
             }
             if alpha < 1e-3 {

@@ -55,7 +55,10 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     pub shortest_ropes: Vec<(f64, f64)>,
     /// Of a minimal-coordinate run: how many of the first steps were taken
     /// in redundant coordinates because a rope was (nearly) slack at the
-    /// start ([`crate::minimal::DEGENERATE_TENSION_RATIO`]); 0 otherwise.
+    /// start ([`crate::minimal::DEGENERATE_TENSION_RATIO`]). Of a reduced
+    /// (dummy-derivative) run: how many steps were, at a degenerate start
+    /// or wherever a rope was nearly slack, not only the first ones. 0
+    /// otherwise.
     pub redundant_start_steps: usize,
 }
 

@@ -718,7 +718,7 @@ impl Visit for StepperJob {
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
         let (case, settings) =
             scenario::build::<C, N, M, A>(Some(&self.file), &self.overrides).map_err(|e| e.to_string())?;
-        let start = case.start().map_err(|e| e.to_string())?;
+        let start = case.run_start().map_err(|e| e.to_string())?;
         let options = Options::new(settings.dt, case.tf())
             .map_err(|e| e.to_string())?
             .with_scheme(settings.scheme);

@@ -5,7 +5,7 @@
 use std::marker::PhantomData;
 
 use crane_runtime::trajectory::TrajectoryError;
-use crane_runtime::{CraneModel, Error, Options, Solution, State, dummy_derivative, init, redundant};
+use crane_runtime::{Error, Options, Solution, State, dummy_derivative, init, redundant};
 
 use crate::crane::Crane;
 use crate::path::Path;
@@ -98,62 +98,31 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
         init::check_start(&self.model, &self.path, self.t0(), &self.p0, None)
     }
 
+    /// The start of a run: `p0` itself where it is consistent
+    /// ([`start`](Self::start)). Where it is not and `p0` is the crane's
+    /// default (a scenario that gives none keeps it: a guess made for the
+    /// default parameters and path), the static equilibrium found from it
+    /// ([`consistent_start`](Self::consistent_start)); where that fails
+    /// too, the first error stands. A `p0` of the user's own is the start, never moved.
+    pub fn run_start(&self) -> Result<State<N, M, A>, Error> {
+        match self.start() {
+            Err(e @ Error::InconsistentStart { .. }) if self.p0 == C::maneuver().p0 => {
+                self.consistent_start(self.t0()).map_err(|_| e)
+            }
+            other => other,
+        }
+    }
+
     /// The consistent start at `t0` from `p0` at rest: `p0` itself where
     /// it is consistent ([`start`](Self::start) at the path's start), else
-    /// the static equilibrium from it (parameters or a later start time
-    /// moved it), found by continuation in the parameters where Newton
-    /// does not find it from `p0` ([`equilibrium_by_continuation`](Self::equilibrium_by_continuation)).
+    /// the static equilibrium found from it (parameters or a later start
+    /// time moved it: the double pendulum's sling of 0.5 m instead of 2 m
+    /// moves its hook 1.5 m).
     pub fn consistent_start(&self, t0: f64) -> Result<State<N, M, A>, Error> {
         init::check_start(&self.model, &self.path, t0, &self.p0, None).or_else(|e| match e {
             Error::StartOutOfRange { .. } => Err(e),
-            _ => self.equilibrium_by_continuation(t0),
+            _ => init::static_equilibrium(&self.model, &self.path, t0, &self.p0),
         })
-    }
-
-    /// The static equilibrium at `t0` from `p0`; where Newton does not
-    /// find it from there (parameters far from the crane's defaults, for
-    /// which `p0` is given: the double pendulum's sling of 2.1 m instead of
-    /// 2 m leaves its hook 0.1 m off), by continuation: the parameters
-    /// moved from the defaults to the case's in steps (halved where one
-    /// fails, at least 1/1024 of the way), each equilibrium found from the
-    /// last. The first error stands when the continuation fails too.
-    pub fn equilibrium_by_continuation(&self, t0: f64) -> Result<State<N, M, A>, Error> {
-        let direct = init::static_equilibrium(&self.model, &self.path, t0, &self.p0);
-        if !matches!(direct, Err(Error::EquilibriumNotFound { .. })) {
-            return direct;
-        }
-        let names = <C::Model as CraneModel<N, M, A>>::INFO.parameters;
-        let (from, to) = (C::Model::default().parameter_values(), self.model.parameter_values());
-        if from == to || from.len() != names.len() || to.len() != names.len() {
-            return direct;
-        }
-        let at = |s: f64| -> Option<C::Model> {
-            let mut model = self.model.clone();
-            for ((name, a), b) in names.iter().zip(&from).zip(&to) {
-                model
-                    .set_parameter(name, if s >= 1.0 { *b } else { a + (b - a) * s })
-                    .ok()?;
-            }
-            Some(model)
-        };
-        let (mut s, mut h, mut guess) = (0.0f64, 0.125f64, self.p0.clone());
-        while s < 1.0 {
-            let next = (s + h).min(1.0);
-            let found = at(next).and_then(|model| init::static_equilibrium(&model, &self.path, t0, &guess).ok());
-            match found {
-                Some(state) => {
-                    guess = state.q.iter().take(N - A).copied().collect();
-                    s = next;
-                    h *= 2.0;
-                    if s >= 1.0 {
-                        return Ok(state);
-                    }
-                }
-                None if h > 1.0 / 1024.0 => h /= 2.0,
-                None => return direct,
-            }
-        }
-        direct
     }
 
     /// The analytical reference at `t`, if the crane has one.

@@ -95,7 +95,7 @@ fn time<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     }
     let name = C::NAME;
     let (formulation, scheme, dt) = (settings.formulation, settings.scheme, settings.dt);
-    let start = case.start()?;
+    let start = case.run_start()?;
     let options = Options::new(dt, case.tf())?.with_scheme(scheme);
     let run = || -> Result<Solution<N, M, A>, CliError> {
         Ok(if study {

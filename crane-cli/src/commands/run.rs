@@ -122,7 +122,8 @@ pub fn run<R: Registry>(tool: &Tool<R>, args: RunArgs) -> Result<(), CliError> {
 }
 
 /// An inconsistent start the scenario did not give: say that the crane's
-/// default `p0` was checked, and how to give one.
+/// default `p0` was checked (and no equilibrium found from it), and how to
+/// give one.
 fn default_start_hint<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     error: StudyError,
     file: Option<&ScenarioFile>,
@@ -132,7 +133,7 @@ fn default_start_hint<C: Crane<N, M, A>, const N: usize, const M: usize, const A
         StudyError::Runtime(e @ crane_runtime::Error::InconsistentStart { .. }) if defaulted => {
             CliError::Planning(format!(
                 "{e}; the scenario gives no `p0`, so the start was checked with {}'s default p0 = {:?}, which \
-                 fits its default manoeuvre: give `p0` for this start",
+                 fits its default manoeuvre, and no static equilibrium was found from it: give `p0` for this start",
                 C::NAME,
                 C::maneuver().p0
             ))
@@ -190,7 +191,14 @@ impl Visit for Run<'_> {
             summary.wall_time_s * 1e3,
             solution.mean_newton_iterations()
         )?;
-        if solution.redundant_start_steps > 0 {
+        if solution.redundant_start_steps > 0 && settings.formulation == Formulation::DummyDerivative {
+            say!(
+                "  {} steps in redundant coordinates (eqs. 22a-d): a rope carried under {:e} of the largest tension \
+                 (a nearly slack rope leaves directions the reduced system does not fix)",
+                solution.redundant_start_steps,
+                crane_runtime::minimal::DEGENERATE_TENSION_RATIO
+            )?;
+        } else if solution.redundant_start_steps > 0 {
             let k = solution.redundant_start_steps;
             say!(
                 "  first {k} steps (to t = {} s) in redundant coordinates: a rope carries under {:e} of the largest \

@@ -398,9 +398,7 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
             steps: summary.steps,
         });
     }
-    if let Some(tau0) = summary.ramp.filter(|&tau0| !(tau0 >= RAMP_STEPS * summary.dt)) {
-        out.push(Finding::UnresolvedRamp { tau0, dt: summary.dt });
-    }
+    out.extend(unresolved_ramp(summary.ramp, summary.dt));
     if let Some(spike) = summary.input_spike.as_ref().filter(|s| s.spiky()) {
         out.push(Finding::InputSpike {
             model: summary.model.clone(),
@@ -614,6 +612,23 @@ impl StepAudit {
         }
         None
     }
+}
+
+/// [`Finding::UnresolvedRamp`] where a three-phase path's ramps, lasting
+/// `tau0` (`None`: not a three-phase path), are shorter than
+/// [`RAMP_STEPS`] steps of `dt`: known before the run, so a stepping host
+/// (the FMU) hears it at the start.
+///
+/// ```
+/// use crane_models::study::audit::{Finding, unresolved_ramp};
+///
+/// assert!(matches!(unresolved_ramp(Some(0.01), 0.01), Some(Finding::UnresolvedRamp { .. })));
+/// assert_eq!(unresolved_ramp(Some(0.04), 0.01), None);
+/// assert_eq!(unresolved_ramp(None, 0.01), None);
+/// ```
+pub fn unresolved_ramp(tau0: Option<f64>, dt: f64) -> Option<Finding> {
+    tau0.filter(|&tau0| !(tau0 >= RAMP_STEPS * dt))
+        .map(|tau0| Finding::UnresolvedRamp { tau0, dt })
 }
 
 /// The constraint of `model` farthest from holding at `q`, and its

@@ -76,7 +76,7 @@ pub fn reference_inputs<C: Crane<N, M, A>, const N: usize, const M: usize, const
     if let Some(state) = case.reference(T_ERROR) {
         return Ok((state.u, Reference::Analytical));
     }
-    let start = case.start()?;
+    let start = case.run_start()?;
     let options = Options::new(0.01, T_ERROR)?;
     let reduced = case
         .simulate_dummy_derivative(&start, &options, &mut |_, _| {})
@@ -146,7 +146,7 @@ pub fn study_against<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
     mut observe: impl FnMut(&Row),
 ) -> Result<Vec<Row>, StudyError> {
     check_span(case)?;
-    let start = case.start()?;
+    let start = case.run_start()?;
     let mut rows: Vec<Row> = Vec::new();
     for &dt in dts {
         let options = Options::new(dt, T_ERROR)?.with_scheme(scheme);

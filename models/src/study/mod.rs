@@ -292,7 +292,7 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     settings: &RunSettings,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Outcome<N, M, A>, StudyError> {
-    let start = case.start()?;
+    let start = case.run_start()?;
     let options = Options::new(settings.dt, case.tf())?.with_scheme(settings.scheme);
     let clock = Instant::now();
     let solution = settings.formulation.simulate(case, &start, &options, progress)?;

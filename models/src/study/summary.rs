@@ -97,8 +97,9 @@ pub struct NewtonSummary {
     /// Time steps that took a minimum-norm Newton update on a singular
     /// iteration matrix (at most `steps`).
     pub min_norm_steps: usize,
-    /// Of a minimal run: the first steps taken in redundant coordinates at a
-    /// degenerate start (a rope nearly slack).
+    /// Steps taken in redundant coordinates: of a minimal run, the first
+    /// ones, at a degenerate start (a rope nearly slack); of a reduced run,
+    /// those at a degenerate start or wherever a rope was nearly slack.
     pub redundant_start_steps: usize,
     /// Time steps that held the directions a nearly slack rope leaves free
     /// where the predictor put them (a rope under 1e-11 of the largest
