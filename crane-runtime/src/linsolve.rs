@@ -91,6 +91,12 @@ impl Triangular {
         self.blocks.iter().map(|b| b.len())
     }
 
+    /// The rows and the columns of diagonal block `k`, in the order solved.
+    pub fn block(&self, k: usize) -> Option<(&[usize], &[usize])> {
+        let block = self.blocks.get(k)?.clone();
+        Some((&self.rows[block.clone()], &self.cols[block]))
+    }
+
     /// The largest entry of `jac` above the diagonal blocks, in magnitude
     /// (0 for a matrix of this form).
     pub fn largest_above(&self, jac: &DMatrix<f64>) -> f64 {
@@ -115,6 +121,8 @@ struct BlockSolver {
     rhs: Vec<DVector<f64>>,
     /// The solution in the form's column order.
     x: DVector<f64>,
+    /// Whether each block's solver has found scales of its own.
+    scaled: Vec<bool>,
 }
 
 impl BlockSolver {
@@ -133,6 +141,7 @@ impl BlockSolver {
             matrices: sizes.iter().map(|&n| DMatrix::zeros(n, n)).collect(),
             rhs: sizes.iter().map(|&n| DVector::zeros(n)).collect(),
             x: DVector::zeros(form.rows.len()),
+            scaled: vec![false; sizes.len()],
             form,
         }
     }
@@ -140,38 +149,62 @@ impl BlockSolver {
     /// Solve `jac x = b` block by block (`b` becomes `x`), each block's
     /// scales found anew (`rescale`) or kept from the last solve; `false`
     /// (and `b` untouched) when a diagonal block is singular to working
-    /// precision.
+    /// precision. A block equal, entry for entry, to the one before (in
+    /// Pryce's stages, the system Jacobian's rows and columns of a stage
+    /// and of the next are often the same) is solved with that block's
+    /// factors, not factored again.
     fn solve(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
         let form = &self.form;
         let n = jac.nrows();
         let entries = jac.as_slice(); // by columns
+        let mut factored = 0;
         for (k, block) in form.blocks.iter().enumerate() {
-            let (matrix, rhs) = (&mut self.matrices[k], &mut self.rhs[k]);
             let rows = &form.rows[block.clone()];
-            for (value, &row) in rhs.iter_mut().zip(rows) {
-                *value = b[row];
-            }
-            // the blocks before, known: each row's terms in column order
-            for (&col, &x) in form.cols[..block.start].iter().zip(self.x.iter()) {
-                let column = &entries[col * n..(col + 1) * n];
-                for (value, &row) in rhs.iter_mut().zip(rows) {
-                    *value -= column[row] * x;
+            let cols = &form.cols[block.clone()];
+            // each row less the blocks before it, known: the terms in
+            // column order, summed in a register
+            let known = &form.cols[..block.start];
+            for (value, &row) in self.rhs[k].iter_mut().zip(rows) {
+                let mut sum = b[row];
+                for (&col, &x) in known.iter().zip(self.x.iter()) {
+                    sum -= entries[col * n + row] * x;
                 }
+                *value = sum;
             }
-            for (target, &col) in matrix
-                .as_mut_slice()
-                .chunks_exact_mut(block.len())
-                .zip(&form.cols[block.clone()])
-            {
-                let column = &entries[col * n..(col + 1) * n];
-                for (t, &row) in target.iter_mut().zip(rows) {
-                    *t = column[row];
+            let same = k > 0 && {
+                let before = &self.matrices[k - 1];
+                before.nrows() == rows.len()
+                    && (before.as_slice().chunks_exact(rows.len()).zip(cols)).all(|(column, &col)| {
+                        let column_of_jac = &entries[col * n..(col + 1) * n];
+                        column.iter().zip(rows).all(|(&v, &row)| v == column_of_jac[row])
+                    })
+            };
+            let (done, rest) = self.solvers.split_at_mut(k);
+            let solved = if same {
+                // the matrix of block k - 1, factored by `factored` (that
+                // block's solver, or an earlier one's it reused)
+                self.matrices.swap(k - 1, k);
+                done[factored].solve_factored(&mut self.rhs[k]);
+                true
+            } else {
+                factored = k;
+                let matrix = &mut self.matrices[k];
+                for (target, &col) in matrix.as_mut_slice().chunks_exact_mut(block.len()).zip(cols) {
+                    let column = &entries[col * n..(col + 1) * n];
+                    for (t, &row) in target.iter_mut().zip(rows) {
+                        *t = column[row];
+                    }
                 }
-            }
-            if !self.solvers[k].solve_lu(matrix, rhs, rescale) {
+                // a solver that reused another's factors last time has no
+                // scales of its own yet
+                let rescale = rescale || !self.scaled[k];
+                self.scaled[k] = true;
+                rest[0].solve_lu(matrix, &mut self.rhs[k], rescale)
+            };
+            if !solved {
                 return false;
             }
-            self.x.rows_mut(block.start, block.len()).copy_from(rhs);
+            self.x.rows_mut(block.start, block.len()).copy_from(&self.rhs[k]);
         }
         for (&col, &x) in form.cols.iter().zip(self.x.iter()) {
             b[col] = x;
@@ -203,6 +236,8 @@ pub struct DenseSolver {
     /// Whether the scales are the last `solve`'s (not when its blocks
     /// solved it).
     scales_found: bool,
+    /// LU factorisations by `solve` so far, its blocks' included.
+    factorisations: usize,
 }
 
 impl DenseSolver {
@@ -222,6 +257,7 @@ impl DenseSolver {
             hold: false,
             blocks: None,
             scales_found: false,
+            factorisations: 0,
         }
     }
 
@@ -231,6 +267,17 @@ impl DenseSolver {
     /// and so is every matrix while [`set_hold`](Self::set_hold) is on.
     pub fn set_triangular(&mut self, form: Triangular) {
         self.blocks = Some(Box::new(BlockSolver::new(form, self.equilibrate)));
+    }
+
+    /// LU factorisations the solves so far took: one per matrix solved
+    /// whole, one per diagonal block solved by blocks, none for a block
+    /// equal to the one before (a deterministic cost, for tests).
+    pub fn factorisations(&self) -> usize {
+        self.factorisations
+            + self
+                .blocks
+                .as_ref()
+                .map_or(0, |b| b.solvers.iter().map(|s| s.factorisations).sum())
     }
 
     /// The form [`set_triangular`](Self::set_triangular) set, if any.
@@ -297,6 +344,22 @@ impl DenseSolver {
         match self.blocks.as_mut() {
             Some(blocks) if !self.hold => blocks.solve(jac, b, rescale),
             _ => false,
+        }
+    }
+
+    /// Solve with the factors (and scales) of the last successful
+    /// [`solve_lu`](Self::solve_lu), for a matrix equal to its.
+    fn solve_factored(&self, b: &mut DVector<f64>) {
+        if self.equilibrate {
+            for (x, row) in b.iter_mut().zip(&self.row_scale) {
+                *x *= row;
+            }
+        }
+        lu_solve(&self.lu, &self.pivots, b);
+        if self.equilibrate {
+            for (x, col) in b.iter_mut().zip(&self.col_scale) {
+                *x *= col;
+            }
         }
     }
 
@@ -416,6 +479,7 @@ impl DenseSolver {
     /// ratio kept) when the pivots say singular.
     fn factor_and_solve_in_lu(&mut self, b: &mut DVector<f64>) -> Option<SolveKind> {
         self.pivot_ratio = lu_in_place(&mut self.lu, &mut self.pivots);
+        self.factorisations += 1;
         if !self.hold && self.pivot_ratio.is_finite() && self.pivot_ratio >= SINGULAR_PIVOT_RATIO {
             lu_solve(&self.lu, &self.pivots, b);
             return Some(SolveKind::Lu);

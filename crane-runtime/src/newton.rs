@@ -204,6 +204,12 @@ impl Newton {
         self.solver.triangular()
     }
 
+    /// LU factorisations of the iteration matrices so far
+    /// ([`DenseSolver::factorisations`]).
+    pub fn factorisations(&self) -> usize {
+        self.solver.factorisations()
+    }
+
     /// The tolerances in use.
     pub fn options(&self) -> &NewtonOptions {
         &self.options

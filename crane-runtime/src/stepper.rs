@@ -232,6 +232,12 @@ where
         self.history.method()
     }
 
+    /// LU factorisations of Newton's matrices over the steps so far (a
+    /// deterministic cost: [`DenseSolver::factorisations`](crate::linsolve::DenseSolver::factorisations)).
+    pub fn factorisations(&self) -> usize {
+        self.newton.factorisations()
+    }
+
     /// Steps taken.
     pub fn steps(&self) -> usize {
         self.steps
