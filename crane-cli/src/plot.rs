@@ -59,6 +59,11 @@ fn draw(title: &str, y_label: &str, series: &[Series]) -> Result<String, CliErro
     if !(x_min < x_max) {
         return Err(failed("no finite data to plot".into()));
     }
+    if !(y_max - y_min).is_finite() {
+        return Err(failed(format!(
+            "values from {y_min:e} to {y_max:e} span more than a plot can"
+        )));
+    }
     let pad = ((y_max - y_min) * 0.05).max(1e-9 * y_max.abs().max(1.0));
     let (y_min, y_max) = (y_min - pad, y_max + pad);
     let mut svg = String::new();
@@ -195,7 +200,8 @@ pub fn curves_over_time(title: &str, y_label: &str, curves: &[(&str, Vec<(f64, f
 }
 
 /// Named curves over time with horizontal dashed lines at the `levels`
-/// (e.g. `+-150` for a torque limit), in the colour of their curve.
+/// (e.g. `+-150` for a torque limit), in the colour of their curve; a level
+/// beyond 100 times every curve's largest value is left out.
 pub fn curves_with_levels(
     title: &str,
     y_label: &str,
@@ -218,7 +224,16 @@ pub fn curves_with_levels(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (f, l)| {
             (a.min(f.0), b.max(l.0))
         });
-    for &(c, level) in levels {
+    // a level far beyond every curve (a limit of 1e308) would flatten them
+    // to a line at zero, and its axis span overflow: it is left out
+    let largest = curves
+        .iter()
+        .flat_map(|(_, p)| p.iter().map(|&(_, y)| y.abs()))
+        .fold(0.0, f64::max);
+    for &(c, level) in levels
+        .iter()
+        .filter(|&&(_, level)| level.abs() <= 100.0 * largest.max(1.0))
+    {
         series.push(Series {
             name: format!("{} {level}", curves.get(c).map_or("limit", |c| c.0)),
             points: vec![(span.0, level), (span.1, level)],

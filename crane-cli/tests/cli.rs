@@ -656,6 +656,39 @@ fn a_slack_rope_is_reported_and_strict_fails_on_it() {
     );
 }
 
+/// Numbers at the ends of the range: a limit of 1e308 (its plot's axis
+/// would span more than a double: plotters looped on it) is left out of the
+/// plot and the answer is the tension's; a load of 1e140 kg prints its
+/// peaks in scientific notation, not as 141 digits.
+#[test]
+fn extreme_numbers_neither_hang_nor_print_every_digit() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fastest");
+    let result = crane(&[
+        "fastest",
+        "navy-planar",
+        "--limit",
+        "u2=1e308",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    assert!(out.join("fastest.json").exists());
+    let file = dir.path().join("heavy.toml");
+    std::fs::write(&file, "[parameters]\nm_l = 1e140\n").unwrap();
+    let result = crane(&[
+        "run",
+        "navy-planar",
+        "--scenario",
+        file.to_str().unwrap(),
+        "--out",
+        dir.path().join("heavy").to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(stdout.contains("peak |u2| = 9.810e139 N m"), "{stdout}");
+    assert!(stdout.lines().all(|line| line.len() < 200), "{stdout}");
+}
+
 /// A scenario that changes the crane or the path's start but gives no `p0`
 /// runs from the static equilibrium found from the crane's default `p0`
 /// (a guess made for the default manoeuvre); a `p0` the user gave is never
@@ -1328,7 +1361,11 @@ fn a_rope_of_non_positive_length_is_reported_and_infeasible() {
     assert!(stdout.contains("rope N1 stays taut: min tension 0.000 N"), "{stdout}");
     assert!(!String::from_utf8_lossy(&default.stderr).contains("length"));
     // the paper's path in 2 s: rope N1 swings through zero length on a path
-    // inside the workspace; the run does not blame the workspace alone
+    // inside the workspace (at rest at that point it is 8.3 m long, where
+    // L1 is 8.66 m at the start): the run says the move is too fast, and
+    // a tower crane's likewise (its equilibria along the path once
+    // balanced the move's acceleration too, swung the jib round and blamed
+    // the workspace)
     let fast = crane(&[
         "run",
         "navy-planar",
@@ -1341,7 +1378,24 @@ fn a_rope_of_non_positive_length_is_reported_and_infeasible() {
     let stderr = String::from_utf8_lossy(&fast.stderr);
     assert!(
         stderr.contains("rope N1 of navy-planar (constraint `rope1`) has the length -141.3128 m at t = 0.63 s")
-            && stderr.contains("the path leaves the crane's workspace, or the move is too fast for the crane"),
+            && stderr.contains(
+                "with the load at rest at the same point of the path the rope is 8.3102 m long, so the path is \
+                 inside the crane's workspace and the move is too fast for the crane"
+            ),
+        "{stderr}"
+    );
+    let tower = crane(&[
+        "run",
+        "tower-crane",
+        "--tf",
+        "2",
+        "--quiet",
+        "--out",
+        dir.path().join("tower").to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&tower.stderr);
+    assert!(
+        stderr.contains("the rope is 11.1311 m long, so the path is inside the crane's workspace"),
         "{stderr}"
     );
 }

@@ -278,6 +278,29 @@ impl Seconds {
 /// ```
 pub struct Number(pub f64);
 
+/// A measured value printed with three decimals (`{:.3}`: `43.001`,
+/// `0.000`), in scientific notation with three beyond 1e9 in size
+/// (`2.619e143`, where `{:.3}` prints every digit of the integer part).
+///
+/// ```
+/// use crane_runtime::error::Rounded;
+/// assert_eq!(Rounded(43.0006).to_string(), "43.001");
+/// assert_eq!(Rounded(-2.6186e143).to_string(), "-2.619e143");
+/// assert_eq!(Rounded(f64::INFINITY).to_string(), "inf");
+/// ```
+pub struct Rounded(pub f64);
+
+impl std::fmt::Display for Rounded {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0;
+        if x.is_finite() && x.abs() >= 1e9 {
+            write!(f, "{x:.3e}")
+        } else {
+            write!(f, "{x:.3}")
+        }
+    }
+}
+
 impl std::fmt::Display for Number {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let x = self.0;

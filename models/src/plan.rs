@@ -29,6 +29,7 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crane_runtime::error::{Number, Rounded};
 use crane_runtime::{CraneModel, Options, Scheme, Solution};
 
 use crate::case::Case;
@@ -593,7 +594,13 @@ fn reason<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usi
     }
     match e.bindings::<Mdl, N, M, A>(limits).first() {
         Some(b) if b.excess > b.allowance => {
-            format!("{} = {:.3} against {} at t = {:.3} s", b.name, b.value, b.limit, b.at)
+            format!(
+                "{} = {} against {} at t = {:.3} s",
+                b.name,
+                Rounded(b.value),
+                Number(b.limit),
+                b.at
+            )
         }
         _ => "feasible".into(),
     }

@@ -9,6 +9,7 @@ use crane_models::plan::{self, Limits, MAX_SWEEP_POINTS, Settings};
 use crane_models::registry::{Registry, Visit};
 use crane_models::study::Formulation;
 use crane_models::{Case, Crane};
+use crane_runtime::error::{Number, Rounded};
 use crane_runtime::{CraneModel, Scheme};
 
 use super::{name_values, out_dir};
@@ -352,8 +353,11 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             b.name.clone()
         } else {
             format!(
-                "|{}| <= {} (peak {:.3} at the answer; a faster move exceeds it at t = {:.3} s)",
-                b.name, b.limit, b.value, b.at
+                "|{}| <= {} (peak {} at the answer; a faster move exceeds it at t = {:.3} s)",
+                b.name,
+                Number(b.limit),
+                Rounded(b.value),
+                b.at
             )
         };
         say!(

@@ -9,7 +9,7 @@ use crane_models::study::StudyError;
 use crane_models::study::replay::{FeedbackSpec, ReplayOutcome};
 use crane_models::study::{self, Formulation, ReplayRequest, Summary};
 use crane_models::{Case, Crane};
-use crane_runtime::error::Seconds;
+use crane_runtime::error::{Number, Rounded, Seconds};
 use crane_runtime::{Scheme, State};
 
 use super::{formulation_help, name_values, out_dir, scheme_help};
@@ -329,9 +329,9 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
     let mut lines = Vec::new();
     for p in &summary.peak_torque {
         lines.push(format!(
-            "peak |{}| = {:.3}{} at t = {:.3} s",
+            "peak |{}| = {}{} at t = {:.3} s",
             p.name,
-            p.value.abs(),
+            Rounded(p.value.abs()),
             summary.unit_suffix(&p.name),
             p.t
         ));
@@ -344,18 +344,18 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
     {
         // round-off below the printed digits is no negative tension
         lines.push(format!(
-            "rope {} stays taut: min tension {:.3} N at t = {:.3} s",
+            "rope {} stays taut: min tension {} N at t = {:.3} s",
             r.name,
-            if r.min_tension.abs() < 5e-4 { 0.0 } else { r.min_tension },
+            Rounded(if r.min_tension.abs() < 5e-4 { 0.0 } else { r.min_tension }),
             r.t_min
         ));
     }
     for l in summary.torque_limits.iter().filter(|l| l.first_violation.is_none()) {
         lines.push(format!(
-            "|{}| stays within its limit {}{unit} (peak {:.3}{unit})",
+            "|{}| stays within its limit {}{unit} (peak {}{unit})",
             l.name,
-            l.limit,
-            l.peak,
+            Number(l.limit),
+            Rounded(l.peak),
             unit = summary.unit_suffix(&l.name)
         ));
     }

@@ -22,7 +22,7 @@
 
 use std::fmt;
 
-use crane_runtime::error::Seconds;
+use crane_runtime::error::{Number, Rounded, Seconds};
 use crane_runtime::internal::{RUNAWAY_FACTOR, internal_dynamics};
 use crane_runtime::nalgebra::SVector;
 use crane_runtime::{CraneModel, State};
@@ -283,11 +283,11 @@ impl fmt::Display for Finding {
             },
             Finding::LimitExceeded { limit, unit } => write!(
                 f,
-                "|{}| exceeds its limit {}{unit} first at t = {} s (peak {:.3}{unit})",
+                "|{}| exceeds its limit {}{unit} first at t = {} s (peak {}{unit})",
                 limit.name,
-                limit.limit,
+                Number(limit.limit),
                 Seconds(limit.first_violation.unwrap_or(f64::NAN)),
-                limit.peak
+                Rounded(limit.peak)
             ),
             Finding::InputSpike { model, spike } => write!(
                 f,
