@@ -30,7 +30,11 @@ pub enum CliError {
     },
     #[error("--plant `{0}`: expected NAME=VALUE, e.g. --plant m_l=110")]
     Plant(String),
-    #[error("--settle {0}: the settling window must be a positive number of seconds")]
+    #[error(
+        "--settle {}: the settling window must be a positive number of seconds, at most {}",
+        crane_runtime::error::Number(*.0),
+        crane_models::study::replay::MAX_SETTLE
+    )]
     Settle(f64),
     #[error("the scenario's [plant] table ({0}) applies only to a replay: add --replay")]
     PlantWithoutReplay(String),

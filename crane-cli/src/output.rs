@@ -197,6 +197,15 @@ impl Staged {
     /// Create the temporary file for `name`, registered for the signal
     /// handler in the same critical section; returns its path and handle.
     pub fn create(&mut self, name: &str) -> Result<(PathBuf, fs::File), CliError> {
+        let destination = self.dir.join(name);
+        if let Some(kind) = crane_models::files::not_a_regular_file(&destination) {
+            return Err(CliError::Output {
+                what: destination.display().to_string(),
+                message: format!(
+                    "it exists and is {kind}, which crane does not replace: remove it or choose another --out"
+                ),
+            });
+        }
         let temporary = self.dir.join(format!(".{name}.partial"));
         let mut partials = partials();
         partials.push(temporary.clone());

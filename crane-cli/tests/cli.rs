@@ -18,7 +18,7 @@ fn example(name: &str) -> PathBuf {
 
 /// Run `crane run MODEL --scenario` on `toml`; expect a failure whose message
 /// contains every one of `needles` and no results written.
-fn expect_error(model: &str, toml: &str, needles: &[&str]) {
+fn expect_error(model: &str, toml: &str, needles: &[&str]) -> String {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("scenario.toml");
     std::fs::write(&file, toml).unwrap();
@@ -48,6 +48,7 @@ fn expect_error(model: &str, toml: &str, needles: &[&str]) {
         !out.join("results.csv").exists(),
         "results.csv written despite the error"
     );
+    stderr.into_owned()
 }
 
 #[test]
@@ -656,6 +657,91 @@ fn a_slack_rope_is_reported_and_strict_fails_on_it() {
     );
 }
 
+/// A run's folder holding a symbolic link or a FIFO at an output's name:
+/// refused in one line, the link and its target and the FIFO left as they
+/// were (they were replaced by regular files), as `crane fmu` does.
+#[test]
+fn special_files_in_the_output_folder_are_not_replaced() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("od");
+    std::fs::create_dir(&out).unwrap();
+    let target = dir.path().join("elsewhere.csv");
+    std::fs::write(&target, "mine\n").unwrap();
+    std::os::unix::fs::symlink(&target, out.join("results.csv")).unwrap();
+    let result = crane(&["run", "navy-planar", "--quiet", "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(!result.status.success());
+    assert!(
+        stderr.contains("results.csv: it exists and is a symbolic link, which crane does not replace"),
+        "{stderr}"
+    );
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(
+        std::fs::symlink_metadata(out.join("results.csv"))
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "mine\n");
+    std::fs::remove_file(out.join("results.csv")).unwrap();
+    let fifo = out.join("summary.json");
+    assert!(
+        std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let result = crane(&["run", "navy-planar", "--quiet", "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        stderr.contains("summary.json: it exists and is a device, a FIFO or a socket"),
+        "{stderr}"
+    );
+    assert!(!std::fs::symlink_metadata(&fifo).unwrap().file_type().is_file());
+    assert!(
+        !out.join("results.csv").exists(),
+        "nothing written: the files are committed together"
+    );
+}
+
+/// Messages that name what was given: the default ramps on a move the
+/// command line shortened (it read "scenario: the load path (keys ...)"
+/// with no scenario), an infinite `t1` (it read "must be after `t0`"), a
+/// sweep of one duration ("nothing to sweep" with `--duration` given), a
+/// parameter declared positive out of range (it offered "or be 0", which
+/// the positive check refuses).
+#[test]
+fn messages_name_what_was_given() {
+    let result = crane(&["run", "navy-3d", "--tf", "2"]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(!result.status.success());
+    assert!(
+        stderr.contains("the move lasts 2 s, but its ramps last tau0 = 5 s by default, more than half of it")
+            && stderr.contains("`tau0` <= 1 s")
+            && !stderr.contains("scenario:"),
+        "{stderr}"
+    );
+    expect_error("navy-planar", "t1 = inf\n", &["`t1` must be finite, got inf"]);
+    let result = crane(&["sweep", "navy-planar", "--duration", "5:5:1"]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        stderr.contains("--duration `5:5:1` is one duration, and no --param is given"),
+        "{stderr}"
+    );
+    expect_error(
+        "navy-3d-pulley",
+        "[parameters]\nJ_b = -1e-9\n",
+        &["`parameters.J_b` = -1e-9 must be positive"],
+    );
+    let result = expect_error(
+        "navy-3d-pulley",
+        "[parameters]\nJ_b = 1e-300\n",
+        &["between 1e-150 and 1e150"],
+    );
+    assert!(!result.contains("or be 0"), "{result}");
+}
+
 /// Numbers at the ends of the range: a limit of 1e308 (its plot's axis
 /// would span more than a double: plotters looped on it) is left out of the
 /// plot and the answer is the tension's; a load of 1e140 kg prints its
@@ -1222,7 +1308,8 @@ fn replay_options_without_replay_and_negative_values_are_refused() {
     ] {
         assert!(stderr(args).contains("--replay"), "{args:?}");
     }
-    for settle in ["-5", "0", "inf"] {
+    // 1e308 s ended as "the replay failed: invalid end time tf = inf"
+    for settle in ["-5", "0", "inf", "1e308"] {
         assert!(
             stderr(&["--replay", "--settle", settle]).contains("the settling window must be a positive number"),
             "{settle}"
@@ -2128,7 +2215,7 @@ fn planning_counts_what_the_audit_finds_as_infeasible() {
     assert!(!result.status.success());
     assert!(
         String::from_utf8_lossy(&result.stderr)
-            .contains("no feasible duration up to 640.000 s: coupled-trolley has unstable internal dynamics"),
+            .contains("no feasible duration up to 640.000 s: at the move's own 5 s: coupled-trolley has unstable internal dynamics"),
         "{}",
         String::from_utf8_lossy(&result.stderr)
     );
@@ -2140,7 +2227,7 @@ fn planning_counts_what_the_audit_finds_as_infeasible() {
 /// (LU pivot ratio 0.0e0)"; so is one too small to be told from zero.
 #[test]
 fn a_parameter_beyond_double_precision_is_named() {
-    for (value, shown) in [("1e300", "1e300"), ("-1e200", "-1e200"), ("1e-200", "1e-200")] {
+    for (value, shown) in [("1e300", "1e300"), ("1e-200", "1e-200")] {
         expect_error(
             "navy-planar",
             &format!("[parameters]\nm_l = {value}\n"),
@@ -2150,6 +2237,12 @@ fn a_parameter_beyond_double_precision_is_named() {
             ],
         );
     }
+    // a mass is declared positive: that is said first, whatever the size
+    expect_error(
+        "navy-planar",
+        "[parameters]\nm_l = -1e200\n",
+        &["`parameters.m_l` = -1e200 must be positive"],
+    );
 }
 
 /// Numbers in messages are as short as they read back: `1e300`, not the

@@ -95,23 +95,11 @@ pub fn write_archive(xml: &str, identifier: &str, binary: &[u8], out: &Path) -> 
     if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent).map_err(io(format!("creating {}", parent.display())))?;
     }
-    if let Ok(metadata) = std::fs::symlink_metadata(out) {
-        let kind = metadata.file_type();
-        let what = if kind.is_symlink() {
-            Some("a symbolic link")
-        } else if kind.is_dir() {
-            Some("a folder")
-        } else if !kind.is_file() {
-            Some("a device, a FIFO or a socket")
-        } else {
-            None
-        };
-        if let Some(kind) = what {
-            return Err(PackageError::NotAFile {
-                path: out.to_path_buf(),
-                kind,
-            });
-        }
+    if let Some(kind) = crane_models::files::not_a_regular_file(out) {
+        return Err(PackageError::NotAFile {
+            path: out.to_path_buf(),
+            kind,
+        });
     }
     // a name of this process's own beside the destination: two packagers
     // writing the same FMU at once each rename a whole archive (the last

@@ -99,13 +99,16 @@ pub enum Error {
     /// A model parameter beyond [`PARAMETER_RANGE`](crate::model::PARAMETER_RANGE).
     #[error(
         "parameter `{name}` = {value:e} is beyond what the equations can be evaluated with: |{name}| must lie between \
-         1e-150 and 1e150 (or be 0), where products of a few parameters and coordinates stay finite in double precision"
+         1e-150 and 1e150{}, where products of a few parameters and coordinates stay finite in double precision",
+        if *.may_be_zero { " (or be 0)" } else { "" }
     )]
     ParameterOutOfRange {
         /// Parameter name.
         name: &'static str,
         /// Its value.
         value: f64,
+        /// Whether 0 is a value it may take (not declared `positive`).
+        may_be_zero: bool,
     },
     /// A user-given start violates an equation that a consistent start must satisfy.
     #[error("inconsistent start: {equation} is violated by {residual:.3e} (tolerance {tolerance:.1e})")]

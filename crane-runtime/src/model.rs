@@ -396,20 +396,21 @@ pub fn check_parameters<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize
     model: &Mdl,
 ) -> Result<(), Error> {
     let values = model.parameter_values();
-    for (name, &value) in Mdl::INFO.parameters.iter().zip(&values) {
+    for (k, (name, &value)) in Mdl::INFO.parameters.iter().zip(&values).enumerate() {
         if !value.is_finite() {
             return Err(Error::NonFiniteParameter { name, value });
         }
+        let positive = Mdl::INFO.positive.contains(&k);
+        if positive && !(value > 0.0) {
+            return Err(Error::NonPositiveParameter { name, value });
+        }
         let (smallest, largest) = PARAMETER_RANGE;
         if value != 0.0 && !(smallest..=largest).contains(&value.abs()) {
-            return Err(Error::ParameterOutOfRange { name, value });
-        }
-    }
-    for &k in Mdl::INFO.positive {
-        if let (Some(&name), Some(&value)) = (Mdl::INFO.parameters.get(k), values.get(k))
-            && !(value > 0.0)
-        {
-            return Err(Error::NonPositiveParameter { name, value });
+            return Err(Error::ParameterOutOfRange {
+                name,
+                value,
+                may_be_zero: !positive,
+            });
         }
     }
     let mass = model.mass_matrix::<f64>();

@@ -594,10 +594,11 @@ fn replay_request(
         }
     };
     if let Some(settle) = settle
-        && !(settle > 0.0 && settle.is_finite())
+        && !crane_models::study::replay::valid_settle(settle)
     {
         return Err(CraneError::new_err(format!(
-            "settle = {settle}: the settling window must be a positive number of seconds"
+            "settle = {settle}: the settling window must be a positive number of seconds, at most {}",
+            crane_models::study::replay::MAX_SETTLE
         )));
     }
     Ok(Some(ReplayRequest {

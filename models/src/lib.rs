@@ -26,6 +26,7 @@
 pub mod case;
 pub mod crane;
 pub mod drawing;
+pub mod files;
 pub mod path;
 pub mod plan;
 pub mod registry;

@@ -319,6 +319,7 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         return Err(format!("the run from t = {t0} s to {tf} s is empty"));
     }
     let dt = step_for(span, settings.dt);
+    within_evaluation_steps(span, dt)?;
     let start = case.consistent_start(t0).map_err(|e| e.to_string())?;
     let options = Options::new(dt, tf)
         .map_err(|e| e.to_string())?
@@ -326,6 +327,26 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     crate::study::Formulation::default_for::<C, N, M, A>()
         .simulate(case, &start, &options, &mut |_, _| {})
         .map_err(|e| e.to_string())
+}
+
+/// The most steps a planning evaluation takes: a plan evaluates tens of
+/// runs, each held whole (a million steps of navy-planar take about 2 s and
+/// 0.3 GB; `--dt 1e-6` on its 4 s move grew to 12 GB in the bracket).
+pub const MAX_EVALUATION_STEPS: usize = 1_000_000;
+
+/// Refuse a run of `span` at `dt` longer than [`MAX_EVALUATION_STEPS`].
+fn within_evaluation_steps(span: f64, dt: f64) -> Result<(), String> {
+    let steps = (span / dt).round();
+    if steps > MAX_EVALUATION_STEPS as f64 {
+        return Err(format!(
+            "a run of {} s at dt = {} s is {steps:e} steps, more than planning takes per evaluation \
+             ({MAX_EVALUATION_STEPS:e}: one plan evaluates tens of runs): give dt >= {} s",
+            Number(span),
+            Number(dt),
+            Number(span / MAX_EVALUATION_STEPS as f64)
+        ));
+    }
+    Ok(())
 }
 
 /// The largest step at most `dt` that divides `span` into whole steps, or
@@ -634,6 +655,9 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
         )));
     }
     impulses(case)?;
+    // the move's own duration first: a step too small for it is said so
+    // before the bracket grows
+    within_evaluation_steps(case.tf() - case.t0(), settings.dt).map_err(PlanError::Settings)?;
     let mut evaluations = 0;
     // one evaluation, kept: the last infeasible (`below`) and feasible
     // (`above`, with its run) ones end as the bracket's
@@ -663,6 +687,7 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
             }
         }
         (false, evaluation, _) => {
+            let at_own = reason::<C::Model, N, M, A>(&evaluation, limits);
             let mut below = evaluation;
             let mut lo = own;
             let mut hi = 2.0 * own;
@@ -672,9 +697,18 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
                     break (lo, hi, below, (evaluation, solution));
                 }
                 if hi > 64.0 * own {
+                    let last = reason::<C::Model, N, M, A>(&evaluation, limits);
                     return Err(PlanError::NoFeasibleDuration {
                         duration: hi,
-                        reason: reason::<C::Model, N, M, A>(&evaluation, limits),
+                        reason: if last == at_own {
+                            last
+                        } else {
+                            format!(
+                                "at the move's own {} s: {at_own}; at {} s: {last}",
+                                Number(own),
+                                Number(hi)
+                            )
+                        },
                     });
                 }
                 below = evaluation;

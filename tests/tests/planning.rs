@@ -277,3 +277,28 @@ fn a_start_far_from_p0_is_found_from_it() {
         );
     }
 }
+
+/// A step that makes each evaluation longer than a plan holds is refused
+/// before the first run, with the step that would do: `--dt 1e-6` on
+/// navy-planar's 4 s move (4e6 steps per run) grew to 12 GB in the bracket.
+#[test]
+fn a_step_too_small_for_planning_is_refused_before_any_run() {
+    let case = navy_planar::PaperCase::maneuver().unwrap();
+    let limits = Limits {
+        torque: vec![(1, 150.0)],
+        tension: vec![],
+    };
+    let settings = Settings {
+        dt: 1e-6,
+        ..Settings::default()
+    };
+    let error = fastest(&case, &limits, &settings).expect_err("refused").to_string();
+    assert!(
+        error.contains("a run of 4 s at dt = 1e-6 s is 4e6 steps") && error.contains("give dt >= 4e-6 s"),
+        "{error}"
+    );
+    // an evaluation (a sweep point) says the same for its own run
+    let (evaluation, solution) = evaluate(&case, 4.0, &settings);
+    assert!(solution.is_none());
+    assert!(evaluation.error.unwrap().contains("4e6 steps"));
+}

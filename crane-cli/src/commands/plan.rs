@@ -185,9 +185,13 @@ pub fn sweep<R: Registry>(tool: &Tool<R>, args: SweepArgs) -> Result<(), CliErro
         None => Vec::new(),
     };
     if args.param.is_empty() && durations.len() < 2 {
-        return Err(CliError::Planning(
-            "nothing to sweep: give --param NAME=LOW:HIGH:COUNT or --duration LOW:HIGH:COUNT".into(),
-        ));
+        return Err(CliError::Planning(match args.duration.as_deref() {
+            Some(spec) => format!(
+                "--duration `{spec}` is one duration, and no --param is given: nothing to sweep (give COUNT >= 2, \
+                 or --param NAME=LOW:HIGH:COUNT)"
+            ),
+            None => "nothing to sweep: give --param NAME=LOW:HIGH:COUNT or --duration LOW:HIGH:COUNT".into(),
+        }));
     }
     let job = || {
         let job = Sweep {

@@ -93,7 +93,7 @@ pub fn run<R: Registry>(tool: &Tool<R>, args: RunArgs) -> Result<(), CliError> {
         })
         .transpose()?;
     if let Some(settle) = args.settle
-        && !(settle > 0.0 && settle.is_finite())
+        && !study::replay::valid_settle(settle)
     {
         return Err(CliError::Settle(settle));
     }

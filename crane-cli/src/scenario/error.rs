@@ -61,6 +61,14 @@ pub enum ScenarioError {
         ProfileKind::with_ramps()
     )]
     RampMissing,
+    #[error(
+        "the move lasts {} s, but its ramps last tau0 = {} s by default, more than half of it: give a longer move \
+         (--tf, or `tf`, `t1`, `duration` in a scenario), or `tau0` <= {} s in a scenario",
+        Seconds(*.duration),
+        Seconds(*.tau0),
+        Seconds(0.5 * *.duration)
+    )]
+    DefaultRampTooLong { tau0: f64, duration: f64 },
     #[error("scenario: the load path (keys `trajectory`, `tau0`, `start`, `end`, `t0`, `t1`): {0}")]
     Path(TrajectoryError),
     #[error("scenario: `parameters.{key}`: {source}")]
@@ -94,7 +102,7 @@ impl ScenarioError {
             NotFinite { key, .. } => Some(key.clone()),
             EndBeforeStart { .. } => Some("tf".into()),
             MotionEndsBeforeStart { .. } => Some("t1".into()),
-            RampWithoutPhases | RampMissing => Some("tau0".into()),
+            RampWithoutPhases | RampMissing | DefaultRampTooLong { .. } => Some("tau0".into()),
             Path(_) => Some("trajectory".into()),
             Parameter { key, .. } | NotPositiveParameter { key, .. } => Some(format!("parameters.{key}")),
             Physical(_) => Some("parameters".into()),

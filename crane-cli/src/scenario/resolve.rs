@@ -76,7 +76,14 @@ fn path_of<const A: usize>(
         (None, Some(d)) => t0 + positive("duration", d)?,
         (None, None) => tf_given.unwrap_or(default.t1 - default.t0 + t0),
     };
-    if !(t1.is_finite() && t1 > t0) {
+    if !t1.is_finite() {
+        let key = if file.t1.is_some() { "t1" } else { "duration" };
+        return Err(ScenarioError::NotFinite {
+            key: key.into(),
+            value: t1,
+        });
+    }
+    if !(t1 > t0) {
         return Err(ScenarioError::MotionEndsBeforeStart { t1, t0 });
     }
     let kind = file.trajectory.unwrap_or(default.profile.kind());
@@ -86,6 +93,16 @@ fn path_of<const A: usize>(
     let profile = kind
         .profile(file.tau0.or(default.profile.tau0()))
         .map_err(|_| ScenarioError::RampMissing)?;
+    // the default's ramps on a shorter move than the default's
+    if let Some(tau0) = profile
+        .tau0()
+        .filter(|&tau0| file.tau0.is_none() && !(tau0 <= 0.5 * (t1 - t0)))
+    {
+        return Err(ScenarioError::DefaultRampTooLong {
+            tau0,
+            duration: t1 - t0,
+        });
+    }
     let start = match &file.start {
         Some(v) => vector::<A>("start", v, name, loads)?,
         None => default.start,

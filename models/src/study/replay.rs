@@ -83,6 +83,16 @@ impl FeedbackSpec {
     }
 }
 
+/// The longest settling window a replay takes, s (eleven days: beyond any
+/// crane's swing, and below where the replay's end time loses the step).
+pub const MAX_SETTLE: f64 = 1e6;
+
+/// Whether `settle` is a settling window a replay takes: positive and at
+/// most [`MAX_SETTLE`].
+pub fn valid_settle(settle: f64) -> bool {
+    settle > 0.0 && settle <= MAX_SETTLE
+}
+
 /// What to replay on.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ReplayRequest {
