@@ -113,7 +113,14 @@ fn write<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             return;
         }
         printed = header.take().map_or(Ok(()), |header| say!("{header}")).and_then(|()| {
-            let mark = if row.findings.is_empty() { "" } else { "  !" };
+            let grew = row.order.is_some_and(|p| p < 0.0);
+            let mark = if !row.findings.is_empty() {
+                "  !"
+            } else if grew {
+                "  (round-off: the run's step-to-step noise; a smaller dt does not help)"
+            } else {
+                ""
+            };
             match row.order {
                 Some(p) => say!("{:>8}  {:>12.4e}  {p:>8.3}{mark}", row.dt, row.e_u),
                 None => say!("{:>8}  {:>12.4e}  {:>8}{mark}", row.dt, row.e_u, "-"),

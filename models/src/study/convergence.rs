@@ -33,8 +33,45 @@ pub struct Row {
     pub order: Option<f64>,
     /// What the [`audit`](super::audit()) of the run found: an error measured
     /// on states that are not a solution, or on a run beyond its
-    /// formulation, is no evidence of an order.
+    /// formulation, is no evidence of an order; and an error that grew as
+    /// the step shrank, beyond the run's round-off.
     pub findings: Vec<String>,
+    /// The run's round-off floor ([`round_off_floor`] over the middle 60 %
+    /// of the run), relative to `|u_ref|` like `e_u`.
+    pub floor: f64,
+}
+
+impl Row {
+    /// Whether the error is the run's round-off: at most twice its floor
+    /// (noise measured at 0.55 to 0.61 of the floor where the error is
+    /// noise), where a smaller step no longer helps.
+    pub fn at_round_off(&self) -> bool {
+        self.e_u <= ROUND_OFF || self.e_u <= 2.0 * self.floor
+    }
+}
+
+/// The step-to-step noise of the inputs of `states` with `from <= t <= to`:
+/// `max |Delta^6 u| / 32`, the sixth differences, which see almost nothing
+/// of a smooth input (`u^(6) dt^6`) and about three standard deviations of
+/// white noise. Eqs. (22) take the inputs from the scheme's second divided
+/// differences of the coordinates, so the coordinates' round-off (1e-16 of
+/// their size per step) reaches the inputs amplified like `(c/dt)^2`: the
+/// error of a fine step is this noise, and grows as the step shrinks.
+pub fn round_off_floor<const N: usize, const M: usize, const A: usize>(
+    states: &[crane_runtime::State<N, M, A>],
+    from: f64,
+    to: f64,
+) -> f64 {
+    let mut floor = 0.0f64;
+    for window in states.windows(7) {
+        if window[3].t < from || window[3].t > to {
+            continue;
+        }
+        let u = |k: usize| window[k].u;
+        let sixth = (u(6) + u(0)) - (u(5) + u(1)) * 6.0 + (u(4) + u(2)) * 15.0 - u(3) * 20.0;
+        floor = floor.max(sixth.amax() / 32.0);
+    }
+    floor
 }
 
 /// The observed order between errors `e0` at step `dt0` and `e1` at `dt1`:
@@ -168,13 +205,25 @@ pub fn study_against<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
             ..RunSettings::default()
         };
         let summary = super::summarize_run(case, &settings, &solution, 0.0, crate::plan::DIAGNOSIS_SAMPLES);
-        let findings = super::audit(&summary).iter().map(|f| f.to_string()).collect();
+        let mut findings: Vec<String> = super::audit(&summary).iter().map(|f| f.to_string()).collect();
+        let t0 = case.t0();
+        let floor =
+            round_off_floor(&solution.states, t0 + 0.2 * (T_ERROR - t0), t0 + 0.8 * (T_ERROR - t0)) / reference.norm();
         let row = Row {
             dt,
             e_u,
             order,
-            findings,
+            findings: Vec::new(),
+            floor,
         };
+        if let Some(last) = rows.last().filter(|last| e_u > last.e_u && !row.at_round_off()) {
+            findings.push(format!(
+                "the error grew from {:.3e} at dt = {} s to {e_u:.3e} as the step shrank, beyond the run's round-off \
+                 ({floor:.1e}): not the scheme's convergence",
+                last.e_u, last.dt
+            ));
+        }
+        let row = Row { findings, ..row };
         observe(&row);
         rows.push(row);
     }
