@@ -336,11 +336,13 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
             p.t
         ));
     }
-    // what the audit finds is said once, as a warning
+    // what the audit finds is said once, as a warning; states off their
+    // constraints say nothing of their ropes
+    let solved = !summary.constraint_residual.as_ref().is_some_and(|r| r.violated());
     for r in summary
         .ropes
         .iter()
-        .filter(|r| !r.leaves_workspace() && r.first_slack.is_none())
+        .filter(|r| solved && !r.leaves_workspace() && r.first_slack.is_none())
     {
         // round-off below the printed digits is no negative tension
         lines.push(format!(
