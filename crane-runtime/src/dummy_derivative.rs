@@ -58,7 +58,7 @@ use crate::init;
 use crate::linsolve::{DenseSolver, Triangular};
 use crate::minimal::degenerate;
 use crate::model::{CraneModel, DummyDerivatives, NoDummyDerivatives, VisitDummyDerivatives};
-use crate::newton::{NonlinearSystem, normalised_residual};
+use crate::newton::{NonlinearSystem, normalised_residual_sparse};
 use crate::options::Options;
 use crate::problem::{Accepted, Follow, Predictor, Problem, Start};
 use crate::redundant::Redundant;
@@ -92,6 +92,8 @@ pub struct DummyDerivative<H, Tr, const N: usize, const M: usize, const A: usize
     last: DVector<f64>,
     /// Solve the linear systems whole, not stage by stage.
     whole: bool,
+    /// Scratch: the rows' sums of the normalised residual.
+    row_sums: Vec<f64>,
 }
 
 impl<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> DummyDerivative<H, Tr, N, M, A, J>
@@ -121,6 +123,7 @@ where
             blocks: vec![Range { start: 0, end: J }],
             last: DVector::zeros(J),
             whole: false,
+            row_sums: vec![0.0; J],
         }
     }
 
@@ -157,7 +160,9 @@ where
             .into_iter()
             .flat_map(stage)
             .collect();
-        (rows.len() == J && cols.len() == J).then(|| Triangular::from_stages(&rows, &cols))?
+        (rows.len() == J && cols.len() == J)
+            .then(|| Triangular::from_stages(&rows, &cols))?
+            .map(|form| form.with_nonzeros(<H::Target as DummyDerivatives<N, M, A, J>>::JACOBIAN_NONZEROS))
     }
 
     /// The load path.
@@ -232,12 +237,13 @@ where
         J
     }
 
+    /// Into Newton's buffers: its Jacobian is zeroed when made and written
+    /// by this alone, so the entries zero by structure stay zero.
     fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
-        let jets = SVector::<f64, J>::from_fn(|i, _| z[i]);
-        let (residual, jacobian) = self.model.dummy_derivative_system(&self.gamma, &jets);
-        r.copy_from(&residual);
-        jac.copy_from(&jacobian);
-        normalised_residual(r, jac, z, |_| 0.0)
+        self.model
+            .dummy_derivative_system_into(&self.gamma, z.as_slice(), r.as_mut_slice(), jac.as_mut_slice());
+        let nonzeros = <H::Target as DummyDerivatives<N, M, A, J>>::JACOBIAN_NONZEROS;
+        normalised_residual_sparse(r, jac, z, nonzeros, &mut self.row_sums)
     }
 
     fn blocks(&self) -> &[Range<usize>] {

@@ -50,6 +50,21 @@ pub struct Triangular {
     rows: Vec<usize>,
     cols: Vec<usize>,
     blocks: Vec<Range<usize>>,
+    /// Per block, where the matrix's entries are known to be zero outside a
+    /// pattern ([`with_nonzeros`](Self::with_nonzeros)): the entries left
+    /// of the block that are not, by the block's rows.
+    left: Option<Vec<Left>>,
+}
+
+/// The entries of a matrix left of one diagonal block (in the blocks
+/// before it) that are not zero by structure, row by row of the block.
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct Left {
+    /// Where each row's entries start in `entries` (one more than rows).
+    starts: Vec<usize>,
+    /// `(position of the column among the solved ones, index of the
+    /// entry by columns)`, each row's in column order.
+    entries: Vec<(usize, usize)>,
 }
 
 impl Triangular {
@@ -83,7 +98,45 @@ impl Triangular {
             }
             blocks.push(start..rows.len());
         }
-        (cols.len() == col_stage.len()).then_some(Self { rows, cols, blocks })
+        (cols.len() == col_stage.len()).then_some(Self {
+            rows,
+            cols,
+            blocks,
+            left: None,
+        })
+    }
+
+    /// The same form for matrices whose entries outside `nonzeros`
+    /// (indices `j n + i` of entry `(i, j)`) are zero: the blocks before
+    /// each one are then subtracted over those entries alone, in the same
+    /// order, so with the same result.
+    pub fn with_nonzeros(mut self, nonzeros: &[u32]) -> Self {
+        let n = self.rows.len();
+        let mut nonzero = vec![false; n * n];
+        for &k in nonzeros {
+            if let Some(flag) = nonzero.get_mut(k as usize) {
+                *flag = true;
+            }
+        }
+        let left = (self.blocks.iter())
+            .map(|block| {
+                let mut left = Left {
+                    starts: vec![0],
+                    entries: Vec::new(),
+                };
+                for &row in &self.rows[block.clone()] {
+                    for (p, &col) in self.cols[..block.start].iter().enumerate() {
+                        if nonzero[col * n + row] {
+                            left.entries.push((p, col * n + row));
+                        }
+                    }
+                    left.starts.push(left.entries.len());
+                }
+                left
+            })
+            .collect();
+        self.left = Some(left);
+        self
     }
 
     /// The sizes of the diagonal blocks, in the order they are solved.
@@ -162,14 +215,28 @@ impl BlockSolver {
             let rows = &form.rows[block.clone()];
             let cols = &form.cols[block.clone()];
             // each row less the blocks before it, known: the terms in
-            // column order, summed in a register
-            let known = &form.cols[..block.start];
-            for (value, &row) in self.rhs[k].iter_mut().zip(rows) {
-                let mut sum = b[row];
-                for (&col, &x) in known.iter().zip(self.x.iter()) {
-                    sum -= entries[col * n + row] * x;
+            // column order, summed in a register (over the entries not zero
+            // by structure, where the form knows them: the same sum)
+            match form.left.as_ref().and_then(|left| left.get(k)) {
+                Some(left) => {
+                    for ((value, &row), span) in self.rhs[k].iter_mut().zip(rows).zip(left.starts.windows(2)) {
+                        let mut sum = b[row];
+                        for &(p, entry) in &left.entries[span[0]..span[1]] {
+                            sum -= entries[entry] * self.x[p];
+                        }
+                        *value = sum;
+                    }
                 }
-                *value = sum;
+                None => {
+                    let known = &form.cols[..block.start];
+                    for (value, &row) in self.rhs[k].iter_mut().zip(rows) {
+                        let mut sum = b[row];
+                        for (&col, &x) in known.iter().zip(self.x.iter()) {
+                            sum -= entries[col * n + row] * x;
+                        }
+                        *value = sum;
+                    }
+                }
             }
             let same = k > 0 && {
                 let before = &self.matrices[k - 1];

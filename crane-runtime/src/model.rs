@@ -250,14 +250,41 @@ pub trait DummyDerivatives<const N: usize, const M: usize, const A: usize, const
     /// The highest derivative of the load path the system reads.
     const PATH_ORDER: usize;
 
-    /// The residual at `z` and its Jacobian `d residual / d z`, for the load
-    /// path's derivatives `gamma[k] = gamma^(k)(t)`, `k = 0 ..= PATH_ORDER`
-    /// (`gamma` must have at least `PATH_ORDER + 1` entries).
+    /// The Jacobian's entries that are not zero by structure, as indices
+    /// `j J + i` of entry `(i, j)` (by columns), ascending: those
+    /// [`dummy_derivative_system_into`](Self::dummy_derivative_system_into)
+    /// writes.
+    const JACOBIAN_NONZEROS: &'static [u32];
+
+    /// The residual at `z` into `residual` and its Jacobian `d residual /
+    /// d z` into `jacobian` (by columns: entry `(i, j)` at `j J + i`), for
+    /// the load path's derivatives `gamma[k] = gamma^(k)(t)`, `k = 0 ..=
+    /// PATH_ORDER` (`gamma` must have at least `PATH_ORDER + 1` entries).
+    /// The Jacobian's entries that are zero by structure (most of them: a
+    /// derivative of an equation involves few jets) are not written: a
+    /// buffer zeroed once and filled by this function alone stays the
+    /// Jacobian, with nothing copied. Panics if `z` or `residual` has fewer
+    /// than `J` entries or `jacobian` fewer than `J * J`.
+    fn dummy_derivative_system_into(
+        &self,
+        gamma: &[SVector<f64, A>],
+        z: &[f64],
+        residual: &mut [f64],
+        jacobian: &mut [f64],
+    );
+
+    /// The residual at `z` and its Jacobian, as new matrices
+    /// ([`dummy_derivative_system_into`](Self::dummy_derivative_system_into)).
     fn dummy_derivative_system(
         &self,
         gamma: &[SVector<f64, A>],
         z: &SVector<f64, J>,
-    ) -> (SVector<f64, J>, SMatrix<f64, J, J>);
+    ) -> (SVector<f64, J>, SMatrix<f64, J, J>) {
+        let mut residual = SVector::<f64, J>::zeros();
+        let mut jacobian = SMatrix::<f64, J, J>::zeros();
+        self.dummy_derivative_system_into(gamma, z.as_slice(), residual.as_mut_slice(), jacobian.as_mut_slice());
+        (residual, jacobian)
+    }
 }
 
 /// Code to run with a crane's dummy-derivative system:

@@ -72,6 +72,30 @@ pub fn normalised_residual(
     normalised
 }
 
+/// [`normalised_residual`] of a Jacobian whose entries outside `nonzeros`
+/// (indices `j n + i` of entry `(i, j)`, ascending) are zero, without the
+/// floor: each row's sum over its nonzero entries only, added in the same
+/// order (so the same number), into the scratch `sums` (one per row).
+pub fn normalised_residual_sparse(
+    r: &DVector<f64>,
+    jac: &DMatrix<f64>,
+    z: &DVector<f64>,
+    nonzeros: &[u32],
+    sums: &mut [f64],
+) -> f64 {
+    let (n, entries) = (jac.nrows(), jac.as_slice());
+    sums.fill(0.0);
+    for &k in nonzeros {
+        let k = k as usize;
+        sums[k % n] += (entries[k] * z[k / n]).abs();
+    }
+    let mut normalised = 0.0f64;
+    for (&ri, &sum) in r.iter().zip(sums.iter()) {
+        normalised = normalised.max(if sum > 0.0 { ri.abs() / sum } else { ri.abs() });
+    }
+    normalised
+}
+
 /// Tolerances of [`Newton`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonOptions {

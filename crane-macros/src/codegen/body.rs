@@ -15,13 +15,32 @@ use crate::model::Model;
 
 /// One output of a generated function.
 pub(super) struct Output {
-    /// The local it is built in.
+    /// The local or parameter it is built in.
     pub(super) var: Ident,
-    /// `Some(zeros)`: a new matrix; `None`: a `&mut [f64]` parameter, all
-    /// entries written.
-    pub(super) init: Option<TokenStream>,
+    /// Where it is built.
+    pub(super) target: Target,
     /// `(index, value)`: `var[index] = value`.
     pub(super) writes: Vec<(TokenStream, Id)>,
+}
+
+/// Where an [`Output`] is built.
+pub(super) enum Target {
+    /// A new matrix from this expression of zeros: its entries that are not
+    /// zero by structure written.
+    New(TokenStream),
+    /// A `&mut [f64]` parameter: every entry written.
+    Slice,
+    /// A `&mut [f64]` parameter whose entries that are zero by structure
+    /// the caller keeps at zero (a buffer zeroed once): only the others
+    /// written.
+    ZeroedSlice,
+}
+
+impl Output {
+    /// Whether entry `id` is written.
+    fn writes_entry(&self, arena: &Arena, id: Id) -> bool {
+        matches!(self.target, Target::Slice) || !arena.is_zero(id)
+    }
 }
 
 /// Nodes worth a `let`: not leaves, not a bare reciprocal (printed as a
@@ -42,7 +61,7 @@ pub(super) fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream
         .flat_map(|o| {
             o.writes
                 .iter()
-                .filter(|(_, id)| o.init.is_none() || !arena.is_zero(*id))
+                .filter(|(_, id)| o.writes_entry(arena, *id))
                 .map(|&(_, id)| id)
         })
         .collect();
@@ -178,7 +197,7 @@ fn common_subexpressions(model: &Model, printer: &mut Printer<'_>, bound_order: 
 }
 
 /// The outputs: each new matrix from zeros, then its nonzero entries (all
-/// entries of a `&mut [f64]` parameter).
+/// entries of a [`Target::Slice`], the nonzero ones of a [`Target::ZeroedSlice`]).
 fn writes(printer: &Printer<'_>, outputs: &[Output]) -> TokenStream {
     let arena = printer.arena;
     let mut statements = TokenStream::new();
@@ -187,9 +206,9 @@ fn writes(printer: &Printer<'_>, outputs: &[Output]) -> TokenStream {
         let writes: Vec<&(TokenStream, Id)> = output
             .writes
             .iter()
-            .filter(|(_, id)| output.init.is_none() || !arena.is_zero(*id))
+            .filter(|(_, id)| output.writes_entry(arena, *id))
             .collect();
-        if let Some(init) = &output.init {
+        if let Target::New(init) = &output.target {
             if writes.is_empty() {
                 statements.extend(quote!(let #var = #init;));
             } else {
@@ -210,7 +229,7 @@ pub(super) fn vector_output(var: &str, len: usize, entries: &[Id]) -> Output {
     let len_lit = index(len);
     Output {
         var: internal(var),
-        init: Some(quote!(__crane_runtime::nalgebra::SVector::<T, #len_lit>::zeros())),
+        target: Target::New(quote!(__crane_runtime::nalgebra::SVector::<T, #len_lit>::zeros())),
         writes: entries
             .iter()
             .enumerate()
@@ -236,7 +255,7 @@ pub(super) fn matrix_output(
     }
     Output {
         var: internal(var),
-        init: Some(quote!(__crane_runtime::nalgebra::SMatrix::<T, #r, #c>::zeros())),
+        target: Target::New(quote!(__crane_runtime::nalgebra::SMatrix::<T, #r, #c>::zeros())),
         writes,
     }
 }
@@ -244,7 +263,7 @@ pub(super) fn matrix_output(
 /// A function body that builds one output and returns it.
 pub(super) fn single(model: &Model, output: Output) -> TokenStream {
     if output.writes.iter().all(|&(_, id)| model.arena.is_zero(id))
-        && let Some(init) = output.init
+        && let Target::New(init) = output.target
     {
         return init;
     }

@@ -5,7 +5,7 @@
 use proc_macro2::TokenStream;
 use quote::{ToTokens, quote};
 
-use super::body::{Output, body};
+use super::body::{Output, Target, body};
 use super::printer::{Mode, jet_label, jet_name};
 use super::{index, internal};
 use crate::dummy::DummyKernels;
@@ -17,16 +17,15 @@ pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &To
     let name = &model.name;
     let (n, m, a, nr) = (model.n(), model.m(), model.a(), model.n_robot);
     let size = k.unknowns.len();
-    let (n_lit, m_lit, a_lit, j_lit) = (index(n), index(m), index(a), index(size));
+    let (n_lit, m_lit, a_lit, j_lit, jj_lit) = (index(n), index(m), index(a), index(size), index(size * size));
     let offsets = k.offsets.iter().map(|&c| index(c.into()));
     let path_order = index(k.path_order.into());
     let sv = quote!(__crane_runtime::nalgebra::SVector);
-    let sm = quote!(__crane_runtime::nalgebra::SMatrix);
     let (gamma, z) = (internal("gamma"), internal("z"));
 
     let residual = Output {
         var: internal("residual"),
-        init: Some(quote!(#sv::<f64, #j_lit>::zeros())),
+        target: Target::Slice,
         writes: k
             .residual
             .iter()
@@ -34,16 +33,30 @@ pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &To
             .map(|(i, &id)| (index(i).into_token_stream(), id))
             .collect(),
     };
+    // the Jacobian by columns, as nalgebra stores a matrix: entry (i, j)
+    // at j J + i, written so
     let mut writes = Vec::new();
     for (i, row) in k.jacobian.iter().enumerate() {
         for (j, &id) in row.iter().enumerate() {
             let (i, j) = (index(i), index(j));
-            writes.push((quote!((#i, #j)), id));
+            writes.push((quote!(#j * #j_lit + #i), id));
         }
     }
+    // the entries not zero by structure, by columns
+    let mut nonzeros: Vec<usize> = (k.jacobian.iter().enumerate())
+        .flat_map(|(i, row)| {
+            (row.iter().enumerate())
+                .filter(|&(_, &id)| !model.arena.is_zero(id))
+                .map(move |(j, _)| j * size + i)
+        })
+        .collect();
+    nonzeros.sort_unstable();
+    let nonzeros = nonzeros
+        .into_iter()
+        .map(|k| proc_macro2::Literal::u32_unsuffixed(k as u32));
     let jacobian = Output {
         var: internal("jacobian"),
-        init: Some(quote!(#sm::<f64, #j_lit, #j_lit>::zeros())),
+        target: Target::ZeroedSlice,
         writes,
     };
     let outputs = [residual, jacobian];
@@ -116,19 +129,27 @@ pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &To
         impl __crane_runtime::DummyDerivatives<#n_lit, #m_lit, #a_lit, #j_lit> for #name {
             const OFFSETS: &'static [u8] = &[#(#offsets),*];
             const PATH_ORDER: usize = #path_order;
+            const JACOBIAN_NONZEROS: &'static [u32] = &[#(#nonzeros),*];
 
             /// The residual of the dummy-derivative system and its Jacobian
-            /// `d residual / d z`.
+            /// `d residual / d z` (by columns), the Jacobian's entries that
+            /// are zero by structure left as they are.
             ///
             #layout
-            fn dummy_derivative_system(
+            fn dummy_derivative_system_into(
                 &self,
                 #gamma: &[#sv<f64, #a_lit>],
-                #z: &#sv<f64, #j_lit>,
-            ) -> (#sv<f64, #j_lit>, #sm<f64, #j_lit, #j_lit>) {
+                #z: &[f64],
+                #res_var: &mut [f64],
+                #jac_var: &mut [f64],
+            ) {
+                // one check of each length (the constant indices below are
+                // then within them)
+                let #z = &#z[..#j_lit];
+                let #res_var = &mut #res_var[..#j_lit];
+                let #jac_var = &mut #jac_var[..#jj_lit];
                 #(#reads)*
                 #statements
-                (#res_var, #jac_var)
             }
         }
     }

@@ -103,7 +103,7 @@ fn str_list(idents: impl IntoIterator<Item = String>) -> TokenStream {
 /// The complete expansion for a checked model.
 pub fn generate(model: &Model, k: &Kernels, structure: &Structure, dummy: Option<&DummyKernels>) -> TokenStream {
     let runtime = &model.runtime;
-    let lints = quote!(#[allow(non_snake_case, unused_variables, clippy::too_many_lines, clippy::unreadable_literal)]);
+    let lints = quote!(#[allow(non_snake_case, unused_variables, clippy::too_many_lines, clippy::unreadable_literal, clippy::identity_op, clippy::erasing_op)]);
     let model_struct = model_struct(model, structure);
     let inherent = inherent_impl(model, k, &lints);
     let dummy_size = dummy.map(|d| d.unknowns.len());

@@ -5,7 +5,7 @@
 use proc_macro2::{Ident, TokenStream};
 use quote::{ToTokens, quote};
 
-use super::body::{Output, body, matrix_output, single, vector_output};
+use super::body::{Output, Target, body, matrix_output, single, vector_output};
 use super::printer::Mode;
 use super::{index, internal, str_list};
 use crate::model::{Kernels, Model};
@@ -280,7 +280,7 @@ fn rope_slice_body(model: &Model, function: &str, values: &[crate::expr::Id]) ->
     let n_ropes = values.len();
     let output = Output {
         var: out.clone(),
-        init: None,
+        target: Target::Slice,
         writes: values
             .iter()
             .enumerate()

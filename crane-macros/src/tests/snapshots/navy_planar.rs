@@ -48,7 +48,9 @@ const _: () = {
         non_snake_case,
         unused_variables,
         clippy::too_many_lines,
-        clippy::unreadable_literal
+        clippy::unreadable_literal,
+        clippy::identity_op,
+        clippy::erasing_op
     )]
     impl NavyPlanar {
         /// Number of redundant coordinates `n` in `q = [p; x]` (eq. 2): robot coordinates `L1`, `L2`, `L0`, `x0`, `z0`, load coordinates `x`, `z`.
@@ -193,7 +195,9 @@ const _: () = {
         non_snake_case,
         unused_variables,
         clippy::too_many_lines,
-        clippy::unreadable_literal
+        clippy::unreadable_literal,
+        clippy::identity_op,
+        clippy::erasing_op
     )]
     impl __crane_runtime::CraneModel<7, 3, 2> for NavyPlanar {
         const INFO: __crane_runtime::ModelInfo = __crane_runtime::ModelInfo {
@@ -434,7 +438,9 @@ const _: () = {
         non_snake_case,
         unused_variables,
         clippy::too_many_lines,
-        clippy::unreadable_literal
+        clippy::unreadable_literal,
+        clippy::identity_op,
+        clippy::erasing_op
     )]
     impl NavyPlanar {
         /// Number of minimal coordinates in `mu1`, `f - a`: `mu = [mu1; mu2]` with `mu1` = `beta`, `gamma` and `mu2` = `theta`, `L`, chosen so that `D2 phi_x` is regular (eq. 12).
@@ -583,7 +589,9 @@ const _: () = {
         non_snake_case,
         unused_variables,
         clippy::too_many_lines,
-        clippy::unreadable_literal
+        clippy::unreadable_literal,
+        clippy::identity_op,
+        clippy::erasing_op
     )]
     impl __crane_runtime::MinimalMap<7, 3, 2, 4> for NavyPlanar {
         const MINIMAL_COORDINATES: &'static [&'static str] = &[
@@ -1020,23 +1028,41 @@ const _: () = {
         non_snake_case,
         unused_variables,
         clippy::too_many_lines,
-        clippy::unreadable_literal
+        clippy::unreadable_literal,
+        clippy::identity_op,
+        clippy::erasing_op
     )]
     impl __crane_runtime::DummyDerivatives<7, 3, 2, 26> for NavyPlanar {
         const OFFSETS: &'static [u8] = &[2, 2, 2, 2, 2, 4, 4, 2, 2, 2, 0, 0];
         const PATH_ORDER: usize = 4;
+        const JACOBIAN_NONZEROS: &'static [u32] = &[
+            0, 17, 18, 19, 44, 45, 52, 71, 79, 80, 81, 82, 101, 102, 103, 107, 108, 128,
+            129, 131, 134, 155, 157, 158, 159, 160, 176, 177, 178, 179, 180, 181, 185,
+            186, 203, 204, 206, 207, 212, 230, 233, 239, 240, 241, 245, 246, 247, 251,
+            252, 253, 254, 255, 256, 257, 258, 259, 266, 267, 272, 273, 278, 279, 281,
+            282, 284, 285, 293, 299, 305, 308, 311, 320, 321, 322, 326, 327, 328, 329,
+            330, 331, 332, 333, 334, 335, 336, 337, 347, 348, 353, 354, 356, 357, 359,
+            360, 362, 363, 374, 380, 383, 386, 389, 390, 395, 396, 397, 398, 399, 400,
+            422, 423, 425, 426, 449, 452, 470, 471, 472, 473, 474, 475, 476, 477, 478,
+            497, 498, 500, 501, 503, 504, 524, 527, 530, 547, 548, 549, 550, 551, 552,
+            553, 554, 555, 556, 557, 558, 559, 560, 561, 562, 575, 576, 578, 579, 581,
+            582, 584, 585, 587, 588, 602, 605, 608, 611, 614, 624, 651,
+        ];
         /// The residual of the dummy-derivative system and its Jacobian
-        /// `d residual / d z`.
+        /// `d residual / d z` (by columns), the Jacobian's entries that
+        /// are zero by structure left as they are.
         ///
         /// Unknowns `z` in order: `L1_d0`, `L1_d1`, `L1_d2`, `L2_d0`, `L2_d1`, `L2_d2`, `L0_d0`, `L0_d1`, `L0_d2`, `x0_d0`, `x0_d1`, `x0_d2`, `z0_d0`, `z0_d1`, `z0_d2`, `lambda_rope1_d0`, `lambda_rope1_d1`, `lambda_rope1_d2`, `lambda_rope0_d0`, `lambda_rope0_d1`, `lambda_rope0_d2`, `lambda_hoist_d0`, `lambda_hoist_d1`, `lambda_hoist_d2`, `u1_d0`, `u2_d0`; equations in order: dynamics of `L1`, dynamics of `L2`, dynamics of `L0`, dynamics of `L0` (derivative 1), dynamics of `L0` (derivative 2), dynamics of `x0`, dynamics of `x0` (derivative 1), dynamics of `x0` (derivative 2), dynamics of `z0`, dynamics of `z0` (derivative 1), dynamics of `z0` (derivative 2), dynamics of `x`, dynamics of `x` (derivative 1), dynamics of `x` (derivative 2), dynamics of `z`, dynamics of `z` (derivative 1), dynamics of `z` (derivative 2), constraint `rope1`, constraint `rope1` (derivative 1), constraint `rope1` (derivative 2), constraint `rope0`, constraint `rope0` (derivative 1), constraint `rope0` (derivative 2), constraint `hoist`, constraint `hoist` (derivative 1), constraint `hoist` (derivative 2).
-        fn dummy_derivative_system(
+        fn dummy_derivative_system_into(
             &self,
             __gamma: &[__crane_runtime::nalgebra::SVector<f64, 2>],
-            __z: &__crane_runtime::nalgebra::SVector<f64, 26>,
-        ) -> (
-            __crane_runtime::nalgebra::SVector<f64, 26>,
-            __crane_runtime::nalgebra::SMatrix<f64, 26, 26>,
+            __z: &[f64],
+            __residual: &mut [f64],
+            __jacobian: &mut [f64],
         ) {
+            let __z = &__z[..26];
+            let __residual = &mut __residual[..26];
+            let __jacobian = &mut __jacobian[..676];
             let __q_L1_d0 = __z[0];
             let __q_L1_d1 = __z[1];
             let __q_L1_d2 = __z[2];
@@ -1116,7 +1142,6 @@ const _: () = {
             let __t32 = __q_z0_d1 * 2.0;
             let __t33 = __q_z0_d2 - __q_z_d2;
             let __t34 = __t32 - __q_z_d1 * 2.0;
-            let mut __residual = __crane_runtime::nalgebra::SVector::<f64, 26>::zeros();
             __residual[0] = __J1 * __t0 * __q_L1_d2 - __u_u1_d0 / __r1
                 - __q_L1_d0 * __lambda_rope1_d0;
             __residual[1] = __J2 * __t1 * __q_L2_d2 - __u_u2_d0 / __r2
@@ -1179,177 +1204,171 @@ const _: () = {
                 + __t3 * __q_L0_d2 + __q_x0_d1 * __t15 + __t5 * __q_x0_d2
                 + __q_z0_d1 * __t16 + __t7 * __q_z0_d2 + __q_x_d1 * __t17
                 + __q_x_d2 * __t8 + __q_z_d1 * __t18 + __q_z_d2 * __t9;
-            let mut __jacobian = __crane_runtime::nalgebra::SMatrix::<
-                f64,
-                26,
-                26,
-            >::zeros();
-            __jacobian[(0, 0)] = -__lambda_rope1_d0;
-            __jacobian[(0, 2)] = __J1 * __t0;
-            __jacobian[(0, 15)] = -__q_L1_d0;
-            __jacobian[(0, 24)] = -__r1.recip();
-            __jacobian[(1, 3)] = -__lambda_hoist_d0;
-            __jacobian[(1, 5)] = __J2 * __t1;
-            __jacobian[(1, 6)] = __lambda_hoist_d0;
-            __jacobian[(1, 21)] = __t2;
-            __jacobian[(1, 25)] = -__r2.recip();
-            __jacobian[(2, 3)] = __lambda_hoist_d0;
-            __jacobian[(2, 6)] = __t10;
-            __jacobian[(2, 18)] = -__q_L0_d0;
-            __jacobian[(2, 21)] = __t3;
-            __jacobian[(3, 3)] = __lambda_hoist_d1;
-            __jacobian[(3, 4)] = __lambda_hoist_d0;
-            __jacobian[(3, 6)] = __t11;
-            __jacobian[(3, 7)] = __t10;
-            __jacobian[(3, 18)] = -__q_L0_d1;
-            __jacobian[(3, 19)] = -__q_L0_d0;
-            __jacobian[(3, 21)] = __t12;
-            __jacobian[(3, 22)] = __t3;
-            __jacobian[(4, 3)] = __lambda_hoist_d2;
-            __jacobian[(4, 4)] = __t22;
-            __jacobian[(4, 5)] = __lambda_hoist_d0;
-            __jacobian[(4, 6)] = -__lambda_rope0_d2 - __lambda_hoist_d2;
-            __jacobian[(4, 7)] = __t23 - __lambda_rope0_d1 * 2.0;
-            __jacobian[(4, 8)] = __t10;
-            __jacobian[(4, 18)] = -__q_L0_d2;
-            __jacobian[(4, 19)] = __t24;
-            __jacobian[(4, 20)] = -__q_L0_d0;
-            __jacobian[(4, 21)] = __t25;
-            __jacobian[(4, 22)] = __t26;
-            __jacobian[(4, 23)] = __t3;
-            __jacobian[(5, 9)] = __t13;
-            __jacobian[(5, 15)] = __t4;
-            __jacobian[(5, 18)] = __q_x0_d0;
-            __jacobian[(5, 21)] = __t5;
-            __jacobian[(6, 9)] = __t14;
-            __jacobian[(6, 10)] = __t13;
-            __jacobian[(6, 15)] = __q_x0_d1;
-            __jacobian[(6, 16)] = __t4;
-            __jacobian[(6, 18)] = __q_x0_d1;
-            __jacobian[(6, 19)] = __q_x0_d0;
-            __jacobian[(6, 21)] = __t15;
-            __jacobian[(6, 22)] = __t5;
-            __jacobian[(7, 9)] = __t27;
-            __jacobian[(7, 10)] = __t28;
-            __jacobian[(7, 11)] = __t13;
-            __jacobian[(7, 15)] = __q_x0_d2;
-            __jacobian[(7, 16)] = __t29;
-            __jacobian[(7, 17)] = __t4;
-            __jacobian[(7, 18)] = __q_x0_d2;
-            __jacobian[(7, 19)] = __t29;
-            __jacobian[(7, 20)] = __q_x0_d0;
-            __jacobian[(7, 21)] = __t30;
-            __jacobian[(7, 22)] = __t31;
-            __jacobian[(7, 23)] = __t5;
-            __jacobian[(8, 12)] = __t13;
-            __jacobian[(8, 15)] = __t6;
-            __jacobian[(8, 18)] = __q_z0_d0;
-            __jacobian[(8, 21)] = __t7;
-            __jacobian[(9, 12)] = __t14;
-            __jacobian[(9, 13)] = __t13;
-            __jacobian[(9, 15)] = __q_z0_d1;
-            __jacobian[(9, 16)] = __t6;
-            __jacobian[(9, 18)] = __q_z0_d1;
-            __jacobian[(9, 19)] = __q_z0_d0;
-            __jacobian[(9, 21)] = __t16;
-            __jacobian[(9, 22)] = __t7;
-            __jacobian[(10, 12)] = __t27;
-            __jacobian[(10, 13)] = __t28;
-            __jacobian[(10, 14)] = __t13;
-            __jacobian[(10, 15)] = __q_z0_d2;
-            __jacobian[(10, 16)] = __t32;
-            __jacobian[(10, 17)] = __t6;
-            __jacobian[(10, 18)] = __q_z0_d2;
-            __jacobian[(10, 19)] = __t32;
-            __jacobian[(10, 20)] = __q_z0_d0;
-            __jacobian[(10, 21)] = __t33;
-            __jacobian[(10, 22)] = __t34;
-            __jacobian[(10, 23)] = __t7;
-            __jacobian[(11, 9)] = -__lambda_hoist_d0;
-            __jacobian[(11, 21)] = __t8;
-            __jacobian[(12, 9)] = -__lambda_hoist_d1;
-            __jacobian[(12, 10)] = -__lambda_hoist_d0;
-            __jacobian[(12, 21)] = __t17;
-            __jacobian[(12, 22)] = __t8;
-            __jacobian[(13, 9)] = -__lambda_hoist_d2;
-            __jacobian[(13, 10)] = __t23;
-            __jacobian[(13, 11)] = -__lambda_hoist_d0;
-            __jacobian[(13, 21)] = __q_x_d2 - __q_x0_d2;
-            __jacobian[(13, 22)] = __q_x_d1 * 2.0 - __q_x0_d1 * 2.0;
-            __jacobian[(13, 23)] = __t8;
-            __jacobian[(14, 12)] = -__lambda_hoist_d0;
-            __jacobian[(14, 21)] = __t9;
-            __jacobian[(15, 12)] = -__lambda_hoist_d1;
-            __jacobian[(15, 13)] = -__lambda_hoist_d0;
-            __jacobian[(15, 21)] = __t18;
-            __jacobian[(15, 22)] = __t9;
-            __jacobian[(16, 12)] = -__lambda_hoist_d2;
-            __jacobian[(16, 13)] = __t23;
-            __jacobian[(16, 14)] = -__lambda_hoist_d0;
-            __jacobian[(16, 21)] = __q_z_d2 - __q_z0_d2;
-            __jacobian[(16, 22)] = __q_z_d1 * 2.0 - __q_z0_d1 * 2.0;
-            __jacobian[(16, 23)] = __t9;
-            __jacobian[(17, 0)] = -__q_L1_d0;
-            __jacobian[(17, 9)] = __t4;
-            __jacobian[(17, 12)] = __t6;
-            __jacobian[(18, 0)] = -__q_L1_d1;
-            __jacobian[(18, 1)] = -__q_L1_d0;
-            __jacobian[(18, 9)] = __q_x0_d1;
-            __jacobian[(18, 10)] = __t4;
-            __jacobian[(18, 12)] = __q_z0_d1;
-            __jacobian[(18, 13)] = __t6;
-            __jacobian[(19, 0)] = -__q_L1_d2;
-            __jacobian[(19, 1)] = -__q_L1_d1 * 2.0;
-            __jacobian[(19, 2)] = -__q_L1_d0;
-            __jacobian[(19, 9)] = __q_x0_d2;
-            __jacobian[(19, 10)] = __t29;
-            __jacobian[(19, 11)] = __t4;
-            __jacobian[(19, 12)] = __q_z0_d2;
-            __jacobian[(19, 13)] = __t32;
-            __jacobian[(19, 14)] = __t6;
-            __jacobian[(20, 6)] = -__q_L0_d0;
-            __jacobian[(20, 9)] = __q_x0_d0;
-            __jacobian[(20, 12)] = __q_z0_d0;
-            __jacobian[(21, 6)] = -__q_L0_d1;
-            __jacobian[(21, 7)] = -__q_L0_d0;
-            __jacobian[(21, 9)] = __q_x0_d1;
-            __jacobian[(21, 10)] = __q_x0_d0;
-            __jacobian[(21, 12)] = __q_z0_d1;
-            __jacobian[(21, 13)] = __q_z0_d0;
-            __jacobian[(22, 6)] = -__q_L0_d2;
-            __jacobian[(22, 7)] = __t24;
-            __jacobian[(22, 8)] = -__q_L0_d0;
-            __jacobian[(22, 9)] = __q_x0_d2;
-            __jacobian[(22, 10)] = __t29;
-            __jacobian[(22, 11)] = __q_x0_d0;
-            __jacobian[(22, 12)] = __q_z0_d2;
-            __jacobian[(22, 13)] = __t32;
-            __jacobian[(22, 14)] = __q_z0_d0;
-            __jacobian[(23, 3)] = __t2;
-            __jacobian[(23, 6)] = __t3;
-            __jacobian[(23, 9)] = __t5;
-            __jacobian[(23, 12)] = __t7;
-            __jacobian[(24, 3)] = __t21;
-            __jacobian[(24, 4)] = __t2;
-            __jacobian[(24, 6)] = __t12;
-            __jacobian[(24, 7)] = __t3;
-            __jacobian[(24, 9)] = __t15;
-            __jacobian[(24, 10)] = __t5;
-            __jacobian[(24, 12)] = __t16;
-            __jacobian[(24, 13)] = __t7;
-            __jacobian[(25, 3)] = __q_L0_d2 - __q_L2_d2;
-            __jacobian[(25, 4)] = __q_L0_d1 * 2.0 - __q_L2_d1 * 2.0;
-            __jacobian[(25, 5)] = __t2;
-            __jacobian[(25, 6)] = __t25;
-            __jacobian[(25, 7)] = __t26;
-            __jacobian[(25, 8)] = __t3;
-            __jacobian[(25, 9)] = __t30;
-            __jacobian[(25, 10)] = __t31;
-            __jacobian[(25, 11)] = __t5;
-            __jacobian[(25, 12)] = __t33;
-            __jacobian[(25, 13)] = __t34;
-            __jacobian[(25, 14)] = __t7;
-            (__residual, __jacobian)
+            __jacobian[0 * 26 + 0] = -__lambda_rope1_d0;
+            __jacobian[2 * 26 + 0] = __J1 * __t0;
+            __jacobian[15 * 26 + 0] = -__q_L1_d0;
+            __jacobian[24 * 26 + 0] = -__r1.recip();
+            __jacobian[3 * 26 + 1] = -__lambda_hoist_d0;
+            __jacobian[5 * 26 + 1] = __J2 * __t1;
+            __jacobian[6 * 26 + 1] = __lambda_hoist_d0;
+            __jacobian[21 * 26 + 1] = __t2;
+            __jacobian[25 * 26 + 1] = -__r2.recip();
+            __jacobian[3 * 26 + 2] = __lambda_hoist_d0;
+            __jacobian[6 * 26 + 2] = __t10;
+            __jacobian[18 * 26 + 2] = -__q_L0_d0;
+            __jacobian[21 * 26 + 2] = __t3;
+            __jacobian[3 * 26 + 3] = __lambda_hoist_d1;
+            __jacobian[4 * 26 + 3] = __lambda_hoist_d0;
+            __jacobian[6 * 26 + 3] = __t11;
+            __jacobian[7 * 26 + 3] = __t10;
+            __jacobian[18 * 26 + 3] = -__q_L0_d1;
+            __jacobian[19 * 26 + 3] = -__q_L0_d0;
+            __jacobian[21 * 26 + 3] = __t12;
+            __jacobian[22 * 26 + 3] = __t3;
+            __jacobian[3 * 26 + 4] = __lambda_hoist_d2;
+            __jacobian[4 * 26 + 4] = __t22;
+            __jacobian[5 * 26 + 4] = __lambda_hoist_d0;
+            __jacobian[6 * 26 + 4] = -__lambda_rope0_d2 - __lambda_hoist_d2;
+            __jacobian[7 * 26 + 4] = __t23 - __lambda_rope0_d1 * 2.0;
+            __jacobian[8 * 26 + 4] = __t10;
+            __jacobian[18 * 26 + 4] = -__q_L0_d2;
+            __jacobian[19 * 26 + 4] = __t24;
+            __jacobian[20 * 26 + 4] = -__q_L0_d0;
+            __jacobian[21 * 26 + 4] = __t25;
+            __jacobian[22 * 26 + 4] = __t26;
+            __jacobian[23 * 26 + 4] = __t3;
+            __jacobian[9 * 26 + 5] = __t13;
+            __jacobian[15 * 26 + 5] = __t4;
+            __jacobian[18 * 26 + 5] = __q_x0_d0;
+            __jacobian[21 * 26 + 5] = __t5;
+            __jacobian[9 * 26 + 6] = __t14;
+            __jacobian[10 * 26 + 6] = __t13;
+            __jacobian[15 * 26 + 6] = __q_x0_d1;
+            __jacobian[16 * 26 + 6] = __t4;
+            __jacobian[18 * 26 + 6] = __q_x0_d1;
+            __jacobian[19 * 26 + 6] = __q_x0_d0;
+            __jacobian[21 * 26 + 6] = __t15;
+            __jacobian[22 * 26 + 6] = __t5;
+            __jacobian[9 * 26 + 7] = __t27;
+            __jacobian[10 * 26 + 7] = __t28;
+            __jacobian[11 * 26 + 7] = __t13;
+            __jacobian[15 * 26 + 7] = __q_x0_d2;
+            __jacobian[16 * 26 + 7] = __t29;
+            __jacobian[17 * 26 + 7] = __t4;
+            __jacobian[18 * 26 + 7] = __q_x0_d2;
+            __jacobian[19 * 26 + 7] = __t29;
+            __jacobian[20 * 26 + 7] = __q_x0_d0;
+            __jacobian[21 * 26 + 7] = __t30;
+            __jacobian[22 * 26 + 7] = __t31;
+            __jacobian[23 * 26 + 7] = __t5;
+            __jacobian[12 * 26 + 8] = __t13;
+            __jacobian[15 * 26 + 8] = __t6;
+            __jacobian[18 * 26 + 8] = __q_z0_d0;
+            __jacobian[21 * 26 + 8] = __t7;
+            __jacobian[12 * 26 + 9] = __t14;
+            __jacobian[13 * 26 + 9] = __t13;
+            __jacobian[15 * 26 + 9] = __q_z0_d1;
+            __jacobian[16 * 26 + 9] = __t6;
+            __jacobian[18 * 26 + 9] = __q_z0_d1;
+            __jacobian[19 * 26 + 9] = __q_z0_d0;
+            __jacobian[21 * 26 + 9] = __t16;
+            __jacobian[22 * 26 + 9] = __t7;
+            __jacobian[12 * 26 + 10] = __t27;
+            __jacobian[13 * 26 + 10] = __t28;
+            __jacobian[14 * 26 + 10] = __t13;
+            __jacobian[15 * 26 + 10] = __q_z0_d2;
+            __jacobian[16 * 26 + 10] = __t32;
+            __jacobian[17 * 26 + 10] = __t6;
+            __jacobian[18 * 26 + 10] = __q_z0_d2;
+            __jacobian[19 * 26 + 10] = __t32;
+            __jacobian[20 * 26 + 10] = __q_z0_d0;
+            __jacobian[21 * 26 + 10] = __t33;
+            __jacobian[22 * 26 + 10] = __t34;
+            __jacobian[23 * 26 + 10] = __t7;
+            __jacobian[9 * 26 + 11] = -__lambda_hoist_d0;
+            __jacobian[21 * 26 + 11] = __t8;
+            __jacobian[9 * 26 + 12] = -__lambda_hoist_d1;
+            __jacobian[10 * 26 + 12] = -__lambda_hoist_d0;
+            __jacobian[21 * 26 + 12] = __t17;
+            __jacobian[22 * 26 + 12] = __t8;
+            __jacobian[9 * 26 + 13] = -__lambda_hoist_d2;
+            __jacobian[10 * 26 + 13] = __t23;
+            __jacobian[11 * 26 + 13] = -__lambda_hoist_d0;
+            __jacobian[21 * 26 + 13] = __q_x_d2 - __q_x0_d2;
+            __jacobian[22 * 26 + 13] = __q_x_d1 * 2.0 - __q_x0_d1 * 2.0;
+            __jacobian[23 * 26 + 13] = __t8;
+            __jacobian[12 * 26 + 14] = -__lambda_hoist_d0;
+            __jacobian[21 * 26 + 14] = __t9;
+            __jacobian[12 * 26 + 15] = -__lambda_hoist_d1;
+            __jacobian[13 * 26 + 15] = -__lambda_hoist_d0;
+            __jacobian[21 * 26 + 15] = __t18;
+            __jacobian[22 * 26 + 15] = __t9;
+            __jacobian[12 * 26 + 16] = -__lambda_hoist_d2;
+            __jacobian[13 * 26 + 16] = __t23;
+            __jacobian[14 * 26 + 16] = -__lambda_hoist_d0;
+            __jacobian[21 * 26 + 16] = __q_z_d2 - __q_z0_d2;
+            __jacobian[22 * 26 + 16] = __q_z_d1 * 2.0 - __q_z0_d1 * 2.0;
+            __jacobian[23 * 26 + 16] = __t9;
+            __jacobian[0 * 26 + 17] = -__q_L1_d0;
+            __jacobian[9 * 26 + 17] = __t4;
+            __jacobian[12 * 26 + 17] = __t6;
+            __jacobian[0 * 26 + 18] = -__q_L1_d1;
+            __jacobian[1 * 26 + 18] = -__q_L1_d0;
+            __jacobian[9 * 26 + 18] = __q_x0_d1;
+            __jacobian[10 * 26 + 18] = __t4;
+            __jacobian[12 * 26 + 18] = __q_z0_d1;
+            __jacobian[13 * 26 + 18] = __t6;
+            __jacobian[0 * 26 + 19] = -__q_L1_d2;
+            __jacobian[1 * 26 + 19] = -__q_L1_d1 * 2.0;
+            __jacobian[2 * 26 + 19] = -__q_L1_d0;
+            __jacobian[9 * 26 + 19] = __q_x0_d2;
+            __jacobian[10 * 26 + 19] = __t29;
+            __jacobian[11 * 26 + 19] = __t4;
+            __jacobian[12 * 26 + 19] = __q_z0_d2;
+            __jacobian[13 * 26 + 19] = __t32;
+            __jacobian[14 * 26 + 19] = __t6;
+            __jacobian[6 * 26 + 20] = -__q_L0_d0;
+            __jacobian[9 * 26 + 20] = __q_x0_d0;
+            __jacobian[12 * 26 + 20] = __q_z0_d0;
+            __jacobian[6 * 26 + 21] = -__q_L0_d1;
+            __jacobian[7 * 26 + 21] = -__q_L0_d0;
+            __jacobian[9 * 26 + 21] = __q_x0_d1;
+            __jacobian[10 * 26 + 21] = __q_x0_d0;
+            __jacobian[12 * 26 + 21] = __q_z0_d1;
+            __jacobian[13 * 26 + 21] = __q_z0_d0;
+            __jacobian[6 * 26 + 22] = -__q_L0_d2;
+            __jacobian[7 * 26 + 22] = __t24;
+            __jacobian[8 * 26 + 22] = -__q_L0_d0;
+            __jacobian[9 * 26 + 22] = __q_x0_d2;
+            __jacobian[10 * 26 + 22] = __t29;
+            __jacobian[11 * 26 + 22] = __q_x0_d0;
+            __jacobian[12 * 26 + 22] = __q_z0_d2;
+            __jacobian[13 * 26 + 22] = __t32;
+            __jacobian[14 * 26 + 22] = __q_z0_d0;
+            __jacobian[3 * 26 + 23] = __t2;
+            __jacobian[6 * 26 + 23] = __t3;
+            __jacobian[9 * 26 + 23] = __t5;
+            __jacobian[12 * 26 + 23] = __t7;
+            __jacobian[3 * 26 + 24] = __t21;
+            __jacobian[4 * 26 + 24] = __t2;
+            __jacobian[6 * 26 + 24] = __t12;
+            __jacobian[7 * 26 + 24] = __t3;
+            __jacobian[9 * 26 + 24] = __t15;
+            __jacobian[10 * 26 + 24] = __t5;
+            __jacobian[12 * 26 + 24] = __t16;
+            __jacobian[13 * 26 + 24] = __t7;
+            __jacobian[3 * 26 + 25] = __q_L0_d2 - __q_L2_d2;
+            __jacobian[4 * 26 + 25] = __q_L0_d1 * 2.0 - __q_L2_d1 * 2.0;
+            __jacobian[5 * 26 + 25] = __t2;
+            __jacobian[6 * 26 + 25] = __t25;
+            __jacobian[7 * 26 + 25] = __t26;
+            __jacobian[8 * 26 + 25] = __t3;
+            __jacobian[9 * 26 + 25] = __t30;
+            __jacobian[10 * 26 + 25] = __t31;
+            __jacobian[11 * 26 + 25] = __t5;
+            __jacobian[12 * 26 + 25] = __t33;
+            __jacobian[13 * 26 + 25] = __t34;
+            __jacobian[14 * 26 + 25] = __t7;
         }
     }
 };
