@@ -94,6 +94,9 @@ pub struct DummyDerivative<H, Tr, const N: usize, const M: usize, const A: usize
     whole: bool,
     /// Scratch: the rows' sums of the normalised residual.
     row_sums: Vec<f64>,
+    /// The Jacobian's entries not zero by structure, `(i, j)` by columns
+    /// (`JACOBIAN_NONZEROS`).
+    nonzeros: Vec<(usize, usize)>,
 }
 
 impl<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> DummyDerivative<H, Tr, N, M, A, J>
@@ -124,6 +127,9 @@ where
             last: DVector::zeros(J),
             whole: false,
             row_sums: vec![0.0; J],
+            nonzeros: (<H::Target as DummyDerivatives<N, M, A, J>>::JACOBIAN_NONZEROS.iter())
+                .map(|&k| (k as usize % J, k as usize / J))
+                .collect(),
         }
     }
 
@@ -242,8 +248,7 @@ where
     fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
         self.model
             .dummy_derivative_system_into(&self.gamma, z.as_slice(), r.as_mut_slice(), jac.as_mut_slice());
-        let nonzeros = <H::Target as DummyDerivatives<N, M, A, J>>::JACOBIAN_NONZEROS;
-        normalised_residual_sparse(r, jac, z, nonzeros, &mut self.row_sums)
+        normalised_residual_sparse(r, jac, z, &self.nonzeros, &mut self.row_sums)
     }
 
     fn blocks(&self) -> &[Range<usize>] {

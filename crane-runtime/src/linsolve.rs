@@ -698,10 +698,10 @@ fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize]) -> f64 {
 /// Forward and back substitution with the factors of [`lu_in_place`].
 fn lu_solve(lu: &DMatrix<f64>, pivots: &[usize], b: &mut DVector<f64>) {
     let n = lu.nrows();
-    for k in 0..n {
-        b.swap_rows(k, pivots[k]);
-    }
     let (data, x) = (lu.as_slice(), b.as_mut_slice());
+    for (k, &p) in pivots.iter().enumerate().take(n) {
+        x.swap(k, p);
+    }
     for j in 0..n {
         let bj = x[j];
         if bj != 0.0 {

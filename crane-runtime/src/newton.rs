@@ -73,21 +73,20 @@ pub fn normalised_residual(
 }
 
 /// [`normalised_residual`] of a Jacobian whose entries outside `nonzeros`
-/// (indices `j n + i` of entry `(i, j)`, ascending) are zero, without the
-/// floor: each row's sum over its nonzero entries only, added in the same
-/// order (so the same number), into the scratch `sums` (one per row).
+/// (`(i, j)`, by columns) are zero, without the floor: each row's sum over
+/// its nonzero entries only, added in the same order (so the same number),
+/// into the scratch `sums` (one per row).
 pub fn normalised_residual_sparse(
     r: &DVector<f64>,
     jac: &DMatrix<f64>,
     z: &DVector<f64>,
-    nonzeros: &[u32],
+    nonzeros: &[(usize, usize)],
     sums: &mut [f64],
 ) -> f64 {
     let (n, entries) = (jac.nrows(), jac.as_slice());
     sums.fill(0.0);
-    for &k in nonzeros {
-        let k = k as usize;
-        sums[k % n] += (entries[k] * z[k / n]).abs();
+    for &(i, j) in nonzeros {
+        sums[i] += (entries[j * n + i] * z[j]).abs();
     }
     let mut normalised = 0.0f64;
     for (&ri, &sum) in r.iter().zip(sums.iter()) {
