@@ -35,11 +35,16 @@ pub enum Predictor {
         /// How many leading unknowns are discretised coordinates.
         leading: usize,
     },
-    /// The cubic through the last four steps' unknowns (the quadratic
-    /// through three, or the last step's, before that and after a step on a
-    /// singular iteration matrix); if Newton fails from it, a second solve
-    /// from the last step's unknowns.
-    Extrapolation,
+    /// The polynomial through the last `points` steps' unknowns (at most
+    /// [`MAX_EXTRAPOLATION`](crate::scheme::MAX_EXTRAPOLATION); the cubic
+    /// through four as soon as four are known, more as they become known;
+    /// the quadratic through three, or the last step's, before that and
+    /// after a step on a singular iteration matrix); if Newton fails from
+    /// it, a second solve from the last step's unknowns.
+    Extrapolation {
+        /// The most steps the polynomial goes through (4: the cubic).
+        points: usize,
+    },
 }
 
 /// What a problem makes of the start state.

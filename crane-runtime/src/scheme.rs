@@ -531,12 +531,16 @@ impl<const K: usize, S: Method> History<K, S> {
     }
 }
 
+/// The most past values an extrapolation goes through
+/// ([`Predictor::Extrapolation`](crate::problem::Predictor::Extrapolation)).
+pub const MAX_EXTRAPOLATION: usize = 8;
+
 /// The weights of the extrapolation one step ahead through `points`
-/// (`1..=MAX_STEPS`) equally spaced values, newest first:
+/// (`1..=MAX_EXTRAPOLATION`) equally spaced values, newest first:
 /// `y_{n+1} = sum_j w_j y_{n-j}`, `w_j = (-1)^j C(points, j + 1)` (the
 /// polynomial of degree `points - 1`; one point: the last value).
-pub(crate) fn extrapolation_weights(points: usize) -> [f64; MAX_STEPS] {
-    let mut weights = [0.0; MAX_STEPS];
+pub(crate) fn extrapolation_weights(points: usize) -> [f64; MAX_EXTRAPOLATION] {
+    let mut weights = [0.0; MAX_EXTRAPOLATION];
     let mut binomial = 1.0;
     for (j, weight) in weights.iter_mut().enumerate().take(points) {
         binomial = binomial * (points - j) as f64 / (j + 1) as f64;
@@ -651,10 +655,14 @@ mod tests {
     /// quadratic, cubic.
     #[test]
     fn extrapolation_weights_are_the_binomial_ones() {
-        assert_eq!(extrapolation_weights(1), [1.0, 0.0, 0.0, 0.0, 0.0]);
-        assert_eq!(extrapolation_weights(2), [2.0, -1.0, 0.0, 0.0, 0.0]);
-        assert_eq!(extrapolation_weights(3), [3.0, -3.0, 1.0, 0.0, 0.0]);
-        assert_eq!(extrapolation_weights(4), [4.0, -6.0, 4.0, -1.0, 0.0]);
+        assert_eq!(extrapolation_weights(1)[..5], [1.0, 0.0, 0.0, 0.0, 0.0]);
+        assert_eq!(extrapolation_weights(2)[..5], [2.0, -1.0, 0.0, 0.0, 0.0]);
+        assert_eq!(extrapolation_weights(3)[..5], [3.0, -3.0, 1.0, 0.0, 0.0]);
+        assert_eq!(extrapolation_weights(4)[..5], [4.0, -6.0, 4.0, -1.0, 0.0]);
+        assert_eq!(
+            extrapolation_weights(8),
+            [8.0, -28.0, 56.0, -70.0, 56.0, -28.0, 8.0, -1.0]
+        );
     }
 
     #[test]

@@ -44,7 +44,7 @@ use crate::model::{CraneModel, any_rope_tension};
 use crate::newton::{Newton, NewtonFailure};
 use crate::options::Options;
 use crate::problem::{Accepted, Follow, Predictor, Problem};
-use crate::scheme::{History, Method, extrapolation_weights};
+use crate::scheme::{History, MAX_EXTRAPOLATION, Method, extrapolation_weights};
 use crate::solution::State;
 
 /// What one step reports.
@@ -132,8 +132,8 @@ pub struct Stepper<P, S: Method, const N: usize, const M: usize, const A: usize,
     z: DVector<f64>,
     /// The last four steps' unknowns, newest first (the extrapolation of
     /// the unknowns the scheme does not predict).
-    past: [DVector<f64>; 4],
-    /// How many of `past` are known (1 ..= 4).
+    past: [DVector<f64>; MAX_EXTRAPOLATION],
+    /// How many of `past` are known (1 ..= MAX_EXTRAPOLATION).
     known: usize,
     /// Whether the last step took a minimum-norm step (a singular
     /// iteration matrix): the next one predicts with the scheme's degree.
@@ -189,7 +189,7 @@ where
             problem,
             history,
             newton,
-            past: [z.clone(), z.clone(), z.clone(), z.clone()],
+            past: std::array::from_fn(|_| z.clone()),
             z,
             known: 1,
             last_singular: false,
@@ -350,9 +350,9 @@ where
             // steps are known, takes 2.04 Newton iterations per step at
             // dt = 0.01 against the quadratic's 2.85, with e_u(1.5 s) the
             // same at every dt of `crane convergence`)
-            Predictor::Extrapolation => {
+            Predictor::Extrapolation { points } => {
                 let points = if !self.last_singular && self.known >= 4 {
-                    4
+                    self.known.min(points.min(MAX_EXTRAPOLATION))
                 } else if self.known >= 3 {
                     3
                 } else {
@@ -379,7 +379,7 @@ where
         self.history.push(accepted.y, accepted.v);
         self.past.rotate_right(1);
         self.past[0].copy_from(&self.z);
-        self.known = (self.known + 1).min(4);
+        self.known = (self.known + 1).min(MAX_EXTRAPOLATION);
         self.steps += 1;
     }
 

@@ -149,7 +149,7 @@ where
     }
 
     fn predictor(&self) -> Predictor {
-        Predictor::Extrapolation
+        Predictor::Extrapolation { points: 4 }
     }
 
     fn drive(&self, t: f64) -> ServoTarget<A> {
