@@ -415,12 +415,11 @@ impl DenseSolver {
     }
 
     /// Solve with the factors (and scales) of the last successful
-    /// [`solve_lu`](Self::solve_lu), for a matrix equal to its.
+    /// [`solve_lu`](Self::solve_lu): `b` scaled by the rows, substituted,
+    /// scaled by the columns (when equilibrating).
     fn solve_factored(&self, b: &mut DVector<f64>) {
         if self.equilibrate {
-            for (x, row) in b.iter_mut().zip(&self.row_scale) {
-                *x *= row;
-            }
+            self.scale_rows(b);
         }
         lu_solve(&self.lu, &self.pivots, b);
         if self.equilibrate {
@@ -430,29 +429,31 @@ impl DenseSolver {
         }
     }
 
-    /// LU alone (no minimum-norm step): `false` when `jac` is singular to
-    /// working precision (then `b` is left as it was, scaled by the rows
-    /// when equilibrating); the scales found anew (`rescale`) or kept.
-    fn solve_lu(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
-        if !self.equilibrate {
-            self.lu.copy_from(jac);
-            return self.factor_and_solve_in_lu(b).is_some();
-        }
-        if rescale {
-            self.find_scales(jac);
-        }
-        let mut lu = std::mem::take(&mut self.lu);
-        self.write_scaled(jac, &mut lu);
-        self.lu = lu;
+    /// `b` times the row scales.
+    fn scale_rows(&self, b: &mut DVector<f64>) {
         for (x, row) in b.iter_mut().zip(&self.row_scale) {
             *x *= row;
         }
-        if self.factor_and_solve_in_lu(b).is_none() {
+    }
+
+    /// LU alone (no minimum-norm step): `false` when `jac` is singular to
+    /// working precision (then `b` is left as it was); the scales found
+    /// anew (`rescale`) or kept.
+    fn solve_lu(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
+        if !self.equilibrate {
+            self.lu.copy_from(jac);
+        } else {
+            if rescale {
+                self.find_scales(jac);
+            }
+            let mut lu = std::mem::take(&mut self.lu);
+            self.write_scaled(jac, &mut lu);
+            self.lu = lu;
+        }
+        if !self.factor_in_lu() {
             return false;
         }
-        for (x, col) in b.iter_mut().zip(&self.col_scale) {
-            *x *= col;
-        }
+        self.solve_factored(b);
         true
     }
 
@@ -531,7 +532,7 @@ impl DenseSolver {
         if !self.equilibrate {
             return self.min_norm(jac, b);
         }
-        // `b` is scaled by the rows, as the LU left it
+        self.scale_rows(b);
         let mut scaled = std::mem::take(&mut self.scaled);
         self.write_scaled(jac, &mut scaled);
         let outcome = self.min_norm(&scaled, b);
@@ -542,16 +543,12 @@ impl DenseSolver {
         outcome
     }
 
-    /// LU of `self.lu` in place and the solve, or `None` (with the pivot
-    /// ratio kept) when the pivots say singular.
-    fn factor_and_solve_in_lu(&mut self, b: &mut DVector<f64>) -> Option<SolveKind> {
+    /// LU of `self.lu` in place: `false` (with the pivot ratio kept) when
+    /// the pivots say singular, or the solver holds.
+    fn factor_in_lu(&mut self) -> bool {
         self.pivot_ratio = lu_in_place(&mut self.lu, &mut self.pivots);
         self.factorisations += 1;
-        if !self.hold && self.pivot_ratio.is_finite() && self.pivot_ratio >= SINGULAR_PIVOT_RATIO {
-            lu_solve(&self.lu, &self.pivots, b);
-            return Some(SolveKind::Lu);
-        }
-        None
+        !self.hold && self.pivot_ratio.is_finite() && self.pivot_ratio >= SINGULAR_PIVOT_RATIO
     }
 
     /// Minimum-norm least squares: `min |J x - b|^2 + eps^2 |x|^2`, by

@@ -61,12 +61,7 @@ pub fn normalised_residual(
         }
         for (k, &sum) in sums[..len].iter().enumerate() {
             let i = first + k;
-            let scale = sum.max(floor(i));
-            if scale > 0.0 {
-                normalised = normalised.max(r[i].abs() / scale);
-            } else {
-                normalised = normalised.max(r[i].abs());
-            }
+            normalised = normalised.max(row_ratio(r[i], sum.max(floor(i))));
         }
     }
     normalised
@@ -90,9 +85,15 @@ pub fn normalised_residual_sparse(
     }
     let mut normalised = 0.0f64;
     for (&ri, &sum) in r.iter().zip(sums.iter()) {
-        normalised = normalised.max(if sum > 0.0 { ri.abs() / sum } else { ri.abs() });
+        normalised = normalised.max(row_ratio(ri, sum));
     }
     normalised
+}
+
+/// A row's residual `ri` in units of its `scale`, or as it is where the
+/// scale is zero (or not a number).
+fn row_ratio(ri: f64, scale: f64) -> f64 {
+    if scale > 0.0 { ri.abs() / scale } else { ri.abs() }
 }
 
 /// Tolerances of [`Newton`].

@@ -102,12 +102,12 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
     /// ([`start`](Self::start)). Where it is not and `p0` is the crane's
     /// default (a scenario that gives none keeps it: a guess made for the
     /// default parameters and path), the static equilibrium found from it
-    /// ([`consistent_start`](Self::consistent_start)); where that fails
-    /// too, the first error stands. A `p0` of the user's own is the start, never moved.
+    /// (as [`consistent_start`](Self::consistent_start) finds it); where
+    /// that fails too, the first error stands. A `p0` of the user's own is the start, never moved.
     pub fn run_start(&self) -> Result<State<N, M, A>, Error> {
         match self.start() {
             Err(e @ Error::InconsistentStart { .. }) if self.p0 == C::maneuver().p0 => {
-                self.consistent_start(self.t0()).map_err(|_| e)
+                init::static_equilibrium(&self.model, &self.path, self.t0(), &self.p0).map_err(|_| e)
             }
             other => other,
         }

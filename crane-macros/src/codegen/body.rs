@@ -38,7 +38,7 @@ pub(super) enum Target {
 
 impl Output {
     /// Whether entry `id` is written.
-    fn writes_entry(&self, arena: &Arena, id: Id) -> bool {
+    pub(super) fn writes_entry(&self, arena: &Arena, id: Id) -> bool {
         matches!(self.target, Target::Slice) || !arena.is_zero(id)
     }
 }

@@ -42,11 +42,16 @@ pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &To
             writes.push((quote!(#j * #j_lit + #i), id));
         }
     }
-    // the entries not zero by structure, by columns
+    let jacobian = Output {
+        var: internal("jacobian"),
+        target: Target::ZeroedSlice,
+        writes,
+    };
+    // the entries it writes (those not zero by structure), by columns
     let mut nonzeros: Vec<usize> = (k.jacobian.iter().enumerate())
         .flat_map(|(i, row)| {
             (row.iter().enumerate())
-                .filter(|&(_, &id)| !model.arena.is_zero(id))
+                .filter(|&(_, &id)| jacobian.writes_entry(&model.arena, id))
                 .map(move |(j, _)| j * size + i)
         })
         .collect();
@@ -54,11 +59,6 @@ pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &To
     let nonzeros = nonzeros
         .into_iter()
         .map(|k| proc_macro2::Literal::u32_unsuffixed(k as u32));
-    let jacobian = Output {
-        var: internal("jacobian"),
-        target: Target::ZeroedSlice,
-        writes,
-    };
     let outputs = [residual, jacobian];
     let statements = body(model, Mode::F64, &outputs);
 

@@ -205,25 +205,23 @@ pub fn study_against<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
             ..RunSettings::default()
         };
         let summary = super::summarize_run(case, &settings, &solution, 0.0, crate::plan::DIAGNOSIS_SAMPLES);
-        let mut findings: Vec<String> = super::audit(&summary).iter().map(|f| f.to_string()).collect();
         let t0 = case.t0();
         let floor =
             round_off_floor(&solution.states, t0 + 0.2 * (T_ERROR - t0), t0 + 0.8 * (T_ERROR - t0)) / reference.norm();
-        let row = Row {
+        let mut row = Row {
             dt,
             e_u,
             order,
-            findings: Vec::new(),
+            findings: super::audit(&summary).iter().map(|f| f.to_string()).collect(),
             floor,
         };
         if let Some(last) = rows.last().filter(|last| e_u > last.e_u && !row.at_round_off()) {
-            findings.push(format!(
+            row.findings.push(format!(
                 "the error grew from {:.3e} at dt = {} s to {e_u:.3e} as the step shrank, beyond the run's round-off \
                  ({floor:.1e}): not the scheme's convergence",
                 last.e_u, last.dt
             ));
         }
-        let row = Row { findings, ..row };
         observe(&row);
         rows.push(row);
     }

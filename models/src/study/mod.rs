@@ -371,26 +371,24 @@ fn length_at_rest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
     r: usize,
     t: f64,
 ) -> Option<f64> {
-    /// The path's point at each time, held: a load at rest there (the
-    /// static equilibrium of the path itself would balance the move's
-    /// acceleration too, which on a fast move swings the jib round).
-    struct AtRest<'a, const A: usize>(&'a crate::Path<A>);
-    impl<const A: usize> crane_runtime::Trajectory<A> for AtRest<'_, A> {
-        fn derivative(&self, t: f64, k: usize) -> crane_runtime::nalgebra::SVector<f64, A> {
-            if k == 0 {
-                crane_runtime::Trajectory::derivative(self.0, t, 0)
-            } else {
-                crane_runtime::nalgebra::SVector::zeros()
-            }
+    // the path's point at each time, held: a load at rest there (the
+    // static equilibrium of the path itself would balance the move's
+    // acceleration too, which on a fast move swings the jib round)
+    let path = case.path();
+    let at_rest = crane_runtime::trajectory::FromFn(|t: f64, k: usize| {
+        if k == 0 {
+            crane_runtime::Trajectory::derivative(path, t, 0)
+        } else {
+            crane_runtime::nalgebra::SVector::<f64, A>::zeros()
         }
-    }
+    });
     let model = case.model();
     let mut lengths = vec![0.0; <C::Model as CraneModel<N, M, A>>::INFO.ropes.len()];
     let mut guess = case.p0.clone();
     let t0 = case.t0();
     for k in 1..=REST_MARCH {
         let at = t0 + (t - t0) * k as f64 / REST_MARCH as f64;
-        match crane_runtime::init::static_equilibrium(model, &AtRest(case.path()), at, &guess) {
+        match crane_runtime::init::static_equilibrium(model, &at_rest, at, &guess) {
             Ok(rest) => {
                 model.rope_lengths(&rest.q, &mut lengths);
                 guess = rest.q.iter().take(N - A).copied().collect();
