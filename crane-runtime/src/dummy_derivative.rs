@@ -59,7 +59,7 @@ use crate::init;
 use crate::linsolve::{DenseSolver, Triangular};
 use crate::minimal::degenerate;
 use crate::model::{CraneModel, DummyDerivatives, NoDummyDerivatives, VisitDummyDerivatives};
-use crate::newton::{NonlinearSystem, normalised_residual_sparse};
+use crate::newton::{NonlinearSystem, RowPattern, normalised_residual_sparse};
 use crate::options::Options;
 use crate::problem::{Accepted, Follow, Predictor, Problem, Start};
 use crate::redundant::Redundant;
@@ -93,11 +93,9 @@ pub struct DummyDerivative<H, Tr, const N: usize, const M: usize, const A: usize
     last: DVector<f64>,
     /// Solve the linear systems whole, not stage by stage.
     whole: bool,
-    /// Scratch: the rows' sums of the normalised residual.
-    row_sums: Vec<f64>,
-    /// The Jacobian's entries not zero by structure, `(i, j)` by columns
+    /// The Jacobian's entries not zero by structure, row by row
     /// (`JACOBIAN_NONZEROS`).
-    nonzeros: Vec<(usize, usize)>,
+    nonzeros: RowPattern,
 }
 
 impl<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> DummyDerivative<H, Tr, N, M, A, J>
@@ -127,10 +125,7 @@ where
             blocks: vec![Range { start: 0, end: J }],
             last: DVector::zeros(J),
             whole: false,
-            row_sums: vec![0.0; J],
-            nonzeros: (<H::Target as DummyDerivatives<N, M, A, J>>::JACOBIAN_NONZEROS.iter())
-                .map(|&k| (k as usize % J, k as usize / J))
-                .collect(),
+            nonzeros: RowPattern::new(J, <H::Target as DummyDerivatives<N, M, A, J>>::JACOBIAN_NONZEROS),
         }
     }
 
@@ -249,7 +244,7 @@ where
     fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
         self.model
             .dummy_derivative_system_into(&self.gamma, z.as_slice(), r.as_mut_slice(), jac.as_mut_slice());
-        normalised_residual_sparse(r, jac, z, &self.nonzeros, &mut self.row_sums)
+        normalised_residual_sparse(r, jac, z, &self.nonzeros)
     }
 
     fn blocks(&self) -> &[Range<usize>] {
@@ -260,6 +255,14 @@ where
     /// [`solved_whole`](Self::solved_whole).
     fn triangular(&self) -> Option<Triangular> {
         if self.whole { None } else { Self::stages() }
+    }
+
+    /// Yes: the jets are smooth in time, and so are the Jacobian's entries
+    /// (finding the stage blocks' scales anew at every step cost a tenth
+    /// of it; a block whose LU finds it singular with the kept scales is
+    /// solved with new ones).
+    fn keeps_scales(&self) -> bool {
+        true
     }
 }
 

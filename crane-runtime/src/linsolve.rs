@@ -207,37 +207,15 @@ impl BlockSolver {
     /// and of the next are often the same) is solved with that block's
     /// factors, not factored again.
     fn solve(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
-        let form = &self.form;
         let n = jac.nrows();
         let entries = jac.as_slice(); // by columns
         let mut factored = 0;
-        for (k, block) in form.blocks.iter().enumerate() {
+        for k in 0..self.form.blocks.len() {
+            self.reduce(k, entries, b);
+            let form = &self.form;
+            let block = &form.blocks[k];
             let rows = &form.rows[block.clone()];
             let cols = &form.cols[block.clone()];
-            // each row less the blocks before it, known: the terms in
-            // column order, summed in a register (over the entries not zero
-            // by structure, where the form knows them: the same sum)
-            match form.left.as_ref().and_then(|left| left.get(k)) {
-                Some(left) => {
-                    for ((value, &row), span) in self.rhs[k].iter_mut().zip(rows).zip(left.starts.windows(2)) {
-                        let mut sum = b[row];
-                        for &(p, entry) in &left.entries[span[0]..span[1]] {
-                            sum -= entries[entry] * self.x[p];
-                        }
-                        *value = sum;
-                    }
-                }
-                None => {
-                    let known = &form.cols[..block.start];
-                    for (value, &row) in self.rhs[k].iter_mut().zip(rows) {
-                        let mut sum = b[row];
-                        for (&col, &x) in known.iter().zip(self.x.iter()) {
-                            sum -= entries[col * n + row] * x;
-                        }
-                        *value = sum;
-                    }
-                }
-            }
             let same = k > 0 && {
                 let before = &self.matrices[k - 1];
                 before.nrows() == rows.len()
@@ -273,10 +251,48 @@ impl BlockSolver {
             }
             self.x.rows_mut(block.start, block.len()).copy_from(&self.rhs[k]);
         }
-        for (&col, &x) in form.cols.iter().zip(self.x.iter()) {
+        self.scatter(b);
+        true
+    }
+
+    /// Block `k`'s right-hand side into `rhs[k]`: each of its rows of `b`
+    /// less the blocks before it, known (in `x`), with the matrix's
+    /// `entries` by columns: the terms in column order, summed in a
+    /// register (over the entries not zero by structure, where the form
+    /// knows them: the same sum).
+    fn reduce(&mut self, k: usize, entries: &[f64], b: &DVector<f64>) {
+        let form = &self.form;
+        let n = form.rows.len();
+        let block = &form.blocks[k];
+        let rows = &form.rows[block.clone()];
+        match form.left.as_ref().and_then(|left| left.get(k)) {
+            Some(left) => {
+                for ((value, &row), span) in self.rhs[k].iter_mut().zip(rows).zip(left.starts.windows(2)) {
+                    let mut sum = b[row];
+                    for &(p, entry) in &left.entries[span[0]..span[1]] {
+                        sum -= entries[entry] * self.x[p];
+                    }
+                    *value = sum;
+                }
+            }
+            None => {
+                let known = &form.cols[..block.start];
+                for (value, &row) in self.rhs[k].iter_mut().zip(rows) {
+                    let mut sum = b[row];
+                    for (&col, &x) in known.iter().zip(self.x.iter()) {
+                        sum -= entries[col * n + row] * x;
+                    }
+                    *value = sum;
+                }
+            }
+        }
+    }
+
+    /// The solution, in the form's column order, into `b`.
+    fn scatter(&self, b: &mut DVector<f64>) {
+        for (&col, &x) in self.form.cols.iter().zip(self.x.iter()) {
             b[col] = x;
         }
-        true
     }
 }
 
@@ -289,6 +305,10 @@ pub struct DenseSolver {
     stacked: DMatrix<f64>,
     stacked_rhs: DVector<f64>,
     pivots: Vec<usize>,
+    /// The reciprocals of the diagonal of `U` (the back substitution
+    /// multiplies by them: a division's latency on every unknown of the
+    /// chain was a tenth of a reduced step).
+    inverse_diagonal: Vec<f64>,
     /// Row and column scale factors when equilibrating.
     row_scale: Vec<f64>,
     col_scale: Vec<f64>,
@@ -316,6 +336,7 @@ impl DenseSolver {
             stacked: DMatrix::zeros(2 * n, n),
             stacked_rhs: DVector::zeros(2 * n),
             pivots: vec![0; n],
+            inverse_diagonal: vec![0.0; n],
             row_scale: vec![1.0; n],
             col_scale: vec![1.0; n],
             equilibrate: false,
@@ -389,6 +410,22 @@ impl DenseSolver {
         self.solve_scaled(jac, b)
     }
 
+    /// [`solve`](Self::solve) with the scale factors of earlier solves
+    /// where they serve (an LU with them finds `jac` regular; any powers of
+    /// two are exact): for a sequence of matrices of the same sizes, such as
+    /// Newton's over the time steps of smooth jets. Where they do not (or
+    /// there are none yet), as [`solve`](Self::solve).
+    pub fn solve_with_kept_scales(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>) -> Result<SolveKind, Singular> {
+        if self.solve_blocks(jac, b, false) {
+            return Ok(SolveKind::Lu);
+        }
+        let kept = self.blocks.is_none() && self.equilibrate && self.scales_found && !self.hold;
+        if kept && self.solve_lu(jac, b, false) {
+            return Ok(SolveKind::Lu);
+        }
+        self.solve(jac, b)
+    }
+
     /// [`solve`](Self::solve) with the scale factors of the last `solve`
     /// (any powers of two are exact; Newton's later iterations in one step
     /// have matrices of the same sizes as its first, and finding the factors
@@ -421,7 +458,7 @@ impl DenseSolver {
         if self.equilibrate {
             self.scale_rows(b);
         }
-        lu_solve(&self.lu, &self.pivots, b);
+        lu_solve(&self.lu, &self.pivots, &self.inverse_diagonal, b);
         if self.equilibrate {
             for (x, col) in b.iter_mut().zip(&self.col_scale) {
                 *x *= col;
@@ -462,7 +499,7 @@ impl DenseSolver {
     /// precision.
     pub fn inverse_norm1(&mut self, jac: &DMatrix<f64>) -> f64 {
         self.lu.copy_from(jac);
-        let ratio = lu_in_place(&mut self.lu, &mut self.pivots);
+        let ratio = lu_in_place(&mut self.lu, &mut self.pivots, &mut self.inverse_diagonal);
         if !(ratio.is_finite() && ratio >= SINGULAR_PIVOT_RATIO) {
             return f64::INFINITY;
         }
@@ -470,7 +507,7 @@ impl DenseSolver {
         for k in 0..jac.nrows() {
             self.rhs.fill(0.0);
             self.rhs[k] = 1.0;
-            lu_solve(&self.lu, &self.pivots, &mut self.rhs);
+            lu_solve(&self.lu, &self.pivots, &self.inverse_diagonal, &mut self.rhs);
             largest = largest.max(self.rhs.iter().map(|x| x.abs()).sum::<f64>());
         }
         largest
@@ -546,7 +583,7 @@ impl DenseSolver {
     /// LU of `self.lu` in place: `false` (with the pivot ratio kept) when
     /// the pivots say singular, or the solver holds.
     fn factor_in_lu(&mut self) -> bool {
-        self.pivot_ratio = lu_in_place(&mut self.lu, &mut self.pivots);
+        self.pivot_ratio = lu_in_place(&mut self.lu, &mut self.pivots, &mut self.inverse_diagonal);
         self.factorisations += 1;
         !self.hold && self.pivot_ratio.is_finite() && self.pivot_ratio >= SINGULAR_PIVOT_RATIO
     }
@@ -643,9 +680,10 @@ fn power_of_two(m: f64) -> f64 {
 }
 
 /// LU factorisation with partial pivoting, in place (Doolittle, unit lower
-/// triangle stored below the diagonal). Returns the smallest-to-largest
+/// triangle stored below the diagonal), with the reciprocals of `U`'s
+/// diagonal into `inverse_diagonal`. Returns the smallest-to-largest
 /// absolute pivot ratio (0 when a pivot is exactly zero; NaN for non-finite input).
-fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize]) -> f64 {
+fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize], inverse_diagonal: &mut [f64]) -> f64 {
     let n = a.nrows();
     let (mut smallest, mut largest) = (f64::INFINITY, 0.0f64);
     for k in 0..n {
@@ -675,6 +713,7 @@ fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize]) -> f64 {
         // the matrix by columns: column j is data[j n .. (j + 1) n]
         let data = a.as_mut_slice();
         let inv = 1.0 / data[k * n + k];
+        inverse_diagonal[k] = inv;
         for x in &mut data[k * n + k + 1..(k + 1) * n] {
             *x *= inv;
         }
@@ -692,27 +731,32 @@ fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize]) -> f64 {
     if largest > 0.0 { smallest / largest } else { 0.0 }
 }
 
-/// Forward and back substitution with the factors of [`lu_in_place`].
-fn lu_solve(lu: &DMatrix<f64>, pivots: &[usize], b: &mut DVector<f64>) {
+/// Forward and back substitution with the factors of [`lu_in_place`], row
+/// by row: each unknown is its row's right-hand side less a sum over the
+/// unknowns already found, added in a register (column by column, the
+/// update of the unknowns still to come was stored and read back at once
+/// for every unknown, a store-to-load stall on the substitution's chain).
+fn lu_solve(lu: &DMatrix<f64>, pivots: &[usize], inverse_diagonal: &[f64], b: &mut DVector<f64>) {
     let n = lu.nrows();
     let (data, x) = (lu.as_slice(), b.as_mut_slice());
     for (k, &p) in pivots.iter().enumerate().take(n) {
         x.swap(k, p);
     }
-    for j in 0..n {
-        let bj = x[j];
-        if bj != 0.0 {
-            for (xi, &l) in x[j + 1..].iter_mut().zip(&data[j * n + j + 1..(j + 1) * n]) {
-                *xi -= l * bj;
-            }
+    // L y = P b, L unit lower triangular: entry (i, k) at data[k n + i]
+    for i in 1..n {
+        let mut sum = x[i];
+        for (k, &y) in x[..i].iter().enumerate() {
+            sum -= data[k * n + i] * y;
         }
+        x[i] = sum;
     }
-    for j in (0..n).rev() {
-        x[j] /= data[j * n + j];
-        let bj = x[j];
-        for (xi, &u) in x[..j].iter_mut().zip(&data[j * n..j * n + j]) {
-            *xi -= u * bj;
+    // U x = y
+    for i in (0..n).rev() {
+        let mut sum = x[i];
+        for k in i + 1..n {
+            sum -= data[k * n + i] * x[k];
         }
+        x[i] = sum * inverse_diagonal[i];
     }
 }
 

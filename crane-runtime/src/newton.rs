@@ -30,6 +30,14 @@ pub trait NonlinearSystem {
     fn triangular(&self) -> Option<Triangular> {
         None
     }
+
+    /// Whether the iteration matrices of successive solves have entries of
+    /// about the same sizes, so that an equilibrating solver may keep the
+    /// scales of earlier solves ([`DenseSolver::solve_with_kept_scales`]).
+    /// `false` by default: each solve finds its own.
+    fn keeps_scales(&self) -> bool {
+        false
+    }
 }
 
 /// The residual normalised row by row, `max_i |r_i| / max(floor(i), sum_j
@@ -67,24 +75,65 @@ pub fn normalised_residual(
     normalised
 }
 
-/// [`normalised_residual`] of a Jacobian whose entries outside `nonzeros`
-/// (`(i, j)`, by columns) are zero, without the floor: each row's sum over
-/// its nonzero entries only, added in the same order (so the same number),
-/// into the scratch `sums` (one per row).
-pub fn normalised_residual_sparse(
-    r: &DVector<f64>,
-    jac: &DMatrix<f64>,
-    z: &DVector<f64>,
-    nonzeros: &[(usize, usize)],
-    sums: &mut [f64],
-) -> f64 {
-    let (n, entries) = (jac.nrows(), jac.as_slice());
-    sums.fill(0.0);
-    for &(i, j) in nonzeros {
-        sums[i] += (entries[j * n + i] * z[j]).abs();
+/// The entries of an `n x n` matrix that are not zero by structure, row
+/// by row, each row's in column order (for [`normalised_residual_sparse`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RowPattern {
+    /// Where each row's entries start in `entries` (one more than rows).
+    starts: Vec<usize>,
+    /// `(column, index of the entry by columns, j n + i)`.
+    entries: Vec<(usize, usize)>,
+}
+
+impl RowPattern {
+    /// The pattern of the entries `(i, j)` of an `n x n` matrix given by
+    /// their indices by columns, `j n + i`, in any order (those beyond the
+    /// matrix are left out).
+    ///
+    /// ```
+    /// use crane_runtime::newton::RowPattern;
+    /// // [[a, 0], [b, c]]: entries 0 (0, 0), 1 (1, 0), 3 (1, 1)
+    /// let pattern = RowPattern::new(2, &[3, 0, 1]);
+    /// assert_eq!(pattern.row(1).collect::<Vec<_>>(), [0, 1]);
+    /// assert_eq!(pattern.row(0).collect::<Vec<_>>(), [0]);
+    /// ```
+    pub fn new(n: usize, nonzeros: &[u32]) -> Self {
+        let mut sorted: Vec<(usize, usize)> = (nonzeros.iter())
+            .map(|&k| k as usize)
+            .filter(|&k| k < n * n)
+            .map(|k| (k % n, k / n))
+            .collect();
+        sorted.sort_unstable();
+        sorted.dedup();
+        let mut starts = Vec::with_capacity(n + 1);
+        let mut entries = Vec::with_capacity(sorted.len());
+        for row in 0..n {
+            starts.push(entries.len());
+            entries.extend(sorted.iter().filter(|&&(i, _)| i == row).map(|&(i, j)| (j, j * n + i)));
+        }
+        starts.push(entries.len());
+        Self { starts, entries }
     }
+
+    /// The columns of row `i`'s entries, in order.
+    pub fn row(&self, i: usize) -> impl Iterator<Item = usize> + '_ {
+        let span = self.starts.get(i).copied().unwrap_or(0)..self.starts.get(i + 1).copied().unwrap_or(0);
+        self.entries[span].iter().map(|&(j, _)| j)
+    }
+}
+
+/// [`normalised_residual`] of a Jacobian whose entries outside `pattern`
+/// are zero, without the floor: each row's sum over its entries in the
+/// pattern only, added in the same order (so the same number) in a
+/// register, row after row.
+pub fn normalised_residual_sparse(r: &DVector<f64>, jac: &DMatrix<f64>, z: &DVector<f64>, pattern: &RowPattern) -> f64 {
+    let entries = jac.as_slice();
     let mut normalised = 0.0f64;
-    for (&ri, &sum) in r.iter().zip(sums.iter()) {
+    for (&ri, span) in r.iter().zip(pattern.starts.windows(2)) {
+        let mut sum = 0.0;
+        for &(j, entry) in &pattern.entries[span[0]..span[1]] {
+            sum += (entries[entry] * z[j]).abs();
+        }
         normalised = normalised.max(row_ratio(ri, sum));
     }
     normalised
@@ -246,6 +295,7 @@ impl Newton {
         z: &mut DVector<f64>,
     ) -> Result<Converged, NewtonFailure> {
         let mut min_norm_steps = 0;
+        let keep_scales = system.keeps_scales();
         // the previous update in tolerance units (none before the first)
         let mut last_w = f64::INFINITY;
         let mut last_residual = f64::INFINITY;
@@ -263,8 +313,11 @@ impl Newton {
             let residual_converged = normalised <= self.options.residual_tol;
             // dz = J^{-1} r, computed in place in the residual buffer; z -= dz
             // an equilibrated solver finds its scale factors on the first
-            // iteration and keeps them for the later ones of this solve
-            let solved = if iteration == 1 {
+            // iteration and keeps them for the later ones of this solve (or
+            // for good, where the system says they serve)
+            let solved = if keep_scales {
+                self.solver.solve_with_kept_scales(&self.jac, &mut self.residual)
+            } else if iteration == 1 {
                 self.solver.solve(&self.jac, &mut self.residual)
             } else {
                 self.solver.solve_with_last_scales(&self.jac, &mut self.residual)
