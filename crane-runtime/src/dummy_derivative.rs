@@ -257,11 +257,11 @@ where
         if self.whole { None } else { Self::stages() }
     }
 
-    /// Yes: the jets are smooth in time, and so are the Jacobian's entries
-    /// (finding the stage blocks' scales anew at every step cost a tenth
-    /// of it; a block whose LU finds it singular with the kept scales is
-    /// solved with new ones).
-    fn keeps_scales(&self) -> bool {
+    /// Yes: the jets are smooth in time and predicted through the last
+    /// eight steps, and so are the Jacobian's entries (finding the stage
+    /// blocks' scales anew at every step cost a tenth of it; a block whose
+    /// LU finds it singular with the kept scales is solved with new ones).
+    fn nearby_solves(&self) -> bool {
         true
     }
 }
@@ -289,11 +289,13 @@ where
 
     /// Jets are smooth in time and known exactly at each step (nothing is
     /// discretised): the polynomial through the last eight steps, whose
-    /// prediction is often within the residual test already, so that one
-    /// Newton iteration ends the step (Newton iterations per step at dt =
-    /// 0.01 through 4 and 8 steps: navy-planar 2.01 and 1.40,
+    /// prediction is often within the residual test already, or within an
+    /// update whose error Newton's quadratic term puts at round-off, so
+    /// that one Newton iteration ends the step (Newton iterations per step
+    /// at dt = 0.01 through 4 and 8 steps: navy-planar 2.01 and 1.40,
     /// navy-3d-pulley 1.59 and 1.02, the double pendulum 1.60 and 1.35;
-    /// the inputs the same to round-off at every dt from 0.1 to 0.001).
+    /// with the quadratic term 1.14, 1.02 and 1.05; the inputs the same to
+    /// round-off at every dt from 0.1 to 0.001).
     fn predictor(&self) -> Predictor {
         Predictor::Extrapolation { points: 8 }
     }

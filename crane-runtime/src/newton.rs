@@ -31,11 +31,12 @@ pub trait NonlinearSystem {
         None
     }
 
-    /// Whether the iteration matrices of successive solves have entries of
-    /// about the same sizes, so that an equilibrating solver may keep the
-    /// scales of earlier solves ([`DenseSolver::solve_with_kept_scales`]).
-    /// `false` by default: each solve finds its own.
-    fn keeps_scales(&self) -> bool {
+    /// Whether successive solves are of nearby systems (one per time step
+    /// of smooth data, each started close to its solution), so that Newton
+    /// carries over what it learned ([`Newton::solve`]): the equilibration's
+    /// scales ([`DenseSolver::solve_with_kept_scales`]) and the size of
+    /// its quadratic term. `false` by default: each solve on its own.
+    fn nearby_solves(&self) -> bool {
         false
     }
 }
@@ -229,6 +230,18 @@ impl NewtonFailure {
 /// 1e-13).
 pub const HELD_RESIDUAL: f64 = 1e3;
 
+/// The largest update, relative to the unknowns, that the quadratic error
+/// estimate of [nearby solves](NonlinearSystem::nearby_solves) judges:
+/// about where the predictions of smooth jets land (updates of 1e-10 to
+/// 3.5e-10 relative on navy-planar at dt = 0.01); larger ones, at the start
+/// and where the path's derivatives jump, are confirmed by another
+/// iteration.
+pub const QUADRATIC_UPDATE: f64 = 1e-9;
+
+/// The estimated relative error at which a solve of nearby systems ends
+/// after an update (see [`Newton::solve`]): a dozen ulps.
+pub const QUADRATIC_ERROR: f64 = 3e-15;
+
 /// Newton's method with preallocated workspace: `solve` does not allocate.
 #[derive(Debug, Clone)]
 pub struct Newton {
@@ -236,6 +249,10 @@ pub struct Newton {
     solver: DenseSolver,
     residual: DVector<f64>,
     jac: DMatrix<f64>,
+    /// The quadratic term of the last solves, `w_2 / w_1^2` over two
+    /// successive updates of an LU in tolerance units, the largest seen,
+    /// halved at each new one (infinite before the first).
+    quadratic: f64,
 }
 
 impl Newton {
@@ -246,6 +263,7 @@ impl Newton {
             solver: DenseSolver::new(n),
             residual: DVector::zeros(n),
             jac: DMatrix::zeros(n, n),
+            quadratic: f64::INFINITY,
         }
     }
 
@@ -289,16 +307,24 @@ impl Newton {
     }
 
     /// Solve `r(z) = 0` starting from `z`, which holds the solution on success.
+    ///
+    /// For [nearby solves](NonlinearSystem::nearby_solves), an update of at
+    /// most [`QUADRATIC_UPDATE`] relative ends the solve where the error it
+    /// leaves, estimated from the quadratic term learned in earlier solves,
+    /// is at most [`QUADRATIC_ERROR`] relative: round-off, which another
+    /// evaluation and solve would only confirm.
     pub fn solve<S: NonlinearSystem + ?Sized>(
         &mut self,
         system: &mut S,
         z: &mut DVector<f64>,
     ) -> Result<Converged, NewtonFailure> {
         let mut min_norm_steps = 0;
-        let keep_scales = system.keeps_scales();
+        let nearby = system.nearby_solves();
         // the previous update in tolerance units (none before the first)
         let mut last_w = f64::INFINITY;
         let mut last_residual = f64::INFINITY;
+        // whether the last update was an LU's, and small
+        let (mut last_lu, mut last_small) = (false, false);
         for iteration in 1..=self.options.max_iterations {
             let normalised = system.evaluate(z, &mut self.residual, &mut self.jac);
             if !normalised.is_finite() {
@@ -315,7 +341,7 @@ impl Newton {
             // an equilibrated solver finds its scale factors on the first
             // iteration and keeps them for the later ones of this solve (or
             // for good, where the system says they serve)
-            let solved = if keep_scales {
+            let solved = if nearby {
                 self.solver.solve_with_kept_scales(&self.jac, &mut self.residual)
             } else if iteration == 1 {
                 self.solver.solve(&self.jac, &mut self.residual)
@@ -359,6 +385,25 @@ impl Newton {
             } else {
                 f64::INFINITY
             };
+            // Newton's error after an update w is about kappa w^2 (in
+            // tolerance units; kappa w^2 rtol relative), kappa learned from
+            // two successive LU updates the size of those it judges (the
+            // second mostly round-off, so the estimate errs large)
+            let small = w * self.options.rtol <= QUADRATIC_UPDATE;
+            if nearby && kind == SolveKind::Lu && last_lu && last_small && last_w > 0.0 {
+                let observed = w / (last_w * last_w);
+                self.quadratic = if self.quadratic.is_finite() {
+                    observed.max(0.5 * self.quadratic)
+                } else {
+                    observed
+                };
+            }
+            let quadratic_converged = nearby
+                && kind == SolveKind::Lu
+                && small
+                && self.quadratic * w * w * self.options.rtol <= QUADRATIC_ERROR;
+            last_lu = kind == SolveKind::Lu;
+            last_small = small;
             last_w = w;
             // a held step is done once the residual no longer halves: what
             // is left lies along the held direction, whose solve would move
@@ -367,7 +412,7 @@ impl Newton {
                 && normalised <= HELD_RESIDUAL * self.options.residual_tol
                 && normalised > 0.5 * last_residual;
             last_residual = normalised;
-            let converged = residual_converged || held_converged || w <= 1.0 || left <= 1.0;
+            let converged = residual_converged || held_converged || w <= 1.0 || left <= 1.0 || quadratic_converged;
             if converged {
                 return Ok(Converged {
                     iterations: iteration,
@@ -437,5 +482,59 @@ mod tests {
         let converged = newton.solve(&mut system, &mut z).unwrap();
         assert!((z[0] - 2f64.sqrt()).abs() < 1e-14);
         assert!((4..=6).contains(&converged.iterations), "{converged:?}");
+    }
+
+    /// `z^2 = c` for a `c` that moves by 1e-9 relative between solves,
+    /// each started from the last root (an update of 5e-10 relative, above
+    /// the update test's 1e-10).
+    struct Root {
+        c: f64,
+        nearby: bool,
+        block: Range<usize>,
+    }
+
+    impl NonlinearSystem for Root {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
+            r[0] = z[0] * z[0] - self.c;
+            jac[(0, 0)] = 2.0 * z[0];
+            r[0].abs() / (2.0 * z[0] * z[0]).abs()
+        }
+        fn blocks(&self) -> &[Range<usize>] {
+            std::slice::from_ref(&self.block)
+        }
+        fn nearby_solves(&self) -> bool {
+            self.nearby
+        }
+    }
+
+    #[test]
+    fn nearby_solves_end_where_the_quadratic_term_puts_the_error_at_round_off() {
+        let iterations = |nearby: bool| {
+            let mut newton = Newton::equilibrated(1, NewtonOptions::default());
+            let mut system = Root {
+                c: 2.0,
+                nearby,
+                block: 0..1,
+            };
+            let mut z = DVector::from_element(1, 2f64.sqrt());
+            let mut counts = Vec::new();
+            for _ in 0..20 {
+                system.c *= 1.0 + 1e-9;
+                counts.push(newton.solve(&mut system, &mut z).unwrap().iterations);
+                // the root to a few ulps either way
+                assert!((z[0] - system.c.sqrt()).abs() <= 4.0 * f64::EPSILON * z[0], "{}", z[0]);
+            }
+            counts
+        };
+        // each update of 5e-10 relative needs a second to confirm it
+        assert!(iterations(false).iter().all(|&n| n == 2));
+        // the first solve learns the quadratic term (w2 / w1^2, the second
+        // update at round-off), the later ones end after one update
+        let counts = iterations(true);
+        assert_eq!(counts[0], 2);
+        assert!(counts[1..].iter().all(|&n| n == 1), "{counts:?}");
     }
 }

@@ -29,10 +29,12 @@ fn every_flat_built_in_is_solved_stage_by_stage_as_whole() {
     assert_eq!(navy.repeated, 1);
     assert_eq!(navy.factorisations.0, 2 * navy.iterations.0);
     // the jets predicted through the last eight steps are within Newton's
-    // residual test at most steps, which then end after one iteration:
-    // 1.40 per step (2.01 through four steps)
+    // residual test at most steps, or within an update whose error the
+    // quadratic term of earlier steps puts at round-off, and the step then
+    // ends after one iteration: 1.14 per step (1.40 on the residual test
+    // alone, 2.01 through four steps)
     assert!(
-        navy.iterations.0 * 10 <= 15 * navy.steps,
+        navy.iterations.0 * 10 <= 12 * navy.steps,
         "{} iterations in {} steps",
         navy.iterations.0,
         navy.steps
