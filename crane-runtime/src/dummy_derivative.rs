@@ -143,28 +143,34 @@ where
     /// equation of a stage involves the jets of that stage and of earlier
     /// ones only (`c_j - d_i` bounds the derivative of unknown `j` in
     /// equation `i`), so the Jacobian is block lower triangular, its
-    /// diagonal blocks square blocks of Pryce's system Jacobian. `None` for
+    /// diagonal blocks square blocks of Pryce's system Jacobian (rows and
+    /// columns labelled by equation and unknown: the last stage's block is
+    /// all of it, and one LU of it solves every stage,
+    /// [`Triangular::with_labels`]). `None` for
     /// a crane without a structure, or one whose counts do not match.
     pub fn stages() -> Option<Triangular> {
         let structure = <H::Target as CraneModel<N, M, A>>::STRUCTURE?;
         let offsets = <H::Target as DummyDerivatives<N, M, A, J>>::OFFSETS;
-        let stage = |offset: u8| (0..=offset).map(move |k| i32::from(k) - i32::from(offset));
-        let rows: Vec<i32> = structure
-            .equations
-            .get(..N + M)?
-            .iter()
-            .flat_map(|&d| stage(d))
-            .collect();
-        let cols: Vec<i32> = (0..N + M + A)
+        // (stage, equation or unknown) of each row and column
+        let stage = |(label, offset): (usize, u8)| (0..=offset).map(move |k| (i32::from(k) - i32::from(offset), label));
+        let (rows, row_labels): (Vec<i32>, Vec<usize>) = (structure.equations.get(..N + M)?.iter())
+            .copied()
+            .enumerate()
+            .flat_map(stage)
+            .unzip();
+        let (cols, col_labels): (Vec<i32>, Vec<usize>) = (0..N + M + A)
             .filter(|j| !(Self::P..N).contains(j))
-            .map(|j| offsets.get(j).copied())
-            .collect::<Option<Vec<u8>>>()?
+            .map(|j| offsets.get(j).map(|&c| (j, c)))
+            .collect::<Option<Vec<(usize, u8)>>>()?
             .into_iter()
             .flat_map(stage)
-            .collect();
+            .unzip();
         (rows.len() == J && cols.len() == J)
             .then(|| Triangular::from_stages(&rows, &cols))?
-            .map(|form| form.with_nonzeros(<H::Target as DummyDerivatives<N, M, A, J>>::JACOBIAN_NONZEROS))
+            .map(|form| {
+                form.with_nonzeros(<H::Target as DummyDerivatives<N, M, A, J>>::JACOBIAN_NONZEROS)
+                    .with_labels(&row_labels, &col_labels)
+            })
     }
 
     /// The load path.

@@ -54,6 +54,10 @@ pub struct Triangular {
     /// pattern ([`with_nonzeros`](Self::with_nonzeros)): the entries left
     /// of the block that are not, by the block's rows.
     left: Option<Vec<Left>>,
+    /// Whether each entry (by columns) may be nonzero, where known.
+    nonzero: Option<Vec<bool>>,
+    /// What each row and column stands for ([`with_labels`](Self::with_labels)).
+    labels: Option<(Vec<usize>, Vec<usize>)>,
 }
 
 /// The entries of a matrix left of one diagonal block (in the blocks
@@ -103,6 +107,8 @@ impl Triangular {
             cols,
             blocks,
             left: None,
+            nonzero: None,
+            labels: None,
         })
     }
 
@@ -136,6 +142,35 @@ impl Triangular {
             })
             .collect();
         self.left = Some(left);
+        self.nonzero = Some(nonzero);
+        self
+    }
+
+    /// The same form with what each row and column stands for: where each
+    /// diagonal block's row labels and column labels are among the next
+    /// block's, and its entries are the next block's at the same labels
+    /// (Pryce's stages, labelled by equation and by unknown: every stage's
+    /// block is a part of the system Jacobian, and the last stage's is all
+    /// of it), one LU of the last block, its rows and columns ordered with
+    /// the first block's labels first, then those the next one adds, and so
+    /// on, and its pivots searched within each leading block, solves every
+    /// block (checked at each solve, entry for entry; where a block differs,
+    /// each block is factored on its own). Labels of another length than
+    /// the matrix's are ignored.
+    ///
+    /// ```
+    /// use crane_runtime::linsolve::Triangular;
+    /// // rows 0 and 1 are equation 0 at stages -1 and 0, row 2 equation 1
+    /// // at stage 0; columns likewise of unknowns 0 and 1
+    /// let form = Triangular::from_stages(&[-1, 0, 0], &[-1, 0, 0]).unwrap();
+    /// let form = form.with_labels(&[0, 0, 1], &[0, 0, 1]);
+    /// assert_eq!(form.block_sizes().collect::<Vec<_>>(), [1, 2]);
+    /// ```
+    pub fn with_labels(mut self, row_labels: &[usize], col_labels: &[usize]) -> Self {
+        let n = self.rows.len();
+        if row_labels.len() == n && col_labels.len() == n {
+            self.labels = Some((row_labels.to_vec(), col_labels.to_vec()));
+        }
         self
     }
 
@@ -176,6 +211,121 @@ struct BlockSolver {
     x: DVector<f64>,
     /// Whether each block's solver has found scales of its own.
     scaled: Vec<bool>,
+    /// One LU for every block, where the form's labels nest.
+    nested: Option<Box<Nested>>,
+}
+
+/// One LU of the last diagonal block of a [`Triangular`] form that solves
+/// every block (see [`Triangular::with_labels`]).
+#[derive(Debug, Clone)]
+struct Nested {
+    /// The last block's rows and columns (of the matrix) in the nested
+    /// order: the first block's labels, then those each next block adds.
+    rows: Vec<usize>,
+    cols: Vec<usize>,
+    /// Per block, the position in the nested order of each of its rows
+    /// and of each of its columns.
+    row_at: Vec<Vec<usize>>,
+    col_at: Vec<Vec<usize>>,
+    /// Entries (by columns) that must be equal for the nesting to hold:
+    /// each earlier block's against the last block's at the same labels,
+    /// where either may be nonzero.
+    equal: Vec<(usize, usize)>,
+    solver: DenseSolver,
+    matrix: DMatrix<f64>,
+    /// Whether the solver has found scales.
+    scaled: bool,
+    /// A right-hand side in the nested order.
+    y: Vec<f64>,
+}
+
+impl Nested {
+    /// The nesting of `form`'s labelled blocks, if they nest.
+    fn new(form: &Triangular, equilibrate: bool) -> Option<Self> {
+        let (row_labels, col_labels) = form.labels.as_ref()?;
+        let last = form.blocks.last()?.clone();
+        if form.blocks.len() < 2 {
+            return None;
+        }
+        let n = form.rows.len();
+        // the labels in the nested order, and where each block ends in it
+        let (mut row_order, mut col_order, mut ends) = (Vec::new(), Vec::new(), Vec::new());
+        for block in &form.blocks {
+            for (order, labels, indices) in [
+                (&mut row_order, row_labels, &form.rows[block.clone()]),
+                (&mut col_order, col_labels, &form.cols[block.clone()]),
+            ] {
+                let block_labels: Vec<usize> = indices.iter().map(|&i| labels[i]).collect();
+                if !order.iter().all(|label| block_labels.contains(label)) {
+                    return None;
+                }
+                for label in block_labels {
+                    if !order.contains(&label) {
+                        order.push(label);
+                    }
+                }
+                // every label of the block once: as many as its size
+                if order.len() != block.len() {
+                    return None;
+                }
+            }
+            ends.push(block.len());
+        }
+        let position = |order: &[usize], label: usize| order.iter().position(|&l| l == label);
+        let at = |order: &[usize], labels: &[usize], indices: &[usize]| -> Option<Vec<usize>> {
+            indices.iter().map(|&i| position(order, labels[i])).collect()
+        };
+        let mut row_at = Vec::new();
+        let mut col_at = Vec::new();
+        for block in &form.blocks {
+            row_at.push(at(&row_order, row_labels, &form.rows[block.clone()])?);
+            col_at.push(at(&col_order, col_labels, &form.cols[block.clone()])?);
+        }
+        // the last block's rows and columns in the nested order
+        let (last_rows, last_cols) = (&form.rows[last.clone()], &form.cols[last.clone()]);
+        let mut rows = vec![0; last.len()];
+        let mut cols = vec![0; last.len()];
+        for (&row, &p) in last_rows.iter().zip(row_at.last()?) {
+            rows[p] = row;
+        }
+        for (&col, &p) in last_cols.iter().zip(col_at.last()?) {
+            cols[p] = col;
+        }
+        let may_be_nonzero = |entry: usize| form.nonzero.as_ref().is_none_or(|nonzero| nonzero[entry]);
+        let mut equal = Vec::new();
+        for (k, block) in form.blocks[..form.blocks.len() - 1].iter().enumerate() {
+            for (&col, &q) in form.cols[block.clone()].iter().zip(&col_at[k]) {
+                for (&row, &p) in form.rows[block.clone()].iter().zip(&row_at[k]) {
+                    let (entry, in_last) = (col * n + row, cols[q] * n + rows[p]);
+                    if may_be_nonzero(entry) || may_be_nonzero(in_last) {
+                        equal.push((entry, in_last));
+                    }
+                }
+            }
+        }
+        let size = last.len();
+        let mut solver = if equilibrate {
+            DenseSolver::equilibrated(size)
+        } else {
+            DenseSolver::new(size)
+        };
+        // column c's pivot is searched up to the end of the first block
+        // that holds it
+        solver.pivot_ends = (0..size)
+            .map(|c| ends.iter().copied().find(|&end| end > c).unwrap_or(size))
+            .collect();
+        Some(Self {
+            rows,
+            cols,
+            row_at,
+            col_at,
+            equal,
+            solver,
+            matrix: DMatrix::zeros(size, size),
+            scaled: false,
+            y: vec![0.0; size],
+        })
+    }
 }
 
 impl BlockSolver {
@@ -195,8 +345,58 @@ impl BlockSolver {
             rhs: sizes.iter().map(|&n| DVector::zeros(n)).collect(),
             x: DVector::zeros(form.rows.len()),
             scaled: vec![false; sizes.len()],
+            nested: Nested::new(&form, equilibrate).map(Box::new),
             form,
         }
+    }
+
+    /// [`solve`](Self::solve) with one LU of the last block, if the form's
+    /// blocks nest and their entries do: `false` (and `b` untouched)
+    /// otherwise, or where the last block is singular to working precision.
+    fn solve_nested(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
+        let Some(mut nested) = self.nested.take() else {
+            return false;
+        };
+        let solved = self.solve_with(&mut nested, jac, b, rescale);
+        self.nested = Some(nested);
+        solved
+    }
+
+    /// [`solve_nested`](Self::solve_nested) with the nesting at hand.
+    fn solve_with(&mut self, nested: &mut Nested, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
+        let n = jac.nrows();
+        let entries = jac.as_slice(); // by columns
+        if !nested.equal.iter().all(|&(a, b)| entries[a] == entries[b]) {
+            return false;
+        }
+        let size = nested.rows.len();
+        for (target, &col) in nested.matrix.as_mut_slice().chunks_exact_mut(size).zip(&nested.cols) {
+            let column = &entries[col * n..(col + 1) * n];
+            for (t, &row) in target.iter_mut().zip(&nested.rows) {
+                *t = column[row];
+            }
+        }
+        let rescale = rescale || !nested.scaled;
+        nested.scaled = true;
+        if !nested.solver.factor(&nested.matrix, rescale) {
+            return false;
+        }
+        for k in 0..self.form.blocks.len() {
+            self.reduce(k, entries, b);
+            let rhs = &mut self.rhs[k];
+            let y = &mut nested.y[..rhs.len()];
+            for (&p, &value) in nested.row_at[k].iter().zip(rhs.iter()) {
+                y[p] = value;
+            }
+            nested.solver.solve_leading(y);
+            for (value, &q) in rhs.iter_mut().zip(&nested.col_at[k]) {
+                *value = y[q];
+            }
+            let block = &self.form.blocks[k];
+            self.x.rows_mut(block.start, block.len()).copy_from(rhs);
+        }
+        self.scatter(b);
+        true
     }
 
     /// Solve `jac x = b` block by block (`b` becomes `x`), each block's
@@ -207,6 +407,9 @@ impl BlockSolver {
     /// and of the next are often the same) is solved with that block's
     /// factors, not factored again.
     fn solve(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
+        if self.solve_nested(jac, b, rescale) {
+            return true;
+        }
         let n = jac.nrows();
         let entries = jac.as_slice(); // by columns
         let mut factored = 0;
@@ -309,6 +512,9 @@ pub struct DenseSolver {
     /// multiplies by them: a division's latency on every unknown of the
     /// chain was a tenth of a reduced step).
     inverse_diagonal: Vec<f64>,
+    /// Where each column's pivot search ends (see [`lu_in_place`]; empty:
+    /// at the last row).
+    pivot_ends: Vec<usize>,
     /// Row and column scale factors when equilibrating.
     row_scale: Vec<f64>,
     col_scale: Vec<f64>,
@@ -337,6 +543,7 @@ impl DenseSolver {
             stacked_rhs: DVector::zeros(2 * n),
             pivots: vec![0; n],
             inverse_diagonal: vec![0.0; n],
+            pivot_ends: Vec::new(),
             row_scale: vec![1.0; n],
             col_scale: vec![1.0; n],
             equilibrate: false,
@@ -362,10 +569,10 @@ impl DenseSolver {
     /// equal to the one before (a deterministic cost, for tests).
     pub fn factorisations(&self) -> usize {
         self.factorisations
-            + self
-                .blocks
-                .as_ref()
-                .map_or(0, |b| b.solvers.iter().map(|s| s.factorisations).sum())
+            + self.blocks.as_ref().map_or(0, |b| {
+                let nested = b.nested.as_ref().map_or(0, |n| n.solver.factorisations);
+                nested + b.solvers.iter().map(|s| s.factorisations).sum::<usize>()
+            })
     }
 
     /// The form [`set_triangular`](Self::set_triangular) set, if any.
@@ -455,15 +662,7 @@ impl DenseSolver {
     /// [`solve_lu`](Self::solve_lu): `b` scaled by the rows, substituted,
     /// scaled by the columns (when equilibrating).
     fn solve_factored(&self, b: &mut DVector<f64>) {
-        if self.equilibrate {
-            self.scale_rows(b);
-        }
-        lu_solve(&self.lu, &self.pivots, &self.inverse_diagonal, b);
-        if self.equilibrate {
-            for (x, col) in b.iter_mut().zip(&self.col_scale) {
-                *x *= col;
-            }
-        }
+        self.solve_leading(b.as_mut_slice());
     }
 
     /// `b` times the row scales.
@@ -477,6 +676,16 @@ impl DenseSolver {
     /// working precision (then `b` is left as it was); the scales found
     /// anew (`rescale`) or kept.
     fn solve_lu(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
+        if !self.factor(jac, rescale) {
+            return false;
+        }
+        self.solve_factored(b);
+        true
+    }
+
+    /// The LU factors of `jac` (equilibrated with scales found anew,
+    /// `rescale`, or kept): `false` when it is singular to working precision.
+    fn factor(&mut self, jac: &DMatrix<f64>, rescale: bool) -> bool {
         if !self.equilibrate {
             self.lu.copy_from(jac);
         } else {
@@ -487,11 +696,24 @@ impl DenseSolver {
             self.write_scaled(jac, &mut lu);
             self.lu = lu;
         }
-        if !self.factor_in_lu() {
-            return false;
+        self.factor_in_lu()
+    }
+
+    /// Solve the leading `x.len()` rows and columns of the last factored
+    /// matrix (all of them, or a nested leading block of its pivot ends)
+    /// with its factors and scales.
+    fn solve_leading(&self, x: &mut [f64]) {
+        if self.equilibrate {
+            for (x, row) in x.iter_mut().zip(&self.row_scale) {
+                *x *= row;
+            }
         }
-        self.solve_factored(b);
-        true
+        lu_solve(&self.lu, &self.pivots, &self.inverse_diagonal, x);
+        if self.equilibrate {
+            for (x, col) in x.iter_mut().zip(&self.col_scale) {
+                *x *= col;
+            }
+        }
     }
 
     /// `|jac^-1|_1`, the largest column sum of the inverse, from one LU of
@@ -499,7 +721,7 @@ impl DenseSolver {
     /// precision.
     pub fn inverse_norm1(&mut self, jac: &DMatrix<f64>) -> f64 {
         self.lu.copy_from(jac);
-        let ratio = lu_in_place(&mut self.lu, &mut self.pivots, &mut self.inverse_diagonal);
+        let ratio = lu_in_place(&mut self.lu, &mut self.pivots, &mut self.inverse_diagonal, &[]);
         if !(ratio.is_finite() && ratio >= SINGULAR_PIVOT_RATIO) {
             return f64::INFINITY;
         }
@@ -507,7 +729,7 @@ impl DenseSolver {
         for k in 0..jac.nrows() {
             self.rhs.fill(0.0);
             self.rhs[k] = 1.0;
-            lu_solve(&self.lu, &self.pivots, &self.inverse_diagonal, &mut self.rhs);
+            lu_solve(&self.lu, &self.pivots, &self.inverse_diagonal, self.rhs.as_mut_slice());
             largest = largest.max(self.rhs.iter().map(|x| x.abs()).sum::<f64>());
         }
         largest
@@ -583,7 +805,12 @@ impl DenseSolver {
     /// LU of `self.lu` in place: `false` (with the pivot ratio kept) when
     /// the pivots say singular, or the solver holds.
     fn factor_in_lu(&mut self) -> bool {
-        self.pivot_ratio = lu_in_place(&mut self.lu, &mut self.pivots, &mut self.inverse_diagonal);
+        self.pivot_ratio = lu_in_place(
+            &mut self.lu,
+            &mut self.pivots,
+            &mut self.inverse_diagonal,
+            &self.pivot_ends,
+        );
         self.factorisations += 1;
         !self.hold && self.pivot_ratio.is_finite() && self.pivot_ratio >= SINGULAR_PIVOT_RATIO
     }
@@ -681,17 +908,21 @@ fn power_of_two(m: f64) -> f64 {
 
 /// LU factorisation with partial pivoting, in place (Doolittle, unit lower
 /// triangle stored below the diagonal), with the reciprocals of `U`'s
-/// diagonal into `inverse_diagonal`. Returns the smallest-to-largest
-/// absolute pivot ratio (0 when a pivot is exactly zero; NaN for non-finite input).
-fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize], inverse_diagonal: &mut [f64]) -> f64 {
+/// diagonal into `inverse_diagonal`. The pivot of column `k` is searched in
+/// rows `k .. ends[k]` (all below the diagonal where `ends` is empty): with
+/// the ends of nested leading blocks, the factors' leading part is each
+/// block's LU. Returns the smallest-to-largest absolute pivot ratio (0 when
+/// a pivot is exactly zero; NaN for non-finite input).
+fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize], inverse_diagonal: &mut [f64], ends: &[usize]) -> f64 {
     let n = a.nrows();
     let (mut smallest, mut largest) = (f64::INFINITY, 0.0f64);
     for k in 0..n {
         // pivot search in column k
+        let end = ends.get(k).copied().unwrap_or(n);
         let column = &a.as_slice()[k * n..(k + 1) * n];
         let mut p = k;
         let mut best = column[k].abs();
-        for (i, v) in column.iter().enumerate().skip(k + 1) {
+        for (i, v) in column[..end].iter().enumerate().skip(k + 1) {
             let v = v.abs();
             if v > best {
                 best = v;
@@ -736,14 +967,17 @@ fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize], inverse_diagonal: &mu
 /// unknowns already found, added in a register (column by column, the
 /// update of the unknowns still to come was stored and read back at once
 /// for every unknown, a store-to-load stall on the substitution's chain).
-fn lu_solve(lu: &DMatrix<f64>, pivots: &[usize], inverse_diagonal: &[f64], b: &mut DVector<f64>) {
-    let n = lu.nrows();
-    let (data, x) = (lu.as_slice(), b.as_mut_slice());
-    for (k, &p) in pivots.iter().enumerate().take(n) {
+///
+/// `x` is the right-hand side of the leading `x.len()` rows and columns
+/// (of all of them, or of a nested leading block, see [`lu_in_place`]).
+fn lu_solve(lu: &DMatrix<f64>, pivots: &[usize], inverse_diagonal: &[f64], x: &mut [f64]) {
+    let (n, m) = (lu.nrows(), x.len());
+    let data = lu.as_slice();
+    for (k, &p) in pivots.iter().enumerate().take(m) {
         x.swap(k, p);
     }
     // L y = P b, L unit lower triangular: entry (i, k) at data[k n + i]
-    for i in 1..n {
+    for i in 1..m {
         let mut sum = x[i];
         for (k, &y) in x[..i].iter().enumerate() {
             sum -= data[k * n + i] * y;
@@ -751,9 +985,9 @@ fn lu_solve(lu: &DMatrix<f64>, pivots: &[usize], inverse_diagonal: &[f64], b: &m
         x[i] = sum;
     }
     // U x = y
-    for i in (0..n).rev() {
+    for i in (0..m).rev() {
         let mut sum = x[i];
-        for k in i + 1..n {
+        for k in i + 1..m {
             sum -= data[k * n + i] * x[k];
         }
         x[i] = sum * inverse_diagonal[i];
@@ -827,6 +1061,28 @@ mod tests {
         assert!((DenseSolver::new(2).inverse_norm1(&a) - 3.0).abs() < 1e-15);
         let singular = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 4.0]);
         assert_eq!(DenseSolver::new(2).inverse_norm1(&singular), f64::INFINITY);
+    }
+
+    /// Two stages, equation 0 and unknown 0 in both: the first stage's
+    /// block is the entry of the second's at those labels, and one LU of
+    /// the second solves both; where the entries differ, each block is
+    /// factored on its own. Either way the solution is the dense solve's.
+    #[test]
+    fn nested_stage_blocks_share_one_lu() {
+        let form = Triangular::from_stages(&[-1, 0, 0], &[-1, 0, 0])
+            .unwrap()
+            .with_labels(&[0, 0, 1], &[0, 0, 1]);
+        let x = DVector::from_row_slice(&[1.0, -2.0, 0.5]);
+        for (entry, lus) in [(2.0, 1), (2.5, 2)] {
+            let a = DMatrix::from_row_slice(3, 3, &[2.0, 0.0, 0.0, 5.0, entry, 1.0, 3.0, 4.0, 7.0]);
+            let mut solver = DenseSolver::equilibrated(3);
+            solver.set_triangular(form.clone());
+            let mut b = &a * &x;
+            assert_eq!(solver.solve(&a, &mut b).unwrap(), SolveKind::Lu);
+            // well-conditioned 3x3: a few ulps
+            assert!((b - &x).amax() < 1e-14);
+            assert_eq!(solver.factorisations(), lus, "entry {entry}");
+        }
     }
 
     #[test]
