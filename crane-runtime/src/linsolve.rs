@@ -964,9 +964,10 @@ fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize], inverse_diagonal: &mu
 
 /// Forward and back substitution with the factors of [`lu_in_place`], row
 /// by row: each unknown is its row's right-hand side less a sum over the
-/// unknowns already found, added in a register (column by column, the
-/// update of the unknowns still to come was stored and read back at once
-/// for every unknown, a store-to-load stall on the substitution's chain).
+/// unknowns already found, added in a register, the one found last added
+/// last (column by column, the update of the unknowns still to come was
+/// stored and read back at once for every unknown, a store-to-load stall on
+/// the substitution's chain).
 ///
 /// `x` is the right-hand side of the leading `x.len()` rows and columns
 /// (of all of them, or of a nested leading block, see [`lu_in_place`]).
@@ -984,10 +985,12 @@ fn lu_solve(lu: &DMatrix<f64>, pivots: &[usize], inverse_diagonal: &[f64], x: &m
         }
         x[i] = sum;
     }
-    // U x = y
+    // U x = y, each row's terms from the last column on: the term of the
+    // unknown just found comes last, and the chain of the substitution is
+    // one multiply and subtract per unknown
     for i in (0..m).rev() {
         let mut sum = x[i];
-        for k in i + 1..m {
+        for k in (i + 1..m).rev() {
             sum -= data[k * n + i] * x[k];
         }
         x[i] = sum * inverse_diagonal[i];

@@ -367,8 +367,14 @@ where
     /// `points` steps' unknowns (`points <= known`).
     fn extrapolate(&mut self, first: usize, points: usize) {
         let weights = extrapolation_weights(points);
-        for i in first..self.z.len() {
-            self.z[i] = self.past.iter().zip(&weights).map(|(h, w)| w * h[i]).sum();
+        // newest first, added unknown by unknown in that order (a vector
+        // at a time)
+        let z = &mut self.z.as_mut_slice()[first..];
+        z.fill(-0.0);
+        for (past, &weight) in self.past.iter().zip(&weights).take(points) {
+            for (zi, &h) in z.iter_mut().zip(&past.as_slice()[first..]) {
+                *zi += weight * h;
+            }
         }
     }
 
