@@ -140,6 +140,11 @@ pub fn normalised_residual_sparse(r: &DVector<f64>, jac: &DMatrix<f64>, z: &DVec
     normalised
 }
 
+/// The largest magnitude in `xs` (0 for none), for finite `xs`.
+fn largest(xs: &[f64]) -> f64 {
+    xs.iter().fold(0.0, |largest, x| largest.max(x.abs()))
+}
+
 /// A row's residual `ri` in units of its `scale`, or as it is where the
 /// scale is zero (or not a number).
 fn row_ratio(ri: f64, scale: f64) -> f64 {
@@ -366,8 +371,8 @@ impl Newton {
                 .blocks()
                 .iter()
                 .map(|block| {
-                    let step = dz.rows_range(block.clone()).amax();
-                    let size = z.rows_range(block.clone()).amax();
+                    let step = largest(&dz.as_slice()[block.clone()]);
+                    let size = largest(&z.as_slice()[block.clone()]);
                     step / (self.options.rtol * size + self.options.atol)
                 })
                 .fold(0.0, f64::max);
