@@ -6,8 +6,9 @@
 //! solver takes the minimum-norm least-squares step instead, the regularised
 //! `min |J dz - r|^2 + eps^2 |dz|^2` by Householder QR. A matrix with a known
 //! block lower triangular form ([`Triangular`]) is solved block by block,
-//! each diagonal block factored on its own (the dummy-derivative system's
-//! stages: a 26 x 26 LU becomes four of at most 10 x 10 on navy-planar).
+//! each diagonal block factored on its own, or all of them with one LU of
+//! the last where they nest (the dummy-derivative system's stages: a 26 x 26
+//! LU becomes one of 10 x 10 on navy-planar).
 
 use std::ops::Range;
 
