@@ -396,7 +396,10 @@ impl Newton {
             // second mostly round-off, so the estimate errs large)
             let small = w * self.options.rtol <= QUADRATIC_UPDATE;
             if nearby && kind == SolveKind::Lu && last_lu && last_small && last_w > 0.0 {
-                let observed = w / (last_w * last_w);
+                // a second update of exactly zero (a residual at zero by
+                // round-off) says the first left round-off, not that there
+                // is no quadratic term: four ulps at least
+                let observed = w.max(4.0 * f64::EPSILON / self.options.rtol) / (last_w * last_w);
                 self.quadratic = if self.quadratic.is_finite() {
                     observed.max(0.5 * self.quadratic)
                 } else {
