@@ -377,9 +377,12 @@ impl BlockSolver {
                 *t = column[row];
             }
         }
-        let rescale = rescale || !nested.scaled;
+        // kept scales that leave the block singular are found anew
+        let kept = !rescale && nested.scaled;
         nested.scaled = true;
-        if !nested.solver.factor(&nested.matrix, rescale) {
+        let factored =
+            nested.solver.factor(&nested.matrix, !kept) || (kept && nested.solver.factor(&nested.matrix, true));
+        if !factored {
             return false;
         }
         for k in 0..self.form.blocks.len() {
@@ -912,7 +915,9 @@ fn power_of_two(m: f64) -> f64 {
 /// diagonal into `inverse_diagonal`. The pivot of column `k` is searched in
 /// rows `k .. ends[k]` (all below the diagonal where `ends` is empty): with
 /// the ends of nested leading blocks, the factors' leading part is each
-/// block's LU. Returns the smallest-to-largest absolute pivot ratio (0 when
+/// block's LU (the rows below a leading block may then have multipliers
+/// above one; the blocks are equilibrated, and Newton corrects what their
+/// growth costs). Returns the smallest-to-largest absolute pivot ratio (0 when
 /// a pivot is exactly zero; NaN for non-finite input).
 fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize], inverse_diagonal: &mut [f64], ends: &[usize]) -> f64 {
     let n = a.nrows();

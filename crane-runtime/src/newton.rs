@@ -244,8 +244,16 @@ pub const HELD_RESIDUAL: f64 = 1e3;
 pub const QUADRATIC_UPDATE: f64 = 1e-9;
 
 /// The estimated relative error at which a solve of nearby systems ends
-/// after an update (see [`Newton::solve`]): a dozen ulps.
+/// after an update (see [`Newton::solve`]): a dozen ulps (and at most the
+/// tolerance, where that is smaller).
 pub const QUADRATIC_ERROR: f64 = 3e-15;
+
+/// The factor by which the quadratic term's estimate grows at each solve
+/// that it alone ends, so that it is confirmed by a second iteration every
+/// few solves and follows a term that grows by up to a tenth per solve
+/// (navy-planar at dt = 0.01: 1.17 iterations per step instead of 1.13,
+/// the double pendulum 1.09 instead of 1.05).
+pub const QUADRATIC_AGING: f64 = 1.1;
 
 /// Newton's method with preallocated workspace: `solve` does not allocate.
 #[derive(Debug, Clone)]
@@ -317,7 +325,8 @@ impl Newton {
     /// most [`QUADRATIC_UPDATE`] relative ends the solve where the error it
     /// leaves, estimated from the quadratic term learned in earlier solves,
     /// is at most [`QUADRATIC_ERROR`] relative: round-off, which another
-    /// evaluation and solve would only confirm.
+    /// evaluation and solve would only confirm. Each solve so ended ages the
+    /// estimate by [`QUADRATIC_AGING`].
     pub fn solve<S: NonlinearSystem + ?Sized>(
         &mut self,
         system: &mut S,
@@ -406,10 +415,18 @@ impl Newton {
                     observed
                 };
             }
+            // (at most one tolerance unit, where the tolerance is below
+            // the round-off the bound speaks of)
             let quadratic_converged = nearby
                 && kind == SolveKind::Lu
                 && small
-                && self.quadratic * w * w * self.options.rtol <= QUADRATIC_ERROR;
+                && self.quadratic * w * w <= (QUADRATIC_ERROR / self.options.rtol).min(1.0);
+            // a solve the estimate alone ends ages it: a term that grows by
+            // less than that per solve stays below it, and a faster one
+            // meets a confirming iteration within a few solves
+            if quadratic_converged && !residual_converged && !(w <= 1.0 || left <= 1.0) {
+                self.quadratic *= QUADRATIC_AGING;
+            }
             last_lu = kind == SolveKind::Lu;
             last_small = small;
             last_w = w;
@@ -529,7 +546,7 @@ mod tests {
             };
             let mut z = DVector::from_element(1, 2f64.sqrt());
             let mut counts = Vec::new();
-            for _ in 0..20 {
+            for _ in 0..100 {
                 system.c *= 1.0 + 1e-9;
                 counts.push(newton.solve(&mut system, &mut z).unwrap().iterations);
                 // the root to a few ulps either way
@@ -540,9 +557,14 @@ mod tests {
         // each update of 5e-10 relative needs a second to confirm it
         assert!(iterations(false).iter().all(|&n| n == 2));
         // the first solve learns the quadratic term (w2 / w1^2, the second
-        // update at round-off), the later ones end after one update
+        // update at round-off), the later ones end after one update but for
+        // a confirming second iteration once the estimate has aged (every
+        // eight or nine solves: 1.1^8 = 2.1, the halving at each new
+        // observation undone)
         let counts = iterations(true);
         assert_eq!(counts[0], 2);
-        assert!(counts[1..].iter().all(|&n| n == 1), "{counts:?}");
+        let confirmed = counts[1..].iter().filter(|&&n| n == 2).count();
+        assert!(counts.iter().all(|&n| n <= 2), "{counts:?}");
+        assert!((5..=20).contains(&confirmed), "{counts:?}");
     }
 }
