@@ -387,17 +387,14 @@ impl BlockSolver {
         }
         for k in 0..self.form.blocks.len() {
             self.reduce(k, entries, b);
-            let rhs = &mut self.rhs[k];
-            let y = &mut nested.y[..rhs.len()];
-            for (&p, &value) in nested.row_at[k].iter().zip(rhs.iter()) {
-                y[p] = value;
-            }
-            nested.solver.solve_leading(y);
-            for (value, &q) in rhs.iter_mut().zip(&nested.col_at[k]) {
-                *value = y[q];
-            }
-            let block = &self.form.blocks[k];
-            self.x.rows_mut(block.start, block.len()).copy_from(rhs);
+            let block = self.form.blocks[k].clone();
+            nested.solver.solve_leading_permuted(
+                self.rhs[k].as_slice(),
+                &nested.row_at[k],
+                &nested.col_at[k],
+                &mut nested.y,
+                &mut self.x.as_mut_slice()[block],
+            );
         }
         self.scatter(b);
         true
@@ -701,6 +698,33 @@ impl DenseSolver {
             self.lu = lu;
         }
         self.factor_in_lu()
+    }
+
+    /// [`solve_leading`](Self::solve_leading) of a right-hand side `rhs`
+    /// whose rows are at `row_at` in the factored matrix's order, with the
+    /// solution's columns at `col_at` written to `x` (`y`, of the matrix's
+    /// size, the scratch): the permutations and the scaling in one pass each.
+    fn solve_leading_permuted(&self, rhs: &[f64], row_at: &[usize], col_at: &[usize], y: &mut [f64], x: &mut [f64]) {
+        let y = &mut y[..rhs.len()];
+        if self.equilibrate {
+            for (&p, &value) in row_at.iter().zip(rhs) {
+                y[p] = value * self.row_scale[p];
+            }
+        } else {
+            for (&p, &value) in row_at.iter().zip(rhs) {
+                y[p] = value;
+            }
+        }
+        lu_solve(&self.lu, &self.pivots, &self.inverse_diagonal, y);
+        if self.equilibrate {
+            for (value, &q) in x.iter_mut().zip(col_at) {
+                *value = y[q] * self.col_scale[q];
+            }
+        } else {
+            for (value, &q) in x.iter_mut().zip(col_at) {
+                *value = y[q];
+            }
+        }
     }
 
     /// Solve the leading `x.len()` rows and columns of the last factored

@@ -46,10 +46,38 @@ fn poly_derivative(coefficients: &[f64], s: f64, k: usize) -> f64 {
     let mut value = 0.0;
     for i in (k..coefficients.len()).rev() {
         // d^k/ds^k s^i = i!/(i-k)! s^(i-k)
-        let falling: f64 = ((i - k + 1)..=i).map(|j| j as f64).product();
-        value = value * s + coefficients[i] * falling;
+        value = value * s + coefficients[i] * falling(i, k);
     }
     value
+}
+
+/// How many `i` [`FALLING`] holds.
+const FALLING_SIZE: usize = 16;
+
+/// The falling factorials `i!/(i-k)!` for `k <= i < FALLING_SIZE` (0 above
+/// the diagonal): integers below 2^53, exact in f64 whatever the order of
+/// their factors.
+const FALLING: [[f64; FALLING_SIZE]; FALLING_SIZE] = {
+    let mut table = [[0.0; FALLING_SIZE]; FALLING_SIZE];
+    let mut i = 0;
+    while i < FALLING_SIZE {
+        let (mut k, mut value) = (0, 1.0);
+        while k <= i {
+            table[i][k] = value;
+            value *= (i - k) as f64;
+            k += 1;
+        }
+        i += 1;
+    }
+    table
+};
+
+/// `i!/(i-k)!` for `k <= i`, from the table where it holds `i`.
+fn falling(i: usize, k: usize) -> f64 {
+    match FALLING.get(i) {
+        Some(row) => row[k],
+        None => ((i - k + 1)..=i).map(|j| j as f64).product(),
+    }
 }
 
 /// Coefficients of the 5-6-7-8-9 polynomial of eq. (44):
@@ -363,6 +391,17 @@ impl<const A: usize, F: Fn(f64, usize) -> SVector<f64, A>> Trajectory<A> for Fro
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The table's falling factorials are the products they stand for.
+    #[test]
+    fn falling_factorials_are_the_products() {
+        for i in 0..FALLING_SIZE + 3 {
+            for k in 0..=i {
+                let product: f64 = ((i - k + 1)..=i).map(|j| j as f64).product();
+                assert_eq!(falling(i, k), product, "{i}, {k}");
+            }
+        }
+    }
     use nalgebra::vector;
 
     /// Central difference of derivative `k - 1`; error O(h^2) ~ 1e-8 relative
