@@ -540,14 +540,26 @@ pub const MAX_EXTRAPOLATION: usize = 8;
 /// `y_{n+1} = sum_j w_j y_{n-j}`, `w_j = (-1)^j C(points, j + 1)` (the
 /// polynomial of degree `points - 1`; one point: the last value).
 pub(crate) fn extrapolation_weights(points: usize) -> [f64; MAX_EXTRAPOLATION] {
-    let mut weights = [0.0; MAX_EXTRAPOLATION];
-    let mut binomial = 1.0;
-    for (j, weight) in weights.iter_mut().enumerate().take(points) {
-        binomial = binomial * (points - j) as f64 / (j + 1) as f64;
-        *weight = if j % 2 == 0 { binomial } else { -binomial };
-    }
-    weights
+    EXTRAPOLATION_WEIGHTS[points.min(MAX_EXTRAPOLATION)]
 }
+
+/// [`extrapolation_weights`] of `0 ..= MAX_EXTRAPOLATION` points, made at
+/// compile time (a predictor asks for them at every step).
+const EXTRAPOLATION_WEIGHTS: [[f64; MAX_EXTRAPOLATION]; MAX_EXTRAPOLATION + 1] = {
+    let mut table = [[0.0; MAX_EXTRAPOLATION]; MAX_EXTRAPOLATION + 1];
+    let mut points = 0;
+    while points <= MAX_EXTRAPOLATION {
+        let mut binomial = 1.0;
+        let mut j = 0;
+        while j < points {
+            binomial = binomial * (points - j) as f64 / (j + 1) as f64;
+            table[points][j] = if j % 2 == 0 { binomial } else { -binomial };
+            j += 1;
+        }
+        points += 1;
+    }
+    table
+};
 
 #[cfg(test)]
 mod tests {
