@@ -305,11 +305,7 @@ impl Nested {
             }
         }
         let size = last.len();
-        let mut solver = if equilibrate {
-            DenseSolver::equilibrated(size)
-        } else {
-            DenseSolver::new(size)
-        };
+        let mut solver = DenseSolver::sized(size, equilibrate);
         // column c's pivot is searched up to the end of the first block
         // that holds it
         solver.pivot_ends = (0..size)
@@ -333,15 +329,7 @@ impl BlockSolver {
     fn new(form: Triangular, equilibrate: bool) -> Self {
         let sizes: Vec<usize> = form.block_sizes().collect();
         Self {
-            solvers: (sizes.iter())
-                .map(|&n| {
-                    if equilibrate {
-                        DenseSolver::equilibrated(n)
-                    } else {
-                        DenseSolver::new(n)
-                    }
-                })
-                .collect(),
+            solvers: sizes.iter().map(|&n| DenseSolver::sized(n, equilibrate)).collect(),
             matrices: sizes.iter().map(|&n| DMatrix::zeros(n, n)).collect(),
             rhs: sizes.iter().map(|&n| DVector::zeros(n)).collect(),
             x: DVector::zeros(form.rows.len()),
@@ -365,18 +353,11 @@ impl BlockSolver {
 
     /// [`solve_nested`](Self::solve_nested) with the nesting at hand.
     fn solve_with(&mut self, nested: &mut Nested, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
-        let n = jac.nrows();
         let entries = jac.as_slice(); // by columns
         if !nested.equal.iter().all(|&(a, b)| entries[a] == entries[b]) {
             return false;
         }
-        let size = nested.rows.len();
-        for (target, &col) in nested.matrix.as_mut_slice().chunks_exact_mut(size).zip(&nested.cols) {
-            let column = &entries[col * n..(col + 1) * n];
-            for (t, &row) in target.iter_mut().zip(&nested.rows) {
-                *t = column[row];
-            }
-        }
+        gather(jac, &nested.rows, &nested.cols, &mut nested.matrix);
         // kept scales that leave the block singular are found anew
         let kept = !rescale && nested.scaled;
         nested.scaled = true;
@@ -400,57 +381,30 @@ impl BlockSolver {
         true
     }
 
-    /// Solve `jac x = b` block by block (`b` becomes `x`), each block's
-    /// scales found anew (`rescale`) or kept from the last solve; `false`
-    /// (and `b` untouched) when a diagonal block is singular to working
-    /// precision. A block equal, entry for entry, to the one before (in
-    /// Pryce's stages, the system Jacobian's rows and columns of a stage
-    /// and of the next are often the same) is solved with that block's
-    /// factors, not factored again.
+    /// Solve `jac x = b` block by block (`b` becomes `x`), with one LU of
+    /// the last block where the blocks nest ([`solve_nested`](Self::solve_nested)),
+    /// else one per block, each block's scales found anew (`rescale`) or
+    /// kept from the last solve; `false` (and `b` untouched) when a
+    /// diagonal block is singular to working precision.
     fn solve(&mut self, jac: &DMatrix<f64>, b: &mut DVector<f64>, rescale: bool) -> bool {
         if self.solve_nested(jac, b, rescale) {
             return true;
         }
-        let n = jac.nrows();
         let entries = jac.as_slice(); // by columns
-        let mut factored = 0;
         for k in 0..self.form.blocks.len() {
             self.reduce(k, entries, b);
-            let form = &self.form;
-            let block = &form.blocks[k];
-            let rows = &form.rows[block.clone()];
-            let cols = &form.cols[block.clone()];
-            let same = k > 0 && {
-                let before = &self.matrices[k - 1];
-                before.nrows() == rows.len()
-                    && (before.as_slice().chunks_exact(rows.len()).zip(cols)).all(|(column, &col)| {
-                        let column_of_jac = &entries[col * n..(col + 1) * n];
-                        column.iter().zip(rows).all(|(&v, &row)| v == column_of_jac[row])
-                    })
-            };
-            let (done, rest) = self.solvers.split_at_mut(k);
-            let solved = if same {
-                // the matrix of block k - 1, factored by `factored` (that
-                // block's solver, or an earlier one's it reused)
-                self.matrices.swap(k - 1, k);
-                done[factored].solve_factored(&mut self.rhs[k]);
-                true
-            } else {
-                factored = k;
-                let matrix = &mut self.matrices[k];
-                for (target, &col) in matrix.as_mut_slice().chunks_exact_mut(block.len()).zip(cols) {
-                    let column = &entries[col * n..(col + 1) * n];
-                    for (t, &row) in target.iter_mut().zip(rows) {
-                        *t = column[row];
-                    }
-                }
-                // a solver that reused another's factors last time has no
-                // scales of its own yet
-                let rescale = rescale || !self.scaled[k];
-                self.scaled[k] = true;
-                rest[0].solve_lu(matrix, &mut self.rhs[k], rescale)
-            };
-            if !solved {
+            let block = self.form.blocks[k].clone();
+            let matrix = &mut self.matrices[k];
+            gather(
+                jac,
+                &self.form.rows[block.clone()],
+                &self.form.cols[block.clone()],
+                matrix,
+            );
+            // a solver finds its scales at its first solve
+            let rescale = rescale || !self.scaled[k];
+            self.scaled[k] = true;
+            if !self.solvers[k].solve_lu(matrix, &mut self.rhs[k], rescale) {
                 return false;
             }
             self.x.rows_mut(block.start, block.len()).copy_from(&self.rhs[k]);
@@ -496,6 +450,18 @@ impl BlockSolver {
     fn scatter(&self, b: &mut DVector<f64>) {
         for (&col, &x) in self.form.cols.iter().zip(self.x.iter()) {
             b[col] = x;
+        }
+    }
+}
+
+/// The submatrix of `jac` at `rows` and `cols` into `target` (square, of
+/// their length).
+fn gather(jac: &DMatrix<f64>, rows: &[usize], cols: &[usize], target: &mut DMatrix<f64>) {
+    let (n, entries) = (jac.nrows(), jac.as_slice()); // by columns
+    for (target, &col) in target.as_mut_slice().chunks_exact_mut(rows.len()).zip(cols) {
+        let column = &entries[col * n..(col + 1) * n];
+        for (t, &row) in target.iter_mut().zip(rows) {
+            *t = column[row];
         }
     }
 }
@@ -566,8 +532,8 @@ impl DenseSolver {
     }
 
     /// LU factorisations the solves so far took: one per matrix solved
-    /// whole, one per diagonal block solved by blocks, none for a block
-    /// equal to the one before (a deterministic cost, for tests).
+    /// whole, one per matrix whose blocks nest, one per diagonal block of
+    /// another solved by blocks (a deterministic cost, for tests).
     pub fn factorisations(&self) -> usize {
         self.factorisations
             + self.blocks.as_ref().map_or(0, |b| {
@@ -598,6 +564,15 @@ impl DenseSolver {
     /// matrix singular to working precision (`false`, the default).
     pub fn set_hold(&mut self, hold: bool) {
         self.hold = hold;
+    }
+
+    /// [`equilibrated`](Self::equilibrated) or [`new`](Self::new).
+    fn sized(n: usize, equilibrate: bool) -> Self {
+        if equilibrate {
+            Self::equilibrated(n)
+        } else {
+            Self::new(n)
+        }
     }
 
     /// Whether [`set_hold`](Self::set_hold) is on.
@@ -667,7 +642,7 @@ impl DenseSolver {
     }
 
     /// `b` times the row scales.
-    fn scale_rows(&self, b: &mut DVector<f64>) {
+    fn scale_rows(&self, b: &mut [f64]) {
         for (x, row) in b.iter_mut().zip(&self.row_scale) {
             *x *= row;
         }
@@ -732,9 +707,7 @@ impl DenseSolver {
     /// with its factors and scales.
     fn solve_leading(&self, x: &mut [f64]) {
         if self.equilibrate {
-            for (x, row) in x.iter_mut().zip(&self.row_scale) {
-                *x *= row;
-            }
+            self.scale_rows(x);
         }
         lu_solve(&self.lu, &self.pivots, &self.inverse_diagonal, x);
         if self.equilibrate {
@@ -819,7 +792,7 @@ impl DenseSolver {
         if !self.equilibrate {
             return self.min_norm(jac, b);
         }
-        self.scale_rows(b);
+        self.scale_rows(b.as_mut_slice());
         let mut scaled = std::mem::take(&mut self.scaled);
         self.write_scaled(jac, &mut scaled);
         let outcome = self.min_norm(&scaled, b);

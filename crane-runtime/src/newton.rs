@@ -421,12 +421,6 @@ impl Newton {
                 && kind == SolveKind::Lu
                 && small
                 && self.quadratic * w * w <= (QUADRATIC_ERROR / self.options.rtol).min(1.0);
-            // a solve the estimate alone ends ages it: a term that grows by
-            // less than that per solve stays below it, and a faster one
-            // meets a confirming iteration within a few solves
-            if quadratic_converged && !residual_converged && !(w <= 1.0 || left <= 1.0) {
-                self.quadratic *= QUADRATIC_AGING;
-            }
             last_lu = kind == SolveKind::Lu;
             last_small = small;
             last_w = w;
@@ -437,8 +431,14 @@ impl Newton {
                 && normalised <= HELD_RESIDUAL * self.options.residual_tol
                 && normalised > 0.5 * last_residual;
             last_residual = normalised;
-            let converged = residual_converged || held_converged || w <= 1.0 || left <= 1.0 || quadratic_converged;
-            if converged {
+            let tests_converged = residual_converged || held_converged || w <= 1.0 || left <= 1.0;
+            // a solve the estimate alone ends ages it: a term that grows by
+            // less than that per solve stays below it, and a faster one
+            // meets a confirming iteration within a few solves
+            if quadratic_converged && !tests_converged {
+                self.quadratic *= QUADRATIC_AGING;
+            }
+            if tests_converged || quadratic_converged {
                 return Ok(Converged {
                     iterations: iteration,
                     min_norm_steps,

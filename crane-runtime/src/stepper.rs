@@ -130,8 +130,8 @@ pub struct Stepper<P, S: Method, const N: usize, const M: usize, const A: usize,
     newton: Newton,
     /// The unknowns: the last step's solution between steps.
     z: DVector<f64>,
-    /// The last four steps' unknowns, newest first (the extrapolation of
-    /// the unknowns the scheme does not predict).
+    /// The last `MAX_EXTRAPOLATION` steps' unknowns, newest first (the
+    /// extrapolation of the unknowns the scheme does not predict).
     past: [DVector<f64>; MAX_EXTRAPOLATION],
     /// How many of `past` are known (1 ..= MAX_EXTRAPOLATION).
     known: usize,

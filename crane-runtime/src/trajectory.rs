@@ -391,6 +391,7 @@ impl<const A: usize, F: Fn(f64, usize) -> SVector<f64, A>> Trajectory<A> for Fro
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::vector;
 
     /// The table's falling factorials are the products they stand for.
     #[test]
@@ -402,7 +403,6 @@ mod tests {
             }
         }
     }
-    use nalgebra::vector;
 
     /// Central difference of derivative `k - 1`; error O(h^2) ~ 1e-8 relative
     /// for h = 1e-4 on these polynomials, plus round-off eps/h ~ 1e-12.

@@ -26,8 +26,7 @@ fn every_flat_built_in_is_solved_stage_by_stage_as_whole() {
     assert_eq!(navy.blocks, [8, 8, 10]);
     // its first two stages' blocks are parts of its last's (the 10 x 10
     // system Jacobian): one LU per Newton iteration (468 iterations, 468
-    // LUs over the 400 steps), not three (nor two, with the first stage's
-    // factors reused for the second)
+    // LUs over the 400 steps), not three
     assert_eq!(navy.factorisations.0, navy.iterations.0);
     // the jets predicted through the last eight steps are within Newton's
     // residual test at most steps, or within an update whose error the
