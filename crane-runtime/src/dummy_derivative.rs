@@ -247,9 +247,12 @@ where
 
     /// Into Newton's buffers: its Jacobian is zeroed when made and written
     /// by this alone, so the entries zero by structure stay zero.
-    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
+    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) {
         self.model
             .dummy_derivative_system_into(&self.gamma, z.as_slice(), r.as_mut_slice(), jac.as_mut_slice());
+    }
+
+    fn normalised_residual(&self, z: &DVector<f64>, r: &DVector<f64>, jac: &DMatrix<f64>) -> f64 {
         normalised_residual_sparse(r, jac, z, &self.nonzeros)
     }
 

@@ -51,6 +51,9 @@ pub struct Forward<H, In, const N: usize, const M: usize, const A: usize> {
     /// `u` at the new time.
     input: SVector<f64, A>,
     formula: StepFormula<N>,
+    /// The dynamic rows' floors of the residual test (their inertia or
+    /// applied forces, the larger) at the last evaluation.
+    floors: SVector<f64, N>,
     blocks: [Range<usize>; 2],
 }
 
@@ -68,6 +71,7 @@ where
             mass,
             input: SVector::zeros(),
             formula: StepFormula::unprepared(),
+            floors: SVector::zeros(),
             blocks: [0..N, N..N + M],
         }
     }
@@ -100,7 +104,7 @@ where
         N + M
     }
 
-    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
+    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) {
         let kinematics = self.kinematics(z);
         let lambda_scaled = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
         let u_scaled = self.input * (self.formula.dt * self.formula.dt);
@@ -118,13 +122,11 @@ where
         );
         // the given inputs are applied forces: a row's scale is its inertia
         // or all its applied forces
-        normalised_residual(r, jac, z, |i| {
-            if i < N {
-                rows.inertia[i].abs().max((rows.applied[i] + rows.inputs[i]).abs())
-            } else {
-                0.0
-            }
-        })
+        self.floors = SVector::from_fn(|i, _| rows.inertia[i].abs().max((rows.applied[i] + rows.inputs[i]).abs()));
+    }
+
+    fn normalised_residual(&self, z: &DVector<f64>, r: &DVector<f64>, jac: &DMatrix<f64>) -> f64 {
+        normalised_residual(r, jac, z, |i| if i < N { self.floors[i] } else { 0.0 })
     }
 
     fn blocks(&self) -> &[Range<usize>] {

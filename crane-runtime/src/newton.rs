@@ -15,10 +15,15 @@ pub trait NonlinearSystem {
     /// Number of unknowns (and equations).
     fn dim(&self) -> usize;
 
-    /// Write the residual `r(z)` and the iteration matrix `J = dr/dz`; return
-    /// the residual normalised row by row by the size of the terms that make
-    /// it up (`max_i |r_i| / scale_i`), so that round-off shows as ~1e-16.
-    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64;
+    /// Write the residual `r(z)` and the iteration matrix `J = dr/dz`.
+    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>);
+
+    /// The residual `r` and iteration matrix `jac` of the last
+    /// [`evaluate`](Self::evaluate), at `z`: the residual normalised row by
+    /// row by the size of the terms that make it up (`max_i |r_i| /
+    /// scale_i`), so that round-off shows as ~1e-16. Newton asks for it
+    /// only where the updates do not end the solve.
+    fn normalised_residual(&self, z: &DVector<f64>, r: &DVector<f64>, jac: &DMatrix<f64>) -> f64;
 
     /// Blocks of unknowns that each get their own relative stopping test
     /// (e.g. coordinates, scaled inputs, scaled multipliers).
@@ -161,7 +166,7 @@ pub struct NewtonOptions {
     pub rtol: f64,
     /// Absolute floor of the update test, in the units of the scaled unknowns.
     pub atol: f64,
-    /// A normalised residual (see [`NonlinearSystem::evaluate`]) at or below
+    /// A normalised residual (see [`NonlinearSystem::normalised_residual`]) at or below
     /// this is converged whatever the update: near a singular iteration matrix
     /// round-off in the update exceeds `rtol` although the equations hold to
     /// working precision (docs/numerics.md, dt = 0.001).
@@ -249,7 +254,7 @@ pub const QUADRATIC_UPDATE: f64 = 1e-9;
 pub const QUADRATIC_ERROR: f64 = 3e-15;
 
 /// The factor by which the quadratic term's estimate grows at each solve
-/// that it alone ends, so that it is confirmed by a second iteration every
+/// that it ends where the tests on the update do not, so that it is confirmed by a second iteration every
 /// few solves and follows a term that grows by up to a tenth per solve
 /// (navy-planar at dt = 0.01: 1.17 iterations per step instead of 1.13,
 /// the double pendulum 1.09 instead of 1.05).
@@ -262,6 +267,10 @@ pub struct Newton {
     solver: DenseSolver,
     residual: DVector<f64>,
     jac: DMatrix<f64>,
+    /// The iterate and residual of the last evaluation, kept for the
+    /// residual test once the update has replaced them.
+    evaluated_at: DVector<f64>,
+    evaluated: DVector<f64>,
     /// The quadratic term of the last solves, `w_2 / w_1^2` over two
     /// successive updates of an LU in tolerance units, the largest seen,
     /// halved at each new one (infinite before the first).
@@ -276,6 +285,8 @@ impl Newton {
             solver: DenseSolver::new(n),
             residual: DVector::zeros(n),
             jac: DMatrix::zeros(n, n),
+            evaluated_at: DVector::zeros(n),
+            evaluated: DVector::zeros(n),
             quadratic: f64::INFINITY,
         }
     }
@@ -327,6 +338,10 @@ impl Newton {
     /// is at most [`QUADRATIC_ERROR`] relative: round-off, which another
     /// evaluation and solve would only confirm. Each solve so ended ages the
     /// estimate by [`QUADRATIC_AGING`].
+    ///
+    /// The residual test ([`NonlinearSystem::normalised_residual`]) is asked
+    /// only where the updates leave the solve open: most steps of nearby
+    /// solves end without it.
     pub fn solve<S: NonlinearSystem + ?Sized>(
         &mut self,
         system: &mut S,
@@ -340,17 +355,12 @@ impl Newton {
         // whether the last update was an LU's, and small
         let (mut last_lu, mut last_small) = (false, false);
         for iteration in 1..=self.options.max_iterations {
-            let normalised = system.evaluate(z, &mut self.residual, &mut self.jac);
-            if !normalised.is_finite() {
+            system.evaluate(z, &mut self.residual, &mut self.jac);
+            if !self.residual.iter().all(|v| v.is_finite()) {
                 return Err(NewtonFailure::NonFinite { iterations: iteration });
             }
-            // a residual at round-off level (normalised) ends the solve, but
-            // only after the step it gives is applied: the row normalisation
-            // is dominated by the largest columns, so an unknown with a small
-            // column (a light coordinate of the minimal formulation) can still
-            // be off by far more than round-off when the residual test holds
-            // (measured: 5e-8 m in q on navy-planar-pulley, BDF-5 at dt = 0.005)
-            let residual_converged = normalised <= self.options.residual_tol;
+            self.evaluated.copy_from(&self.residual);
+            self.evaluated_at.copy_from(z);
             // dz = J^{-1} r, computed in place in the residual buffer; z -= dz
             // an equilibrated solver finds its scale factors on the first
             // iteration and keeps them for the later ones of this solve (or
@@ -424,21 +434,42 @@ impl Newton {
             last_lu = kind == SolveKind::Lu;
             last_small = small;
             last_w = w;
-            // a held step is done once the residual no longer halves: what
-            // is left lies along the held direction, whose solve would move
-            // it (by the slow creep of the damped steps) where round-off puts it
-            let held_converged = self.solver.holds()
-                && normalised <= HELD_RESIDUAL * self.options.residual_tol
-                && normalised > 0.5 * last_residual;
-            last_residual = normalised;
-            let tests_converged = residual_converged || held_converged || w <= 1.0 || left <= 1.0;
-            // a solve the estimate alone ends ages it: a term that grows by
-            // less than that per solve stays below it, and a faster one
-            // meets a confirming iteration within a few solves
-            if quadratic_converged && !tests_converged {
+            let update_converged = w <= 1.0 || left <= 1.0;
+            // a solve the estimate ends without the update tests ages it: a
+            // term that grows by less than that per solve stays below it,
+            // and a faster one meets a confirming iteration within a few
+            // solves
+            if quadratic_converged && !update_converged {
                 self.quadratic *= QUADRATIC_AGING;
             }
-            if tests_converged || quadratic_converged {
+            let holds = self.solver.holds();
+            // the residual, where the updates leave the solve open (and at
+            // every iteration of a held solve, which compares successive ones)
+            let residual_converged = if holds || !(update_converged || quadratic_converged) {
+                let normalised = system.normalised_residual(&self.evaluated_at, &self.evaluated, &self.jac);
+                if !normalised.is_finite() {
+                    return Err(NewtonFailure::NonFinite { iterations: iteration });
+                }
+                // a held step is done once the residual no longer halves:
+                // what is left lies along the held direction, whose solve
+                // would move it (by the slow creep of the damped steps)
+                // where round-off puts it
+                let held_converged = holds
+                    && normalised <= HELD_RESIDUAL * self.options.residual_tol
+                    && normalised > 0.5 * last_residual;
+                last_residual = normalised;
+                // a residual at round-off level (normalised) ends the solve,
+                // but only after the step it gives is applied: the row
+                // normalisation is dominated by the largest columns, so an
+                // unknown with a small column (a light coordinate of the
+                // minimal formulation) can still be off by far more than
+                // round-off when the residual test holds (measured: 5e-8 m
+                // in q on navy-planar-pulley, BDF-5 at dt = 0.005)
+                normalised <= self.options.residual_tol || held_converged
+            } else {
+                false
+            };
+            if update_converged || quadratic_converged || residual_converged {
                 return Ok(Converged {
                     iterations: iteration,
                     min_norm_steps,
@@ -469,14 +500,16 @@ mod tests {
         fn dim(&self) -> usize {
             1
         }
-        fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
+        fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) {
             self.evaluations += 1;
             if self.evaluations >= self.nan_from {
                 r[0] = f64::NAN;
-                return f64::NAN;
+                return;
             }
             r[0] = z[0] * z[0] - 2.0;
             jac[(0, 0)] = 2.0 * z[0];
+        }
+        fn normalised_residual(&self, _z: &DVector<f64>, r: &DVector<f64>, _jac: &DMatrix<f64>) -> f64 {
             (r[0] / 2.0).abs()
         }
         fn blocks(&self) -> &[Range<usize>] {
@@ -522,9 +555,11 @@ mod tests {
         fn dim(&self) -> usize {
             1
         }
-        fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
+        fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) {
             r[0] = z[0] * z[0] - self.c;
             jac[(0, 0)] = 2.0 * z[0];
+        }
+        fn normalised_residual(&self, z: &DVector<f64>, r: &DVector<f64>, _jac: &DMatrix<f64>) -> f64 {
             r[0].abs() / (2.0 * z[0] * z[0]).abs()
         }
         fn blocks(&self) -> &[Range<usize>] {

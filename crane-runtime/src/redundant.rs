@@ -49,6 +49,9 @@ pub struct Redundant<H, Tr, const N: usize, const M: usize, const A: usize> {
     target: ServoTarget<A>,
     /// The scheme's affine maps `p -> v, a` for this step.
     formula: StepFormula<N>,
+    /// The dynamic rows' floors of the residual test (their inertia or
+    /// applied forces, the larger) at the last evaluation.
+    floors: SVector<f64, N>,
     blocks: [Range<usize>; 3],
 }
 
@@ -68,6 +71,7 @@ where
             mass,
             target: [SVector::zeros(); 3],
             formula: StepFormula::unprepared(),
+            floors: SVector::zeros(),
             blocks: [0..Self::P, Self::P..N, N..N + M],
         }
     }
@@ -157,7 +161,7 @@ where
         N + M
     }
 
-    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
+    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) {
         let p = Self::P;
         let kinematics = self.kinematics(z);
         let u_scaled = SVector::<f64, A>::from_fn(|k, _| z[p + k]);
@@ -184,13 +188,11 @@ where
         }
         // dynamic rows also by their largest term (the load row of x nearly
         // vanishes when the load hangs straight below the pulley)
-        normalised_residual(r, jac, z, |i| {
-            if i < N {
-                rows.inertia[i].abs().max(rows.applied[i].abs())
-            } else {
-                0.0
-            }
-        })
+        self.floors = SVector::from_fn(|i, _| rows.inertia[i].abs().max(rows.applied[i].abs()));
+    }
+
+    fn normalised_residual(&self, z: &DVector<f64>, r: &DVector<f64>, jac: &DMatrix<f64>) -> f64 {
+        normalised_residual(r, jac, z, |i| if i < N { self.floors[i] } else { 0.0 })
     }
 
     fn blocks(&self) -> &[Range<usize>] {

@@ -262,21 +262,25 @@ pub(super) fn write_residual<T: Scalar, const F: usize, const A: usize>(
 }
 
 impl<const N: usize, const A: usize, const F: usize> MinimalEquations<N, A, F> {
-    /// The residual and iteration matrix at `z` for `model`, and the
-    /// normalised residual ([`NonlinearSystem::evaluate`](crate::newton::NonlinearSystem::evaluate)).
+    /// The residual and iteration matrix at `z` for `model`.
     pub(super) fn evaluate<Mdl, const M: usize>(
         &self,
         model: &Mdl,
         z: &DVector<f64>,
         r: &mut DVector<f64>,
         jac: &mut DMatrix<f64>,
-    ) -> f64
-    where
+    ) where
         Mdl: MinimalMap<N, M, A, F>,
     {
         let point = self.point(model, &|i| z[i]);
         write_residual(&self.residual(&point), |i, v| r[i] = v);
         self.iteration_matrix(model, &point, jac);
+    }
+
+    /// The normalised residual of [`evaluate`](Self::evaluate)'s `r` and
+    /// `jac` at `z`
+    /// ([`NonlinearSystem::normalised_residual`](crate::newton::NonlinearSystem::normalised_residual)).
+    pub(super) fn normalised_residual(&self, z: &DVector<f64>, r: &DVector<f64>, jac: &DMatrix<f64>) -> f64 {
         // the servo rows (24c-e) by their target terms too: where the load's
         // minimal coordinates are the load coordinates themselves (x = mu2,
         // natural for gantry and overhead cranes) and start at 0 with the

@@ -119,8 +119,12 @@ where
         MinimalEquations::<N, A, F>::DIM
     }
 
-    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> f64 {
+    fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) {
         self.equations.evaluate(&*self.model, z, r, jac)
+    }
+
+    fn normalised_residual(&self, z: &DVector<f64>, r: &DVector<f64>, jac: &DMatrix<f64>) -> f64 {
+        self.equations.normalised_residual(z, r, jac)
     }
 
     fn blocks(&self) -> &[Range<usize>] {
