@@ -918,11 +918,35 @@ fn power_of_two(m: f64) -> f64 {
 /// a pivot is exactly zero; NaN for non-finite input).
 fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize], inverse_diagonal: &mut [f64], ends: &[usize]) -> f64 {
     let n = a.nrows();
+    let data = a.as_mut_slice();
+    // the small sizes each with their own code, whose loops know their
+    // lengths (a tenth of a reduced step faster on navy-planar's 10 x 10)
+    macro_rules! sized {
+        ($($size:literal)*) => {
+            match n {
+                $($size => lu_sized::<$size>(data, n, pivots, inverse_diagonal, ends),)*
+                _ => lu_sized::<0>(data, n, pivots, inverse_diagonal, ends),
+            }
+        };
+    }
+    sized!(2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+}
+
+/// [`lu_in_place`] of the `n x n` matrix whose entries by columns are
+/// `data`: `n` is `S` where `S` is not 0, a constant of the compiled code.
+fn lu_sized<const S: usize>(
+    data: &mut [f64],
+    n: usize,
+    pivots: &mut [usize],
+    inverse_diagonal: &mut [f64],
+    ends: &[usize],
+) -> f64 {
+    let n = if S == 0 { n } else { S };
     let (mut smallest, mut largest) = (f64::INFINITY, 0.0f64);
     for k in 0..n {
         // pivot search in column k
         let end = ends.get(k).copied().unwrap_or(n);
-        let column = &a.as_slice()[k * n..(k + 1) * n];
+        let column = &data[k * n..(k + 1) * n];
         let mut p = k;
         let mut best = column[k].abs();
         for (i, v) in column[..end].iter().enumerate().skip(k + 1) {
@@ -942,10 +966,11 @@ fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize], inverse_diagonal: &mu
             return 0.0;
         }
         if p != k {
-            a.swap_rows(k, p);
+            for column in data.chunks_exact_mut(n) {
+                column.swap(k, p);
+            }
         }
         // the matrix by columns: column j is data[j n .. (j + 1) n]
-        let data = a.as_mut_slice();
         let inv = 1.0 / data[k * n + k];
         inverse_diagonal[k] = inv;
         for x in &mut data[k * n + k + 1..(k + 1) * n] {

@@ -145,6 +145,12 @@ pub fn normalised_residual_sparse(r: &DVector<f64>, jac: &DMatrix<f64>, z: &DVec
     normalised
 }
 
+/// Whether every entry of `xs` is finite: a fold over all of them, without
+/// the early exit that keeps the test from running on several at once.
+fn all_finite(xs: &[f64]) -> bool {
+    xs.iter().fold(true, |finite, x| finite & x.is_finite())
+}
+
 /// The largest magnitude in `xs` (0 for none), for finite `xs`.
 fn largest(xs: &[f64]) -> f64 {
     xs.iter().fold(0.0, |largest, x| largest.max(x.abs()))
@@ -356,7 +362,7 @@ impl Newton {
         let (mut last_lu, mut last_small) = (false, false);
         for iteration in 1..=self.options.max_iterations {
             system.evaluate(z, &mut self.residual, &mut self.jac);
-            if !self.residual.iter().all(|v| v.is_finite()) {
+            if !all_finite(self.residual.as_slice()) {
                 return Err(NewtonFailure::NonFinite { iterations: iteration });
             }
             self.evaluated.copy_from(&self.residual);
@@ -380,7 +386,7 @@ impl Newton {
                 min_norm_steps += 1;
             }
             let dz = &self.residual;
-            if !dz.iter().all(|v| v.is_finite()) {
+            if !all_finite(dz.as_slice()) {
                 return Err(NewtonFailure::NonFinite { iterations: iteration });
             }
             *z -= dz;
