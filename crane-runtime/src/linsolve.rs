@@ -125,6 +125,18 @@ impl Triangular {
                 *flag = true;
             }
         }
+        self.nonzero = Some(nonzero);
+        self.find_left();
+        self
+    }
+
+    /// The entries left of each block not zero by structure, where the
+    /// pattern is known (see [`with_nonzeros`](Self::with_nonzeros)).
+    fn find_left(&mut self) {
+        let Some(nonzero) = self.nonzero.as_ref() else {
+            return;
+        };
+        let n = self.rows.len();
         let left = (self.blocks.iter())
             .map(|block| {
                 let mut left = Left {
@@ -143,8 +155,6 @@ impl Triangular {
             })
             .collect();
         self.left = Some(left);
-        self.nonzero = Some(nonzero);
-        self
     }
 
     /// The same form with what each row and column stands for: where each
@@ -156,8 +166,10 @@ impl Triangular {
     /// the first block's labels first, then those the next one adds, and so
     /// on, and its pivots searched within each leading block, solves every
     /// block (checked at each solve, entry for entry; where a block differs,
-    /// each block is factored on its own). Labels of another length than
-    /// the matrix's are ignored.
+    /// each block is factored on its own). Every block's rows and columns
+    /// are put in that order, so that each is solved in place with the
+    /// leading part of the factors. Labels of another length than the
+    /// matrix's are ignored.
     ///
     /// ```
     /// use crane_runtime::linsolve::Triangular;
@@ -169,9 +181,26 @@ impl Triangular {
     /// ```
     pub fn with_labels(mut self, row_labels: &[usize], col_labels: &[usize]) -> Self {
         let n = self.rows.len();
-        if row_labels.len() == n && col_labels.len() == n {
-            self.labels = Some((row_labels.to_vec(), col_labels.to_vec()));
+        if row_labels.len() != n || col_labels.len() != n {
+            return self;
         }
+        // each block's rows and columns in the nested order, so that its
+        // solve is the leading block's of the last one as they stand
+        if let (Some(row_order), Some(col_order)) = (
+            nested_order(&self.rows, &self.blocks, row_labels),
+            nested_order(&self.cols, &self.blocks, col_labels),
+        ) {
+            for block in &self.blocks {
+                for (indices, labels, order) in [
+                    (&mut self.rows, row_labels, &row_order),
+                    (&mut self.cols, col_labels, &col_order),
+                ] {
+                    indices[block.clone()].sort_by_key(|&i| order.iter().position(|&label| label == labels[i]));
+                }
+            }
+            self.find_left();
+        }
+        self.labels = Some((row_labels.to_vec(), col_labels.to_vec()));
         self
     }
 
@@ -184,6 +213,38 @@ impl Triangular {
     pub fn block(&self, k: usize) -> Option<(&[usize], &[usize])> {
         let block = self.blocks.get(k)?.clone();
         Some((&self.rows[block.clone()], &self.cols[block]))
+    }
+
+    /// Block `k`'s right-hand side into `rhs`: each of its rows of `b` less
+    /// the blocks before it, whose solution is `known` (in the form's
+    /// column order), with the matrix's `entries` by columns: the terms in
+    /// column order, summed in a register (over the entries not zero by
+    /// structure, where the form knows them: the same sum).
+    fn reduce(&self, k: usize, entries: &[f64], b: &DVector<f64>, known: &[f64], rhs: &mut [f64]) {
+        let n = self.rows.len();
+        let block = &self.blocks[k];
+        let rows = &self.rows[block.clone()];
+        match self.left.as_ref().and_then(|left| left.get(k)) {
+            Some(left) => {
+                for ((value, &row), span) in rhs.iter_mut().zip(rows).zip(left.starts.windows(2)) {
+                    let mut sum = b[row];
+                    for &(p, entry) in &left.entries[span[0]..span[1]] {
+                        sum -= entries[entry] * known[p];
+                    }
+                    *value = sum;
+                }
+            }
+            None => {
+                let cols = &self.cols[..block.start];
+                for (value, &row) in rhs.iter_mut().zip(rows) {
+                    let mut sum = b[row];
+                    for (&col, &x) in cols.iter().zip(known) {
+                        sum -= entries[col * n + row] * x;
+                    }
+                    *value = sum;
+                }
+            }
+        }
     }
 
     /// The largest entry of `jac` above the diagonal blocks, in magnitude
@@ -199,6 +260,29 @@ impl Triangular {
         }
         largest
     }
+}
+
+/// The labels of `indices` in the nested order of `blocks` (the first
+/// block's, then those each next block adds), if every block's labels are
+/// distinct and hold all of the block's before it.
+fn nested_order(indices: &[usize], blocks: &[Range<usize>], labels: &[usize]) -> Option<Vec<usize>> {
+    let mut order: Vec<usize> = Vec::new();
+    for block in blocks {
+        let block_labels: Vec<usize> = indices[block.clone()].iter().map(|&i| labels[i]).collect();
+        if !order.iter().all(|label| block_labels.contains(label)) {
+            return None;
+        }
+        for label in block_labels {
+            if !order.contains(&label) {
+                order.push(label);
+            }
+        }
+        // every label of the block once: as many as its size
+        if order.len() != block.len() {
+            return None;
+        }
+    }
+    Some(order)
 }
 
 /// A solver per diagonal block of a [`Triangular`] form, and its workspace.
@@ -217,17 +301,13 @@ struct BlockSolver {
 }
 
 /// One LU of the last diagonal block of a [`Triangular`] form that solves
-/// every block (see [`Triangular::with_labels`]).
+/// every block (see [`Triangular::with_labels`]): each block's rows and
+/// columns are the leading ones of the last block's, in the same order.
 #[derive(Debug, Clone)]
 struct Nested {
-    /// The last block's rows and columns (of the matrix) in the nested
-    /// order: the first block's labels, then those each next block adds.
+    /// The last block's rows and columns (of the matrix).
     rows: Vec<usize>,
     cols: Vec<usize>,
-    /// Per block, the position in the nested order of each of its rows
-    /// and of each of its columns.
-    row_at: Vec<Vec<usize>>,
-    col_at: Vec<Vec<usize>>,
     /// Entries (by columns) that must be equal for the nesting to hold:
     /// each earlier block's against the last block's at the same labels,
     /// where either may be nonzero.
@@ -236,12 +316,12 @@ struct Nested {
     matrix: DMatrix<f64>,
     /// Whether the solver has found scales.
     scaled: bool,
-    /// A right-hand side in the nested order.
-    y: Vec<f64>,
 }
 
 impl Nested {
-    /// The nesting of `form`'s labelled blocks, if they nest.
+    /// The nesting of `form`'s labelled blocks, if each block's labels are
+    /// the leading ones of the last block's, in the same order (as
+    /// [`Triangular::with_labels`] orders them where they nest).
     fn new(form: &Triangular, equilibrate: bool) -> Option<Self> {
         let (row_labels, col_labels) = form.labels.as_ref()?;
         let last = form.blocks.last()?.clone();
@@ -249,55 +329,20 @@ impl Nested {
             return None;
         }
         let n = form.rows.len();
-        // the labels in the nested order, and where each block ends in it
-        let (mut row_order, mut col_order, mut ends) = (Vec::new(), Vec::new(), Vec::new());
-        for block in &form.blocks {
-            for (order, labels, indices) in [
-                (&mut row_order, row_labels, &form.rows[block.clone()]),
-                (&mut col_order, col_labels, &form.cols[block.clone()]),
-            ] {
-                let block_labels: Vec<usize> = indices.iter().map(|&i| labels[i]).collect();
-                if !order.iter().all(|label| block_labels.contains(label)) {
-                    return None;
-                }
-                for label in block_labels {
-                    if !order.contains(&label) {
-                        order.push(label);
-                    }
-                }
-                // every label of the block once: as many as its size
-                if order.len() != block.len() {
-                    return None;
-                }
-            }
-            ends.push(block.len());
-        }
-        let position = |order: &[usize], label: usize| order.iter().position(|&l| l == label);
-        let at = |order: &[usize], labels: &[usize], indices: &[usize]| -> Option<Vec<usize>> {
-            indices.iter().map(|&i| position(order, labels[i])).collect()
+        let (rows, cols) = (form.rows[last.clone()].to_vec(), form.cols[last.clone()].to_vec());
+        let leading = |indices: &[usize], last: &[usize], labels: &[usize]| {
+            indices.len() <= last.len() && indices.iter().zip(last).all(|(&i, &l)| labels[i] == labels[l])
         };
-        let mut row_at = Vec::new();
-        let mut col_at = Vec::new();
-        for block in &form.blocks {
-            row_at.push(at(&row_order, row_labels, &form.rows[block.clone()])?);
-            col_at.push(at(&col_order, col_labels, &form.cols[block.clone()])?);
-        }
-        // the last block's rows and columns in the nested order
-        let (last_rows, last_cols) = (&form.rows[last.clone()], &form.cols[last.clone()]);
-        let mut rows = vec![0; last.len()];
-        let mut cols = vec![0; last.len()];
-        for (&row, &p) in last_rows.iter().zip(row_at.last()?) {
-            rows[p] = row;
-        }
-        for (&col, &p) in last_cols.iter().zip(col_at.last()?) {
-            cols[p] = col;
-        }
         let may_be_nonzero = |entry: usize| form.nonzero.as_ref().is_none_or(|nonzero| nonzero[entry]);
         let mut equal = Vec::new();
-        for (k, block) in form.blocks[..form.blocks.len() - 1].iter().enumerate() {
-            for (&col, &q) in form.cols[block.clone()].iter().zip(&col_at[k]) {
-                for (&row, &p) in form.rows[block.clone()].iter().zip(&row_at[k]) {
-                    let (entry, in_last) = (col * n + row, cols[q] * n + rows[p]);
+        for block in &form.blocks[..form.blocks.len() - 1] {
+            let (block_rows, block_cols) = (&form.rows[block.clone()], &form.cols[block.clone()]);
+            if !leading(block_rows, &rows, row_labels) || !leading(block_cols, &cols, col_labels) {
+                return None;
+            }
+            for (&col, &last_col) in block_cols.iter().zip(&cols) {
+                for (&row, &last_row) in block_rows.iter().zip(&rows) {
+                    let (entry, in_last) = (col * n + row, last_col * n + last_row);
                     if may_be_nonzero(entry) || may_be_nonzero(in_last) {
                         equal.push((entry, in_last));
                     }
@@ -309,18 +354,20 @@ impl Nested {
         // column c's pivot is searched up to the end of the first block
         // that holds it
         solver.pivot_ends = (0..size)
-            .map(|c| ends.iter().copied().find(|&end| end > c).unwrap_or(size))
+            .map(|c| {
+                (form.blocks.iter())
+                    .map(|block| block.len())
+                    .find(|&end| end > c)
+                    .unwrap_or(size)
+            })
             .collect();
         Some(Self {
             rows,
             cols,
-            row_at,
-            col_at,
             equal,
             solver,
             matrix: DMatrix::zeros(size, size),
             scaled: false,
-            y: vec![0.0; size],
         })
     }
 }
@@ -366,16 +413,12 @@ impl BlockSolver {
         if !factored {
             return false;
         }
-        for k in 0..self.form.blocks.len() {
-            self.reduce(k, entries, b);
-            let block = self.form.blocks[k].clone();
-            nested.solver.solve_leading_permuted(
-                self.rhs[k].as_slice(),
-                &nested.row_at[k],
-                &nested.col_at[k],
-                &mut nested.y,
-                &mut self.x.as_mut_slice()[block],
-            );
+        // each block's right-hand side and solution in place in `x`
+        for (k, block) in self.form.blocks.iter().enumerate() {
+            let (known, unknown) = self.x.as_mut_slice().split_at_mut(block.start);
+            let x = &mut unknown[..block.len()];
+            self.form.reduce(k, entries, b, known, x);
+            nested.solver.solve_leading(x);
         }
         self.scatter(b);
         true
@@ -392,8 +435,14 @@ impl BlockSolver {
         }
         let entries = jac.as_slice(); // by columns
         for k in 0..self.form.blocks.len() {
-            self.reduce(k, entries, b);
             let block = self.form.blocks[k].clone();
+            self.form.reduce(
+                k,
+                entries,
+                b,
+                &self.x.as_slice()[..block.start],
+                self.rhs[k].as_mut_slice(),
+            );
             let matrix = &mut self.matrices[k];
             gather(
                 jac,
@@ -411,39 +460,6 @@ impl BlockSolver {
         }
         self.scatter(b);
         true
-    }
-
-    /// Block `k`'s right-hand side into `rhs[k]`: each of its rows of `b`
-    /// less the blocks before it, known (in `x`), with the matrix's
-    /// `entries` by columns: the terms in column order, summed in a
-    /// register (over the entries not zero by structure, where the form
-    /// knows them: the same sum).
-    fn reduce(&mut self, k: usize, entries: &[f64], b: &DVector<f64>) {
-        let form = &self.form;
-        let n = form.rows.len();
-        let block = &form.blocks[k];
-        let rows = &form.rows[block.clone()];
-        match form.left.as_ref().and_then(|left| left.get(k)) {
-            Some(left) => {
-                for ((value, &row), span) in self.rhs[k].iter_mut().zip(rows).zip(left.starts.windows(2)) {
-                    let mut sum = b[row];
-                    for &(p, entry) in &left.entries[span[0]..span[1]] {
-                        sum -= entries[entry] * self.x[p];
-                    }
-                    *value = sum;
-                }
-            }
-            None => {
-                let known = &form.cols[..block.start];
-                for (value, &row) in self.rhs[k].iter_mut().zip(rows) {
-                    let mut sum = b[row];
-                    for (&col, &x) in known.iter().zip(self.x.iter()) {
-                        sum -= entries[col * n + row] * x;
-                    }
-                    *value = sum;
-                }
-            }
-        }
     }
 
     /// The solution, in the form's column order, into `b`.
@@ -675,33 +691,6 @@ impl DenseSolver {
         self.factor_in_lu()
     }
 
-    /// [`solve_leading`](Self::solve_leading) of a right-hand side `rhs`
-    /// whose rows are at `row_at` in the factored matrix's order, with the
-    /// solution's columns at `col_at` written to `x` (`y`, of the matrix's
-    /// size, the scratch): the permutations and the scaling in one pass each.
-    fn solve_leading_permuted(&self, rhs: &[f64], row_at: &[usize], col_at: &[usize], y: &mut [f64], x: &mut [f64]) {
-        let y = &mut y[..rhs.len()];
-        if self.equilibrate {
-            for (&p, &value) in row_at.iter().zip(rhs) {
-                y[p] = value * self.row_scale[p];
-            }
-        } else {
-            for (&p, &value) in row_at.iter().zip(rhs) {
-                y[p] = value;
-            }
-        }
-        lu_solve(&self.lu, &self.pivots, &self.inverse_diagonal, y);
-        if self.equilibrate {
-            for (value, &q) in x.iter_mut().zip(col_at) {
-                *value = y[q] * self.col_scale[q];
-            }
-        } else {
-            for (value, &q) in x.iter_mut().zip(col_at) {
-                *value = y[q];
-            }
-        }
-    }
-
     /// Solve the leading `x.len()` rows and columns of the last factored
     /// matrix (all of them, or a nested leading block of its pivot ends)
     /// with its factors and scales.
@@ -929,7 +918,7 @@ fn lu_in_place(a: &mut DMatrix<f64>, pivots: &mut [usize], inverse_diagonal: &mu
             }
         };
     }
-    sized!(2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+    sized!(2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24)
 }
 
 /// [`lu_in_place`] of the `n x n` matrix whose entries by columns are
@@ -1114,6 +1103,25 @@ mod tests {
             assert!((b - &x).amax() < 1e-14);
             assert_eq!(solver.factorisations(), lus, "entry {entry}");
         }
+    }
+
+    #[test]
+    fn labels_order_each_block_as_the_last_one_leads() {
+        // row 1 is equation 0 at stage -1; rows 2 and 0 equations 0 and 1
+        // at stage 0 (in that order once labelled); columns likewise
+        let form = Triangular::from_stages(&[0, -1, 0], &[0, -1, 0])
+            .unwrap()
+            .with_labels(&[1, 0, 0], &[1, 0, 0]);
+        assert_eq!(form.block(1), Some((&[2, 0][..], &[2, 0][..])));
+        // the stage -1 block (entry (1, 1)) is the stage 0 block's (2, 2)
+        let a = DMatrix::from_row_slice(3, 3, &[7.0, 3.0, 4.0, 0.0, 2.0, 0.0, 1.0, 5.0, 2.0]);
+        let x = DVector::from_row_slice(&[0.5, 1.0, -2.0]);
+        let mut solver = DenseSolver::equilibrated(3);
+        solver.set_triangular(form);
+        let mut b = &a * &x;
+        assert_eq!(solver.solve(&a, &mut b).unwrap(), SolveKind::Lu);
+        assert!((b - &x).amax() < 1e-14);
+        assert_eq!(solver.factorisations(), 1);
     }
 
     #[test]
