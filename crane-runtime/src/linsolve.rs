@@ -898,7 +898,9 @@ fn power_of_two(m: f64) -> f64 {
 
 /// LU factorisation with partial pivoting, in place (Doolittle, unit lower
 /// triangle stored below the diagonal), with the reciprocals of `U`'s
-/// diagonal into `inverse_diagonal`. The pivot of column `k` is searched in
+/// diagonal into `inverse_diagonal` and `U`'s rows above the diagonal
+/// stored divided by their diagonal entry (so that the back substitution's
+/// chain is one multiply and subtract per unknown). The pivot of column `k` is searched in
 /// rows `k .. ends[k]` (all below the diagonal where `ends` is empty): with
 /// the ends of nested leading blocks, the factors' leading part is each
 /// block's LU (the rows below a leading block may then have multipliers
@@ -973,6 +975,7 @@ fn lu_sized<const S: usize>(
                 for (x, &lik) in column[k + 1..].iter_mut().zip(multipliers) {
                     *x -= lik * akj;
                 }
+                column[k] = akj * inv;
             }
         }
     }
@@ -1004,13 +1007,14 @@ fn lu_solve(lu: &DMatrix<f64>, pivots: &[usize], inverse_diagonal: &[f64], x: &m
     }
     // U x = y, each row's terms from the last column on: the term of the
     // unknown just found comes last, and the chain of the substitution is
-    // one multiply and subtract per unknown
+    // one multiply and subtract per unknown (U's rows are stored divided by
+    // their diagonal, the right-hand side is multiplied by its reciprocal)
     for i in (0..m).rev() {
-        let mut sum = x[i];
+        let mut sum = x[i] * inverse_diagonal[i];
         for k in (i + 1..m).rev() {
             sum -= data[k * n + i] * x[k];
         }
-        x[i] = sum * inverse_diagonal[i];
+        x[i] = sum;
     }
 }
 
