@@ -130,9 +130,11 @@ pub struct Stepper<P, S: Method, const N: usize, const M: usize, const A: usize,
     newton: Newton,
     /// The unknowns: the last step's solution between steps.
     z: DVector<f64>,
-    /// The last `MAX_EXTRAPOLATION` steps' unknowns, newest first (the
-    /// extrapolation of the unknowns the scheme does not predict).
+    /// The last `MAX_EXTRAPOLATION` steps' unknowns (the extrapolation of
+    /// the unknowns the scheme does not predict), a ring: the newest at
+    /// `newest`, each older one after it, wrapping around.
     past: [DVector<f64>; MAX_EXTRAPOLATION],
+    newest: usize,
     /// How many of `past` are known (1 ..= MAX_EXTRAPOLATION).
     known: usize,
     /// Whether the last step took a minimum-norm step (a singular
@@ -190,6 +192,7 @@ where
             history,
             newton,
             past: std::array::from_fn(|_| z.clone()),
+            newest: 0,
             z,
             known: 1,
             last_singular: false,
@@ -291,7 +294,7 @@ where
             // a weakly determined direction: retry from the last step (its
             // discretised coordinates still from the scheme's predictor)
             Err(first) if self.known >= 3 => {
-                self.z.copy_from(&self.past[0]);
+                self.z.copy_from(&self.past[self.newest]);
                 if let Predictor::Scheme { leading } = predictor {
                     let predicted = self.history.predict(self.dt, 0);
                     self.z.rows_mut(0, leading).copy_from(&predicted.rows(0, leading));
@@ -371,7 +374,8 @@ where
         // at a time)
         let z = &mut self.z.as_mut_slice()[first..];
         z.fill(-0.0);
-        for (past, &weight) in self.past.iter().zip(&weights).take(points) {
+        let (wrapped, from_newest) = self.past.split_at(self.newest);
+        for (past, &weight) in from_newest.iter().chain(wrapped).zip(&weights).take(points) {
             for (zi, &h) in z.iter_mut().zip(&past.as_slice()[first..]) {
                 *zi += weight * h;
             }
@@ -383,8 +387,8 @@ where
     fn record(&mut self, accepted: Accepted<N, M, A, K>) {
         self.state = accepted.state;
         self.history.push(accepted.y, accepted.v);
-        self.past.rotate_right(1);
-        self.past[0].copy_from(&self.z);
+        self.newest = self.newest.checked_sub(1).unwrap_or(MAX_EXTRAPOLATION - 1);
+        self.past[self.newest].copy_from(&self.z);
         self.known = (self.known + 1).min(MAX_EXTRAPOLATION);
         self.steps += 1;
     }
