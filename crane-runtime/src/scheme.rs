@@ -332,8 +332,11 @@ impl FromStr for Scheme {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct History<const K: usize, S: Method = Scheme> {
     method: S,
+    /// Past values and rates, a ring: the newest at `newest`, each older
+    /// one after it, wrapping around.
     values: [SVector<f64, K>; MAX_STEPS],
     rates: [SVector<f64, K>; MAX_STEPS],
+    newest: usize,
     /// How many entries are valid (oldest ones may be missing early on).
     known: usize,
 }
@@ -435,6 +438,7 @@ impl<const K: usize, S: Method> History<K, S> {
             method,
             values: [y0; MAX_STEPS],
             rates: [SVector::zeros(); MAX_STEPS],
+            newest: 0,
             known: MAX_STEPS,
         }
     }
@@ -445,6 +449,7 @@ impl<const K: usize, S: Method> History<K, S> {
             method,
             values: [y0; MAX_STEPS],
             rates: [v0; MAX_STEPS],
+            newest: 0,
             known: 1,
         }
     }
@@ -469,21 +474,29 @@ impl<const K: usize, S: Method> History<K, S> {
 
     /// Record an accepted step: `y_{n+1}, y'_{n+1}` become the newest entry.
     pub fn push(&mut self, y: SVector<f64, K>, v: SVector<f64, K>) {
-        self.values.rotate_right(1);
-        self.rates.rotate_right(1);
-        self.values[0] = y;
-        self.rates[0] = v;
+        self.newest = self.newest.checked_sub(1).unwrap_or(MAX_STEPS - 1);
+        self.values[self.newest] = y;
+        self.rates[self.newest] = v;
         self.known = (self.known + 1).min(MAX_STEPS);
+    }
+
+    /// The past values and rates, newest first.
+    fn past(&self) -> impl Iterator<Item = (&SVector<f64, K>, &SVector<f64, K>)> {
+        let (values, rates) = (
+            newest_first(&self.values, self.newest),
+            newest_first(&self.rates, self.newest),
+        );
+        values.zip(rates)
     }
 
     /// The newest value `y_n`.
     pub fn value(&self) -> &SVector<f64, K> {
-        &self.values[0]
+        &self.values[self.newest]
     }
 
     /// The newest rate `y'_n`.
     pub fn rate(&self) -> &SVector<f64, K> {
-        &self.rates[0]
+        &self.rates[self.newest]
     }
 
     /// Order of the next step: the method's, or lower while the history is
@@ -498,9 +511,9 @@ impl<const K: usize, S: Method> History<K, S> {
         let formula = self.method.formula(self.known);
         let mut value_offset = SVector::zeros();
         let mut rate_offset = SVector::zeros();
-        for j in 0..formula.steps {
-            value_offset -= self.values[j] * formula.alpha[j];
-            rate_offset -= self.rates[j] * formula.alpha[j];
+        for (j, (value, rate)) in self.past().take(formula.steps).enumerate() {
+            value_offset -= value * formula.alpha[j];
+            rate_offset -= rate * formula.alpha[j];
         }
         StepFormula {
             rate: formula.c / dt,
@@ -517,18 +530,24 @@ impl<const K: usize, S: Method> History<K, S> {
     /// leaves an error `O(dt^(k + 2))` instead of `O(dt^(k + 1))`.
     pub fn predict(&self, dt: f64, extra: usize) -> SVector<f64, K> {
         if self.known < 2 {
-            return self.values[0] + self.rates[0] * dt;
+            return self.value() + self.rate() * dt;
         }
         let points = (self.method.predictor_points(self.known) + extra)
             .min(self.known)
             .min(MAX_STEPS);
         let weights = extrapolation_weights(points);
         let mut prediction = SVector::zeros();
-        for (value, weight) in self.values.iter().zip(&weights[..points]) {
+        for ((value, _), weight) in self.past().zip(&weights[..points]) {
             prediction += value * *weight;
         }
         prediction
     }
+}
+
+/// The entries of a ring whose newest is at `newest`, newest first.
+pub(crate) fn newest_first<T>(ring: &[T], newest: usize) -> impl Iterator<Item = &T> {
+    let (wrapped, from_newest) = ring.split_at(newest.min(ring.len()));
+    from_newest.iter().chain(wrapped)
 }
 
 /// The most past values an extrapolation goes through

@@ -44,7 +44,7 @@ use crate::model::{CraneModel, any_rope_tension};
 use crate::newton::{Newton, NewtonFailure};
 use crate::options::Options;
 use crate::problem::{Accepted, Follow, Predictor, Problem};
-use crate::scheme::{History, MAX_EXTRAPOLATION, Method, extrapolation_weights};
+use crate::scheme::{History, MAX_EXTRAPOLATION, Method, extrapolation_weights, newest_first};
 use crate::solution::State;
 
 /// What one step reports.
@@ -374,8 +374,7 @@ where
         // at a time)
         let z = &mut self.z.as_mut_slice()[first..];
         z.fill(-0.0);
-        let (wrapped, from_newest) = self.past.split_at(self.newest);
-        for (past, &weight) in from_newest.iter().chain(wrapped).zip(&weights).take(points) {
+        for (past, &weight) in newest_first(&self.past, self.newest).zip(&weights).take(points) {
             for (zi, &h) in z.iter_mut().zip(&past.as_slice()[first..]) {
                 *zi += weight * h;
             }
