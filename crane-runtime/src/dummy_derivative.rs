@@ -311,13 +311,9 @@ where
 
     fn drive(&self, t: f64) -> PathJets<A> {
         let order = <H::Target as DummyDerivatives<N, M, A, J>>::PATH_ORDER.min(MAX_PATH_ORDER);
-        std::array::from_fn(|k| {
-            if k <= order {
-                self.trajectory.derivative(t, k)
-            } else {
-                SVector::zeros()
-            }
-        })
+        let mut gamma = [SVector::zeros(); MAX_PATH_ORDER + 1];
+        self.trajectory.derivatives_into(t, &mut gamma[..=order]);
+        gamma
     }
 
     fn check_drive(&self, gamma: &PathJets<A>, t: f64) -> Result<(), Error> {

@@ -104,7 +104,9 @@ where
 
 /// The load target `gamma, gamma', gamma''` of the step to `t`.
 pub(crate) fn servo_target<const A: usize>(trajectory: &impl Trajectory<A>, t: f64) -> ServoTarget<A> {
-    [0, 1, 2].map(|k| trajectory.derivative(t, k))
+    let mut target = [SVector::zeros(); 3];
+    trajectory.derivatives_into(t, &mut target);
+    target
 }
 
 /// The unknowns `[p; dt^2 u; dt^2 lambda]` of `state` at step `dt`, into `z`.

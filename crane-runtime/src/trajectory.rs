@@ -18,7 +18,19 @@ pub trait Trajectory<const A: usize> {
     where
         Self: Sized,
     {
-        std::array::from_fn(|k| self.derivative(t, k))
+        let mut out = [SVector::zeros(); K];
+        self.derivatives_into(t, &mut out);
+        out
+    }
+
+    /// `gamma^(k)(t)` for `k = 0 .. out.len()` into `out`: one
+    /// [`derivative`](Self::derivative) each, unless the path computes them
+    /// in one pass (the built-in paths: their polynomials' derivatives side
+    /// by side, the same numbers).
+    fn derivatives_into(&self, t: f64, out: &mut [SVector<f64, A>]) {
+        for (k, gamma) in out.iter_mut().enumerate() {
+            *gamma = self.derivative(t, k);
+        }
     }
 
     /// The highest derivative of `gamma` that is continuous for all `t`
@@ -36,6 +48,10 @@ impl<const A: usize, T: Trajectory<A> + ?Sized> Trajectory<A> for &T {
         (**self).derivative(t, k)
     }
 
+    fn derivatives_into(&self, t: f64, out: &mut [SVector<f64, A>]) {
+        (**self).derivatives_into(t, out)
+    }
+
     fn continuity(&self) -> Option<usize> {
         (**self).continuity()
     }
@@ -49,6 +65,23 @@ fn poly_derivative(coefficients: &[f64], s: f64, k: usize) -> f64 {
         value = value * s + coefficients[i] * falling(i, k);
     }
     value
+}
+
+/// [`poly_derivative`] of orders `0 .. out.len()` into `out`, the
+/// polynomials of the orders side by side (each added in the same order as
+/// alone: the same numbers), for at most [`FALLING_SIZE`] orders (the
+/// rest are left as they are).
+fn poly_derivatives(coefficients: &[f64], s: f64, out: &mut [f64]) {
+    let orders = out.len().min(FALLING_SIZE);
+    let out = &mut out[..orders];
+    out.fill(0.0);
+    for (i, &coefficient) in coefficients.iter().enumerate().rev() {
+        let falling = FALLING.get(i);
+        for (k, value) in out.iter_mut().enumerate().take(i + 1) {
+            let factor = falling.map_or_else(|| self::falling(i, k), |row| row[k]);
+            *value = *value * s + coefficient * factor;
+        }
+    }
 }
 
 /// How many `i` [`FALLING`] holds.
@@ -179,11 +212,40 @@ impl<const A: usize> Trajectory<A> for Poly9<A> {
         } else {
             poly_derivative(&POLY9, tau, k) / duration.powi(k as i32)
         };
-        if k == 0 {
-            self.start + (self.end - self.start) * c
-        } else {
-            (self.end - self.start) * c
+        scaled(&self.start, &self.end, k, c)
+    }
+
+    fn derivatives_into(&self, t: f64, out: &mut [SVector<f64, A>]) {
+        let mut c = [0.0; FALLING_SIZE];
+        let (Some(c), true) = (c.get_mut(..out.len()), out.len() <= FALLING_SIZE) else {
+            return out
+                .iter_mut()
+                .enumerate()
+                .for_each(|(k, gamma)| *gamma = self.derivative(t, k));
+        };
+        let duration = self.tf - self.t0;
+        let tau = ((t - self.t0) / duration).clamp(0.0, 1.0);
+        poly_derivatives(&POLY9, tau, c);
+        let moving = t > self.t0 && t < self.tf;
+        for (k, (gamma, &c)) in out.iter_mut().zip(c.iter()).enumerate() {
+            let c = match k {
+                0 => c,
+                _ if moving => c / duration.powi(k as i32),
+                _ => 0.0,
+            };
+            *gamma = scaled(&self.start, &self.end, k, c);
         }
+    }
+}
+
+/// `gamma0 + (gammaf - gamma0) c` for `k = 0`, `(gammaf - gamma0) c` for a
+/// derivative `k > 0` of a path from `start` to `end` along the scalar
+/// profile `c`.
+fn scaled<const A: usize>(start: &SVector<f64, A>, end: &SVector<f64, A>, k: usize, c: f64) -> SVector<f64, A> {
+    if k == 0 {
+        start + (end - start) * c
+    } else {
+        (end - start) * c
     }
 }
 
@@ -260,11 +322,50 @@ impl<const A: usize> Phases<A> {
     }
 
     fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
-        let c = self.profile(t - self.t0, k);
-        if k == 0 {
-            self.start + (self.end - self.start) * c
+        scaled(&self.start, &self.end, k, self.profile(t - self.t0, k))
+    }
+
+    /// [`Trajectory::derivatives_into`]: the phase found once, a ramp's
+    /// polynomials side by side.
+    fn derivatives_into(&self, t: f64, out: &mut [SVector<f64, A>]) {
+        let mut h = [0.0; FALLING_SIZE];
+        let (Some(h), true) = (h.get_mut(..out.len()), out.len() <= FALLING_SIZE) else {
+            return out
+                .iter_mut()
+                .enumerate()
+                .for_each(|(k, gamma)| *gamma = self.derivative(t, k));
+        };
+        let (t, tau, tau0) = (t - self.t0, self.tau, self.tau0);
+        let cruise = tau - tau0;
+        // the ramp's derivatives at time s into it (see `ramp`)
+        let ramp = |s: f64, h: &mut [f64]| {
+            poly_derivatives(self.ramp, s / tau0, h);
+            for (k, h) in h.iter_mut().enumerate() {
+                *h = tau0 * *h / tau0.powi(k as i32);
+            }
+        };
+        if t <= 0.0 || t >= tau {
+            h.fill(0.0);
+            h[0] = if t <= 0.0 { 0.0 } else { 1.0 };
+        } else if t < tau0 {
+            ramp(t, h);
+            h.iter_mut().for_each(|h| *h /= cruise);
+        } else if t < tau - tau0 {
+            h.fill(0.0);
+            h[0] = (t - 0.5 * tau0) / cruise;
+            if let Some(h1) = h.get_mut(1) {
+                *h1 = 1.0 / cruise;
+            }
         } else {
-            (self.end - self.start) * c
+            ramp(tau - t, h);
+            for (k, h) in h.iter_mut().enumerate() {
+                let sign = if k.is_multiple_of(2) { 1.0 } else { -1.0 };
+                let value = -sign * *h / cruise;
+                *h = if k == 0 { 1.0 + value } else { value };
+            }
+        }
+        for (k, (gamma, &c)) in out.iter_mut().zip(h.iter()).enumerate() {
+            *gamma = scaled(&self.start, &self.end, k, c);
         }
     }
 }
@@ -361,6 +462,10 @@ impl<const A: usize, const SMOOTH: bool> Trajectory<A> for Phased<A, SMOOTH> {
         self.0.derivative(t, k)
     }
 
+    fn derivatives_into(&self, t: f64, out: &mut [SVector<f64, A>]) {
+        self.0.derivatives_into(t, out)
+    }
+
     /// 4 for the ramps of [`ThreePhase`], 6 for those of [`SmoothThreePhase`].
     fn continuity(&self) -> Option<usize> {
         Some(if SMOOTH { 6 } else { 4 })
@@ -392,6 +497,29 @@ impl<const A: usize, F: Fn(f64, usize) -> SVector<f64, A>> Trajectory<A> for Fro
 mod tests {
     use super::*;
     use nalgebra::vector;
+
+    /// The built-in paths' derivatives in one pass are their derivatives
+    /// one at a time, bit for bit, in every phase of the move, and past
+    /// the orders the one pass takes.
+    #[test]
+    fn derivatives_in_one_pass_are_those_one_at_a_time() {
+        fn check(path: &impl Trajectory<2>, times: &[f64]) {
+            for &t in times {
+                for orders in [1, 3, 7, FALLING_SIZE, FALLING_SIZE + 2] {
+                    let mut out = vec![SVector::<f64, 2>::repeat(f64::NAN); orders];
+                    path.derivatives_into(t, &mut out);
+                    for (k, gamma) in out.iter().enumerate() {
+                        assert_eq!(*gamma, path.derivative(t, k), "t = {t}, k = {k}");
+                    }
+                }
+            }
+        }
+        let (start, end) = (vector![0.5, -10.0], vector![-3.0, -14.0]);
+        let times = [-1.0, 0.0, 0.3, 2.5, 5.0, 7.7, 12.0, 17.5, 19.9, 20.0, 25.0];
+        check(&Poly9::new(0.0, 20.0, start, end).unwrap(), &times);
+        check(&ThreePhase::new(0.0, 20.0, 5.0, start, end).unwrap(), &times);
+        check(&SmoothThreePhase::new(0.0, 20.0, 5.0, start, end).unwrap(), &times);
+    }
 
     /// The table's falling factorials are the products they stand for.
     #[test]

@@ -234,6 +234,14 @@ impl<const A: usize> Trajectory<A> for Path<A> {
         }
     }
 
+    fn derivatives_into(&self, t: f64, out: &mut [SVector<f64, A>]) {
+        match &self.built {
+            Built::Poly9(p) => p.derivatives_into(t, out),
+            Built::ThreePhase(p) => p.derivatives_into(t, out),
+            Built::SmoothThreePhase(p) => p.derivatives_into(t, out),
+        }
+    }
+
     fn continuity(&self) -> Option<usize> {
         match &self.built {
             Built::Poly9(p) => p.continuity(),
