@@ -412,6 +412,13 @@ fn convergence_and_bench_take_the_scheme() {
     let json: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
     assert_eq!(json["timed"], "run, summary and audit");
     assert_eq!(json["steps"], 400);
+    // a run of its own length, as `crane run --tf` makes it
+    let result = crane(&["bench", "navy-planar", "--tf", "2", "--repeat", "2", "--json"]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
+    assert_eq!(json["steps"], 200);
+    let result = crane(&["bench", "navy-planar", "--tf", "-1", "--repeat", "2"]);
+    assert!(!result.status.success());
 }
 
 /// `results.csv` of a run, as (header, rows of numbers).

@@ -28,6 +28,9 @@ pub struct BenchArgs {
     /// Time step in s.
     #[arg(long, default_value_t = DEFAULT_DT)]
     dt: f64,
+    /// End time in s of the run (and of the motion), as for `crane run`.
+    #[arg(long)]
+    tf: Option<f64>,
     /// Number of timed runs.
     #[arg(long, default_value_t = 20)]
     repeat: usize,
@@ -63,7 +66,7 @@ impl Visit for Bench {
 pub fn bench<R: Registry>(tool: &Tool<R>, args: BenchArgs) -> Result<(), CliError> {
     let overrides = Overrides {
         dt: Some(args.dt),
-        tf: None,
+        tf: args.tf,
         formulation: args.formulation,
         scheme: args.scheme,
     };
