@@ -303,7 +303,7 @@ where
     /// that one Newton iteration ends the step (Newton iterations per step
     /// at dt = 0.01 through 4 and 8 steps: navy-planar 2.01 and 1.40,
     /// navy-3d-pulley 1.59 and 1.02, the double pendulum 1.60 and 1.35;
-    /// with the quadratic term 1.17, 1.02 and 1.09; the inputs the same to
+    /// with the quadratic term 1.18, 1.02 and 1.09; the inputs the same to
     /// round-off at every dt from 0.1 to 0.001).
     fn predictor(&self) -> Predictor {
         Predictor::Extrapolation { points: 8 }
