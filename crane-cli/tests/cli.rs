@@ -416,7 +416,7 @@ fn convergence_and_bench_take_the_scheme() {
     let result = crane(&["bench", "navy-planar", "--tf", "2", "--repeat", "2", "--json"]);
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     let json: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
-    assert_eq!(json["steps"], 200);
+    assert_eq!((json["steps"].as_u64(), json["tf"].as_f64()), (Some(200), Some(2.0)));
     let result = crane(&["bench", "navy-planar", "--tf", "-1", "--repeat", "2"]);
     assert!(!result.status.success());
 }

@@ -22,7 +22,8 @@ pub trait NonlinearSystem {
     /// [`evaluate`](Self::evaluate), at `z`: the residual normalised row by
     /// row by the size of the terms that make it up (`max_i |r_i| /
     /// scale_i`), so that round-off shows as ~1e-16. Newton asks for it
-    /// only where the updates do not end the solve.
+    /// only where neither its update tests nor its quadratic stop end the
+    /// solve.
     fn normalised_residual(&self, z: &DVector<f64>, r: &DVector<f64>, jac: &DMatrix<f64>) -> f64;
 
     /// Blocks of unknowns that each get their own relative stopping test
@@ -260,10 +261,11 @@ pub const QUADRATIC_UPDATE: f64 = 1e-9;
 pub const QUADRATIC_ERROR: f64 = 3e-15;
 
 /// The factor by which the quadratic term's estimate grows at each solve
-/// that it ends where the tests on the update do not, so that it is confirmed by a second iteration every
-/// few solves and follows a term that grows by up to a tenth per solve
-/// (navy-planar at dt = 0.01: 1.18 iterations per step instead of 1.13,
-/// the double pendulum 1.09 instead of 1.05).
+/// that it ends where the tests on the update do not, so that it is
+/// confirmed by a second iteration every few solves and follows a term
+/// that grows by up to a tenth per solve (navy-planar at dt = 0.01: 1.18
+/// iterations per step instead of 1.13, the double pendulum 1.09 instead
+/// of 1.05).
 pub const QUADRATIC_AGING: f64 = 1.1;
 
 /// Newton's method with preallocated workspace: `solve` does not allocate.
@@ -448,10 +450,11 @@ impl Newton {
             if quadratic_converged && !update_converged {
                 self.quadratic *= QUADRATIC_AGING;
             }
-            let holds = self.solver.holds();
-            // the residual, where the updates leave the solve open (and at
-            // every iteration of a held solve, which compares successive ones)
-            let residual_converged = if holds || !(update_converged || quadratic_converged) {
+            // the residual, where the updates leave the solve open (a held
+            // solve's steps are minimum-norm ones, which the quadratic stop
+            // never ends: its residual is compared at every iteration that
+            // does not end on the update)
+            let residual_converged = if !(update_converged || quadratic_converged) {
                 let normalised = system.normalised_residual(&self.evaluated_at, &self.evaluated, &self.jac);
                 if !normalised.is_finite() {
                     return Err(NewtonFailure::NonFinite { iterations: iteration });
@@ -460,7 +463,7 @@ impl Newton {
                 // what is left lies along the held direction, whose solve
                 // would move it (by the slow creep of the damped steps)
                 // where round-off puts it
-                let held_converged = holds
+                let held_converged = self.solver.holds()
                     && normalised <= HELD_RESIDUAL * self.options.residual_tol
                     && normalised > 0.5 * last_residual;
                 last_residual = normalised;

@@ -329,7 +329,7 @@ impl FromStr for Scheme {
 /// `y'_n, y'_{n-1}, ...` of the discretised unknowns, newest first, the
 /// predictor and the start-up rule; fixed size, so pushing a step does not
 /// allocate.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 pub struct History<const K: usize, S: Method = Scheme> {
     method: S,
     /// Past values and rates, a ring: the newest at `newest`, each older
@@ -544,6 +544,16 @@ impl<const K: usize, S: Method> History<K, S> {
     }
 }
 
+/// Equal histories have the same method and the same known past, newest
+/// first, wherever their rings start.
+impl<const K: usize, S: Method + PartialEq> PartialEq for History<K, S> {
+    fn eq(&self, other: &Self) -> bool {
+        self.method == other.method
+            && self.known == other.known
+            && self.past().take(self.known).eq(other.past().take(other.known))
+    }
+}
+
 /// The entries of a ring whose newest is at `newest`, newest first.
 pub(crate) fn newest_first<T>(ring: &[T], newest: usize) -> impl Iterator<Item = &T> {
     let (wrapped, from_newest) = ring.split_at(newest.min(ring.len()));
@@ -684,6 +694,21 @@ mod tests {
 
     /// The weights are the ones written out: last value, linear,
     /// quadratic, cubic.
+    /// Histories of the same past are equal wherever their rings start;
+    /// another past is not.
+    #[test]
+    fn histories_compare_by_their_past() {
+        let values: Vec<SVector<f64, 1>> = (0..7).map(|j| vector![j as f64]).collect();
+        let mut pushed = History::start(Scheme::Bdf3, values[6], values[6]);
+        for value in values[..6].iter().rev() {
+            pushed.push(*value, *value);
+        }
+        let given = History::from_past(Scheme::Bdf3, &values[..5], &values[..5]).unwrap();
+        assert_eq!(pushed, given);
+        pushed.push(vector![-1.0], vector![-1.0]);
+        assert_ne!(pushed, given);
+    }
+
     #[test]
     fn extrapolation_weights_are_the_binomial_ones() {
         assert_eq!(extrapolation_weights(1)[..5], [1.0, 0.0, 0.0, 0.0, 0.0]);

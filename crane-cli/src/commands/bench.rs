@@ -123,7 +123,7 @@ fn time<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let timed = if study { "run, summary and audit" } else { "simulation" };
     if json {
         let value = serde_json::json!({
-            "model": name, "formulation": formulation.name(), "scheme": scheme.name(), "dt": dt, "steps": steps,
+            "model": name, "formulation": formulation.name(), "scheme": scheme.name(), "dt": dt, "tf": case.tf(), "steps": steps,
             "repeat": repeat, "timed": timed, "median_run_s": median, "median_step_s": median / steps as f64,
             "mean_newton_iterations": iterations,
         });
