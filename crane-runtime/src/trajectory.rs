@@ -216,25 +216,43 @@ impl<const A: usize> Trajectory<A> for Poly9<A> {
     }
 
     fn derivatives_into(&self, t: f64, out: &mut [SVector<f64, A>]) {
-        let mut c = [0.0; FALLING_SIZE];
-        let (Some(c), true) = (c.get_mut(..out.len()), out.len() <= FALLING_SIZE) else {
-            return out
-                .iter_mut()
-                .enumerate()
-                .for_each(|(k, gamma)| *gamma = self.derivative(t, k));
+        let profile = |c: &mut [f64]| {
+            let duration = self.tf - self.t0;
+            let tau = ((t - self.t0) / duration).clamp(0.0, 1.0);
+            poly_derivatives(&POLY9, tau, c);
+            let moving = !(t <= self.t0 || t >= self.tf);
+            for (k, c) in c.iter_mut().enumerate().skip(1) {
+                *c = if moving { *c / duration.powi(k as i32) } else { 0.0 };
+            }
         };
-        let duration = self.tf - self.t0;
-        let tau = ((t - self.t0) / duration).clamp(0.0, 1.0);
-        poly_derivatives(&POLY9, tau, c);
-        let moving = !(t <= self.t0 || t >= self.tf);
-        for (k, (gamma, &c)) in out.iter_mut().zip(c.iter()).enumerate() {
-            let c = match k {
-                0 => c,
-                _ if moving => c / duration.powi(k as i32),
-                _ => 0.0,
-            };
-            *gamma = scaled(&self.start, &self.end, k, c);
+        along_profile(&self.start, &self.end, out, profile, |k| self.derivative(t, k));
+    }
+}
+
+/// `out` along the scalar profile whose derivatives `profile` writes in
+/// one pass (`c^(k)` into the `k`-th entry of a slice as long as `out`,
+/// never empty), or one `derivative` at a time where `out` is longer than
+/// [`poly_derivatives`] takes.
+fn along_profile<const A: usize>(
+    start: &SVector<f64, A>,
+    end: &SVector<f64, A>,
+    out: &mut [SVector<f64, A>],
+    profile: impl FnOnce(&mut [f64]),
+    derivative: impl Fn(usize) -> SVector<f64, A>,
+) {
+    let mut c = [0.0; FALLING_SIZE];
+    let Some(c) = c.get_mut(..out.len()) else {
+        for (k, gamma) in out.iter_mut().enumerate() {
+            *gamma = derivative(k);
         }
+        return;
+    };
+    if c.is_empty() {
+        return;
+    }
+    profile(c);
+    for (k, (gamma, &c)) in out.iter_mut().zip(c.iter()).enumerate() {
+        *gamma = scaled(start, end, k, c);
     }
 }
 
@@ -328,48 +346,38 @@ impl<const A: usize> Phases<A> {
     /// [`Trajectory::derivatives_into`]: the phase found once, a ramp's
     /// polynomials side by side.
     fn derivatives_into(&self, t: f64, out: &mut [SVector<f64, A>]) {
-        let mut h = [0.0; FALLING_SIZE];
-        let (Some(h), true) = (h.get_mut(..out.len()), out.len() <= FALLING_SIZE) else {
-            return out
-                .iter_mut()
-                .enumerate()
-                .for_each(|(k, gamma)| *gamma = self.derivative(t, k));
-        };
-        if out.is_empty() {
-            return;
-        }
-        let (t, tau, tau0) = (t - self.t0, self.tau, self.tau0);
+        let (s, tau, tau0) = (t - self.t0, self.tau, self.tau0);
         let cruise = tau - tau0;
-        // the ramp's derivatives at time s into it (see `ramp`)
-        let ramp = |s: f64, h: &mut [f64]| {
-            poly_derivatives(self.ramp, s / tau0, h);
+        // the ramp's derivatives at time r into it (see `ramp`)
+        let ramp = |r: f64, h: &mut [f64]| {
+            poly_derivatives(self.ramp, r / tau0, h);
             for (k, h) in h.iter_mut().enumerate() {
                 *h = tau0 * *h / tau0.powi(k as i32);
             }
         };
-        if t <= 0.0 || t >= tau {
-            h.fill(0.0);
-            h[0] = if t <= 0.0 { 0.0 } else { 1.0 };
-        } else if t < tau0 {
-            ramp(t, h);
-            h.iter_mut().for_each(|h| *h /= cruise);
-        } else if t < tau - tau0 {
-            h.fill(0.0);
-            h[0] = (t - 0.5 * tau0) / cruise;
-            if let Some(h1) = h.get_mut(1) {
-                *h1 = 1.0 / cruise;
+        let profile = |h: &mut [f64]| {
+            if s <= 0.0 || s >= tau {
+                h.fill(0.0);
+                h[0] = if s <= 0.0 { 0.0 } else { 1.0 };
+            } else if s < tau0 {
+                ramp(s, h);
+                h.iter_mut().for_each(|h| *h /= cruise);
+            } else if s < tau - tau0 {
+                h.fill(0.0);
+                h[0] = (s - 0.5 * tau0) / cruise;
+                if let Some(h1) = h.get_mut(1) {
+                    *h1 = 1.0 / cruise;
+                }
+            } else {
+                ramp(tau - s, h);
+                for (k, h) in h.iter_mut().enumerate() {
+                    let sign = if k.is_multiple_of(2) { 1.0 } else { -1.0 };
+                    let value = -sign * *h / cruise;
+                    *h = if k == 0 { 1.0 + value } else { value };
+                }
             }
-        } else {
-            ramp(tau - t, h);
-            for (k, h) in h.iter_mut().enumerate() {
-                let sign = if k.is_multiple_of(2) { 1.0 } else { -1.0 };
-                let value = -sign * *h / cruise;
-                *h = if k == 0 { 1.0 + value } else { value };
-            }
-        }
-        for (k, (gamma, &c)) in out.iter_mut().zip(h.iter()).enumerate() {
-            *gamma = scaled(&self.start, &self.end, k, c);
-        }
+        };
+        along_profile(&self.start, &self.end, out, profile, |k| self.derivative(t, k));
     }
 }
 
