@@ -164,6 +164,16 @@ impl Arena {
         self.nodes.len()
     }
 
+    /// Number of nodes: every id is below it.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Every node's id, children before parents.
+    pub fn ids(&self) -> impl Iterator<Item = Id> + use<> {
+        (0..self.nodes.len()).map(|i| Id(i as u32))
+    }
+
     /// The id of `node`, adding it if it is new (no simplification).
     pub fn intern(&mut self, node: Node) -> Id {
         if let Some(&id) = self.index.get(&node) {

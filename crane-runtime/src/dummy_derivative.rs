@@ -56,7 +56,7 @@ use nalgebra::{DMatrix, DVector, SVector};
 use crate::driver::record;
 use crate::error::Error;
 use crate::init;
-use crate::linsolve::{DenseSolver, Triangular};
+use crate::linsolve::{DenseSolver, Stages, Triangular};
 use crate::minimal::degenerate;
 use crate::model::{CraneModel, DummyDerivatives, NoDummyDerivatives, VisitDummyDerivatives};
 use crate::newton::{NonlinearSystem, RowPattern, normalised_residual_sparse};
@@ -96,6 +96,15 @@ pub struct DummyDerivative<H, Tr, const N: usize, const M: usize, const A: usize
     /// The Jacobian's entries not zero by structure, row by row
     /// (`JACOBIAN_NONZEROS`).
     nonzeros: RowPattern,
+    /// Whether the model evaluates the system stage by stage in the order
+    /// of [`stages`](Self::stages) (`SYSTEM_ROWS` and `SYSTEM_COLUMNS` its
+    /// last block's labels).
+    staged: bool,
+    /// The residual of the stages, row by row as the system's.
+    stage_residual: DVector<f64>,
+    /// Pryce's system Jacobian, zeroed once, its entries zero by structure
+    /// never written.
+    system_jacobian: DMatrix<f64>,
 }
 
 impl<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> DummyDerivative<H, Tr, N, M, A, J>
@@ -126,7 +135,21 @@ where
             last: DVector::zeros(J),
             whole: false,
             nonzeros: RowPattern::new(J, <H::Target as DummyDerivatives<N, M, A, J>>::JACOBIAN_NONZEROS),
+            staged: Self::stages_match(),
+            stage_residual: DVector::zeros(J),
+            system_jacobian: DMatrix::zeros(N + M, N + M),
         }
+    }
+
+    /// Whether the model's stages (`SYSTEM_ROWS`, `SYSTEM_COLUMNS`) are the
+    /// nested order of [`stages`](Self::stages).
+    fn stages_match() -> bool {
+        let labels = |labels: &[u16]| labels.iter().map(|&l| usize::from(l)).collect::<Vec<usize>>();
+        let declared = (
+            labels(<H::Target as DummyDerivatives<N, M, A, J>>::SYSTEM_ROWS),
+            labels(<H::Target as DummyDerivatives<N, M, A, J>>::SYSTEM_COLUMNS),
+        );
+        declared.0.len() == N + M && Self::stages().and_then(|form| form.last_labels()) == Some(declared)
     }
 
     /// The same problem with its Newton matrices solved whole (one LU of
@@ -258,6 +281,28 @@ where
 
     fn blocks(&self) -> &[Range<usize>] {
         &self.blocks
+    }
+
+    /// Stage by stage (unless [`solved_whole`](Self::solved_whole)): the
+    /// system Jacobian and the lowest stage's residual at `z`, one LU, then
+    /// each stage's residual at the stages before it as updated
+    /// ([`DummyDerivatives::dummy_derivative_stages_into`]); the blocks left
+    /// of the diagonal are neither evaluated nor multiplied.
+    fn staged_update(&mut self, z: &mut DVector<f64>, dz: &mut DVector<f64>, mut stages: Stages<'_>) -> Option<bool> {
+        if self.whole || !self.staged {
+            return None;
+        }
+        let dz = dz.as_mut_slice();
+        let mut solve = |k: usize, jacobian: &[f64], z: &mut [f64], r: &[f64]| {
+            (k > 0 || stages.factor(jacobian)) && stages.solve(k, r, z, dz)
+        };
+        Some(self.model.dummy_derivative_stages_into(
+            &self.gamma,
+            z.as_mut_slice(),
+            self.stage_residual.as_mut_slice(),
+            self.system_jacobian.as_mut_slice(),
+            &mut solve,
+        ))
     }
 
     /// Stage by stage ([`stages`](Self::stages)) unless

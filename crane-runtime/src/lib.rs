@@ -105,8 +105,8 @@ pub use error::Error;
 pub use forward::ForwardStepper;
 pub use minimal::{MinimalStepper, simulate_minimal};
 pub use model::{
-    CraneModel, DummyDerivatives, MapDerivatives, MinimalMap, ModelInfo, NoDummyDerivatives, Rope, Scalar, Structure,
-    UnknownParameter, VisitDummyDerivatives, VisitMinimalMap,
+    CraneModel, DummyDerivatives, MapDerivatives, MinimalMap, ModelInfo, NoDummyDerivatives, Rope, Scalar, StageSolve,
+    Structure, UnknownParameter, VisitDummyDerivatives, VisitMinimalMap,
 };
 pub use options::Options;
 pub use redundant::{RedundantStepper, simulate};

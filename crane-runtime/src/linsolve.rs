@@ -247,6 +247,17 @@ impl Triangular {
         }
     }
 
+    /// The labels ([`with_labels`](Self::with_labels)) of the last diagonal
+    /// block's rows and columns, in the order solved.
+    pub fn last_labels(&self) -> Option<(Vec<usize>, Vec<usize>)> {
+        let (row_labels, col_labels) = self.labels.as_ref()?;
+        let (rows, cols) = self.block(self.blocks.len().checked_sub(1)?)?;
+        Some((
+            rows.iter().map(|&i| row_labels[i]).collect(),
+            cols.iter().map(|&j| col_labels[j]).collect(),
+        ))
+    }
+
     /// The largest entry of `jac` above the diagonal blocks, in magnitude
     /// (0 for a matrix of this form).
     pub fn largest_above(&self, jac: &DMatrix<f64>) -> f64 {
@@ -283,6 +294,57 @@ fn nested_order(indices: &[usize], blocks: &[Range<usize>], labels: &[usize]) ->
         }
     }
     Some(order)
+}
+
+/// The one LU of a [`Triangular`] form whose blocks nest (see
+/// [`Triangular::with_labels`]), lent to a system that evaluates its blocks
+/// one after another itself, each at the solution of the blocks before it
+/// ([`NonlinearSystem::staged_update`](crate::newton::NonlinearSystem::staged_update),
+/// from [`DenseSolver::stages`]): [`factor`](Self::factor) the last
+/// block's matrix, then [`solve`](Self::solve) each block in turn.
+#[derive(Debug)]
+pub struct Stages<'a> {
+    form: &'a Triangular,
+    solver: &'a mut DenseSolver,
+    /// Whether the solver has found scales.
+    scaled: &'a mut bool,
+    /// Find the scales anew.
+    rescale: bool,
+    /// Workspace of the matrix's size.
+    x: &'a mut [f64],
+}
+
+impl Stages<'_> {
+    /// Factor the last block's matrix, whose entries by columns are
+    /// `matrix` (its rows and columns in the order of
+    /// [`Triangular::last_labels`]): `false` where it is singular to
+    /// working precision (with the scales kept and with new ones).
+    pub fn factor(&mut self, matrix: &[f64]) -> bool {
+        let kept = !self.rescale && *self.scaled;
+        *self.scaled = true;
+        self.solver.factor_entries(matrix, !kept) || (kept && self.solver.factor_entries(matrix, true))
+    }
+
+    /// Block `k`'s update with the leading part of the factors: its rows of
+    /// `b` (the residual of the block's rows, at the blocks before it as
+    /// solved) solved for `x`, which is subtracted from `z` and written
+    /// into `dz` at the block's columns. `false` for no block `k`.
+    pub fn solve(&mut self, k: usize, b: &[f64], z: &mut [f64], dz: &mut [f64]) -> bool {
+        let Some(block) = self.form.blocks.get(k) else {
+            return false;
+        };
+        let (rows, cols) = (&self.form.rows[block.clone()], &self.form.cols[block.clone()]);
+        let x = &mut self.x[..block.len()];
+        for (x, &row) in x.iter_mut().zip(rows) {
+            *x = b[row];
+        }
+        self.solver.solve_leading(x);
+        for (&x, &col) in x.iter().zip(cols) {
+            z[col] -= x;
+            dz[col] = x;
+        }
+        true
+    }
 }
 
 /// A solver per diagonal block of a [`Triangular`] form, and its workspace.
@@ -558,6 +620,25 @@ impl DenseSolver {
             })
     }
 
+    /// The one LU of the form [`set_triangular`](Self::set_triangular) set,
+    /// for a system that evaluates its blocks itself, if the form's blocks
+    /// nest and the solver does not hold; its scales found anew
+    /// (`rescale`) or kept.
+    pub fn stages(&mut self, rescale: bool) -> Option<Stages<'_>> {
+        if self.hold {
+            return None;
+        }
+        let BlockSolver { form, x, nested, .. } = self.blocks.as_deref_mut()?;
+        let nested = nested.as_deref_mut()?;
+        Some(Stages {
+            form,
+            solver: &mut nested.solver,
+            scaled: &mut nested.scaled,
+            rescale,
+            x: x.as_mut_slice(),
+        })
+    }
+
     /// The form [`set_triangular`](Self::set_triangular) set, if any.
     pub fn triangular(&self) -> Option<&Triangular> {
         self.blocks.as_ref().map(|b| &b.form)
@@ -603,7 +684,7 @@ impl DenseSolver {
             return Ok(SolveKind::Lu);
         }
         if self.equilibrate {
-            self.find_scales(jac);
+            self.find_scales(jac.as_slice());
             self.scales_found = true;
         }
         self.solve_scaled(jac, b)
@@ -635,7 +716,7 @@ impl DenseSolver {
         }
         if self.equilibrate && !self.scales_found {
             // the last solve was by blocks: the whole matrix has no scales yet
-            self.find_scales(jac);
+            self.find_scales(jac.as_slice());
             self.scales_found = true;
         }
         self.solve_scaled(jac, b)
@@ -678,14 +759,20 @@ impl DenseSolver {
     /// The LU factors of `jac` (equilibrated with scales found anew,
     /// `rescale`, or kept): `false` when it is singular to working precision.
     fn factor(&mut self, jac: &DMatrix<f64>, rescale: bool) -> bool {
+        self.factor_entries(jac.as_slice(), rescale)
+    }
+
+    /// [`factor`](Self::factor) of the matrix of this solver's size whose
+    /// entries, by columns, are `entries`.
+    fn factor_entries(&mut self, entries: &[f64], rescale: bool) -> bool {
         if !self.equilibrate {
-            self.lu.copy_from(jac);
+            self.lu.as_mut_slice().copy_from_slice(entries);
         } else {
             if rescale {
-                self.find_scales(jac);
+                self.find_scales(entries);
             }
             let mut lu = std::mem::take(&mut self.lu);
-            self.write_scaled(jac, &mut lu);
+            self.write_scaled(entries, &mut lu);
             self.lu = lu;
         }
         self.factor_in_lu()
@@ -729,18 +816,17 @@ impl DenseSolver {
     /// [`equilibrated`](Self::equilibrated) solver applies before its LU
     /// (infinite if singular). A diagnostic: it allocates for an SVD.
     pub fn equilibrated_condition(&mut self, jac: &DMatrix<f64>) -> f64 {
-        self.find_scales(jac);
+        self.find_scales(jac.as_slice());
         let mut scaled = jac.clone();
-        self.write_scaled(jac, &mut scaled);
+        self.write_scaled(jac.as_slice(), &mut scaled);
         let singular = scaled.singular_values();
         singular.max() / singular.min()
     }
 
     /// Column scales, then row scales of the column-scaled matrix: powers of
     /// two that bring the largest entry of each near 1.
-    fn find_scales(&mut self, jac: &DMatrix<f64>) {
-        let n = jac.nrows();
-        let entries = jac.as_slice(); // column-major
+    fn find_scales(&mut self, entries: &[f64]) {
+        let n = self.col_scale.len(); // entries column-major
         for (scale, column) in self.col_scale.iter_mut().zip(entries.chunks_exact(n)) {
             *scale = power_of_two(column.iter().fold(0.0, |m, x| m.max(x.abs())));
         }
@@ -756,12 +842,12 @@ impl DenseSolver {
     }
 
     /// `diag(row) jac diag(col)` into `target`.
-    fn write_scaled(&self, jac: &DMatrix<f64>, target: &mut DMatrix<f64>) {
-        let n = jac.nrows();
+    fn write_scaled(&self, entries: &[f64], target: &mut DMatrix<f64>) {
+        let n = self.col_scale.len();
         for ((target, column), &scale) in target
             .as_mut_slice()
             .chunks_exact_mut(n)
-            .zip(jac.as_slice().chunks_exact(n))
+            .zip(entries.chunks_exact(n))
             .zip(&self.col_scale)
         {
             for ((t, x), row) in target.iter_mut().zip(column).zip(&self.row_scale) {
@@ -783,7 +869,7 @@ impl DenseSolver {
         }
         self.scale_rows(b.as_mut_slice());
         let mut scaled = std::mem::take(&mut self.scaled);
-        self.write_scaled(jac, &mut scaled);
+        self.write_scaled(jac.as_slice(), &mut scaled);
         let outcome = self.min_norm(&scaled, b);
         self.scaled = scaled;
         for (x, col) in b.iter_mut().zip(&self.col_scale) {

@@ -8,7 +8,7 @@ use std::ops::Range;
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::linsolve::{DenseSolver, SolveKind, Triangular};
+use crate::linsolve::{DenseSolver, SolveKind, Stages, Triangular};
 
 /// A square nonlinear system `r(z) = 0`.
 pub trait NonlinearSystem {
@@ -34,6 +34,21 @@ pub trait NonlinearSystem {
     /// whatever `z` (then the linear solves take it block by block); `None`
     /// (the default): a dense Jacobian.
     fn triangular(&self) -> Option<Triangular> {
+        None
+    }
+
+    /// One update of `z` taken stage by stage where the system evaluates its
+    /// blocks itself: each block's residual at the blocks before it as
+    /// updated, solved with the leading part of `stages`' one LU (a Newton
+    /// step whose off-diagonal blocks are applied by evaluating the residual
+    /// at the updated blocks, not by their derivatives: its error is
+    /// quadratic in the update, as Newton's). `z` updated in place and the
+    /// update in `dz` (`z_new = z_old - dz`); `Some(false)` where a block
+    /// could not be solved (`z` then as the caller must restore it), `None`
+    /// (the default) where the system cannot, and Newton evaluates and
+    /// solves as usual.
+    fn staged_update(&mut self, z: &mut DVector<f64>, dz: &mut DVector<f64>, stages: Stages<'_>) -> Option<bool> {
+        let _ = (z, dz, stages);
         None
     }
 
@@ -283,6 +298,8 @@ pub struct Newton {
     /// successive updates of an LU in tolerance units, the largest seen,
     /// halved at each new one (infinite before the first).
     quadratic: f64,
+    /// Updates taken stage by stage ([`NonlinearSystem::staged_update`]).
+    staged_updates: usize,
 }
 
 impl Newton {
@@ -296,6 +313,7 @@ impl Newton {
             evaluated_at: DVector::zeros(n),
             evaluated: DVector::zeros(n),
             quadratic: f64::INFINITY,
+            staged_updates: 0,
         }
     }
 
@@ -325,6 +343,12 @@ impl Newton {
     /// The linear solver's form, if any.
     pub fn triangular(&self) -> Option<&Triangular> {
         self.solver.triangular()
+    }
+
+    /// Iterations whose update the system took stage by stage
+    /// ([`NonlinearSystem::staged_update`]) so far.
+    pub fn staged_updates(&self) -> usize {
+        self.staged_updates
     }
 
     /// LU factorisations of the iteration matrices so far
@@ -363,35 +387,31 @@ impl Newton {
         // whether the last update was an LU's, and small
         let (mut last_lu, mut last_small) = (false, false);
         for iteration in 1..=self.options.max_iterations {
-            system.evaluate(z, &mut self.residual, &mut self.jac);
-            if !all_finite(self.residual.as_slice()) {
-                return Err(NewtonFailure::NonFinite { iterations: iteration });
-            }
-            self.evaluated.copy_from(&self.residual);
             self.evaluated_at.copy_from(z);
-            // dz = J^{-1} r, computed in place in the residual buffer; z -= dz
-            // an equilibrated solver finds its scale factors on the first
-            // iteration and keeps them for the later ones of this solve (or
-            // for good, where the system says they serve)
-            let solved = if nearby {
-                self.solver.solve_with_kept_scales(&self.jac, &mut self.residual)
-            } else if iteration == 1 {
-                self.solver.solve(&self.jac, &mut self.residual)
-            } else {
-                self.solver.solve_with_last_scales(&self.jac, &mut self.residual)
+            // the update stage by stage, where the system takes it (z and
+            // dz then written, the residual not evaluated at one iterate)
+            let rescale = !nearby && iteration == 1;
+            let staged = match self.solver.stages(rescale) {
+                Some(stages) => system.staged_update(z, &mut self.residual, stages),
+                None => None,
             };
-            let kind = solved.map_err(|singular| NewtonFailure::Singular {
-                iterations: iteration,
-                pivot_ratio: singular.pivot_ratio,
-            })?;
+            let evaluated = staged != Some(true);
+            let kind = if evaluated {
+                if staged == Some(false) {
+                    z.copy_from(&self.evaluated_at);
+                }
+                self.evaluate_and_solve(system, z, iteration, nearby)?
+            } else {
+                self.staged_updates += 1;
+                if !all_finite(self.residual.as_slice()) {
+                    return Err(NewtonFailure::NonFinite { iterations: iteration });
+                }
+                SolveKind::Lu
+            };
             if kind == SolveKind::MinNorm {
                 min_norm_steps += 1;
             }
             let dz = &self.residual;
-            if !all_finite(dz.as_slice()) {
-                return Err(NewtonFailure::NonFinite { iterations: iteration });
-            }
-            *z -= dz;
             // the update in units of the tolerance, the largest over blocks:
             // `w <= 1` is `|dz_B| <= rtol |z_B| + atol` for every block
             let w = system
@@ -454,7 +474,12 @@ impl Newton {
             // solve's steps are minimum-norm ones, which the quadratic stop
             // never ends: its residual is compared at every iteration that
             // does not end on the update)
-            let residual_converged = if !(update_converged || quadratic_converged) {
+            // (a staged update's residual is evaluated here, after its first
+            // iteration: before, the next update is the cheaper test)
+            let residual_converged = if !(update_converged || quadratic_converged) && (evaluated || iteration > 1) {
+                if !evaluated {
+                    system.evaluate(&self.evaluated_at, &mut self.evaluated, &mut self.jac);
+                }
                 let normalised = system.normalised_residual(&self.evaluated_at, &self.evaluated, &self.jac);
                 if !normalised.is_finite() {
                     return Err(NewtonFailure::NonFinite { iterations: iteration });
@@ -490,6 +515,43 @@ impl Newton {
             iterations: self.options.max_iterations,
             residual: self.residual.amax(),
         })
+    }
+
+    /// The classic iteration's update: the residual and Jacobian evaluated
+    /// at `z` (kept for the residual test) and `J dz = r` solved in the
+    /// residual buffer, `z -= dz`.
+    fn evaluate_and_solve<S: NonlinearSystem + ?Sized>(
+        &mut self,
+        system: &mut S,
+        z: &mut DVector<f64>,
+        iteration: usize,
+        nearby: bool,
+    ) -> Result<SolveKind, NewtonFailure> {
+        system.evaluate(z, &mut self.residual, &mut self.jac);
+        if !all_finite(self.residual.as_slice()) {
+            return Err(NewtonFailure::NonFinite { iterations: iteration });
+        }
+        self.evaluated.copy_from(&self.residual);
+        // dz = J^{-1} r, computed in place in the residual buffer; z -= dz
+        // an equilibrated solver finds its scale factors on the first
+        // iteration and keeps them for the later ones of this solve (or
+        // for good, where the system says they serve)
+        let solved = if nearby {
+            self.solver.solve_with_kept_scales(&self.jac, &mut self.residual)
+        } else if iteration == 1 {
+            self.solver.solve(&self.jac, &mut self.residual)
+        } else {
+            self.solver.solve_with_last_scales(&self.jac, &mut self.residual)
+        };
+        let kind = solved.map_err(|singular| NewtonFailure::Singular {
+            iterations: iteration,
+            pivot_ratio: singular.pivot_ratio,
+        })?;
+        if !all_finite(self.residual.as_slice()) {
+            return Err(NewtonFailure::NonFinite { iterations: iteration });
+        }
+        *z -= &self.residual;
+        Ok(kind)
     }
 }
 

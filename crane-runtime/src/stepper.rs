@@ -241,6 +241,13 @@ where
         self.newton.factorisations()
     }
 
+    /// Newton iterations over the steps so far whose update the problem
+    /// took stage by stage
+    /// ([`NonlinearSystem::staged_update`](crate::newton::NonlinearSystem::staged_update)).
+    pub fn staged_updates(&self) -> usize {
+        self.newton.staged_updates()
+    }
+
     /// Steps taken.
     pub fn steps(&self) -> usize {
         self.steps

@@ -3,7 +3,9 @@
 //! built-in crane, and the inputs of a run solved stage by stage are those
 //! of the same run solved whole (one LU of all the jets), at every step,
 //! with as many Newton iterations (`crane_tests::stages`; a user's crane of
-//! path order 6 in `user_cranes.rs`).
+//! path order 6 in `user_cranes.rs`). Stage by stage, each stage's residual
+//! is evaluated at the stages before it as solved, and only the system
+//! Jacobian is evaluated, not the blocks left of the diagonal.
 
 use crane_models::registry::{BuiltIn, Registry};
 use crane_tests::stages::{OnCrane, check};
@@ -25,7 +27,7 @@ fn every_flat_built_in_is_solved_stage_by_stage_as_whole() {
     let navy = registry.visit("navy-planar", OnCrane).flatten().unwrap();
     assert_eq!(navy.blocks, [8, 8, 10]);
     // its first two stages' blocks are parts of its last's (the 10 x 10
-    // system Jacobian): one LU per Newton iteration (471 iterations, 471
+    // system Jacobian): one LU per Newton iteration (473 iterations, 473
     // LUs over the 400 steps), not three
     assert_eq!(navy.factorisations.0, navy.iterations.0);
     // the jets predicted through the last eight steps are within Newton's

@@ -14,6 +14,7 @@ use crate::expr::{Arena, Id, Node, Sym};
 use crate::model::Model;
 
 /// One output of a generated function.
+#[derive(Clone)]
 pub(super) struct Output {
     /// The local or parameter it is built in.
     pub(super) var: Ident,
@@ -24,6 +25,7 @@ pub(super) struct Output {
 }
 
 /// Where an [`Output`] is built.
+#[derive(Clone)]
 pub(super) enum Target {
     /// A new matrix from this expression of zeros: its entries that are not
     /// zero by structure written.
@@ -83,6 +85,12 @@ pub(super) fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream
 /// The nodes to bind to a `let`, children first: those that would be
 /// printed twice or more if inlined.
 fn bound_order(arena: &Arena, roots: &[Id], reachable: &[Id]) -> Vec<Id> {
+    bound_order_past(arena, roots, reachable, &HashMap::new())
+}
+
+/// [`bound_order`] where the nodes of `bound` have their names already:
+/// leaves, neither bound again nor looked into.
+fn bound_order_past(arena: &Arena, roots: &[Id], reachable: &[Id], bound: &HashMap<Id, Ident>) -> Vec<Id> {
     // How often each node would be printed if inlined; bind those printed
     // twice or more. Parents have larger ids than their children.
     let mut uses: HashMap<Id, usize> = HashMap::new();
@@ -91,6 +99,9 @@ fn bound_order(arena: &Arena, roots: &[Id], reachable: &[Id]) -> Vec<Id> {
     }
     let mut bound_order = Vec::new();
     for &id in reachable.iter().rev() {
+        if bound.contains_key(&id) {
+            continue;
+        }
         let u = uses.get(&id).copied().unwrap_or(0);
         let is_bound = u >= 2 && bindable(arena, id);
         if is_bound {
@@ -107,7 +118,7 @@ fn bound_order(arena: &Arena, roots: &[Id], reachable: &[Id]) -> Vec<Id> {
 
 /// `let name = ...;` for every parameter, coordinate, velocity, input and
 /// minimal coordinate among `reachable`, in declaration order.
-fn reads(model: &Model, mode: Mode, reachable: &[Id]) -> TokenStream {
+pub(super) fn reads(model: &Model, mode: Mode, reachable: &[Id]) -> TokenStream {
     let arena = &model.arena;
     let mut statements = TokenStream::new();
 
@@ -171,6 +182,17 @@ fn reads(model: &Model, mode: Mode, reachable: &[Id]) -> TokenStream {
 /// `let name = value;` for the nodes of `bound_order`, which the printer
 /// then reads by name.
 fn common_subexpressions(model: &Model, printer: &mut Printer<'_>, bound_order: &[Id]) -> TokenStream {
+    common_subexpressions_from(model, printer, bound_order, &mut 0)
+}
+
+/// [`common_subexpressions`] whose temporaries are numbered on from
+/// `temporaries` (the count of those an earlier block of the body named).
+fn common_subexpressions_from(
+    model: &Model,
+    printer: &mut Printer<'_>,
+    bound_order: &[Id],
+    temporaries: &mut usize,
+) -> TokenStream {
     let mut statements = TokenStream::new();
 
     // common subexpressions, children first; the user's name for the value
@@ -179,15 +201,14 @@ fn common_subexpressions(model: &Model, printer: &mut Printer<'_>, bound_order: 
     for (name, id) in model.minimal.iter().flat_map(|m| &m.lets) {
         let_names.entry(*id).or_insert(name);
     }
-    let mut temporaries = 0;
     for &id in bound_order {
         let value = printer.print_node(id);
         let value = printer.value(value);
         let name = match let_names.get(&id) {
             Some(&name) => local(name),
             None => {
-                temporaries += 1;
-                internal(&format!("t{}", temporaries - 1))
+                *temporaries += 1;
+                internal(&format!("t{}", *temporaries - 1))
             }
         };
         statements.extend(quote!(let #name = #value;));
@@ -221,6 +242,91 @@ fn writes(printer: &Printer<'_>, outputs: &[Output]) -> TokenStream {
         }
     }
     statements
+}
+
+/// A function body computed in blocks, between which some of the values it
+/// reads change (the unknowns each block's solve updates): every block
+/// binds its own common subexpressions and reuses those of earlier blocks
+/// that [`forget`](Self::forget) has kept.
+pub(super) struct Blocks<'a> {
+    printer: Printer<'a>,
+    /// Temporaries named so far (the next is `t{temporaries}`).
+    temporaries: usize,
+}
+
+impl<'a> Blocks<'a> {
+    /// A body of `model` in `mode`, nothing bound yet.
+    pub(super) fn new(model: &'a Model, mode: Mode) -> Self {
+        Self {
+            printer: Printer {
+                model,
+                arena: &model.arena,
+                mode,
+                bound: HashMap::new(),
+            },
+            temporaries: 0,
+        }
+    }
+
+    /// The `let`s, ahead of the first block, of the subexpressions of
+    /// `roots` (every block's outputs) that `constant` says no block
+    /// changes and that would be printed more than once: the common ones,
+    /// and the largest constant parts of expressions that change (which
+    /// every block computing them would compute anew).
+    pub(super) fn prelude(&mut self, roots: &[Id], constant: impl Fn(Id) -> bool) -> TokenStream {
+        let arena = self.printer.arena;
+        let reachable = arena.reachable(roots.iter().copied());
+        let mut bind = vec![false; arena.node_count()];
+        for id in bound_order(arena, roots, &reachable) {
+            bind[id.index()] = constant(id);
+        }
+        for &id in &reachable {
+            if !constant(id) {
+                for child in arena.node(id).children() {
+                    bind[child.index()] |= constant(child) && bindable(arena, child);
+                }
+            }
+        }
+        let order: Vec<Id> = reachable.into_iter().filter(|id| bind[id.index()]).collect();
+        let model = self.printer.model;
+        common_subexpressions_from(model, &mut self.printer, &order, &mut self.temporaries)
+    }
+
+    /// The `let`s and writes of one block's `outputs`, reading the names
+    /// bound by earlier blocks where they are kept.
+    pub(super) fn block(&mut self, outputs: &[Output]) -> TokenStream {
+        let arena = self.printer.arena;
+        let roots: Vec<Id> = outputs
+            .iter()
+            .flat_map(|o| {
+                o.writes
+                    .iter()
+                    .filter(|(_, id)| o.writes_entry(arena, *id))
+                    .map(|&(_, id)| id)
+            })
+            .collect();
+        // the nodes the block prints, not looking into the bound ones
+        let mut seen = vec![false; arena.node_count()];
+        let mut stack = roots.clone();
+        while let Some(id) = stack.pop() {
+            if std::mem::replace(&mut seen[id.index()], true) || self.printer.bound.contains_key(&id) {
+                continue;
+            }
+            stack.extend(arena.node(id).children());
+        }
+        let reachable: Vec<Id> = arena.ids().filter(|id| seen[id.index()]).collect();
+        let order = bound_order_past(arena, &roots, &reachable, &self.printer.bound);
+        let model = self.printer.model;
+        let mut statements = common_subexpressions_from(model, &mut self.printer, &order, &mut self.temporaries);
+        statements.extend(writes(&self.printer, outputs));
+        statements
+    }
+
+    /// Forget the names of the bound nodes whose values `stale` says have
+    /// changed: later blocks compute them anew.
+    pub(super) fn forget(&mut self, stale: impl Fn(Id) -> bool) {
+        self.printer.bound.retain(|&id, _| !stale(id));
+    }
 }
 
 /// A vector output `out` of length `len`.

@@ -1370,5 +1370,224 @@ const _: () = {
             __jacobian[13 * 26 + 25] = __t34;
             __jacobian[14 * 26 + 25] = __t7;
         }
+        const SYSTEM_ROWS: &'static [u16] = &[2, 3, 4, 5, 6, 7, 8, 9, 0, 1];
+        const SYSTEM_COLUMNS: &'static [u16] = &[0, 1, 2, 3, 4, 7, 8, 9, 10, 11];
+        /// The system stage by stage: the system Jacobian (rows
+        /// `SYSTEM_ROWS`, columns `SYSTEM_COLUMNS`, by columns) and the
+        /// lowest stage's residual at `z`, then each next stage's residual
+        /// at the jets the solves of the stages before it left in `z`.
+        fn dummy_derivative_stages_into(
+            &self,
+            __gamma: &[__crane_runtime::nalgebra::SVector<f64, 2>],
+            __z: &mut [f64],
+            __residual: &mut [f64],
+            __system_jacobian: &mut [f64],
+            __solve: &mut __crane_runtime::StageSolve<'_>,
+        ) -> bool {
+            let __z = &mut __z[..26];
+            let __residual = &mut __residual[..26];
+            let __system_jacobian = &mut __system_jacobian[..100];
+            let __m_l = self.m_l;
+            let __J1 = self.J1;
+            let __J2 = self.J2;
+            let __r1 = self.r1;
+            let __r2 = self.r2;
+            let __alpha = self.alpha;
+            let __l = self.l;
+            let __g = self.g;
+            let __q_L1_d0 = __z[0];
+            let __q_L1_d1 = __z[1];
+            let __q_L1_d2 = __z[2];
+            let __q_L2_d0 = __z[3];
+            let __q_L2_d1 = __z[4];
+            let __q_L2_d2 = __z[5];
+            let __q_L0_d0 = __z[6];
+            let __q_L0_d1 = __z[7];
+            let __q_L0_d2 = __z[8];
+            let __q_x0_d0 = __z[9];
+            let __q_x0_d1 = __z[10];
+            let __q_x0_d2 = __z[11];
+            let __q_z0_d0 = __z[12];
+            let __q_z0_d1 = __z[13];
+            let __q_z0_d2 = __z[14];
+            let __q_x_d0 = __gamma[0][0];
+            let __q_x_d1 = __gamma[1][0];
+            let __q_x_d2 = __gamma[2][0];
+            let __q_x_d3 = __gamma[3][0];
+            let __q_x_d4 = __gamma[4][0];
+            let __q_z_d0 = __gamma[0][1];
+            let __q_z_d1 = __gamma[1][1];
+            let __q_z_d2 = __gamma[2][1];
+            let __q_z_d3 = __gamma[3][1];
+            let __q_z_d4 = __gamma[4][1];
+            let __lambda_rope1_d0 = __z[15];
+            let __lambda_rope1_d1 = __z[16];
+            let __lambda_rope1_d2 = __z[17];
+            let __lambda_rope0_d0 = __z[18];
+            let __lambda_rope0_d1 = __z[19];
+            let __lambda_rope0_d2 = __z[20];
+            let __lambda_hoist_d0 = __z[21];
+            let __lambda_hoist_d1 = __z[22];
+            let __lambda_hoist_d2 = __z[23];
+            let __u_u1_d0 = __z[24];
+            let __u_u2_d0 = __z[25];
+            let __t0 = __r1.powi(-2);
+            let __t1 = __r2.powi(-2);
+            let __t2 = __l * __alpha.sin();
+            let __t3 = __l * __alpha.cos();
+            let __t4 = __m_l * __q_x_d2;
+            let __t5 = __m_l * __q_z_d2;
+            let __t6 = __m_l * __g;
+            let __t7 = __m_l * __q_x_d3;
+            let __t8 = __m_l * __q_x_d4;
+            let __t9 = __m_l * __q_z_d3;
+            let __t10 = __m_l * __q_z_d4;
+            let __t11 = __q_L2_d0 - __q_L0_d0;
+            let __t12 = __t2 + __q_x0_d0;
+            let __t13 = __q_x0_d0 - __q_x_d0;
+            let __t14 = __t3 + __q_z0_d0;
+            let __t15 = __q_z0_d0 - __q_z_d0;
+            let __t16 = __q_x_d0 - __q_x0_d0;
+            let __t17 = __q_z_d0 - __q_z0_d0;
+            let __t18 = __lambda_rope1_d0 + __lambda_rope0_d0 + __lambda_hoist_d0;
+            __system_jacobian[5] = -__q_L1_d0;
+            __system_jacobian[8] = __J1 * __t0;
+            __system_jacobian[10] = __lambda_hoist_d0;
+            __system_jacobian[17] = __q_L0_d0 - __q_L2_d0;
+            __system_jacobian[19] = __J2 * __t1;
+            __system_jacobian[20] = -__lambda_rope0_d0 - __lambda_hoist_d0;
+            __system_jacobian[26] = -__q_L0_d0;
+            __system_jacobian[27] = __t11;
+            __system_jacobian[31] = __t18;
+            __system_jacobian[33] = -__lambda_hoist_d0;
+            __system_jacobian[35] = __t12;
+            __system_jacobian[36] = __q_x0_d0;
+            __system_jacobian[37] = __t13;
+            __system_jacobian[42] = __t18;
+            __system_jacobian[44] = -__lambda_hoist_d0;
+            __system_jacobian[45] = __t14;
+            __system_jacobian[46] = __q_z0_d0;
+            __system_jacobian[47] = __t15;
+            __system_jacobian[51] = __t12;
+            __system_jacobian[52] = __t14;
+            __system_jacobian[60] = -__q_L0_d0;
+            __system_jacobian[61] = __q_x0_d0;
+            __system_jacobian[62] = __q_z0_d0;
+            __system_jacobian[70] = __t11;
+            __system_jacobian[71] = __t13;
+            __system_jacobian[72] = __t15;
+            __system_jacobian[73] = __t16;
+            __system_jacobian[74] = __t17;
+            __system_jacobian[88] = -__r1.recip();
+            __system_jacobian[99] = -__r2.recip();
+            __residual[2] = __lambda_hoist_d0 * __t11 - __q_L0_d0 * __lambda_rope0_d0;
+            __residual[5] = __lambda_rope1_d0 * __t12 + __q_x0_d0 * __lambda_rope0_d0
+                + __lambda_hoist_d0 * __t13;
+            __residual[8] = __lambda_rope1_d0 * __t14 + __q_z0_d0 * __lambda_rope0_d0
+                + __lambda_hoist_d0 * __t15;
+            __residual[11] = __t4 + __lambda_hoist_d0 * __t16;
+            __residual[14] = __t5 + __t6 + __lambda_hoist_d0 * __t17;
+            __residual[17] = (__t12.powi(2) + __t14.powi(2) - __q_L1_d0.powi(2)) * 0.5;
+            __residual[20] = (__q_x0_d0.powi(2) + __q_z0_d0.powi(2) - __q_L0_d0.powi(2))
+                * 0.5;
+            __residual[23] = (__t16.powi(2) + __t17.powi(2) - __t11.powi(2)) * 0.5;
+            if !__solve(0, &*__system_jacobian, &mut *__z, &*__residual) {
+                return false;
+            }
+            let __q_L1_d0 = __z[0];
+            let __q_L2_d0 = __z[3];
+            let __q_L0_d0 = __z[6];
+            let __q_x0_d0 = __z[9];
+            let __q_z0_d0 = __z[12];
+            let __lambda_rope1_d0 = __z[15];
+            let __lambda_rope0_d0 = __z[18];
+            let __lambda_hoist_d0 = __z[21];
+            let __t19 = __q_L2_d0 - __q_L0_d0;
+            let __t20 = __t2 + __q_x0_d0;
+            let __t21 = __q_x0_d0 - __q_x_d0;
+            let __t22 = __t3 + __q_z0_d0;
+            let __t23 = __q_z0_d0 - __q_z_d0;
+            let __t24 = __q_x_d0 - __q_x0_d0;
+            let __t25 = __q_z_d0 - __q_z0_d0;
+            let __t26 = __lambda_rope1_d0 + __lambda_rope0_d0 + __lambda_hoist_d0;
+            __residual[3] = __q_L2_d1 * __lambda_hoist_d0
+                + __q_L0_d1 * (-__lambda_rope0_d0 - __lambda_hoist_d0)
+                - __q_L0_d0 * __lambda_rope0_d1 + __t19 * __lambda_hoist_d1;
+            __residual[6] = __q_x0_d1 * __t26 - __q_x_d1 * __lambda_hoist_d0
+                + __t20 * __lambda_rope1_d1 + __q_x0_d0 * __lambda_rope0_d1
+                + __t21 * __lambda_hoist_d1;
+            __residual[9] = __q_z0_d1 * __t26 - __q_z_d1 * __lambda_hoist_d0
+                + __t22 * __lambda_rope1_d1 + __q_z0_d0 * __lambda_rope0_d1
+                + __t23 * __lambda_hoist_d1;
+            __residual[12] = __q_x_d1 * __lambda_hoist_d0 - __q_x0_d1 * __lambda_hoist_d0
+                + __t7 + __t24 * __lambda_hoist_d1;
+            __residual[15] = __q_z_d1 * __lambda_hoist_d0 - __q_z0_d1 * __lambda_hoist_d0
+                + __t9 + __t25 * __lambda_hoist_d1;
+            __residual[18] = __q_x0_d1 * __t20 - __q_L1_d0 * __q_L1_d1
+                + __q_z0_d1 * __t22;
+            __residual[21] = __q_x0_d0 * __q_x0_d1 - __q_L0_d0 * __q_L0_d1
+                + __q_z0_d0 * __q_z0_d1;
+            __residual[24] = __q_L2_d1 * (__q_L0_d0 - __q_L2_d0) + __q_L0_d1 * __t19
+                + __q_x0_d1 * __t21 + __q_z0_d1 * __t23 + __q_x_d1 * __t24
+                + __q_z_d1 * __t25;
+            if !__solve(1, &*__system_jacobian, &mut *__z, &*__residual) {
+                return false;
+            }
+            let __q_L1_d1 = __z[1];
+            let __q_L2_d1 = __z[4];
+            let __q_L0_d1 = __z[7];
+            let __q_x0_d1 = __z[10];
+            let __q_z0_d1 = __z[13];
+            let __lambda_rope1_d1 = __z[16];
+            let __lambda_rope0_d1 = __z[19];
+            let __lambda_hoist_d1 = __z[22];
+            let __t27 = __q_L0_d0 - __q_L2_d0;
+            let __t28 = __q_L2_d1 - __q_L0_d1;
+            let __t29 = __lambda_rope0_d1 + __lambda_hoist_d1 + __lambda_rope1_d1;
+            let __t30 = __q_x0_d1 - __q_x_d1;
+            let __t31 = __q_z0_d1 - __q_z_d1;
+            let __t32 = __q_x_d1 - __q_x0_d1;
+            let __t33 = __q_z_d1 - __q_z0_d1;
+            let __t34 = __q_x0_d1.powi(2);
+            let __t35 = __q_z0_d1.powi(2);
+            __residual[0] = __J1 * __t0 * __q_L1_d2 - __u_u1_d0 / __r1
+                - __q_L1_d0 * __lambda_rope1_d0;
+            __residual[1] = __J2 * __t1 * __q_L2_d2 - __u_u2_d0 / __r2
+                + __lambda_hoist_d0 * __t27;
+            __residual[4] = __q_L2_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __q_L2_d2
+                + __q_L0_d1 * (-__lambda_rope0_d1 - __lambda_hoist_d1)
+                + (-__lambda_rope0_d0 - __lambda_hoist_d0) * __q_L0_d2
+                - __q_L0_d1 * __lambda_rope0_d1 - __q_L0_d0 * __lambda_rope0_d2
+                + __lambda_hoist_d1 * __t28 + __t19 * __lambda_hoist_d2;
+            __residual[7] = __q_x0_d1 * __t29 + __t26 * __q_x0_d2
+                - __q_x_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __q_x_d2
+                + __q_x0_d1 * __lambda_rope1_d1 + __t20 * __lambda_rope1_d2
+                + __q_x0_d1 * __lambda_rope0_d1 + __q_x0_d0 * __lambda_rope0_d2
+                + __lambda_hoist_d1 * __t30 + __t21 * __lambda_hoist_d2;
+            __residual[10] = __q_z0_d1 * __t29 + __t26 * __q_z0_d2
+                - __q_z_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __q_z_d2
+                + __q_z0_d1 * __lambda_rope1_d1 + __t22 * __lambda_rope1_d2
+                + __q_z0_d1 * __lambda_rope0_d1 + __q_z0_d0 * __lambda_rope0_d2
+                + __lambda_hoist_d1 * __t31 + __t23 * __lambda_hoist_d2;
+            __residual[13] = __q_x_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __q_x_d2
+                - __q_x0_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __q_x0_d2 + __t8
+                + __lambda_hoist_d1 * __t32 + __t24 * __lambda_hoist_d2;
+            __residual[16] = __q_z_d1 * __lambda_hoist_d1 + __lambda_hoist_d0 * __q_z_d2
+                - __q_z0_d1 * __lambda_hoist_d1 - __lambda_hoist_d0 * __q_z0_d2 + __t10
+                + __lambda_hoist_d1 * __t33 + __t25 * __lambda_hoist_d2;
+            __residual[19] = __t34 - __q_L1_d1.powi(2) - __q_L1_d0 * __q_L1_d2
+                + __t20 * __q_x0_d2 + __t35 + __t22 * __q_z0_d2;
+            __residual[22] = __t34 + __t35 - __q_L0_d1.powi(2) - __q_L0_d0 * __q_L0_d2
+                + __q_x0_d0 * __q_x0_d2 + __q_z0_d0 * __q_z0_d2;
+            __residual[25] = __q_L2_d1 * (__q_L0_d1 - __q_L2_d1) + __q_L2_d2 * __t27
+                + __q_L0_d1 * __t28 + __t19 * __q_L0_d2 + __q_x0_d1 * __t30
+                + __t21 * __q_x0_d2 + __q_z0_d1 * __t31 + __t23 * __q_z0_d2
+                + __q_x_d1 * __t32 + __q_x_d2 * __t24 + __q_z_d1 * __t33
+                + __q_z_d2 * __t25;
+            if !__solve(2, &*__system_jacobian, &mut *__z, &*__residual) {
+                return false;
+            }
+            true
+        }
     }
 };
