@@ -322,7 +322,11 @@ impl Stages<'_> {
     pub fn factor(&mut self, matrix: &[f64]) -> bool {
         let kept = !self.rescale && *self.scaled;
         *self.scaled = true;
-        self.solver.factor_entries(matrix, !kept) || (kept && self.solver.factor_entries(matrix, true))
+        let factored = self.solver.factor_entries(matrix, !kept) || (kept && self.solver.factor_entries(matrix, true));
+        if factored {
+            self.solver.find_permutation();
+        }
+        factored
     }
 
     /// Block `k`'s update with the leading part of the factors: its rows of
@@ -335,11 +339,16 @@ impl Stages<'_> {
         };
         let (rows, cols) = (&self.form.rows[block.clone()], &self.form.cols[block.clone()]);
         let x = &mut self.x[..block.len()];
-        for (x, &row) in x.iter_mut().zip(rows) {
-            *x = b[row];
+        // the right-hand side with its rows exchanged and scaled as the
+        // factors' in one pass, the solution scaled by the columns as it
+        // is written
+        let solver = &*self.solver;
+        for ((x, &row), &scale) in x.iter_mut().zip(&solver.permutation).zip(&solver.permuted_row_scale) {
+            *x = b[rows[row]] * scale;
         }
-        self.solver.solve_leading(x);
-        for (&x, &col) in x.iter().zip(cols) {
+        lu_substitute(&solver.lu, &solver.inverse_diagonal, x);
+        for ((&x, &col), &scale) in x.iter().zip(cols).zip(&solver.col_scale) {
+            let x = x * scale;
             z[col] -= x;
             dz[col] = x;
         }
@@ -560,6 +569,11 @@ pub struct DenseSolver {
     /// Where each column's pivot search ends (see [`lu_in_place`]; empty:
     /// at the last row).
     pivot_ends: Vec<usize>,
+    /// The row exchanges of the last factors as one permutation (row `i`
+    /// of the factors is row `permutation[i]` of the matrix) and the row
+    /// scales in that order ([`find_permutation`](Self::find_permutation)).
+    permutation: Vec<usize>,
+    permuted_row_scale: Vec<f64>,
     /// Row and column scale factors when equilibrating.
     row_scale: Vec<f64>,
     col_scale: Vec<f64>,
@@ -589,6 +603,8 @@ impl DenseSolver {
             pivots: vec![0; n],
             inverse_diagonal: vec![0.0; n],
             pivot_ends: Vec::new(),
+            permutation: (0..n).collect(),
+            permuted_row_scale: vec![1.0; n],
             row_scale: vec![1.0; n],
             col_scale: vec![1.0; n],
             equilibrate: false,
@@ -776,6 +792,22 @@ impl DenseSolver {
             self.lu = lu;
         }
         self.factor_in_lu()
+    }
+
+    /// The row exchanges of the last factors as one permutation, and the
+    /// row scales (1 where not equilibrating) in its order: what the leading
+    /// rows of every nested block need (the exchanges of a block's columns
+    /// stay within its rows, those of later columns below them).
+    fn find_permutation(&mut self) {
+        for (i, p) in self.permutation.iter_mut().enumerate() {
+            *p = i;
+        }
+        for (k, &p) in self.pivots.iter().enumerate() {
+            self.permutation.swap(k, p);
+        }
+        for (scale, &row) in self.permuted_row_scale.iter_mut().zip(&self.permutation) {
+            *scale = if self.equilibrate { self.row_scale[row] } else { 1.0 };
+        }
     }
 
     /// Solve the leading `x.len()` rows and columns of the last factored
@@ -1078,11 +1110,16 @@ fn lu_sized<const S: usize>(
 /// `x` is the right-hand side of the leading `x.len()` rows and columns
 /// (of all of them, or of a nested leading block, see [`lu_in_place`]).
 fn lu_solve(lu: &DMatrix<f64>, pivots: &[usize], inverse_diagonal: &[f64], x: &mut [f64]) {
-    let (n, m) = (lu.nrows(), x.len());
-    let data = lu.as_slice();
-    for (k, &p) in pivots.iter().enumerate().take(m) {
+    for (k, &p) in pivots.iter().enumerate().take(x.len()) {
         x.swap(k, p);
     }
+    lu_substitute(lu, inverse_diagonal, x);
+}
+
+/// [`lu_solve`] of a right-hand side whose rows are exchanged already.
+fn lu_substitute(lu: &DMatrix<f64>, inverse_diagonal: &[f64], x: &mut [f64]) {
+    let (n, m) = (lu.nrows(), x.len());
+    let data = lu.as_slice();
     // L y = P b, L unit lower triangular: entry (i, k) at data[k n + i]
     for i in 1..m {
         let mut sum = x[i];
