@@ -310,6 +310,8 @@ pub struct Stages<'a> {
     scaled: &'a mut bool,
     /// Find the scales anew.
     rescale: bool,
+    /// Keep the last factors.
+    reuse: bool,
     /// Workspace of the matrix's size.
     x: &'a mut [f64],
 }
@@ -320,6 +322,9 @@ impl Stages<'_> {
     /// [`Triangular::last_labels`]): `false` where it is singular to
     /// working precision (with the scales kept and with new ones).
     pub fn factor(&mut self, matrix: &[f64]) -> bool {
+        if self.reuse {
+            return true;
+        }
         let kept = !self.rescale && *self.scaled;
         *self.scaled = true;
         let factored = self.solver.factor_entries(matrix, !kept) || (kept && self.solver.factor_entries(matrix, true));
@@ -640,7 +645,7 @@ impl DenseSolver {
     /// for a system that evaluates its blocks itself, if the form's blocks
     /// nest and the solver does not hold; its scales found anew
     /// (`rescale`) or kept.
-    pub fn stages(&mut self, rescale: bool) -> Option<Stages<'_>> {
+    pub fn stages(&mut self, rescale: bool, reuse: bool) -> Option<Stages<'_>> {
         if self.hold {
             return None;
         }
@@ -651,6 +656,7 @@ impl DenseSolver {
             solver: &mut nested.solver,
             scaled: &mut nested.scaled,
             rescale,
+            reuse,
             x: x.as_mut_slice(),
         })
     }

@@ -283,6 +283,13 @@ pub const QUADRATIC_ERROR: f64 = 3e-15;
 /// of 1.05).
 pub const QUADRATIC_AGING: f64 = 1.1;
 
+/// The largest update, relative to the unknowns, after which the next
+/// staged update of the same solve keeps the factors of the last one (a
+/// chord step): their matrix is off by about that much, and the error the
+/// chord step leaves is that times the error Newton's update leaves, which
+/// is round-off already.
+pub const CHORD_UPDATE: f64 = 1e-6;
+
 /// Newton's method with preallocated workspace: `solve` does not allocate.
 #[derive(Debug, Clone)]
 pub struct Newton {
@@ -300,6 +307,9 @@ pub struct Newton {
     quadratic: f64,
     /// Updates taken stage by stage ([`NonlinearSystem::staged_update`]).
     staged_updates: usize,
+    /// Of those, updates with the factors of the update before
+    /// ([`CHORD_UPDATE`]).
+    chord_updates: usize,
 }
 
 impl Newton {
@@ -314,6 +324,7 @@ impl Newton {
             evaluated: DVector::zeros(n),
             quadratic: f64::INFINITY,
             staged_updates: 0,
+            chord_updates: 0,
         }
     }
 
@@ -351,6 +362,12 @@ impl Newton {
         self.staged_updates
     }
 
+    /// Of the [`staged_updates`](Self::staged_updates), those that kept the
+    /// factors of the update before ([`CHORD_UPDATE`]).
+    pub fn chord_updates(&self) -> usize {
+        self.chord_updates
+    }
+
     /// LU factorisations of the iteration matrices so far
     /// ([`DenseSolver::factorisations`]).
     pub fn factorisations(&self) -> usize {
@@ -386,12 +403,14 @@ impl Newton {
         let mut last_residual = f64::INFINITY;
         // whether the last update was an LU's, and small
         let (mut last_lu, mut last_small) = (false, false);
+        // whether the last update was staged, and below CHORD_UPDATE
+        let mut last_chordable = false;
         for iteration in 1..=self.options.max_iterations {
             self.evaluated_at.copy_from(z);
             // the update stage by stage, where the system takes it (z and
             // dz then written, the residual not evaluated at one iterate)
             let rescale = !nearby && iteration == 1;
-            let staged = match self.solver.stages(rescale) {
+            let staged = match self.solver.stages(rescale, last_chordable) {
                 Some(stages) => system.staged_update(z, &mut self.residual, stages),
                 None => None,
             };
@@ -403,6 +422,7 @@ impl Newton {
                 self.evaluate_and_solve(system, z, iteration, nearby)?
             } else {
                 self.staged_updates += 1;
+                self.chord_updates += usize::from(last_chordable);
                 if !all_finite(self.residual.as_slice()) {
                     return Err(NewtonFailure::NonFinite { iterations: iteration });
                 }
@@ -461,6 +481,7 @@ impl Newton {
                 && self.quadratic * w * w <= (QUADRATIC_ERROR / self.options.rtol).min(1.0);
             last_lu = kind == SolveKind::Lu;
             last_small = small;
+            last_chordable = !evaluated && w * self.options.rtol <= CHORD_UPDATE;
             last_w = w;
             let update_converged = w <= 1.0 || left <= 1.0;
             // a solve the estimate ends without the update tests ages it: a

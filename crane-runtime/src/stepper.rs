@@ -248,6 +248,13 @@ where
         self.newton.staged_updates()
     }
 
+    /// Of the [`staged_updates`](Self::staged_updates), those that kept
+    /// the factors of the update before
+    /// ([`CHORD_UPDATE`](crate::newton::CHORD_UPDATE)).
+    pub fn chord_updates(&self) -> usize {
+        self.newton.chord_updates()
+    }
+
     /// Steps taken.
     pub fn steps(&self) -> usize {
         self.steps

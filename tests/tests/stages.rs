@@ -27,9 +27,16 @@ fn every_flat_built_in_is_solved_stage_by_stage_as_whole() {
     let navy = registry.visit("navy-planar", OnCrane).flatten().unwrap();
     assert_eq!(navy.blocks, [8, 8, 10]);
     // its first two stages' blocks are parts of its last's (the 10 x 10
-    // system Jacobian): one LU per Newton iteration (473 iterations, 473
-    // LUs over the 400 steps), not three
-    assert_eq!(navy.factorisations.0, navy.iterations.0);
+    // system Jacobian): one LU per Newton iteration, not three, but where
+    // an iteration follows an update below 1e-6 relative, whose factors it
+    // keeps (472 iterations, 411 LUs over the 400 steps)
+    assert_eq!(navy.factorisations.0 + navy.chord_updates, navy.iterations.0);
+    assert!(
+        navy.factorisations.0 * 100 <= 105 * navy.steps,
+        "{} LUs in {} steps",
+        navy.factorisations.0,
+        navy.steps
+    );
     // the jets predicted through the last eight steps are within Newton's
     // residual test at most steps, or within an update whose error the
     // quadratic term of earlier steps puts at round-off, and the step then
