@@ -91,8 +91,7 @@ fn hermite<const A: usize>(ta: f64, a: &ServoTarget<A>, tb: f64, b: &ServoTarget
 
 /// The stepper of a run, which owns its model: eqs. (22a-d), which also
 /// follow an external target, or the dummy-derivative formulation on a
-/// built-in move (the default of a crane whose inputs need more than the
-/// path's 4th derivative).
+/// built-in move (the default of every flat crane).
 enum Stepping<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> {
     Redundant(Box<RedundantStepper<Box<Mdl>, Path<A>, N, M, A>>),
     Reduced(Box<dyn Advance<N, M, A, Model = Mdl>>),
@@ -297,29 +296,34 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         let start = case
             .consistent_start(self.start_time)
             .map_err(|e| format!("no consistent start at t = {}: {e}", self.start_time))?;
-        let stepper = match settings.formulation {
-            Formulation::DummyDerivative => {
-                if external.is_some() {
-                    let order = <C::Model as CraneModel<N, M, A>>::STRUCTURE.map_or(0, |s| s.path_order(A));
-                    return Err(format!(
-                        "path = {EXTERNAL_PATH} (external) gives gamma, gamma' and gamma'' only, but the inputs of {} \
-                         need the path's derivatives up to order {order}: use a built-in move",
-                        C::NAME
-                    ));
-                }
-                let stepper = dummy_derivative::boxed_stepper(Box::new(case.model), case.path, &start, &options)
-                    .map_err(|error| match error {
-                        crane_runtime::Error::NoDummyDerivatives { reason, .. } => {
-                            format!("{} has no dummy-derivative formulation: {reason}", C::NAME)
-                        }
-                        error => error.to_string(),
-                    })?;
-                Stepping::Reduced(stepper)
+        // an external target gives the path's derivatives up to gamma'' only:
+        // the reduced system, which needs them up to the crane's path order,
+        // is replaced by eqs. (22a-d) where those reduce it (path order 4 at
+        // most: the scheme's discretisation in place of the higher ones)
+        let order = <C::Model as CraneModel<N, M, A>>::STRUCTURE.map_or(0, |s| s.path_order(A));
+        let reduced = settings.formulation == Formulation::DummyDerivative && !(external.is_some() && order <= 4);
+        let stepper = if reduced {
+            if external.is_some() {
+                return Err(format!(
+                    "path = {EXTERNAL_PATH} (external) gives gamma, gamma' and gamma'' only, but the inputs of {} \
+                     need the path's derivatives up to order {order}: use a built-in move",
+                    C::NAME
+                ));
             }
-            _ => Stepping::Redundant(Box::new(
+            let stepper = dummy_derivative::boxed_stepper(Box::new(case.model), case.path, &start, &options).map_err(
+                |error| match error {
+                    crane_runtime::Error::NoDummyDerivatives { reason, .. } => {
+                        format!("{} has no dummy-derivative formulation: {reason}", C::NAME)
+                    }
+                    error => error.to_string(),
+                },
+            )?;
+            Stepping::Reduced(stepper)
+        } else {
+            Stepping::Redundant(Box::new(
                 Stepper::new(Redundant::new(Box::new(case.model), case.path), &start, &options)
                     .map_err(|e| e.to_string())?,
-            )),
+            ))
         };
         let (run, mut findings) = Run::new(C::NAME, stepper, external);
         // a built-in move's ramps the step cannot resolve (an external

@@ -66,8 +66,8 @@ def test_a_sweep_is_the_command_line_s_sweep_csv(tmp_path):
 
 
 def test_convergence_is_the_command_line_s(tmp_path):
-    c = crane.convergence("navy-planar", scheme="bdf2")
-    out = cli(tmp_path, "convergence", "navy-planar", "--scheme", "bdf2")
+    c = crane.convergence("navy-planar", scheme="bdf2", formulation="redundant")
+    out = cli(tmp_path, "convergence", "navy-planar", "--scheme", "bdf2", "--formulation", "redundant")
     expected = csv_columns(out / "convergence.csv")
     assert np.array_equal(c["dt"], np.array([float(v) for v in expected["dt"]]))
     assert np.array_equal(c["e_u"], np.array([float(v) for v in expected["e_u"]]))
@@ -81,7 +81,7 @@ def test_convergence_is_the_command_line_s(tmp_path):
 
 def test_a_study_of_given_steps_and_a_reduced_reference():
     # tower-crane has no analytical reference: the exact reduced inputs are it
-    c = crane.convergence("tower-crane", dts=[0.02, 0.01], scheme="bdf1")
+    c = crane.convergence("tower-crane", dts=[0.02, 0.01], scheme="bdf1", formulation="redundant")
     assert c["reference"] == "the exact inputs of the dummy-derivative formulation"
     assert list(c["dt"]) == [0.02, 0.01]
     # backward Euler halves its error with the step

@@ -33,7 +33,9 @@ def test_models_lists_the_built_in_cranes():
     navy = models["navy-planar"]
     assert (navy["n"], navy["m"], navy["a"]) == (7, 3, 2)
     assert navy["reference"] and navy["minimal"]
-    assert navy["path_order"] == 4 and navy["formulation"] == "redundant"
+    # every flat crane runs its exact reduced system by default
+    assert navy["path_order"] == 4 and navy["formulation"] == "dummy-derivative"
+    assert models["coupled-trolley"]["formulation"] == "redundant"
     assert navy["internal_dimension"] == 0
     assert models["navy-3d-pulley"]["formulation"] == "dummy-derivative"
     assert models["coupled-trolley"]["internal_dimension"] == 2

@@ -1,6 +1,6 @@
 //! `crane list`: the cranes of the tool's registry with their sizes, reference, minimal
-//! map, the path derivative their inputs need with the formulation that
-//! reduces it by default, and their internal dynamics at the start.
+//! map, the path derivative their inputs need, their default formulation
+//! (and why it is), and their internal dynamics at the start.
 
 use crane_models::registry::{Registry, Visit};
 use crane_models::study::Formulation;
@@ -83,5 +83,12 @@ pub fn list<R: Registry>(tool: &Tool<R>) -> Result<(), CliError> {
             e.description
         )?;
     }
+    say!(
+        "\nformulation, the default: {} for a crane without internal dynamics (its exact inputs at each step \
+         time,\n  solved stage by stage for less per step than eqs. (22a-d) with backward Euler), {} (eqs. 22a-d) \
+         for the others;\n  --formulation runs another",
+        Formulation::DummyDerivative,
+        Formulation::Redundant
+    )?;
     Ok(())
 }

@@ -34,11 +34,10 @@ pub fn scheme_help(default: Scheme) -> String {
 /// The help of a `--formulation` flag, from the one list of formulations.
 pub fn formulation_help() -> String {
     format!(
-        "Formulation: {} (default {}; {} for a crane without internal dynamics whose inputs need more than the \
-         path's 4th derivative)",
+        "Formulation: {} (default {} for a crane without internal dynamics, {} for the others)",
         Formulation::help(),
-        Formulation::default(),
-        Formulation::DummyDerivative
+        Formulation::DummyDerivative,
+        Formulation::Redundant
     )
 }
 

@@ -19,8 +19,9 @@ CLI = Path(os.environ.get("MY_CRANES_BIN", ROOT / "target" / "release" / "my-cra
 def test_models_lists_the_registry_s_cranes():
     models = {m["name"]: m for m in my_cranes.models()}
     assert list(models) == ["planar-gantry", "hook-crane"]
-    assert models["planar-gantry"]["formulation"] == "redundant"
-    # path order 6: the exact reduced formulation, as a built-in of that order
+    # flat, of path order 4 and 6: the exact reduced formulation by
+    # default, as a built-in crane's
+    assert models["planar-gantry"]["formulation"] == "dummy-derivative"
     assert models["hook-crane"]["path_order"] == 6
     assert models["hook-crane"]["formulation"] == "dummy-derivative"
 

@@ -40,8 +40,8 @@ pub use summary::{PathSmoothnessSummary, Summary, below_floor};
 /// Which formulation of the servo problem a run solves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Formulation {
-    /// Redundant coordinates, eqs. (22a-d) (the default where the inputs
-    /// need at most the path's 4th derivative).
+    /// Redundant coordinates, eqs. (22a-d) (the default of a crane with
+    /// internal dynamics, which has no reduced system).
     #[default]
     Redundant,
     /// Minimal coordinates, eqs. (24a-e), for a crane with a minimal map.
@@ -49,7 +49,7 @@ pub enum Formulation {
     /// Eqs. (22a-d) reduced by dummy derivatives
     /// ([`crane_runtime::dummy_derivative`]), for a crane without internal
     /// dynamics: exact at every step time whatever the path order (the
-    /// default where the inputs need more than the path's 4th derivative).
+    /// default of every such crane, [`default_for`](Self::default_for)).
     DummyDerivative,
 }
 
@@ -62,13 +62,13 @@ impl Formulation {
     ];
 
     /// The default of crane `C`: [`DummyDerivative`](Self::DummyDerivative)
-    /// where its inputs need more than the path's 4th derivative (beyond
-    /// what eqs. 22 and 24 reduce) and it has no internal dynamics, else
+    /// where it has the reduced system (no internal dynamics: every flat
+    /// crane), which gives the exact inputs at every step time whatever the
+    /// path order and, solved stage by stage, costs less per step than
+    /// eqs. (22a-d) with backward Euler on every flat built-in; else
     /// [`Redundant`](Self::Redundant).
     pub fn default_for<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Self {
-        let path_order = <C::Model as CraneModel<N, M, A>>::STRUCTURE.map(|s| s.path_order(A));
-        let reduced = dummy_derivative::system_size::<C::Model, N, M, A>().is_ok();
-        if reduced && path_order.is_some_and(|order| order > 4) {
+        if dummy_derivative::system_size::<C::Model, N, M, A>().is_ok() {
             Formulation::DummyDerivative
         } else {
             Formulation::Redundant
