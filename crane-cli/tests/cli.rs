@@ -393,6 +393,36 @@ fn the_scheme_takes_effect_from_the_flag_and_the_file() {
     );
 }
 
+/// A scheme given to the default formulation of a flat crane, the reduced
+/// system, says that it discretises nothing there: the run is the
+/// reduced system's whatever the scheme (results.csv byte for byte that of
+/// the default run; navy-planar's move takes no step of eqs. 22 at dt =
+/// 0.01 s).
+#[test]
+fn a_scheme_under_the_reduced_formulation_says_it_discretises_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bdf4");
+    let result = crane(&["run", "navy-planar", "--scheme", "bdf4", "--out", out.to_str().unwrap()]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(
+        stdout.contains("bdf4 discretises nothing here: the dummy-derivative system is algebraic at each step"),
+        "{stdout}"
+    );
+    let default = run_ok("navy-planar", &[], dir.path(), "default");
+    assert_eq!(
+        std::fs::read(out.join("results.csv")).unwrap(),
+        std::fs::read(default.join("results.csv")).unwrap()
+    );
+    let result = crane(&[
+        "run",
+        "navy-planar",
+        "--out",
+        dir.path().join("plain").to_str().unwrap(),
+    ]);
+    assert!(!String::from_utf8_lossy(&result.stdout).contains("discretises nothing"));
+}
+
 /// `crane convergence --scheme bdf2` measures order 2 and draws the slope-2
 /// guide; `crane bench --json` names the scheme.
 #[test]
@@ -625,6 +655,15 @@ fn list_shows_the_registry() {
     assert!(result.status.success());
     let text = String::from_utf8_lossy(&result.stdout);
     assert_eq!(crane_models::CATALOG.len(), 9);
+    // a header and a line per crane on standard output (scripts read it);
+    // why the defaults are what they are on standard error
+    assert_eq!(text.lines().count(), 1 + 9, "{text}");
+    let note = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        note.contains("note: the formulation column is the default: dummy-derivative for a crane without internal")
+            && note.contains("redundant (eqs. 22a-d) for the others"),
+        "{note}"
+    );
     for e in crane_models::CATALOG {
         let line = text
             .lines()
@@ -831,6 +870,10 @@ fn extreme_numbers_neither_hang_nor_print_every_digit() {
         .unwrap();
     assert!(error < 1e-13, "{stdout}");
     assert!(stdout.lines().all(|line| line.len() < 200), "{stdout}");
+    // rope N1 is slack at the start: its tension there is round-off of
+    // zero, -2.6e125 N of 7.7e140 N, which "stays taut" does not print
+    assert!(stdout.contains("rope N1 stays taut: min tension 0.000 N"), "{stdout}");
+    assert!(!stdout.contains("min tension -"), "{stdout}");
 }
 
 /// A scenario that changes the crane or the path's start but gives no `p0`

@@ -285,9 +285,10 @@ pub const QUADRATIC_AGING: f64 = 1.1;
 
 /// The largest update, relative to the unknowns, after which the next
 /// staged update of the same solve keeps the factors of the last one (a
-/// chord step): their matrix is off by about that much, and the error the
-/// chord step leaves is that times the error Newton's update leaves, which
-/// is round-off already.
+/// chord step): their matrix is off by about the updates since, and the
+/// error the chord step leaves is about the quadratic term times its own
+/// update times those (against its own update squared for Newton's), which
+/// the quadratic stop takes into account.
 pub const CHORD_UPDATE: f64 = 1e-6;
 
 /// Newton's method with preallocated workspace: `solve` does not allocate.
@@ -403,8 +404,11 @@ impl Newton {
         let mut last_residual = f64::INFINITY;
         // whether the last update was an LU's, and small
         let (mut last_lu, mut last_small) = (false, false);
-        // whether the last update was staged, and below CHORD_UPDATE
-        let mut last_chordable = false;
+        // whether the last update was staged, and below CHORD_UPDATE; and
+        // whether it was taken with factors of its own iterate
+        let (mut last_chordable, mut last_fresh) = (false, false);
+        // the updates since the factors in use were taken (tolerance units)
+        let mut drift = 0.0;
         for iteration in 1..=self.options.max_iterations {
             self.evaluated_at.copy_from(z);
             // the update stage by stage, where the system takes it (z and
@@ -424,10 +428,16 @@ impl Newton {
                 self.staged_updates += 1;
                 self.chord_updates += usize::from(last_chordable);
                 if !all_finite(self.residual.as_slice()) {
+                    // the iterate as it was, as an evaluated update leaves it
+                    z.copy_from(&self.evaluated_at);
                     return Err(NewtonFailure::NonFinite { iterations: iteration });
                 }
                 SolveKind::Lu
             };
+            // a chord update's matrix is off by the updates since its
+            // factors were taken
+            let chord = !evaluated && last_chordable;
+            let drift_now = if chord { drift } else { 0.0 };
             if kind == SolveKind::MinNorm {
                 min_norm_steps += 1;
             }
@@ -460,9 +470,12 @@ impl Newton {
             // Newton's error after an update w is about kappa w^2 (in
             // tolerance units; kappa w^2 rtol relative), kappa learned from
             // two successive LU updates the size of those it judges (the
-            // second mostly round-off, so the estimate errs large)
+            // second mostly round-off, so the estimate errs large), the
+            // first with factors of its own iterate (the second measures
+            // the error it left, whatever its own factors); a chord update
+            // with factors taken a drift d away leaves about kappa w (w + d)
             let small = w * self.options.rtol <= QUADRATIC_UPDATE;
-            if nearby && kind == SolveKind::Lu && last_lu && last_small && last_w > 0.0 {
+            if nearby && kind == SolveKind::Lu && last_lu && last_fresh && last_small && last_w > 0.0 {
                 // a second update of exactly zero (a residual at zero by
                 // round-off) says the first left round-off, not that there
                 // is no quadratic term: four ulps at least
@@ -478,10 +491,12 @@ impl Newton {
             let quadratic_converged = nearby
                 && kind == SolveKind::Lu
                 && small
-                && self.quadratic * w * w <= (QUADRATIC_ERROR / self.options.rtol).min(1.0);
+                && self.quadratic * w * (w + drift_now) <= (QUADRATIC_ERROR / self.options.rtol).min(1.0);
             last_lu = kind == SolveKind::Lu;
             last_small = small;
             last_chordable = !evaluated && w * self.options.rtol <= CHORD_UPDATE;
+            last_fresh = !chord;
+            drift = drift_now + w;
             last_w = w;
             let update_converged = w <= 1.0 || left <= 1.0;
             // a solve the estimate ends without the update tests ages it: a
@@ -659,6 +674,92 @@ mod tests {
         }
         fn nearby_solves(&self) -> bool {
             self.nearby
+        }
+    }
+
+    /// Two stages: `z0^2 - 2 = 0`, then its time derivative with a
+    /// source, `2 z0 z1 - 1 = 0`, whose block `2 z0` is the first's (one
+    /// LU of it serves both). `staged`: the update stage by stage, through
+    /// [`Stages`], each stage's residual at the stages before it as
+    /// updated; or a staged update that fails after scribbling over `z`.
+    struct TwoStages {
+        staged: Option<bool>,
+        block: Range<usize>,
+    }
+
+    impl NonlinearSystem for TwoStages {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) {
+            r[0] = z[0] * z[0] - 2.0;
+            r[1] = 2.0 * z[0] * z[1] - 1.0;
+            jac[(0, 0)] = 2.0 * z[0];
+            jac[(1, 0)] = 2.0 * z[1];
+            jac[(1, 1)] = 2.0 * z[0];
+        }
+        fn normalised_residual(&self, z: &DVector<f64>, r: &DVector<f64>, _jac: &DMatrix<f64>) -> f64 {
+            (r[0].abs() / (2.0 * z[0] * z[0])).max(r[1].abs() / (2.0 * z[0] * z[1]).abs())
+        }
+        fn blocks(&self) -> &[Range<usize>] {
+            std::slice::from_ref(&self.block)
+        }
+        fn triangular(&self) -> Option<Triangular> {
+            Triangular::from_stages(&[-1, 0], &[-1, 0]).map(|form| form.with_labels(&[0, 0], &[0, 0]))
+        }
+        fn staged_update(
+            &mut self,
+            z: &mut DVector<f64>,
+            dz: &mut DVector<f64>,
+            mut stages: Stages<'_>,
+        ) -> Option<bool> {
+            match self.staged? {
+                false => {
+                    z.fill(f64::NAN);
+                    Some(false)
+                }
+                true => {
+                    let (z, dz) = (z.as_mut_slice(), dz.as_mut_slice());
+                    let jacobian = [2.0 * z[0]];
+                    let first = [z[0] * z[0] - 2.0, 0.0];
+                    if !(stages.factor(&jacobian) && stages.solve(0, &first, z, dz)) {
+                        return Some(false);
+                    }
+                    let second = [0.0, 2.0 * z[0] * z[1] - 1.0];
+                    Some(stages.solve(1, &second, z, dz))
+                }
+            }
+        }
+    }
+
+    /// A staged update is Newton's to round-off, each taking one LU of the
+    /// shared block per iteration; one that fails leaves `z` as it was and
+    /// the iteration is taken whole.
+    #[test]
+    fn staged_updates_converge_as_whole_ones_and_a_failed_one_is_taken_whole() {
+        let solve = |staged: Option<bool>| {
+            let mut system = TwoStages { staged, block: 0..2 };
+            let mut newton = Newton::equilibrated(2, NewtonOptions::default());
+            if let Some(form) = system.triangular() {
+                newton.set_triangular(form);
+            }
+            let mut z = DVector::from_row_slice(&[1.5, 0.3]);
+            let converged = newton.solve(&mut system, &mut z).unwrap();
+            let lus = newton.factorisations() + newton.chord_updates();
+            (z, converged.iterations, newton.staged_updates(), lus)
+        };
+        let exact = [2f64.sqrt(), 1.0 / (2.0 * 2f64.sqrt())];
+        for staged in [None, Some(true), Some(false)] {
+            let (z, iterations, staged_updates, factorisations) = solve(staged);
+            for (zi, ei) in z.iter().zip(exact) {
+                assert!((zi - ei).abs() <= 4.0 * f64::EPSILON * ei, "{staged:?}: {z}");
+            }
+            let expected = if staged == Some(true) { iterations } else { 0 };
+            assert_eq!(staged_updates, expected, "{staged:?}");
+            // one LU per iteration, of the shared block, but for chord
+            // updates (a failed staged update factors nothing: it fails
+            // before)
+            assert_eq!(factorisations, iterations, "{staged:?}");
         }
     }
 

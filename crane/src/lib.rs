@@ -143,7 +143,11 @@
 //! A built-in crane (or a [`Crane`](models::Crane) description of one's
 //! own) on its default manoeuvre, with the summary `crane run` writes:
 //! peaks, ropes, errors against the analytical reference, internal
-//! dynamics, and the [`audit`](study::audit()) of what it found.
+//! dynamics, and the [`audit`](study::audit()) of what it found. Here in
+//! the paper's eqs. (22a-d) with backward Euler (`RunSettings::default()`,
+//! which knows no crane); `crane run` takes the crane's own default,
+//! [`Formulation::default_for`](study::Formulation::default_for): for this
+//! flat crane the reduced system, whose error is round-off.
 //!
 //! ```
 //! use crane::models::navy_planar::PaperCase;

@@ -6,6 +6,7 @@
 use crane_models::registry::Visit;
 use crane_models::{Case, Crane};
 use crane_runtime::dummy_derivative::DummyDerivative;
+use crane_runtime::linsolve::Triangular;
 use crane_runtime::model::{DummyDerivatives, VisitDummyDerivatives};
 use crane_runtime::nalgebra::{DMatrix, SVector};
 use crane_runtime::{CraneModel, Options, Stepper, Trajectory};
@@ -35,6 +36,70 @@ pub struct Comparison {
     pub steps: usize,
 }
 
+/// The system stage by stage is the whole system where it is evaluated:
+/// at made-up jets and the path's derivatives at t = 1.3 s, each stage's
+/// residual, handed to the solve, equals the whole residual's rows of that
+/// stage at the jets as they stand then (bit for bit: the same expressions,
+/// bound differently), the system Jacobian equals the whole Jacobian's last
+/// block, and the solves are called once per stage in order. Each "solve"
+/// moves its stage's jets, so that a later stage evaluated at the earlier
+/// stages' old jets, or at its own new ones, fails.
+fn stages_as_whole<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize, const J: usize>(
+    model: &C::Model,
+    path: &impl Trajectory<A>,
+    form: &Triangular,
+) where
+    C::Model: DummyDerivatives<N, M, A, J>,
+{
+    let gamma: Vec<SVector<f64, A>> = (0..=<C::Model as DummyDerivatives<N, M, A, J>>::PATH_ORDER)
+        .map(|k| path.derivative(1.3, k))
+        .collect();
+    let mut z: Vec<f64> = (0..J).map(|i| 1.0 + 0.5 * (i as f64 * 0.37).sin()).collect();
+    let (last_rows, last_cols) = form.block(form.block_sizes().count() - 1).unwrap();
+    let size = last_rows.len();
+    let (mut residual, mut system) = (vec![0.0; J], vec![0.0; size * size]);
+    let mut called = Vec::new();
+    let finished =
+        model.dummy_derivative_stages_into(&gamma, &mut z, &mut residual, &mut system, &mut |k, jac, z, r| {
+            let jets = SVector::<f64, J>::from_column_slice(z);
+            let (whole, whole_jacobian) = model.dummy_derivative_system(&gamma, &jets);
+            let (rows, cols) = form.block(k).unwrap();
+            for &row in rows {
+                assert_eq!(
+                    r[row].to_bits(),
+                    whole[row].to_bits(),
+                    "{}: stage {k}, row {row}",
+                    C::NAME
+                );
+            }
+            if k == 0 {
+                for (c, &col) in last_cols.iter().enumerate() {
+                    for (i, &row) in last_rows.iter().enumerate() {
+                        let entry = jac[c * size + i];
+                        assert_eq!(
+                            entry.to_bits(),
+                            whole_jacobian[(row, col)].to_bits(),
+                            "{}: ({row}, {col})",
+                            C::NAME
+                        );
+                    }
+                }
+            }
+            for &col in cols {
+                z[col] += 0.01 * (1.0 + col as f64);
+            }
+            called.push(k);
+            true
+        });
+    assert!(finished, "{}", C::NAME);
+    assert_eq!(
+        called,
+        (0..form.block_sizes().count()).collect::<Vec<_>>(),
+        "{}",
+        C::NAME
+    );
+}
+
 /// The comparison on one case, with the reduced system's size `J`.
 struct Compare<'a, C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> {
     case: &'a Case<C, N, M, A>,
@@ -51,6 +116,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> VisitDum
         let (model, path) = (self.case.model(), self.case.path());
         let form = DummyDerivative::<&C::Model, &crane_models::Path<A>, N, M, A, J>::stages()
             .unwrap_or_else(|| panic!("{}: no stages", C::NAME));
+        stages_as_whole::<C, N, M, A, J>(model, path, &form);
         let start = self.case.start().unwrap();
         let options = Options::new(0.01, self.case.tf()).unwrap();
         let mut staged = Stepper::new(DummyDerivative::new(model, path), &start, &options).unwrap();

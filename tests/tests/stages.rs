@@ -2,8 +2,8 @@
 //! Jacobian is block lower triangular by Pryce's stages on every flat
 //! built-in crane, and the inputs of a run solved stage by stage are those
 //! of the same run solved whole (one LU of all the jets), at every step,
-//! with as many Newton iterations (`crane_tests::stages`; a user's crane of
-//! path order 6 in `user_cranes.rs`). Stage by stage, each stage's residual
+//! with at most 1 % more Newton iterations (`crane_tests::stages`; a user's
+//! crane of path order 6 in `user_cranes.rs`). Stage by stage, each stage's residual
 //! is evaluated at the stages before it as solved, and only the system
 //! Jacobian is evaluated, not the blocks left of the diagonal.
 

@@ -83,12 +83,14 @@ pub fn list<R: Registry>(tool: &Tool<R>) -> Result<(), CliError> {
             e.description
         )?;
     }
-    say!(
-        "\nformulation, the default: {} for a crane without internal dynamics (its exact inputs at each step \
-         time,\n  solved stage by stage for less per step than eqs. (22a-d) with backward Euler), {} (eqs. 22a-d) \
-         for the others;\n  --formulation runs another",
+    // why the defaults are what they are, on standard error: the table on
+    // standard output stays one line per crane for scripts that read it
+    eprintln!(
+        "note: the formulation column is the default: {} for a crane without internal dynamics (its exact \
+         inputs at each step time, solved stage by stage for less per step than eqs. (22a-d) with backward \
+         Euler), {} (eqs. 22a-d) for the others; --formulation runs another",
         Formulation::DummyDerivative,
         Formulation::Redundant
-    )?;
+    );
     Ok(())
 }

@@ -191,6 +191,14 @@ impl Visit for Run<'_> {
             summary.wall_time_s * 1e3,
             solution.mean_newton_iterations()
         )?;
+        if !settings.formulation.discretised() && settings.scheme != Scheme::default() {
+            say!(
+                "  {} discretises nothing here: the {} system is algebraic at each step (a scheme serves only steps \
+                 of eqs. 22a-d at a nearly slack rope); --formulation redundant runs eqs. (22a-d) on it",
+                settings.scheme,
+                settings.formulation
+            )?;
+        }
         if solution.redundant_start_steps > 0 && settings.formulation == Formulation::DummyDerivative {
             say!(
                 "  {} steps in redundant coordinates (eqs. 22a-d): a rope carried under {:e} of the largest tension \
@@ -344,11 +352,19 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
         .iter()
         .filter(|r| solved && !r.leaves_workspace() && r.first_slack.is_none())
     {
-        // round-off below the printed digits is no negative tension
+        // a rope that stays taut is below zero only by round-off (the slack
+        // rule's 1e-9 of the largest tension: -2.6e125 N of a 7.7e140 N
+        // tension under a load of 1e140 kg), and round-off below the
+        // printed digits is none either: no negative tension is printed
+        // beside "taut" (summary.json keeps the number)
         lines.push(format!(
             "rope {} stays taut: min tension {} N at t = {:.3} s",
             r.name,
-            Rounded(if r.min_tension.abs() < 5e-4 { 0.0 } else { r.min_tension }),
+            Rounded(if r.min_tension < 0.0 || r.min_tension.abs() < 5e-4 {
+                0.0
+            } else {
+                r.min_tension
+            }),
             r.t_min
         ));
     }

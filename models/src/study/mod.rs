@@ -40,8 +40,9 @@ pub use summary::{PathSmoothnessSummary, Summary, below_floor};
 /// Which formulation of the servo problem a run solves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Formulation {
-    /// Redundant coordinates, eqs. (22a-d) (the default of a crane with
-    /// internal dynamics, which has no reduced system).
+    /// Redundant coordinates, eqs. (22a-d): a crane's default where it has
+    /// internal dynamics (and so no reduced system), and `Default`'s, which
+    /// knows no crane ([`default_for`](Self::default_for) gives a crane's).
     #[default]
     Redundant,
     /// Minimal coordinates, eqs. (24a-e), for a crane with a minimal map.
