@@ -100,6 +100,43 @@ fn an_input_spike_is_found_where_it_is() {
     assert!((spike.second_difference.abs() - 2000.0).abs() < 10.0, "{spike:?}");
 }
 
+/// A spike that is the run's peak itself is judged against the input
+/// elsewhere: one wild last step (u1 raised by 1000 N m, where the
+/// second difference is the peak) is found; against the run's own peak it
+/// passed (a reduced run's last step at the load's rest below the boom tip
+/// once gave 1.2e5 N m after 43 N m without a word).
+#[test]
+fn a_spike_at_the_last_step_is_found() {
+    let paper = PaperCase::new(4.0).unwrap();
+    let dt = 0.01;
+    let settings = RunSettings {
+        dt,
+        ..RunSettings::default()
+    };
+    let start = paper.start().unwrap();
+    let mut solution = Formulation::DummyDerivative
+        .simulate(&paper, &start, &Options::new(dt, 4.0).unwrap(), &mut |_, _| {})
+        .unwrap();
+    let audit = |solution: &Solution<7, 3, 2>| study::audit(&study::summarize_run(&paper, &settings, solution, 0.0, 0));
+    assert_eq!(audit(&solution), vec![]);
+    let last = solution.states.len() - 1;
+    solution.states[last].u[0] += 1000.0;
+    let found = audit(&solution);
+    let spike = found
+        .iter()
+        .find_map(|f| match f {
+            Finding::InputSpike { spike, .. } => Some(spike),
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("no spike found: {found:?}"));
+    assert_eq!(spike.input, "u1");
+    assert!((spike.t - 3.99).abs() < 1e-9, "{spike:?}");
+    // judged against u1 before its last three steps (42.4 N m: the move's
+    // peak, 43.3 N m, is u1's last value itself), not against the 1043 N m
+    // of the spike
+    assert!((40.0..43.5).contains(&spike.peak), "{spike:?}");
+}
+
 /// Ramps of 0.01 s at dt = 0.01 s are one step long: found, with the step
 /// that would resolve them; ramps of 1 s are not.
 #[test]

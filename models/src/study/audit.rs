@@ -292,7 +292,7 @@ impl fmt::Display for Finding {
             Finding::InputSpike { model, spike } => write!(
                 f,
                 "input {} of {model} turns by {:.4e} between the steps around t = {} s, more than its largest value \
-                 {:.4e}: no smooth input does that; a direction the path does not determine (a rope without \
+                 elsewhere, {:.4e}: no smooth input does that; a direction the path does not determine (a rope without \
                  tension leaves a massless pulley free, and round-off, differentiated by the scheme, moves it) or a \
                  path feature shorter than the step; the inputs there are not a result (a longer step, or a faster \
                  move, determines them better)",
