@@ -226,10 +226,17 @@ impl Arena {
     /// All nodes reachable from `roots` (roots included), in increasing id
     /// order, which is a topological order (children first).
     pub fn reachable(&self, roots: impl IntoIterator<Item = Id>) -> Vec<Id> {
+        self.reachable_until(roots, |_| false)
+    }
+
+    /// [`reachable`](Self::reachable), not looking into the nodes `leaf`
+    /// holds for (they are listed, their children only where reached
+    /// otherwise).
+    pub fn reachable_until(&self, roots: impl IntoIterator<Item = Id>, leaf: impl Fn(Id) -> bool) -> Vec<Id> {
         let mut seen = vec![false; self.nodes.len()];
         let mut stack: Vec<Id> = roots.into_iter().collect();
         while let Some(id) = stack.pop() {
-            if std::mem::replace(&mut seen[id.index()], true) {
+            if std::mem::replace(&mut seen[id.index()], true) || leaf(id) {
                 continue;
             }
             stack.extend(self.node(id).children());

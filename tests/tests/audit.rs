@@ -2,6 +2,7 @@
 //! dynamics they claim: each is found, by name, and a regular run is not.
 
 use crane_models::navy_planar::PaperCase;
+use crane_models::study::summary::InputSpike;
 use crane_models::study::{self, Finding, Formulation, RunSettings, Severity};
 use crane_runtime::{Options, Solution};
 
@@ -68,11 +69,10 @@ fn a_slow_move_holds_what_its_slack_rope_leaves_free() {
     }
 }
 
-/// A spike planted in a regular run (u1 of one step raised by 1000 N m, 23
-/// times the move's peak) is found where it was planted; the run without it
-/// has none.
-#[test]
-fn an_input_spike_is_found_where_it_is() {
+/// The spike the audit finds in the paper's move at dt = 0.01 s in
+/// `formulation`, with u1 of step `step` (from the end where negative)
+/// raised by 1000 N m; the run without it has no finding at all.
+fn planted_spike(formulation: Formulation, step: isize) -> InputSpike {
     let paper = PaperCase::new(4.0).unwrap();
     let dt = 0.01;
     let settings = RunSettings {
@@ -80,20 +80,29 @@ fn an_input_spike_is_found_where_it_is() {
         ..RunSettings::default()
     };
     let start = paper.start().unwrap();
-    let mut solution = Formulation::Redundant
+    let mut solution = formulation
         .simulate(&paper, &start, &Options::new(dt, 4.0).unwrap(), &mut |_, _| {})
         .unwrap();
     let audit = |solution: &Solution<7, 3, 2>| study::audit(&study::summarize_run(&paper, &settings, solution, 0.0, 0));
     assert_eq!(audit(&solution), vec![]);
-    solution.states[150].u[0] += 1000.0;
+    let step = usize::try_from(step).unwrap_or_else(|_| solution.states.len() - step.unsigned_abs());
+    solution.states[step].u[0] += 1000.0;
     let found = audit(&solution);
-    let spike = found
+    found
         .iter()
         .find_map(|f| match f {
-            Finding::InputSpike { spike, .. } => Some(spike),
+            Finding::InputSpike { spike, .. } => Some(spike.clone()),
             _ => None,
         })
-        .unwrap_or_else(|| panic!("no spike found: {found:?}"));
+        .unwrap_or_else(|| panic!("no spike found: {found:?}"))
+}
+
+/// A spike planted in a regular run (u1 of one step raised by 1000 N m, 23
+/// times the move's peak) is found where it was planted; the run without it
+/// has none.
+#[test]
+fn an_input_spike_is_found_where_it_is() {
+    let spike = planted_spike(Formulation::Redundant, 150);
     assert_eq!(spike.input, "u1");
     assert!((spike.t - 1.5).abs() < 1e-9, "{spike:?}");
     // the second difference at the planted step is 2 x 1000 N m
@@ -107,28 +116,7 @@ fn an_input_spike_is_found_where_it_is() {
 /// once gave 1.2e5 N m after 43 N m without a word).
 #[test]
 fn a_spike_at_the_last_step_is_found() {
-    let paper = PaperCase::new(4.0).unwrap();
-    let dt = 0.01;
-    let settings = RunSettings {
-        dt,
-        ..RunSettings::default()
-    };
-    let start = paper.start().unwrap();
-    let mut solution = Formulation::DummyDerivative
-        .simulate(&paper, &start, &Options::new(dt, 4.0).unwrap(), &mut |_, _| {})
-        .unwrap();
-    let audit = |solution: &Solution<7, 3, 2>| study::audit(&study::summarize_run(&paper, &settings, solution, 0.0, 0));
-    assert_eq!(audit(&solution), vec![]);
-    let last = solution.states.len() - 1;
-    solution.states[last].u[0] += 1000.0;
-    let found = audit(&solution);
-    let spike = found
-        .iter()
-        .find_map(|f| match f {
-            Finding::InputSpike { spike, .. } => Some(spike),
-            _ => None,
-        })
-        .unwrap_or_else(|| panic!("no spike found: {found:?}"));
+    let spike = planted_spike(Formulation::DummyDerivative, -1);
     assert_eq!(spike.input, "u1");
     assert!((spike.t - 3.99).abs() < 1e-9, "{spike:?}");
     // judged against u1 before its last three steps (42.4 N m: the move's

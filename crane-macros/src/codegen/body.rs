@@ -55,10 +55,10 @@ fn bindable(arena: &Arena, id: Id) -> bool {
     }
 }
 
-/// The statements of a function body that fills `outputs`.
-pub(super) fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream {
-    let arena = &model.arena;
-    let roots: Vec<Id> = outputs
+/// The values `outputs` write (their entries not zero by structure, where
+/// those are not written).
+pub(super) fn written_roots(arena: &Arena, outputs: &[Output]) -> Vec<Id> {
+    outputs
         .iter()
         .flat_map(|o| {
             o.writes
@@ -66,7 +66,13 @@ pub(super) fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream
                 .filter(|(_, id)| o.writes_entry(arena, *id))
                 .map(|&(_, id)| id)
         })
-        .collect();
+        .collect()
+}
+
+/// The statements of a function body that fills `outputs`.
+pub(super) fn body(model: &Model, mode: Mode, outputs: &[Output]) -> TokenStream {
+    let arena = &model.arena;
+    let roots = written_roots(arena, outputs);
     let reachable = arena.reachable(roots.iter().copied());
     let bound_order = bound_order(arena, &roots, &reachable);
 
@@ -296,25 +302,10 @@ impl<'a> Blocks<'a> {
     /// bound by earlier blocks where they are kept.
     pub(super) fn block(&mut self, outputs: &[Output]) -> TokenStream {
         let arena = self.printer.arena;
-        let roots: Vec<Id> = outputs
-            .iter()
-            .flat_map(|o| {
-                o.writes
-                    .iter()
-                    .filter(|(_, id)| o.writes_entry(arena, *id))
-                    .map(|&(_, id)| id)
-            })
-            .collect();
+        let roots = written_roots(arena, outputs);
         // the nodes the block prints, not looking into the bound ones
-        let mut seen = vec![false; arena.node_count()];
-        let mut stack = roots.clone();
-        while let Some(id) = stack.pop() {
-            if std::mem::replace(&mut seen[id.index()], true) || self.printer.bound.contains_key(&id) {
-                continue;
-            }
-            stack.extend(arena.node(id).children());
-        }
-        let reachable: Vec<Id> = arena.ids().filter(|id| seen[id.index()]).collect();
+        let bound = &self.printer.bound;
+        let reachable = arena.reachable_until(roots.iter().copied(), |id| bound.contains_key(&id));
         let order = bound_order_past(arena, &roots, &reachable, &self.printer.bound);
         let model = self.printer.model;
         let mut statements = common_subexpressions_from(model, &mut self.printer, &order, &mut self.temporaries);

@@ -64,8 +64,8 @@ pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &To
     let staged = staged_items(model, k, &a_lit);
 
     // the jets the body reads: unknowns from z, the load's from gamma
-    let roots: Vec<Id> = k.residual.iter().chain(k.jacobian.iter().flatten()).copied().collect();
-    let reads = jet_reads(model, k, &roots);
+    let roots = k.residual.iter().chain(k.jacobian.iter().flatten()).copied();
+    let reads = jet_reads(model, k, &model.arena.reachable(roots));
     let [res_var, jac_var] = [&outputs[0].var, &outputs[1].var];
     let layout = super::doc(format!(
         "Unknowns `z` in order: {}; equations in order: {}.",
@@ -124,23 +124,26 @@ pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &To
     }
 }
 
-/// `let` for each jet the expressions of `roots` read: an unknown's from
-/// `z`, the load's from `gamma`.
-fn jet_reads(model: &Model, k: &DummyKernels, roots: &[Id]) -> TokenStream {
-    let name = &model.name;
-    let (n, nr) = (model.n(), model.n_robot);
-    let (gamma, z) = (internal("gamma"), internal("z"));
-    let mut jets: Vec<(u16, u8)> = model
-        .arena
-        .reachable(roots.iter().copied())
-        .into_iter()
-        .filter_map(|id| match model.arena.node(id) {
+/// The jets `(unknown, order)` among the nodes `reachable`, sorted.
+fn jets_in(model: &Model, reachable: &[Id]) -> Vec<(u16, u8)> {
+    let mut jets: Vec<(u16, u8)> = (reachable.iter())
+        .filter_map(|&id| match model.arena.node(id) {
             Node::Sym(Sym::Jet(j, order)) => Some((*j, *order)),
             _ => None,
         })
         .collect();
     jets.sort_unstable();
-    jets.iter()
+    jets
+}
+
+/// `let` for each jet among the nodes `reachable` (those the body reads):
+/// an unknown's from `z`, the load's from `gamma`.
+fn jet_reads(model: &Model, k: &DummyKernels, reachable: &[Id]) -> TokenStream {
+    let name = &model.name;
+    let (n, nr) = (model.n(), model.n_robot);
+    let (gamma, z) = (internal("gamma"), internal("z"));
+    jets_in(model, reachable)
+        .iter()
         .map(|&(j, order)| {
             let local = jet_name(model, j, order);
             let (j, order_usize) = (j as usize, order as usize);
@@ -268,8 +271,9 @@ fn staged_items(model: &Model, k: &DummyKernels, a_lit: &proc_macro2::Literal) -
     }
     let mut roots: Vec<Id> = k.residual.clone();
     roots.extend(jacobian_output.writes.iter().map(|&(_, id)| id));
-    let mut reads = reads(model, Mode::F64, &model.arena.reachable(roots.iter().copied()));
-    reads.extend(jet_reads(model, k, &roots));
+    let reachable = model.arena.reachable(roots.iter().copied());
+    let mut reads = reads(model, Mode::F64, &reachable);
+    reads.extend(jet_reads(model, k, &reachable));
     let mut body = Blocks::new(model, Mode::F64);
     let mut statements = body.prelude(&roots, |id| level[id.index()] < 0);
     for b in 0..blocks {
@@ -292,10 +296,9 @@ fn staged_items(model: &Model, k: &DummyKernels, a_lit: &proc_macro2::Literal) -
                 .filter(|&(e, _)| row_blocks[e] > b)
                 .map(|(_, &id)| id)
                 .collect();
-            let read = model.arena.reachable(later);
+            let read = jets_in(model, &model.arena.reachable(later));
             for (slot, &(j, order)) in k.unknowns.iter().enumerate() {
-                let jet = Sym::Jet(j as u16, order);
-                if col_blocks[slot] == b && read.iter().any(|&id| model.arena.node(id) == &Node::Sym(jet)) {
+                if col_blocks[slot] == b && read.binary_search(&(j as u16, order)).is_ok() {
                     let (local, slot) = (jet_name(model, j as u16, order), index(slot));
                     statements.extend(quote!(let #local = #z[#slot];));
                 }
