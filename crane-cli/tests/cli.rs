@@ -2392,3 +2392,51 @@ fn numbers_in_messages_are_short() {
     );
     assert!(!stderr.contains("0000000000"), "{stderr}");
 }
+
+/// A long step stays on its branch: the paper's move at dt = 0.5 s and in
+/// one step of 100 s (the move slowed to 100 s) ends with the inputs and
+/// tensions of the fine step (navy-planar's end, Appendix A: u1 = -43.345
+/// N m, N1 = +433.45 N, u2 = -98.1 N m, N2 = +981 N; the prediction's other
+/// root had u1 = +133.2 N m and N1 = -1332 N at dt = 0.5, u2 = +98.1 N m
+/// and a rope of length -14.68 m at dt = 100), says that it followed the
+/// path in shorter steps, and warns of nothing; `--strict` passes.
+#[test]
+fn a_long_step_ends_on_the_branch_the_move_is_on() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, args) in [("half", &["--dt", "0.5"][..]), ("one", &["--tf", "100", "--dt", "100"])] {
+        let out = dir.path().join(name);
+        let mut all = vec!["run", "navy-planar", "--strict", "--out", out.to_str().unwrap()];
+        all.extend_from_slice(args);
+        let result = crane(&all);
+        let (stdout, stderr) = (
+            String::from_utf8_lossy(&result.stdout),
+            String::from_utf8_lossy(&result.stderr),
+        );
+        assert!(result.status.success(), "{name}: {stderr}");
+        assert!(!stderr.contains("warning"), "{name}: {stderr}");
+        assert!(
+            stdout.contains("steps followed the path in shorter steps"),
+            "{name}: {stdout}"
+        );
+        let (header, rows) = results(&out);
+        let column = |c: &str| header.iter().position(|h| h == c).unwrap();
+        let end = rows.last().unwrap();
+        // the same equations solved at the same time: round-off of 1e2
+        for (c, exact) in [
+            ("u1", -43.345_043_319_952),
+            ("N1", 433.450_433_199_52),
+            ("u2", -98.1),
+            ("N2", 981.0),
+        ] {
+            assert!(
+                (end[column(c)] - exact).abs() < 1e-9 * exact.abs(),
+                "{name}: {c} = {}",
+                end[column(c)]
+            );
+        }
+        assert!(
+            summary_json(&out)["newton"]["continued_steps"].as_u64().unwrap() >= 1,
+            "{name}"
+        );
+    }
+}

@@ -65,7 +65,7 @@ use crate::problem::{Accepted, Follow, Predictor, Problem, Start};
 use crate::redundant::Redundant;
 use crate::scheme::{Method, StepFormula};
 use crate::solution::{Solution, State};
-use crate::stepper::{Advance, StepReport, Stepper, nearly_slack};
+use crate::stepper::{Advance, StepReport, Stepper, nearly_slack, rope_branch_left};
 use crate::trajectory::Trajectory;
 
 /// The highest derivative of the load path a [`PathJets`] holds.
@@ -403,6 +403,13 @@ where
             v: SVector::zeros(),
         })
     }
+
+    /// Where a rope's length or a taut rope's tension changed sign
+    /// ([`rope_branch_left`]): the system is algebraic at each time, so the
+    /// [`DummyDerivativeStepper`] follows its branch by shorter steps.
+    fn leaves_branch(&self, before: &State<N, M, A>, after: &State<N, M, A>) -> bool {
+        rope_branch_left(&*self.model, before, after)
+    }
 }
 
 impl<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> Follow<N, M, A, 0>
@@ -517,18 +524,36 @@ where
         if self.reduced.steps() > 0 && nearly_slack(self.reduced.problem().model(), self.reduced.state()) {
             return self.fallback_step(t, jets, None);
         }
-        match self.reduced.step_to(t, jets) {
-            Ok(report) => {
-                self.fallback.follow(self.reduced.state())?;
-                Ok(report)
-            }
+        let report = match self.reduced.step_to(t, jets) {
+            Ok(report) => report,
             Err(error @ (Error::NewtonNotConverged { .. } | Error::SingularIterationMatrix { .. }))
                 if degenerate(self.reduced.problem().model(), self.reduced.state()) =>
             {
-                self.fallback_step(t, jets, Some(error))
+                // eqs. (22) hold what the degenerate state leaves free; a
+                // step too long for their scheme is the reduced system's
+                // by shorter steps
+                match self.fallback_step(t, jets, None) {
+                    Ok(report) => return Ok(report),
+                    Err(_) => self.reduced.continue_to(t, jets).map_err(|_| error)?,
+                }
             }
-            Err(error) => Err(error),
-        }
+            // a step that left its branch, or whose Newton failed from the
+            // prediction: the same solution by shorter steps along the path
+            // (the system is algebraic at each time: they cost no accuracy)
+            Err(Error::BranchLeft { .. }) => match self.reduced.continue_to(t, jets) {
+                Ok(report) => report,
+                // a rope going slack passes a singular configuration (no
+                // tension leaves what it holds free), where Newton fails
+                // at the shortest steps: the step across it, as found
+                Err(_) => self.reduced.step_across(t, jets)?,
+            },
+            Err(error @ (Error::NewtonNotConverged { .. } | Error::SingularIterationMatrix { .. })) => {
+                self.reduced.continue_to(t, jets).map_err(|_| error)?
+            }
+            Err(error) => return Err(error),
+        };
+        self.fallback.follow(self.reduced.state())?;
+        Ok(report)
     }
 
     /// The step to `t` in eqs. (22a-d), which the reduced stepper follows;

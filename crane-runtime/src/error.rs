@@ -211,6 +211,19 @@ pub enum Error {
         /// What differs, with both values.
         what: String,
     },
+    /// A step's solution is another root of the step's equations than the
+    /// one its start lies on (a rope's length, or the tension of a rope that
+    /// was clearly taut, changed sign): the step is too long for the
+    /// prediction to stay on its branch.
+    #[error(
+        "the step to t = {} s left the branch of solutions it started on (a rope's length or the tension of a \
+         taut rope changed sign within one step); a smaller dt follows it",
+        Seconds::of(.t)
+    )]
+    BranchLeft {
+        /// Time of the step.
+        t: f64,
+    },
     /// `step_to` was asked for a time that is not the next step's.
     #[error("a step must go to t_n + dt = {} s, not {} s", Seconds::of(.expected), Seconds::of(.t))]
     WrongStepTime {

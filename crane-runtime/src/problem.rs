@@ -130,6 +130,16 @@ pub trait Problem<const N: usize, const M: usize, const A: usize, const K: usize
     /// The state at `t` from the converged unknowns `z` (which the problem
     /// may not change), or why it is not one (an ill-conditioned map, say).
     fn accept(&mut self, t: f64, z: &DVector<f64>) -> Result<Accepted<N, M, A, K>, Error>;
+
+    /// Whether the step from `before` to `after` left the branch of
+    /// solutions it started on, where the problem's equations have other
+    /// roots near (the mirror configurations of an algebraic system: a
+    /// rope of negative length pushing its load). Such a step is refused
+    /// ([`Error::BranchLeft`]) and not recorded. Never, by default.
+    fn leaves_branch(&self, before: &State<N, M, A>, after: &State<N, M, A>) -> bool {
+        let _ = (before, after);
+        false
+    }
 }
 
 /// A problem that can follow a state another problem computed, so that it

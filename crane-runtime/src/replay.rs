@@ -402,6 +402,7 @@ mod tests {
             tensions: vec![],
             min_norm_steps: 0,
             held_steps: 0,
+            continued_steps: 0,
             path_order_covered: None,
             shortest_ropes: vec![],
             redundant_start_steps: 0,

@@ -45,6 +45,11 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     /// Time steps that held the direction a nearly slack rope leaves free
     /// ([`nearly_slack`](crate::stepper::nearly_slack)).
     pub held_steps: usize,
+    /// Time steps taken by continuation, in shorter steps that kept the
+    /// solution on its branch
+    /// ([`Stepper::continue_to`](crate::stepper::Stepper::continue_to); the
+    /// reduced formulation's long steps).
+    pub continued_steps: usize,
     /// The highest path order the formulation that computed it covers
     /// ([`Problem::path_order_covered`](crate::problem::Problem::path_order_covered));
     /// `None` if not a servo problem's run.
@@ -81,6 +86,7 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
             tensions: Vec::new(),
             min_norm_steps: 0,
             held_steps: 0,
+            continued_steps: 0,
             path_order_covered: None,
             shortest_ropes: vec![(f64::INFINITY, f64::NAN); ropes],
             redundant_start_steps: 0,
@@ -113,6 +119,7 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         // a step counts once however many of its iterations were singular
         self.min_norm_steps += usize::from(report.min_norm_steps > 0);
         self.held_steps += usize::from(report.held);
+        self.continued_steps += usize::from(report.substeps > 0);
         let ropes = self.info.ropes.len();
         let first = self.tensions.len();
         self.tensions.resize(first + ropes, 0.0);

@@ -57,6 +57,9 @@ pub struct StepReport {
     /// Whether the step held the direction a nearly slack rope leaves free
     /// (see [`nearly_slack`]).
     pub held: bool,
+    /// Of a step by continuation ([`Stepper::continue_to`]): the shorter
+    /// steps it took to stay on its branch (0: one step).
+    pub substeps: usize,
 }
 
 impl StepReport {
@@ -100,6 +103,42 @@ pub fn nearly_slack<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, co
     any_rope_tension(model, state, |n, largest| n.abs() < HOLD_TENSION_RATIO * largest)
 }
 
+/// A rope carrying at least this fraction of the largest tension is
+/// clearly taut: its tension changing sign within one step is a change of
+/// branch to be confirmed by shorter steps ([`rope_branch_left`]); a rope
+/// below it may go slack by round-off (the slow move's ropes under
+/// [`HOLD_TENSION_RATIO`]).
+pub const TAUT_TENSION_RATIO: f64 = 1e-6;
+
+/// Whether a step from `before` to `after` changed the sign of a rope's
+/// length, or of the tension of a rope that was clearly taut
+/// ([`TAUT_TENSION_RATIO`]): the rope constraints `|d|^2 = L^2` and the
+/// force balance hold as well for `-L` and a pushing rope, the mirror
+/// configurations a long step's prediction may converge to (navy-planar at
+/// dt = 0.5 s: its boom tip above the jib at t = 4 s, `N1 = -1332 N` where
+/// the move has `+433.5 N`). A real slackening is confirmed as such by a
+/// step short enough to follow it.
+pub fn rope_branch_left<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    before: &State<N, M, A>,
+    after: &State<N, M, A>,
+) -> bool {
+    let ropes = Mdl::INFO.ropes.len().min(M);
+    let (mut was, mut is) = ([0.0; M], [0.0; M]);
+    let (was, is) = (&mut was[..ropes], &mut is[..ropes]);
+    model.rope_lengths(&before.q, was);
+    model.rope_lengths(&after.q, is);
+    if was.iter().zip(is.iter()).any(|(&was, &is)| was > 0.0 && !(is > 0.0)) {
+        return true;
+    }
+    model.rope_tensions(&before.q, &before.lambda, was);
+    model.rope_tensions(&after.q, &after.lambda, is);
+    let largest = was.iter().map(|n| n.abs()).fold(0.0, f64::max);
+    was.iter()
+        .zip(is.iter())
+        .any(|(&was, &is)| was > 0.0 && was >= TAUT_TENSION_RATIO * largest && !(is > 0.0))
+}
+
 /// Anything that advances a crane one step at a time: a [`Stepper`], or
 /// problems in sequence ([`Handover`]). The run loop of [`crate::driver`]
 /// takes one.
@@ -135,8 +174,13 @@ pub struct Stepper<P, S: Method, const N: usize, const M: usize, const A: usize,
     /// `newest`, each older one after it, wrapping around.
     past: [DVector<f64>; MAX_EXTRAPOLATION],
     newest: usize,
+    /// The last two solutions of a continuation ([`Stepper::continue_to`]).
+    scratch: [DVector<f64>; 2],
     /// How many of `past` are known (1 ..= MAX_EXTRAPOLATION).
     known: usize,
+    /// Whether a step is refused where it leaves its branch
+    /// ([`Problem::leaves_branch`]; not in [`step_across`](Self::step_across)).
+    check_branch: bool,
     /// Whether the last step took a minimum-norm step (a singular
     /// iteration matrix): the next one predicts with the scheme's degree.
     last_singular: bool,
@@ -193,8 +237,10 @@ where
             newton,
             past: std::array::from_fn(|_| z.clone()),
             newest: 0,
+            scratch: [z.clone(), z.clone()],
             z,
             known: 1,
+            check_branch: true,
             last_singular: false,
             state: *start,
             t0: start.t,
@@ -284,6 +330,17 @@ where
         self.advance(expected, drive)
     }
 
+    /// [`step_to`](Self::step_to) taking the solution it finds even where it
+    /// leaves its branch ([`Problem::leaves_branch`]): the step across a
+    /// singular configuration that shorter steps cannot follow (a rope whose
+    /// tension passes zero leaves what it holds free there).
+    pub fn step_across(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
+        self.check_branch = false;
+        let report = self.step_to(t, drive);
+        self.check_branch = true;
+        report
+    }
+
     /// One step: the scheme's formula, the prediction, Newton, the state.
     fn advance(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
         self.problem.check_drive(drive, t)?;
@@ -324,6 +381,9 @@ where
             Err(failure) => return Err(step_error(failure, t)),
         };
         let accepted = self.problem.accept(t, &self.z)?;
+        if self.check_branch && self.problem.leaves_branch(&self.state, &accepted.state) {
+            return Err(Error::BranchLeft { t });
+        }
         self.record(accepted);
         self.last_singular = converged.min_norm_steps > 0;
         Ok(StepReport {
@@ -331,6 +391,7 @@ where
             // every solve of a held step is a minimum-norm one, by choice
             min_norm_steps: if held { 0 } else { converged.min_norm_steps },
             held,
+            substeps: 0,
         })
     }
 
@@ -418,6 +479,105 @@ where
         let (y, v) = self.problem.follow(state, self.history.value(), formula, &mut self.z)?;
         self.record(Accepted { state: *state, y, v });
         Ok(())
+    }
+}
+
+/// The shortest step of a continuation ([`Stepper::continue_to`]), as a
+/// fraction of the time step: a change of branch that persists down to it
+/// is the path's own (a rope going slack), taken as found.
+pub const CONTINUATION_SHORTEST: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// The most Newton solves one step by continuation may take
+/// ([`Stepper::continue_to`]).
+pub const CONTINUATION_SOLVES: usize = 2000;
+
+impl<P, S, const N: usize, const M: usize, const A: usize> Stepper<P, S, N, M, A, 0>
+where
+    P: Problem<N, M, A, 0>,
+    S: Method,
+{
+    /// The step to `t` ([`next_time`](Self::next_time)) by continuation in
+    /// time, for a problem that is algebraic at each time (nothing
+    /// discretised, `K = 0`, so that a shorter step costs no accuracy):
+    /// from the last step's solution along the problem's own drive, in
+    /// steps halved where Newton fails or the solution leaves its branch
+    /// ([`Problem::leaves_branch`]) and doubled after each that succeeds,
+    /// each predicted by the secant through the two before; only the step
+    /// to `t`, with `drive`, is recorded. A change of branch that persists
+    /// down to [`CONTINUATION_SHORTEST`] of the step is taken. Fails with
+    /// the Newton failure of the shortest step, or [`Error::BranchLeft`]
+    /// after [`CONTINUATION_SOLVES`] solves.
+    pub fn continue_to(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
+        let t = {
+            let expected = self.next_time();
+            check_step_time(t, expected, self.dt)?;
+            expected
+        };
+        let formula = self.history.formula(self.dt);
+        let shortest = CONTINUATION_SHORTEST * self.dt;
+        // the known solution (at `from`, whose state is `at`) and the one
+        // before it, `back` earlier (0: none known on this continuation)
+        let (mut from, mut at, mut back) = (self.state.t, self.state, 0.0);
+        let mut known = 1;
+        self.scratch[0].copy_from(&self.past[self.newest]);
+        let mut h = 0.5 * (t - from);
+        let (mut iterations, mut substeps) = (0, 0);
+        for _ in 0..CONTINUATION_SOLVES {
+            let last = from + h >= t - 0.5 * shortest;
+            let to = if last { t } else { from + h };
+            let owned;
+            let target = if last {
+                drive
+            } else {
+                owned = self.problem.drive(to);
+                &owned
+            };
+            self.problem.check_drive(target, to)?;
+            self.problem.prepare(target, formula);
+            // the secant through the two known solutions, or the last one
+            self.z.copy_from(&self.scratch[0]);
+            if known == 2 {
+                let ratio = (to - from) / back;
+                self.z.axpy(ratio, &self.scratch[0], 1.0);
+                self.z.axpy(-ratio, &self.scratch[1], 1.0);
+            }
+            self.newton.set_hold(false);
+            let solved = self.newton.solve(&mut self.problem, &mut self.z);
+            iterations += solved.as_ref().map_or_else(|f| f.iterations(), |c| c.iterations);
+            let shorter = (to - from) > shortest;
+            let converged = match solved {
+                Ok(converged) => converged,
+                Err(failure) if !shorter => return Err(step_error(failure, to)),
+                Err(_) => {
+                    h = 0.5 * (to - from);
+                    continue;
+                }
+            };
+            let accepted = self.problem.accept(to, &self.z)?;
+            if shorter && self.problem.leaves_branch(&at, &accepted.state) {
+                h = 0.5 * (to - from);
+                continue;
+            }
+            substeps += 1;
+            if last {
+                self.record(accepted);
+                self.last_singular = converged.min_norm_steps > 0;
+                return Ok(StepReport {
+                    iterations,
+                    min_norm_steps: converged.min_norm_steps,
+                    held: false,
+                    substeps,
+                });
+            }
+            // the newest known solution first, the one before it second
+            self.scratch.swap(0, 1);
+            self.scratch[0].copy_from(&self.z);
+            known = 2;
+            back = to - from;
+            (from, at) = (to, accepted.state);
+            h = 2.0 * back;
+        }
+        Err(Error::BranchLeft { t })
     }
 }
 

@@ -74,7 +74,8 @@ fn assert_descriptive(error: &Error) {
         Error::NewtonNotConverged { .. }
         | Error::SingularIterationMatrix { .. }
         | Error::NonFinite { .. }
-        | Error::SingularOutputJacobian { .. } => message.contains("t = "),
+        | Error::SingularOutputJacobian { .. }
+        | Error::BranchLeft { .. } => message.contains("t = "),
         Error::NonFiniteParameter { name, .. } | Error::ParameterOutOfRange { name, .. } => {
             message.contains(&format!("`{name}`"))
         }

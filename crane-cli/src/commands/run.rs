@@ -215,6 +215,15 @@ impl Visit for Run<'_> {
                 crane_runtime::minimal::DEGENERATE_TENSION_RATIO
             )?;
         }
+        if solution.continued_steps > 0 {
+            say!(
+                "  {} of {} steps followed the path in shorter steps: from the prediction, Newton failed or found \
+                 another root of the same equations (a mirror configuration); the inputs at the step times are \
+                 exact",
+                solution.continued_steps,
+                solution.steps()
+            )?;
+        }
         if solution.held_steps > 0 {
             say!(
                 "  {} of {} steps held what a nearly slack rope leaves free (a rope under {:e} of the largest \

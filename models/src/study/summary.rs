@@ -105,6 +105,12 @@ pub struct NewtonSummary {
     /// where the predictor put them (a rope under 1e-11 of the largest
     /// tension; the limit of a vanishing tension).
     pub held_steps: usize,
+    /// Time steps of the reduced formulation taken by continuation: their
+    /// solution left its branch (a mirror configuration, a rope of negative
+    /// length) or Newton failed from the prediction, and shorter steps
+    /// followed the path to the step time (only the step times are
+    /// reported).
+    pub continued_steps: usize,
 }
 
 /// A torque limit from the scenario's `[limits]` and when it is first exceeded.
@@ -573,6 +579,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         min_norm_steps: solution.min_norm_steps,
         redundant_start_steps: solution.redundant_start_steps,
         held_steps: solution.held_steps,
+        continued_steps: solution.continued_steps,
     };
     Summary {
         model: model.to_string(),
