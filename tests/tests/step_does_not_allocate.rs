@@ -3,7 +3,8 @@
 //! for every scheme, in redundant and in minimal coordinates, including the
 //! first steps from the degenerate start where Newton falls back to the
 //! minimum-norm solve (and the minimal stepper's retry from the last step);
-//! the dummy-derivative stepper; and the forward problem's stepper.
+//! the dummy-derivative stepper, its long steps by continuation included;
+//! and the forward problem's stepper.
 //! One test function, so that no other test allocates while one counts.
 
 use crane_models::navy_planar::{PaperCase, minimal_guess};
@@ -69,5 +70,20 @@ fn stepping_does_not_allocate() {
             let (allocations, _) = allocations_in(&mut forward, steps.min(400));
             assert_eq!(allocations, 0, "forward {scheme} dt = {dt}: {allocations} allocations");
         }
+    }
+    // steps by continuation (a long step's prediction lands on the mirror
+    // configuration at t = 4 s) take their shorter steps without allocating
+    for dt in [0.5, 4.0] {
+        let options = Options::stepping(dt).unwrap();
+        let mut reduced = DummyDerivativeStepper::new(case.model(), case.path(), &start, &options).unwrap();
+        let steps = (4.0 / dt).round() as usize;
+        let (allocations, substeps) = allocations_during(|| {
+            (0..steps)
+                .map(|_| reduced.step().map(|r| r.substeps).unwrap_or(usize::MAX))
+                .fold(0, usize::saturating_add)
+        });
+        assert!(substeps > 0 && substeps < usize::MAX, "dt = {dt}: {substeps} substeps");
+        assert_eq!(allocations, 0, "dummy-derivative dt = {dt}: {allocations} allocations");
+        println!("dummy-derivative dt = {dt}: {substeps} shorter steps by continuation, 0 allocations");
     }
 }
