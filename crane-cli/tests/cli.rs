@@ -2440,3 +2440,27 @@ fn a_long_step_ends_on_the_branch_the_move_is_on() {
         );
     }
 }
+
+/// Exact inputs at steps too long for the move's features are no spike:
+/// tower-crane's 10 s move at dt = 1 s turns u2 by 455 N between steps
+/// where its peak elsewhere is 233 N (the same inputs as dt = 0.001 s to
+/// 1e-15 of their peak), and navy-planar's 4 s move in two steps; neither
+/// warns and `--strict` passes. `summary.json` gives the feature the steps
+/// are judged against.
+#[test]
+fn exact_inputs_at_long_steps_are_not_called_spikes() {
+    let dir = tempfile::tempdir().unwrap();
+    for (model, dt, feature) in [("tower-crane", "1.0", 10.0), ("navy-planar", "2", 4.0)] {
+        let out = dir.path().join(model);
+        let result = crane(&["run", model, "--dt", dt, "--strict", "--out", out.to_str().unwrap()]);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(result.status.success(), "{model}: {stderr}");
+        assert!(!stderr.contains("turns by"), "{model}: {stderr}");
+        let summary = summary_json(&out);
+        assert_eq!(summary["shortest_feature"].as_f64(), Some(feature), "{model}");
+        // the turn is there: it is the step, not the input, that is coarse
+        let spike = &summary["input_spike"];
+        let ratio = spike["second_difference"].as_f64().unwrap() / spike["peak"].as_f64().unwrap();
+        assert!(ratio > 1.0, "{model}: {ratio}");
+    }
+}

@@ -399,7 +399,10 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
         });
     }
     out.extend(unresolved_ramp(summary.ramp, summary.dt));
-    if let Some(spike) = summary.input_spike.as_ref().filter(|s| s.spiky()) {
+    // steps too long for the path's features turn smooth inputs by as much
+    // as their peak: no sign of a wrong input there
+    let resolved = super::summary::resolves(summary.shortest_feature, summary.dt);
+    if let Some(spike) = summary.input_spike.as_ref().filter(|s| resolved && s.spiky()) {
         out.push(Finding::InputSpike {
             model: summary.model.clone(),
             spike: spike.clone(),
