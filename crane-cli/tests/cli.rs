@@ -1896,6 +1896,20 @@ fn every_input_is_bounded_and_every_repeat_decided() {
         let device = refused(&["run", "navy-planar", "--scenario", "/dev/zero", "--out", out]);
         assert!(device.contains("scenario /dev/zero: not a regular file"), "{device}");
     }
+    // a FIFO without a writer: refused by its type, not opened (which
+    // would block for ever)
+    let fifo = dir.path().join("fifo.toml");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if made.is_ok_and(|status| status.success()) {
+        let pipe = refused(&["run", "navy-planar", "--scenario", fifo.to_str().unwrap(), "--out", out]);
+        assert!(pipe.contains("fifo.toml: not a regular file"), "{pipe}");
+    }
+    // times double precision cannot tell apart at the step (0.0156 s at
+    // 1e14 s): refused before the run, which repeated its time stamps
+    let late = dir.path().join("late.toml");
+    std::fs::write(&late, "t0 = 1e14\n").unwrap();
+    let times = refused(&["run", "navy-planar", "--scenario", late.to_str().unwrap(), "--out", out]);
+    assert!(times.contains("resolves times only to 1.562e-2 s"), "{times}");
     let big = dir.path().join("big.toml");
     std::fs::write(&big, format!("# {}\ndt = 0.01\n", "x".repeat(2 << 20))).unwrap();
     let large = refused(&["run", "navy-planar", "--scenario", big.to_str().unwrap(), "--out", out]);

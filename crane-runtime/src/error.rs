@@ -80,6 +80,22 @@ pub enum Error {
         /// End time.
         tf: f64,
     },
+    /// The run's times are too large for double precision to tell its
+    /// steps apart ([`TIME_RESOLUTION`](crate::options::TIME_RESOLUTION)).
+    #[error(
+        "at t = {} s double precision resolves times only to {resolution:.3e} s, more than 1e-6 of dt = {} s: the \
+         step times cannot be told apart; put the time origin near the run (t0 = 0)",
+        Seconds::of(.t),
+        Seconds(*.dt)
+    )]
+    TimesUnresolved {
+        /// The largest time of the run, s.
+        t: f64,
+        /// The spacing of doubles there, s.
+        resolution: f64,
+        /// The time step, s.
+        dt: f64,
+    },
     /// The time span is not a whole number of steps.
     #[error("tf - t0 = {} s is not a whole number of steps of dt = {} s", Seconds(*.span), Seconds(*.dt))]
     StepsDoNotFit {

@@ -125,7 +125,25 @@ pub fn step_count(t0: f64, tf: f64, dt: f64) -> Result<usize, Error> {
     if !(tf.is_finite() && t0.is_finite() && tf > t0) {
         return Err(Error::InvalidTimeSpan { t0, tf });
     }
+    let resolution = time_resolution(t0.abs().max(tf.abs()));
+    if !(resolution <= TIME_RESOLUTION * dt) {
+        return Err(Error::TimesUnresolved { t: tf, resolution, dt });
+    }
     steps_in(tf - t0, dt)
+}
+
+/// The coarsest spacing of doubles at a run's times, as a fraction of its
+/// step, that [`step_count`] takes: the step times `t0 + n dt` are each
+/// rounded to that spacing, so that with 1e-6 the load path is sampled
+/// within 1e-6 of a step of where the scheme assumes (`t0 = 1e14`, `dt =
+/// 0.01` rounds every time to 0.0156 s: repeated times, and inputs of 1e44
+/// N m).
+pub const TIME_RESOLUTION: f64 = 1e-6;
+
+/// The spacing of doubles at `t` (`t >= 0`): the distance to the next
+/// larger double.
+fn time_resolution(t: f64) -> f64 {
+    f64::from_bits(t.to_bits() + 1) - t
 }
 
 /// Number of steps of size `dt` in `span` (`> 0`), refusing a span that is
@@ -146,4 +164,29 @@ pub fn steps_in(span: f64, dt: f64) -> Result<usize, Error> {
         });
     }
     Ok(steps as usize)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A run whose times double precision cannot tell apart at its step is
+    /// refused: the paper's move shifted to t0 = 1e14 s (times spaced by
+    /// 0.0156 s there, more than dt = 0.01 s), and to 1e9 s at dt = 0.001 s
+    /// (1.2e-7 s, 1.2e-4 of the step); an FMU host's clock past 8192 s at
+    /// dt = 0.001 s (1.8e-12 s, 1.8e-9 of the step) and a start at -1e5 s
+    /// are taken.
+    #[test]
+    fn times_double_precision_cannot_tell_apart_are_refused() {
+        for (t0, dt) in [(1e14, 0.01), (1e9, 0.001), (-1e14, 0.01)] {
+            let refused = step_count(t0, t0 + 4.0, dt);
+            assert!(
+                matches!(refused, Err(Error::TimesUnresolved { .. })),
+                "{t0}: {refused:?}"
+            );
+            assert!(refused.unwrap_err().to_string().contains("t0 = 0"));
+        }
+        assert_eq!(step_count(8192.0, 8196.0, 0.001).unwrap(), 4000);
+        assert_eq!(step_count(-1e5, -1e5 + 4.0, 0.01).unwrap(), 400);
+    }
 }

@@ -81,7 +81,9 @@ fn assert_descriptive(error: &Error) {
         }
         Error::InconsistentStart { equation, .. } => !equation.is_empty() && message.contains(equation.as_str()),
         Error::NonUniqueEquilibrium { free, .. } => !free.is_empty() && message.contains(free.as_str()),
-        Error::InvalidTimeStep { .. } | Error::StepsDoNotFit { .. } => message.contains("dt = "),
+        Error::InvalidTimeStep { .. } | Error::StepsDoNotFit { .. } | Error::TimesUnresolved { .. } => {
+            message.contains("dt = ")
+        }
         Error::InvalidTimeSpan { .. } => message.contains("t0 = "),
         Error::InvalidEndTime { .. } => message.contains("tf = "),
         Error::InvalidNewtonOptions(what) => message.contains(what),

@@ -88,7 +88,12 @@ fn read_bounded(path: &Path) -> Result<String, ScenarioError> {
         path: path.display().to_string(),
         what,
     };
+    // the type first: opening a FIFO without a writer blocks for ever
+    if !std::fs::metadata(path).map_err(read_error)?.is_file() {
+        return Err(not_a_scenario("not a regular file".into()));
+    }
     let file = std::fs::File::open(path).map_err(read_error)?;
+    // and again on what was opened (the name may have been replaced since)
     let metadata = file.metadata().map_err(read_error)?;
     if !metadata.is_file() {
         return Err(not_a_scenario("not a regular file".into()));
