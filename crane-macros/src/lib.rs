@@ -85,7 +85,8 @@
 //!   their own.
 //!
 //! Expressions: `+ - * /`, unary minus, `^` (integer or real constant
-//! exponent; binds tighter than unary minus, right-associative), parentheses,
+//! exponent; binds tighter than unary minus; a chain `a^b^c` needs
+//! parentheses), parentheses,
 //! `sin cos tan sqrt exp ln atan2(y, x)`, numbers, `PI`, and the declared
 //! names (nested at most 256 levels and 4096 operations deep: beyond, an
 //! error instead of an overflow of the compiler's stack). Mistakes are

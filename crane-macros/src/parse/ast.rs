@@ -149,7 +149,7 @@ pub enum BinOp {
     Mul,
     /// `/`
     Div,
-    /// `^`, a power (right-associative, tighter than unary minus).
+    /// `^`, a power (tighter than unary minus; chains need parentheses).
     Pow,
 }
 

@@ -1,7 +1,8 @@
 //! The expression parser: a small Pratt parser from tokens to an [`Expr`].
 //!
 //! `syn::Expr` gives `^` the precedence of Rust's xor, which is wrong for a
-//! power; here `^` binds tighter than unary minus and is right-associative.
+//! power; here `^` binds tighter than unary minus, and a chain `a^b^c`
+//! without parentheses is an error (tools read it either way).
 
 use proc_macro2::{Ident, Span};
 use syn::parse::ParseStream;
@@ -61,11 +62,18 @@ fn expr_bp(input: ParseStream, min_bp: u8, nesting: usize) -> syn::Result<(Expr,
         if left_bp < min_bp {
             break;
         }
-        input.step(|cursor| match cursor.punct() {
-            Some((_, rest)) => Ok(((), rest)),
+        let op_span = input.step(|cursor| match cursor.punct() {
+            Some((punct, rest)) => Ok((punct.span(), rest)),
             None => Err(cursor.error("expected an operator")),
         })?;
         let (rhs, rhs_depth) = expr_bp(input, right_bp, nesting + 1)?;
+        if op == BinOp::Pow && is_power(&rhs) {
+            return Err(syn::Error::new(
+                op_span,
+                "chained `^` without parentheses: `a^b^c` reads as `a^(b^c)` in mathematics and as `(a^b)^c` in \
+                 many tools; write the parentheses you mean",
+            ));
+        }
         depth = depth.max(rhs_depth) + 1;
         if depth > MAX_DEPTH {
             return Err(input.error(format!(
@@ -80,6 +88,16 @@ fn expr_bp(input: ParseStream, min_bp: u8, nesting: usize) -> syn::Result<(Expr,
         };
     }
     Ok((lhs, depth))
+}
+
+/// Whether `expr` is a power as parsed, under any minus signs (not one in
+/// parentheses).
+fn is_power(expr: &Expr) -> bool {
+    match expr {
+        Expr::Binary { op: BinOp::Pow, .. } => true,
+        Expr::Neg { operand, .. } => is_power(operand),
+        _ => false,
+    }
 }
 
 fn peek_binop(input: ParseStream) -> Option<BinOp> {

@@ -62,11 +62,25 @@ fn unary_minus_binds_tighter_than_products() {
 }
 
 #[test]
-fn power_is_right_associative_and_takes_signed_exponents() {
-    assert_eq!(parsed("2^3^2"), "(^ 2 (^ 3 2))");
+fn power_takes_signed_exponents_and_parenthesised_chains() {
     assert_eq!(parsed("x^-1"), "(^ x (neg 1))");
-    assert_eq!(parsed("x^-y^2"), "(^ x (neg (^ y 2)))");
     assert_eq!(parsed("x^0.5"), "(^ x 0.5)");
+    assert_eq!(parsed("2^(3^2)"), "(^ 2 (^ 3 2))");
+    assert_eq!(parsed("(L^(1/2))^4"), "(^ (^ L (/ 1 2)) 4)");
+}
+
+/// `L^(1/2)^4` is `L^(1/16)` to a mathematician and `L^2` to a
+/// spreadsheet: a chain of powers without parentheses is an error at the
+/// first `^`, minus signs between them included.
+#[test]
+fn chained_powers_need_parentheses() {
+    for chain in ["2^3^2", "L^(1/2)^4", "x^-y^2", "a*b^c^d + 1"] {
+        let message = parse_error(chain);
+        assert!(
+            message.contains("chained `^` without parentheses"),
+            "{chain}: {message}"
+        );
+    }
 }
 
 #[test]
