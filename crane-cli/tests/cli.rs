@@ -1057,6 +1057,29 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
     ]);
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("plant parameter `mass`: unknown parameter"));
+    // a plant parameter out of its range is refused before the inverse run:
+    // nothing is written
+    let negative = dir.path().join("negative");
+    let refused = crane(&[
+        "run",
+        "navy-planar",
+        "--replay",
+        "--plant",
+        "m_l=-1",
+        "--quiet",
+        "--out",
+        negative.to_str().unwrap(),
+    ]);
+    assert!(!refused.status.success());
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.contains("plant parameter `m_l`: parameter `m_l` = -1 must be positive"),
+        "{stderr}"
+    );
+    assert!(
+        !negative.exists(),
+        "the inverse run was written before the plant was refused"
+    );
 }
 
 /// The built-in crane that is not flat (`coupled-trolley`, unstable

@@ -164,6 +164,11 @@ impl Visit for Run<'_> {
             plant: settings.plant.iter().cloned().chain(request.plant).collect(),
             ..request
         });
+        // the plant is checked before any work: a refused plant leaves no
+        // inverse run written
+        if let Some(request) = &replay {
+            study::replay::plant(&case, request)?;
+        }
         let mut progress = progress::Progress::new(C::NAME, self.quiet);
         let outcome = study::run(&case, &settings, &mut |step, steps| progress.tick(step, steps));
         progress.finish();

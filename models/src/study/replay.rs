@@ -127,6 +127,34 @@ impl<const N: usize, const M: usize, const A: usize> ReplayOutcome<N, M, A> {
     }
 }
 
+/// The plant of `request`: the case's crane with the request's parameters,
+/// each known, finite and in its range
+/// ([`check_parameters`](crane_runtime::model::check_parameters)), and
+/// those that changed. A request is checked so before any run.
+pub fn plant<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    request: &ReplayRequest,
+) -> Result<(C::Model, BTreeMap<String, f64>), StudyError> {
+    let mut model = case.model().clone();
+    let mut changed = BTreeMap::new();
+    for (name, value) in &request.plant {
+        let refused = |message: String| StudyError::PlantParameter {
+            name: name.clone(),
+            message,
+        };
+        if !value.is_finite() {
+            return Err(refused(format!("{value} is not finite")));
+        }
+        model.set_parameter(name, *value).map_err(|e| refused(e.to_string()))?;
+        changed.insert(name.clone(), *value);
+    }
+    crane_runtime::model::check_parameters(&model).map_err(|e| StudyError::PlantParameter {
+        name: changed.keys().cloned().collect::<Vec<_>>().join(", "),
+        message: e.to_string(),
+    })?;
+    Ok((model, changed))
+}
+
 /// Replay `inverse` (a run of `case`) on the case's crane with the
 /// request's plant parameters, settling window and feedback law.
 pub fn replay_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
@@ -134,23 +162,7 @@ pub fn replay_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
     inverse: &Solution<N, M, A>,
     request: &ReplayRequest,
 ) -> Result<ReplayOutcome<N, M, A>, StudyError> {
-    let mut model = case.model().clone();
-    let mut changed = BTreeMap::new();
-    for (name, value) in &request.plant {
-        if !value.is_finite() {
-            return Err(StudyError::PlantParameter {
-                name: name.clone(),
-                message: format!("{value} is not finite"),
-            });
-        }
-        model
-            .set_parameter(name, *value)
-            .map_err(|e| StudyError::PlantParameter {
-                name: name.clone(),
-                message: e.to_string(),
-            })?;
-        changed.insert(name.clone(), *value);
-    }
+    let (model, changed) = plant(case, request)?;
     let (Some(start), Some(end)) = (inverse.states.first(), inverse.states.last()) else {
         return Err(StudyError::Runtime(crane_runtime::Error::InvalidTimeSpan {
             t0: f64::NAN,
