@@ -477,11 +477,16 @@ impl<const A: usize, const SMOOTH: bool> Trajectory<A> for Phased<A, SMOOTH> {
         self.0.derivatives_into(t, out)
     }
 
-    /// 4 for the ramps of [`ThreePhase`], 6 for those of [`SmoothThreePhase`].
+    /// 4 for the ramps of [`ThreePhase`], [`SMOOTH_THREE_PHASE_CONTINUITY`]
+    /// for those of [`SmoothThreePhase`].
     fn continuity(&self) -> Option<usize> {
-        Some(if SMOOTH { 6 } else { 4 })
+        Some(if SMOOTH { SMOOTH_THREE_PHASE_CONTINUITY } else { 4 })
     }
 }
+
+/// How many derivatives of a [`SmoothThreePhase`] path are continuous: the
+/// smoothest of the built-in paths.
+pub const SMOOTH_THREE_PHASE_CONTINUITY: usize = 6;
 
 /// A user-supplied path: a closure `(t, k) -> gamma^(k)(t)`.
 ///

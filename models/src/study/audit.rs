@@ -216,14 +216,25 @@ impl fmt::Display for Finding {
                 model,
                 needed,
                 continuous,
-            } => write!(
-                f,
-                "the inputs of {model} depend on the load path's derivatives up to order {needed}, but this path is \
-                 continuous only up to order {continuous}: the exact inputs jump or carry impulses where its \
-                 derivative {} jumps, and the computed ones grow there as dt shrinks (use a smoother path, e.g. \
-                 trajectory = \"smooth-three-phase\")",
-                continuous + 1
-            ),
+            } => {
+                write!(
+                    f,
+                    "the inputs of {model} depend on the load path's derivatives up to order {needed}, but this path \
+                     is continuous only up to order {continuous}: the exact inputs jump or carry impulses where its \
+                     derivative {} jumps, and the computed ones grow there as dt shrinks ",
+                    continuous + 1
+                )?;
+                let smoothest = crane_runtime::trajectory::SMOOTH_THREE_PHASE_CONTINUITY;
+                if *needed <= smoothest && *continuous < smoothest {
+                    f.write_str("(use a smoother path: trajectory = \"smooth-three-phase\")")
+                } else {
+                    write!(
+                        f,
+                        "(no built-in path is that smooth, the smoothest, \"smooth-three-phase\", to order \
+                         {smoothest}: give a path of your own, continuous to order {needed})"
+                    )
+                }
+            }
             Finding::NonPositiveRopeLength {
                 model,
                 rope,
@@ -652,4 +663,35 @@ pub fn constraint_distance<Mdl: CraneModel<N, M, A>, const N: usize, const M: us
         }
     }
     worst
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A path too rough for the crane points to the smooth three-phase path
+    /// only where that one is smooth enough and is not the path already: a
+    /// crane of path order 8 on it was told to use it.
+    #[test]
+    fn a_rough_path_is_told_of_a_smoother_one_only_where_there_is_one() {
+        let rough = |needed, continuous| {
+            Finding::PathTooRough {
+                model: "crane".into(),
+                needed,
+                continuous,
+            }
+            .to_string()
+        };
+        let three_phase = rough(6, 4);
+        assert!(
+            three_phase.contains("use a smoother path: trajectory = \"smooth-three-phase\""),
+            "{three_phase}"
+        );
+        let order_8 = rough(8, 6);
+        assert!(!order_8.contains("use a smoother path"), "{order_8}");
+        assert!(
+            order_8.contains("no built-in path is that smooth") && order_8.contains("continuous to order 8"),
+            "{order_8}"
+        );
+    }
 }
