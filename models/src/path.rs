@@ -175,6 +175,14 @@ pub struct PathSpec<const A: usize> {
     pub end: SVector<f64, A>,
 }
 
+impl<const A: usize> PathSpec<A> {
+    /// The shortest feature of the path, s, that steps must resolve: the
+    /// ramps of a three-phase profile, the whole move of a polynomial one.
+    pub fn shortest_feature(&self) -> f64 {
+        self.profile.tau0().unwrap_or(self.t1 - self.t0)
+    }
+}
+
 #[derive(Debug, Clone, PartialEq)]
 enum Built<const A: usize> {
     Poly9(Poly9<A>),

@@ -303,7 +303,10 @@ pub fn with_duration<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
 }
 
 /// The run of `case` (its own duration and model) under `settings`: the
-/// largest step at most `settings.dt` that divides the run (the smallest
+/// largest step at most `settings.dt`, and at most a twentieth of the
+/// path's shortest feature
+/// ([`SPIKE_RESOLUTION`](crate::study::summary::SPIKE_RESOLUTION)), that
+/// divides the run (the smallest
 /// above it where that would fall below the runtime's smallest step,
 /// [`MIN_DT`](crane_runtime::options::MIN_DT)), the start
 /// from `p0` (or, where the parameters moved it, the static equilibrium
@@ -318,7 +321,11 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     if !(span > 0.0 && span.is_finite()) {
         return Err(format!("the run from t = {t0} s to {tf} s is empty"));
     }
-    let dt = step_for(span, settings.dt);
+    // at most the settings' step, and short enough to resolve the move: a
+    // move of 2 ms in one step of 2 s has its inputs only at rest, and
+    // passed every limit
+    let resolved = case.path().spec().shortest_feature() / crate::study::summary::SPIKE_RESOLUTION;
+    let dt = step_for(span, settings.dt.min(resolved));
     within_evaluation_steps(span, dt)?;
     let start = case.consistent_start(t0).map_err(|e| e.to_string())?;
     let options = Options::new(dt, tf)

@@ -89,6 +89,41 @@ fn a_tension_floor_gives_the_closed_form_duration() {
     assert_eq!(best.binding.name, "N");
 }
 
+/// A step longer than the move does not hide it: gantry-3d under |u1| <=
+/// 1000 N with dt = 2 s finds what dt = 0.05 s finds (6.5527 s; every
+/// evaluation steps at most a twentieth of the move), where it found every
+/// duration down to 2 ms feasible (one step of such a move sees the crane
+/// only at rest). The two answers differ by sampling alone: the peak between
+/// steps of 6.55 s / 20 is placed to O(dt^3) by the parabola through the
+/// samples, a few ms here, within the 1 ms tolerance plus 1 %.
+#[test]
+fn a_long_step_still_resolves_the_move() {
+    let case = gantry_3d::DefaultCase::maneuver().unwrap();
+    let limits = Limits {
+        torque: vec![(0, 1000.0)],
+        tension: vec![],
+    };
+    let fine = fastest(&case, &limits, &Settings::default()).unwrap();
+    let coarse = Settings {
+        dt: 2.0,
+        ..Settings::default()
+    };
+    let long = fastest(&case, &limits, &coarse).unwrap();
+    println!(
+        "T* = {:.4} s at dt <= 0.05 s, {:.4} s at dt <= 2 s",
+        fine.duration, long.duration
+    );
+    assert_eq!(long.binding.name, "u1");
+    assert!(
+        (long.duration - fine.duration).abs() < 0.01 * fine.duration,
+        "{} vs {}",
+        long.duration,
+        fine.duration
+    );
+    // the rigid-body bound: u1 moves 1000 kg 6 m
+    assert!(long.duration > 2.0 * (6.0f64 * 1000.0 / 1000.0).sqrt());
+}
+
 /// Brute force: on a grid of durations 2 ms apart around the answer, every
 /// duration below T* (by more than the tolerance) is infeasible, every one
 /// above feasible, and the first feasible grid point is within a grid step

@@ -372,7 +372,8 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             best.bracket.1
         )?;
         say!(
-            "  {} evaluations ({method}, dt <= {} s) and {} for the interval check in {:.1} ms; {}",
+            "  {} evaluations ({method}, dt <= {} s and a twentieth of the move or its ramps) and {} for the interval \
+             check in {:.1} ms; {}",
             best.evaluations,
             settings.dt,
             best.interval.points,

@@ -355,7 +355,7 @@ pub fn summarize_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
     summary.constraint_residual = Some(summary::constraint_residual(case.model(), solution));
     let spec = case.path().spec();
     summary.ramp = spec.profile.tau0();
-    summary.shortest_feature = Some(summary.ramp.unwrap_or(spec.t1 - spec.t0));
+    summary.shortest_feature = Some(spec.shortest_feature());
     for (r, rope) in summary.ropes.iter_mut().enumerate() {
         if rope.leaves_workspace() {
             rope.length_at_rest = length_at_rest(case, r, rope.t_min_length);
