@@ -1080,6 +1080,55 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
         !negative.exists(),
         "the inverse run was written before the plant was refused"
     );
+    // what the forward dynamics cannot follow is named, not the step: a
+    // lighter load reeled into its pulley by the torques of a heavier one
+    // (rope N2's length passes zero at 4.215 s; Newton fails at 4.5825 s),
+    // a longer boom that moves the start off the planner's
+    for (plant, needle) in [
+        (
+            "m_l=90",
+            "rope N2 of the plant reaches zero length at t = 4.215 s in the replay",
+        ),
+        (
+            "l=10.5",
+            "the plant cannot start where the inverse run starts: its constraint `rope1` is violated",
+        ),
+    ] {
+        let out = dir.path().join(plant);
+        let result = crane(&[
+            "run",
+            "navy-planar",
+            "--replay",
+            "--plant",
+            plant,
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(!result.status.success(), "{plant}");
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(
+            stderr.contains(needle) && !stderr.contains("smaller dt"),
+            "{plant}: {stderr}"
+        );
+    }
+    // runaway inputs are not replayed: their end state sized a settling
+    // window of 3.4e10 steps
+    let runaway = dir.path().join("runaway");
+    let result = crane(&[
+        "run",
+        "coupled-trolley",
+        "--replay",
+        "--quiet",
+        "--out",
+        runaway.to_str().unwrap(),
+    ]);
+    assert!(!result.status.success());
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        stderr.contains("nothing to replay: an input of coupled-trolley exceeds 1e6 times its size"),
+        "{stderr}"
+    );
 }
 
 /// The built-in crane that is not flat (`coupled-trolley`, unstable

@@ -240,6 +240,52 @@ pub enum Error {
         /// Time of the step.
         t: f64,
     },
+    /// The replay's plant cannot start where the inverse run starts.
+    #[error(
+        "the plant cannot start where the inverse run starts: its constraint `{constraint}` is violated by \
+         {residual:.3e} there (a plant parameter that changes the crane's geometry moves its start); replay on \
+         parameters that keep the geometry (masses, inertias, radii), or plan with the plant's"
+    )]
+    ReplayStartInconsistent {
+        /// The plant's violated constraint.
+        constraint: &'static str,
+        /// Its residual at the start.
+        residual: f64,
+    },
+    /// A rope of the replayed plant pushed, and the forward dynamics, whose
+    /// ropes are rigid links, then failed.
+    #[error(
+        "rope {rope} of the plant goes slack at t = {} s in the replay (the computed torques do not keep it taut \
+         on this plant), and the forward dynamics, whose ropes are rigid links, cannot follow a slack rope (their \
+         steps fail from t = {} s)",
+        Seconds::of(.t),
+        Seconds::of(.failed_at)
+    )]
+    ReplayRopeSlack {
+        /// The rope's tension name.
+        rope: &'static str,
+        /// When its tension first fell below zero, s.
+        t: f64,
+        /// When the forward steps failed, s.
+        failed_at: f64,
+    },
+    /// A rope of the replayed plant reached zero length, and the forward
+    /// dynamics then failed.
+    #[error(
+        "rope {rope} of the plant reaches zero length at t = {} s in the replay (the computed torques reel its \
+         load into what holds it on this plant), and the forward dynamics cannot go on past it (their steps fail \
+         from t = {} s)",
+        Seconds::of(.t),
+        Seconds::of(.failed_at)
+    )]
+    ReplayRopeLength {
+        /// The rope's tension name.
+        rope: &'static str,
+        /// When its length first reached zero, s.
+        t: f64,
+        /// When the forward steps failed, s.
+        failed_at: f64,
+    },
     /// `step_to` was asked for a time that is not the next step's.
     #[error("a step must go to t_n + dt = {} s, not {} s", Seconds::of(.expected), Seconds::of(.t))]
     WrongStepTime {

@@ -331,15 +331,19 @@ where
         feedback: gains,
         last: &last,
     };
+    check_plant_start(plant, start)?;
     let mut stepper = Stepper::new(Forward::new(plant, inputs), start, &forward)?;
     let mut solution = Solution::with_capacity(Mdl::INFO, dt, options.scheme.name(), steps + 1)?;
     let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
     solution.push(plant, start, StepReport::default(), &mut lengths);
-    run(&mut stepper, steps, |_, state, report| {
+    let ran = run(&mut stepper, steps, |_, state, report| {
         last.set(*state);
         solution.push(plant, state, *report, &mut lengths);
         Ok(())
-    })?;
+    });
+    if let Err(error) = ran {
+        return Err(rope_before(plant, &solution, error));
+    }
     let (mut max_load_deviation, mut deviation_at_tf, mut residual_sway) = (0.0f64, 0.0f64, 0.0f64);
     for state in &solution.states {
         let deviation = load_deviation(path, end.t, state);
@@ -358,6 +362,81 @@ where
         deviation_at_tf,
         residual_sway,
     })
+}
+
+/// Refuse a replay whose plant cannot start at the inverse run's start:
+/// a constraint of the plant violated there (a plant parameter that moves
+/// the geometry, a longer boom, moves the start with it), beyond
+/// [`CONSISTENCY_TOLERANCE`](crate::init::CONSISTENCY_TOLERANCE) of the
+/// squared size of the coordinates, as a start is checked.
+fn check_plant_start<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    plant: &Mdl,
+    start: &crate::solution::State<N, M, A>,
+) -> Result<(), Error> {
+    let scale = start.q.amax().max(1.0);
+    let g = plant.constraints(&start.q);
+    let worst = (0..M).max_by(|&a, &b| g[a].abs().total_cmp(&g[b].abs()));
+    match worst {
+        Some(k) if !(g[k].abs() <= crate::init::CONSISTENCY_TOLERANCE * scale * scale) => {
+            Err(Error::ReplayStartInconsistent {
+                constraint: Mdl::INFO.constraints[k],
+                residual: g[k].abs(),
+            })
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The slack rule of a replay: its tensions come from a forward
+/// integration whose error is far above the inverse run's round-off (the
+/// nominal replay of the paper's move leaves its path by 1e-5 m relative
+/// and more), so a rope counts as pushing only below `-1e-6` of the
+/// largest tension: the paper's rope N1, which starts at exactly zero
+/// tension, dips to -1.2e-5 N (1e-8 of the 1228 N peak) in the first
+/// forward steps.
+pub const SLACK_TOLERANCE: f64 = 1e-6;
+
+/// A replay's step `error` where a rope of the plant left what the forward
+/// dynamics can follow before it, in `solution` (the replay so far): it
+/// pushed (below [`SLACK_TOLERANCE`] of the largest tension,
+/// [`Error::ReplayRopeSlack`]) or reached zero length (the load reeled
+/// into its pulley, [`Error::ReplayRopeLength`]), whichever came first:
+/// that, not the step, is what failed. Other errors as they are.
+fn rope_before<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    plant: &Mdl,
+    solution: &Solution<N, M, A>,
+    error: Error,
+) -> Error {
+    let (Error::NewtonNotConverged { t: failed_at, .. }
+    | Error::SingularIterationMatrix { t: failed_at, .. }
+    | Error::NonFinite { t: failed_at, .. }) = error
+    else {
+        return error;
+    };
+    let ropes = Mdl::INFO.ropes;
+    let floor = -SLACK_TOLERANCE * solution.largest_tension();
+    let mut lengths = [0.0; M];
+    let lengths = &mut lengths[..ropes.len().min(M)];
+    for (i, state) in solution.states.iter().enumerate() {
+        let tensions = solution.tensions_at(i);
+        plant.rope_lengths(&state.q, lengths);
+        let (rope, t) = (|r: usize| ropes[r].tension, state.t);
+        if let Some(r) = (0..lengths.len()).find(|&r| !(lengths[r] > 0.0)) {
+            return Error::ReplayRopeLength {
+                rope: rope(r),
+                t,
+                failed_at,
+            };
+        }
+        if let Some(r) = (0..lengths.len()).find(|&r| tensions[r] < floor) {
+            return Error::ReplayRopeSlack {
+                rope: rope(r),
+                t,
+                failed_at,
+            };
+        }
+    }
+    error
 }
 
 #[cfg(test)]

@@ -102,6 +102,10 @@ fn assert_descriptive(error: &Error) {
         Error::NoDummyDerivatives { model, .. } => message.contains(&format!("`{model}`")),
         Error::NothingToReplay => message.contains("no states"),
         Error::HandoverMismatch { what } => message.contains(what.as_str()),
+        Error::ReplayStartInconsistent { constraint, .. } => message.contains(&format!("`{constraint}`")),
+        Error::ReplayRopeSlack { rope, .. } | Error::ReplayRopeLength { rope, .. } => {
+            message.contains(rope) && message.contains("t = ")
+        }
     };
     assert!(ok, "undescriptive error message: {message}");
 }

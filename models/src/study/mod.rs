@@ -201,6 +201,11 @@ pub enum StudyError {
     /// The convergence study cannot measure its error.
     #[error("{0}")]
     Convergence(String),
+    /// A replay of inputs that are not a result (an audit finding of
+    /// [`Severity::Error`]: a runaway input, states off their constraints,
+    /// a rope of non-positive length).
+    #[error("nothing to replay: {0}")]
+    NotAResult(String),
     /// A plant parameter of a replay is unknown or not finite.
     #[error("plant parameter `{name}`: {message}")]
     PlantParameter {
@@ -276,6 +281,11 @@ impl<const N: usize, const M: usize, const A: usize> Outcome<N, M, A> {
         case: &Case<C, N, M, A>,
         request: &ReplayRequest,
     ) -> Result<&ReplayOutcome<N, M, A>, StudyError> {
+        // a runaway's end state would size the settling window too (a
+        // pendulum of 1e16 m)
+        if let Some(finding) = self.findings.iter().find(|f| f.severity() == Severity::Error) {
+            return Err(StudyError::NotAResult(finding.to_string()));
+        }
         let replay = replay::replay_run(case, &self.solution, request)?;
         self.summary.replay = Some(replay.summary.clone());
         self.findings = audit(&self.summary);

@@ -408,14 +408,10 @@ impl ReplaySummary {
     }
 }
 
-/// The slack rule of a replay: its tensions come from a forward
-/// integration whose error is far above the inverse run's round-off (the
-/// nominal replay of the paper's move leaves its path by 1e-5 m relative
-/// and more), so a rope counts as pushing only below `-1e-6` of the
-/// largest tension: the paper's rope N1, which starts at exactly zero
-/// tension, dips to -1.2e-5 N (1e-8 of the 1228 N peak) in the first
-/// forward steps.
-pub const REPLAY_SLACK_TOLERANCE: f64 = 1e-6;
+/// The slack rule of a replay
+/// ([`crane_runtime::replay::SLACK_TOLERANCE`], which names the rope when
+/// the forward dynamics fail after it).
+pub const REPLAY_SLACK_TOLERANCE: f64 = crane_runtime::replay::SLACK_TOLERANCE;
 
 /// The one slack rule of every study (`--strict`, planning, replay): a
 /// rope tension `n` is below its floor (0: taut) when `n < floor -
