@@ -134,7 +134,12 @@ fn inconsistent_start_names_the_constraint() {
     expect_error(
         "navy-planar",
         "p0 = [8.0, 10.0, 5.0, 0.0, -5.0]\n",
-        &["inconsistent start", "constraint `rope1`"],
+        &[
+            "the scenario's `p0` is not a start of navy-planar",
+            "inconsistent start",
+            "constraint `rope1`",
+            "leave `p0` out to start from the static equilibrium",
+        ],
     );
 }
 
@@ -2549,4 +2554,25 @@ fn exact_inputs_at_long_steps_are_not_called_spikes() {
         let ratio = spike["second_difference"].as_f64().unwrap() / spike["peak"].as_f64().unwrap();
         assert!(ratio > 1.0, "{model}: {ratio}");
     }
+}
+
+/// `crane bench` says what it timed is not a result: the paper's move in
+/// 0.5 s (ropes through zero length, inputs of 1e6 N m and more) warns on
+/// stderr and lists the findings in its JSON; the default move has none.
+#[test]
+fn bench_reports_the_findings_of_what_it_times() {
+    let fast = crane(&["bench", "navy-planar", "--tf", "0.5", "--repeat", "1", "--json"]);
+    assert!(fast.status.success(), "{}", String::from_utf8_lossy(&fast.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&fast.stdout).unwrap();
+    let findings = json["findings"].as_array().unwrap();
+    assert!(
+        findings
+            .iter()
+            .any(|f| f.as_str().unwrap().contains("has the length -")),
+        "{findings:?}"
+    );
+    assert!(String::from_utf8_lossy(&fast.stderr).contains("warning: rope N2 of navy-planar"));
+    let default = crane(&["bench", "navy-planar", "--repeat", "1", "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&default.stdout).unwrap();
+    assert_eq!(json["findings"].as_array().map(Vec::len), Some(0), "{json}");
 }

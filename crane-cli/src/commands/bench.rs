@@ -81,8 +81,9 @@ pub fn bench<R: Registry>(tool: &Tool<R>, args: BenchArgs) -> Result<(), CliErro
     )
 }
 
-/// Time `repeat` runs of one case (after one untimed run): the simulation,
-/// or with `study` the whole run ([`study::run`]).
+/// Time `repeat` runs of one case (after one untimed run, whose audit's
+/// findings are printed as warnings and listed in the JSON): the
+/// simulation, or with `study` the whole run ([`study::run`]).
 fn time<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
     settings: &RunSettings,
@@ -110,7 +111,9 @@ fn time<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let mut times = Vec::with_capacity(repeat);
     let mut steps = 0;
     let mut iterations = 0.0;
-    run()?; // warm-up
+    // the warm-up, audited: a run whose numbers are not a result says so
+    // (inputs of 1e29 N m were timed without a word)
+    let findings = study::run(case, settings, &mut |_, _| {})?.findings;
     for _ in 0..repeat {
         let clock = Instant::now();
         let solution = run()?;
@@ -126,6 +129,7 @@ fn time<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             "model": name, "formulation": formulation.name(), "scheme": scheme.name(), "dt": dt, "tf": case.tf(), "steps": steps,
             "repeat": repeat, "timed": timed, "median_run_s": median, "median_step_s": median / steps as f64,
             "mean_newton_iterations": iterations,
+            "findings": findings.iter().map(|f| f.to_string()).collect::<Vec<_>>(),
         });
         say!("{value}")?;
     } else {
@@ -137,6 +141,9 @@ fn time<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             median / steps as f64 * 1e6,
             iterations
         )?;
+    }
+    for finding in &findings {
+        eprintln!("warning: {finding}");
     }
     Ok(())
 }

@@ -138,6 +138,11 @@ fn default_start_hint<C: Crane<N, M, A>, const N: usize, const M: usize, const A
                 C::maneuver().p0
             ))
         }
+        StudyError::Runtime(e @ crane_runtime::Error::InconsistentStart { .. }) => CliError::Planning(format!(
+            "the scenario's `p0` is not a start of {}: {e}; give a `p0` that meets every constraint with the load \
+             at the path's start, or leave `p0` out to start from the static equilibrium",
+            C::NAME
+        )),
         other => other.into(),
     }
 }
