@@ -67,7 +67,8 @@ pub enum Finding {
         continuous: usize,
     },
     /// The crane's inputs need a higher derivative of the path than the
-    /// formulation's index reduction covers: its errors grow as dt shrinks.
+    /// formulation's index reduction covers: its errors may grow as dt
+    /// shrinks (they do with BDF-2 and above).
     BeyondFormulation {
         /// The crane's name.
         model: String,
@@ -280,8 +281,9 @@ impl fmt::Display for Finding {
                 f,
                 "the inputs of {model} depend on the load path's derivatives up to order {needed}, but this \
                  formulation (the paper's minimal extension, eqs. 22 and 24) covers order {covered}: the \
-                 discretised system's index is too high for the scheme, its errors grow as dt shrinks, and the \
-                 computed inputs are not a reliable result"
+                 discretised system's index is beyond what the scheme is known to converge on (BDF-2 to BDF-5 \
+                 diverge as dt shrinks on such cranes, backward Euler may converge), so the computed inputs are not \
+                 a reliable result; the dummy-derivative formulation, where the crane has it, gives them exactly"
             ),
             Finding::Runaway { model, at } => write!(
                 f,
