@@ -119,6 +119,95 @@ fn write_csv<const N: usize, const M: usize, const A: usize>(
     writer.flush().map_err(io_error(format!("writing {}", path.display())))
 }
 
+/// A command's claim on its output folder, from before it computes to its
+/// end: an exclusive lock on `DIR/.crane.lock`, taken without waiting. A
+/// second command into the same folder is refused while the first runs
+/// (the lock once ordered only the writes: a run that started later and
+/// finished first was replaced by the other without a word). The folders
+/// the claim created are removed again if the command ends without writing
+/// into them.
+pub struct Claim {
+    dir: PathBuf,
+    /// The outermost folder the claim created (`dir` or an ancestor), if
+    /// it created any.
+    created: Option<PathBuf>,
+    /// Held for the claim's lifetime.
+    _lock: fs::File,
+}
+
+/// The folder of the live [`Claim`] of this process, which its [`Staged`]
+/// writes under (without locking again: a second lock on the same file
+/// would wait for the first).
+static CLAIMED: std::sync::Mutex<Option<PathBuf>> = std::sync::Mutex::new(None);
+
+/// The claimed folder, also after a panic elsewhere held the mutex.
+fn claimed() -> std::sync::MutexGuard<'static, Option<PathBuf>> {
+    CLAIMED.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+impl Claim {
+    /// Claim `dir` (created if missing, with its parents), or refuse if
+    /// another command holds it.
+    pub fn new(dir: &Path) -> Result<Self, CliError> {
+        let created = dir
+            .ancestors()
+            .take_while(|folder| !folder.as_os_str().is_empty() && fs::symlink_metadata(folder).is_err())
+            .last()
+            .map(Path::to_path_buf);
+        fs::create_dir_all(dir).map_err(io_error(format!("creating {}", dir.display())))?;
+        let lock_path = dir.join(LOCK);
+        let lock = fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&lock_path)
+            .map_err(io_error(format!("opening {}", lock_path.display())))?;
+        let claim = Self {
+            dir: dir.to_path_buf(),
+            created,
+            _lock: lock,
+        };
+        match claim._lock.try_lock() {
+            Ok(()) => {}
+            Err(fs::TryLockError::WouldBlock) => {
+                return Err(CliError::Output {
+                    what: dir.display().to_string(),
+                    message: "another run of crane is writing into this folder: wait for it to end, or give \
+                              another --out"
+                        .into(),
+                });
+            }
+            Err(fs::TryLockError::Error(error)) => {
+                return Err(io_error(format!("locking {}", lock_path.display()))(error));
+            }
+        }
+        *claimed() = Some(dir.to_path_buf());
+        Ok(claim)
+    }
+}
+
+impl Drop for Claim {
+    /// Release the claim; a folder it created and nothing was written into
+    /// (but its lock file) is removed.
+    fn drop(&mut self) {
+        *claimed() = None;
+        let Some(created) = &self.created else {
+            return;
+        };
+        let only_the_lock = fs::read_dir(&self.dir)
+            .is_ok_and(|entries| entries.filter_map(Result::ok).all(|entry| entry.file_name() == LOCK));
+        if only_the_lock {
+            let _ = fs::remove_file(self.dir.join(LOCK));
+            // the folders it created, innermost first, while they are empty
+            for folder in self.dir.ancestors() {
+                if fs::remove_dir(folder).is_err() || folder == created {
+                    break;
+                }
+            }
+        }
+    }
+}
+
 /// The files of one command's output, written under temporary names
 /// (`.NAME.partial`) and renamed together by [`commit`](Self::commit): an
 /// error before the commit, or SIGINT/SIGTERM ([`remove_partials_on_signals`]),
@@ -127,7 +216,8 @@ fn write_csv<const N: usize, const M: usize, const A: usize>(
 ///
 /// A folder holds one run's output: the writer holds an exclusive lock on
 /// `DIR/.crane.lock` from [`new`](Self::new) to the end (a second `crane`
-/// writing into the same folder waits for it), and the commit removes the
+/// writing into the same folder waits for it; a command's [`Claim`] holds
+/// it from its start), and the commit removes the
 /// files an earlier run wrote there (listed in `DIR/.crane-outputs`) that
 /// this one does not, so a replay.csv or sweep.svg of another kind of run
 /// cannot stay beside this run's summary. Other files are left alone.
@@ -184,8 +274,11 @@ impl Staged {
             .write(true)
             .open(&lock_path)
             .map_err(io_error(format!("opening {}", lock_path.display())))?;
-        lock.lock()
-            .map_err(io_error(format!("locking {}", lock_path.display())))?;
+        // under this process's claim the folder is ours already
+        if claimed().as_deref() != Some(dir) {
+            lock.lock()
+                .map_err(io_error(format!("locking {}", lock_path.display())))?;
+        }
         Ok(Self {
             dir: dir.to_path_buf(),
             files: Vec::new(),

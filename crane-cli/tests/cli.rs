@@ -1665,9 +1665,10 @@ fn a_rope_of_non_positive_length_is_reported_and_infeasible() {
     );
 }
 
-/// A folder holds one run's complete output: two runs into the same `--out`
-/// at once both finish (the second waits for the folder's lock) and leave
-/// a results.csv and a summary.json of the same run, no partial file; a run
+/// A folder holds one run's complete output: of two runs into the same
+/// `--out` at once one finishes and the other, if it started while the
+/// first held the folder, is refused; they leave a results.csv and a
+/// summary.json of the same run, no partial file; a run
 /// of another kind removes what the earlier one wrote and it does not
 /// (replay.csv, replay.svg), and leaves other files alone.
 #[test]
@@ -1688,11 +1689,20 @@ fn an_output_folder_holds_one_runs_output() {
                 "--out",
                 &out_str,
             ])
+            .stderr(std::process::Stdio::piped())
             .spawn()
             .unwrap()
     };
-    let (mut a, mut b) = (spawn("0.001"), spawn("0.002"));
-    assert!(a.wait().unwrap().success() && b.wait().unwrap().success());
+    let (a, b) = (spawn("0.001"), spawn("0.002"));
+    let ends = [a.wait_with_output().unwrap(), b.wait_with_output().unwrap()];
+    assert!(ends.iter().any(|end| end.status.success()));
+    for end in ends.iter().filter(|end| !end.status.success()) {
+        let stderr = String::from_utf8_lossy(&end.stderr);
+        assert!(
+            stderr.contains("another run of crane is writing into this folder"),
+            "{stderr}"
+        );
+    }
     let rows = std::fs::read_to_string(out.join("results.csv"))
         .unwrap()
         .lines()
@@ -2575,4 +2585,59 @@ fn bench_reports_the_findings_of_what_it_times() {
     let default = crane(&["bench", "navy-planar", "--repeat", "1", "--json"]);
     let json: serde_json::Value = serde_json::from_slice(&default.stdout).unwrap();
     assert_eq!(json["findings"].as_array().map(Vec::len), Some(0), "{json}");
+}
+
+/// A folder that another run is writing into is refused at once, before
+/// any computation (two runs into one `--out` once both ran, and the one
+/// that finished last replaced the other's results without a word); the
+/// first run's results are its own. A refused or failed run leaves no
+/// folder it created.
+#[test]
+fn a_folder_another_run_writes_into_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("shared");
+    // a run of a few seconds (the paper's move slowed to 400 s at 1 ms)
+    let mut first = Command::new(env!("CARGO_BIN_EXE_crane"))
+        .args(["run", "navy-planar", "--tf", "400", "--dt", "0.001", "--quiet", "--out"])
+        .arg(&out)
+        .spawn()
+        .unwrap();
+    // wait until it holds the folder (its lock file exists), then try
+    let lock = out.join(".crane.lock");
+    while !lock.exists() {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let second = crane(&["run", "navy-planar", "--quiet", "--out", out.to_str().unwrap()]);
+    let still_running = first.try_wait().unwrap().is_none();
+    assert!(first.wait().unwrap().success());
+    // (a second run let through would have ended long before the first)
+    assert!(
+        still_running,
+        "the first run ended before the second: the test needs a longer one"
+    );
+    assert!(!second.status.success());
+    let stderr = String::from_utf8_lossy(&second.stderr);
+    assert!(
+        stderr.contains("another run of crane is writing into this folder"),
+        "{stderr}"
+    );
+    assert_eq!(
+        summary_json(&out)["tf"].as_f64(),
+        Some(400.0),
+        "the first run's results"
+    );
+    // a run that fails after claiming its folder leaves none behind
+    let scenario = dir.path().join("inconsistent.toml");
+    std::fs::write(&scenario, "p0 = [8.0, 10.0, 5.0, 0.0, -5.0]\n").unwrap();
+    let fresh = dir.path().join("a").join("b");
+    let failed = crane(&[
+        "run",
+        "navy-planar",
+        "--scenario",
+        scenario.to_str().unwrap(),
+        "--out",
+        fresh.to_str().unwrap(),
+    ]);
+    assert!(String::from_utf8_lossy(&failed.stderr).contains("inconsistent start"));
+    assert!(!dir.path().join("a").exists());
 }

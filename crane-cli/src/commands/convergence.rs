@@ -56,7 +56,7 @@ impl Visit for Convergence<'_> {
 /// Run the study.
 pub fn convergence<R: Registry>(tool: &Tool<R>, args: ConvergenceArgs) -> Result<(), CliError> {
     let file = args.scenario.as_deref().map(ScenarioFile::load).transpose()?;
-    let out = out_dir(args.out.as_deref(), &args.model)?;
+    let (out, _claim) = out_dir(args.out.as_deref(), &args.model)?;
     let overrides = Overrides {
         dt: None,
         tf: None,

@@ -16,14 +16,17 @@ use crane_models::study::Formulation;
 use crane_runtime::Scheme;
 
 use crate::CliError;
+use crate::output::Claim;
 
-/// The output directory: `out` if given, else `out/MODEL`.
-pub fn out_dir(out: Option<&Path>, model: &str) -> Result<PathBuf, CliError> {
+/// The output directory: `out` if given, else `out/MODEL`, claimed for the
+/// command ([`Claim`]: keep it until the command ends).
+pub fn out_dir(out: Option<&Path>, model: &str) -> Result<(PathBuf, Claim), CliError> {
     let dir = out.map_or_else(|| PathBuf::from("out").join(model), Path::to_path_buf);
-    // before any computation: a folder that cannot be written is an error
-    // now, not after a long run or sweep
+    // before any computation: a folder that cannot be written, or that
+    // another run is writing into, is an error now, not after a long run
     crate::output::check_writable(&dir)?;
-    Ok(dir)
+    let claim = Claim::new(&dir)?;
+    Ok((dir, claim))
 }
 
 /// The help of a `--scheme` flag, from the one list of schemes.

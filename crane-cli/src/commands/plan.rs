@@ -13,7 +13,7 @@ use crane_runtime::error::{Number, Rounded};
 use crane_runtime::{CraneModel, Scheme};
 
 use super::{name_values, out_dir};
-use crate::output::Staged;
+use crate::output::{Claim, Staged};
 use crate::plot;
 use crate::scenario::{self, Overrides, ScenarioFile};
 use crate::{CliError, Tool};
@@ -86,10 +86,11 @@ pub struct SweepArgs {
 }
 
 impl PlanFlags {
-    /// The scenario file (loaded) and the output directory.
-    fn files(&self, model: &str) -> Result<(Option<ScenarioFile>, PathBuf), CliError> {
+    /// The scenario file (loaded) and the output directory, claimed.
+    fn files(&self, model: &str) -> Result<(Option<ScenarioFile>, PathBuf, Claim), CliError> {
         let file = self.scenario.as_deref().map(ScenarioFile::load).transpose()?;
-        Ok((file, out_dir(self.out.as_deref(), model)?))
+        let (out, claim) = out_dir(self.out.as_deref(), model)?;
+        Ok((file, out, claim))
     }
 
     /// The planner's settings from the flags (BDF-4, dt 0.05 s, 1 ms by default).
@@ -126,7 +127,7 @@ impl Visit for Fastest<'_> {
 
 /// `crane fastest`.
 pub fn fastest<R: Registry>(tool: &Tool<R>, args: FastestArgs) -> Result<(), CliError> {
-    let (file, out) = args.plan.files(&args.model)?;
+    let (file, out, _claim) = args.plan.files(&args.model)?;
     let settings = args.plan.settings(Some(args.tolerance))?;
     tool.dispatch(
         &args.model,
@@ -173,7 +174,7 @@ impl Visit for Sweep<'_> {
 
 /// `crane sweep`.
 pub fn sweep<R: Registry>(tool: &Tool<R>, args: SweepArgs) -> Result<(), CliError> {
-    let (file, out) = args.plan.files(&args.model)?;
+    let (file, out, _claim) = args.plan.files(&args.model)?;
     let settings = args.plan.settings(None)?;
     let durations = match args.duration.as_deref() {
         Some(spec) => values(spec).filter(|d| d.iter().all(|&x| x > 0.0)).ok_or_else(|| {

@@ -76,7 +76,7 @@ pub struct RunArgs {
 /// infeasible.
 pub fn run<R: Registry>(tool: &Tool<R>, args: RunArgs) -> Result<(), CliError> {
     let file = args.scenario.as_deref().map(ScenarioFile::load).transpose()?;
-    let out = out_dir(args.out.as_deref(), &args.model)?;
+    let (out, _claim) = out_dir(args.out.as_deref(), &args.model)?;
     let overrides = Overrides {
         dt: args.dt,
         tf: args.tf,
