@@ -2641,3 +2641,27 @@ fn a_folder_another_run_writes_into_is_refused() {
     assert!(String::from_utf8_lossy(&failed.stderr).contains("inconsistent start"));
     assert!(!dir.path().join("a").exists());
 }
+
+/// `crane sweep` refuses a path whose inputs carry impulses before any run,
+/// as `crane fastest` does (navy-3d-pulley on the paper's three-phase
+/// profile: it exited 0 with every point "failed"), and writes nothing.
+#[test]
+fn sweep_refuses_a_path_whose_inputs_carry_impulses() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sweep");
+    let result = crane(&[
+        "sweep",
+        "navy-3d-pulley",
+        "--param",
+        "m_l=90:110:3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!result.status.success());
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        stderr.contains("they carry impulses where derivative 5 jumps"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+}

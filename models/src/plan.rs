@@ -595,8 +595,9 @@ pub enum PlanError {
 
 /// Refuse a path continuous two or more derivatives below what the crane's
 /// inputs need: they carry impulses there (a path one derivative short
-/// gives finite jumps, which a limit can judge).
-fn impulses<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+/// gives finite jumps, which a limit can judge). [`fastest`] and the
+/// sweeps ask it before any run.
+pub fn impulses<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
 ) -> Result<(), PlanError> {
     match crane_runtime::internal::path_smoothness::<C::Model, _, N, M, A>(case.path()) {

@@ -408,6 +408,7 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
     let count =
         plan::check_grid::<C::Model, N, M, A>(params, durations).map_err(|e| CliError::Planning(e.to_string()))?;
+    plan::impulses(case).map_err(|e| CliError::Planning(e.to_string()))?;
     let spec = case.path().spec();
     let bar = (!quiet && std::io::IsTerminal::is_terminal(&std::io::stdout())).then(|| {
         let bar = indicatif::ProgressBar::new(count as u64);

@@ -139,6 +139,7 @@ impl Visit for SweepJob {
         let (case, limits) = self.inputs.case_and_limits::<C, N, M, A>()?;
         let settings = self.inputs.settings;
         plan::check_grid::<C::Model, N, M, A>(&self.grid, &self.durations).map_err(|e| format!("grid: {e}"))?;
+        plan::impulses(&case).map_err(|e| e.to_string())?;
         let points = plan::sweep(&case, &self.grid, &self.durations, &limits, &settings, &|| {});
         let names: Vec<String> = self.grid.iter().map(|(name, _)| name.clone()).collect();
         Ok(plan::sweep_columns::<C::Model, N, M, A>(&names, &points))
