@@ -488,3 +488,35 @@ fn a_path_that_does_not_determine_the_inputs_is_a_warning() {
     fmu.get_integer(&[2], &mut status).unwrap();
     assert_eq!(status, [1]);
 }
+
+/// A long internal step stays on the move's branch: navy-planar's FMU with
+/// the parameter dt = 0.5 s and 1 s, stepped to t = 1e5 s, holds the end
+/// of the move from t = 4 s on with u1 = -43.345 N m (Appendix A's end; it
+/// returned +133.21 N m, the mirror configuration with a pushing rope, and
+/// a warning that rope N1 goes slack). The same equations solved at the
+/// same point: round-off of the 1e2 N m inputs, 1e-9 relative bounds it.
+#[test]
+fn a_long_internal_step_stays_on_the_moves_branch() {
+    type D = navy_planar::Description;
+    for dt in [0.5, 1.0] {
+        let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
+        fmu.setup_experiment(0.0).unwrap();
+        fmu.enter_initialization_mode().unwrap();
+        fmu.set_real(&[vr::<D, 7, 3, 2>(Role::Dt)], &[dt]).unwrap();
+        fmu.exit_initialization_mode().unwrap();
+        let mut t = 0.0;
+        while t < 1e5 {
+            let h = if t < 4.0 { dt } else { 1000.0 };
+            fmu.do_step(t, h)
+                .unwrap_or_else(|e| panic!("dt = {dt} at t = {t}: {e}"));
+            t += h;
+            if t >= 4.0 {
+                let u1 = outputs(&fmu)[0];
+                assert!(
+                    (u1 + 43.345_043_319_952).abs() < 1e-9 * 43.3,
+                    "dt = {dt}, t = {t}: u1 = {u1}"
+                );
+            }
+        }
+    }
+}
