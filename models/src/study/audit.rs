@@ -140,6 +140,17 @@ pub enum Finding {
         /// Where and how much.
         spike: InputSpike,
     },
+    /// Round-off makes up most of a discretised run's error against the
+    /// exact inputs ([`RoundOff::dominates`](super::summary::RoundOff::dominates)):
+    /// a finer step would be less accurate.
+    RoundOffDominates {
+        /// The crane's name.
+        model: String,
+        /// The time step, s.
+        dt: f64,
+        /// The error and the floor.
+        round_off: super::summary::RoundOff,
+    },
     /// The path's ramps are shorter than [`RAMP_STEPS`] steps.
     UnresolvedRamp {
         /// The ramp duration, s.
@@ -302,6 +313,16 @@ impl fmt::Display for Finding {
                 Seconds(limit.first_violation.unwrap_or(f64::NAN)),
                 Rounded(limit.peak)
             ),
+            Finding::RoundOffDominates { model, dt, round_off } => write!(
+                f,
+                "round-off makes up most of the error of {model}'s inputs at dt = {} s: {:.3e} against the exact \
+                 inputs over the middle of the run, where the step-to-step noise is {:.3e} (the scheme's second \
+                 differences of the rounded coordinates grow like 1/dt^2): a finer step is less accurate, a larger \
+                 one as accurate; the dummy-derivative formulation gives the exact inputs",
+                Seconds(*dt),
+                round_off.error,
+                round_off.floor
+            ),
             Finding::InputSpike { model, spike } => write!(
                 f,
                 "input {} of {model} turns by {:.4e} between the steps around t = {} s, more than its largest value \
@@ -419,6 +440,13 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
         out.push(Finding::InputSpike {
             model: summary.model.clone(),
             spike: spike.clone(),
+        });
+    }
+    if let Some(round_off) = summary.round_off.as_ref().filter(|r| r.dominates()) {
+        out.push(Finding::RoundOffDominates {
+            model: summary.model.clone(),
+            dt: summary.dt,
+            round_off: round_off.clone(),
         });
     }
     let workspace_left = |r: &&RopeSummary| r.leaves_workspace();

@@ -308,13 +308,42 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let clock = Instant::now();
     let solution = settings.formulation.simulate(case, &start, &options, progress)?;
     let wall = clock.elapsed().as_secs_f64();
-    let summary = summarize_run(case, settings, &solution, wall, DIAGNOSIS_SAMPLES);
+    let mut summary = summarize_run(case, settings, &solution, wall, DIAGNOSIS_SAMPLES);
+    if settings.formulation.discretised() {
+        summary.round_off = round_off(case, &start, &options, &solution);
+    }
     let findings = audit(&summary);
     Ok(Outcome {
         solution,
         summary,
         findings,
         replay: None,
+    })
+}
+
+/// A discretised run's inputs against the exact ones of the reduced
+/// formulation at the same steps, and their round-off
+/// ([`summary::RoundOff`]); `None` for a crane without the reduced system,
+/// or where its run fails.
+fn round_off<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    start: &State<N, M, A>,
+    options: &Options,
+    solution: &Solution<N, M, A>,
+) -> Option<summary::RoundOff> {
+    dummy_derivative::system_size::<C::Model, N, M, A>().ok()?;
+    let exact = case.simulate_dummy_derivative(start, options, &mut |_, _| {}).ok()?;
+    let (t0, tf) = (case.t0(), case.tf());
+    let window = (t0 + 0.2 * (tf - t0), tf - 0.2 * (tf - t0));
+    let error = (solution.states.iter().zip(&exact.states))
+        .filter(|(s, _)| s.t >= window.0 && s.t <= window.1)
+        .map(|(s, e)| (s.u - e.u).amax())
+        .fold(0.0f64, f64::max);
+    let peak = exact.states.iter().map(|e| e.u.amax()).fold(0.0f64, f64::max);
+    Some(summary::RoundOff {
+        error,
+        floor: convergence::round_off_floor(&solution.states, window.0, window.1),
+        peak,
     })
 }
 

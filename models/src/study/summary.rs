@@ -171,6 +171,11 @@ pub struct Summary {
     /// How far the reported states are from the constraints, where
     /// measured ([`constraint_residual`]).
     pub constraint_residual: Option<ConstraintResidual>,
+    /// Of a discretised run (eqs. 22 or 24) of a crane with the reduced
+    /// system: its inputs against the exact ones, and the round-off in them
+    /// ([`RoundOff`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub round_off: Option<RoundOff>,
     /// The input's sharpest turn between steps ([`InputSpike`]).
     pub input_spike: Option<InputSpike>,
     /// The ramp duration `tau0` of a three-phase path, s (`None` for a
@@ -363,6 +368,39 @@ pub struct PathSmoothnessSummary {
     pub continuous: usize,
     /// `continuous >= needed`.
     pub sufficient: bool,
+}
+
+/// A discretised run's inputs against the exact ones (the reduced
+/// formulation's at the same steps), over the middle 60 % of the run (away
+/// from the schemes' start-up and the end of the move), and the step-to-step
+/// noise in them
+/// ([`round_off_floor`](crate::study::convergence::round_off_floor)).
+/// Eqs. (22) take the inputs from the scheme's second differences of the
+/// absolute coordinates, whose rounding grows like `1/dt^2` in the inputs:
+/// below some step the noise is most of the error, and a finer step is
+/// less accurate ([`dominates`](Self::dominates)).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RoundOff {
+    /// The largest `|u - u_exact|` over the window.
+    pub error: f64,
+    /// The round-off floor, `max |Delta^6 u| / 32` over the window.
+    pub floor: f64,
+    /// The largest exact input in magnitude over the run (the scale).
+    pub peak: f64,
+}
+
+/// Below this fraction of the largest input an error is at round-off
+/// whatever its cause: no finding.
+pub const ROUND_OFF_NEGLIGIBLE: f64 = 1e-12;
+
+impl RoundOff {
+    /// Whether round-off makes up most of the error: the error at most the
+    /// floor (where the error is noise it was measured at 0.55 to 0.61 of
+    /// the floor; where it is the scheme's, far above it) and above
+    /// [`ROUND_OFF_NEGLIGIBLE`] of the peak.
+    pub fn dominates(&self) -> bool {
+        self.error <= self.floor && self.error > ROUND_OFF_NEGLIGIBLE * self.peak
+    }
 }
 
 /// The replay's results in summary.json.
@@ -620,6 +658,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         internal_dynamics: RunDiagnosis::none(),
         path_smoothness: None,
         constraint_residual: None,
+        round_off: None,
         input_spike: input_spike(solution),
         ramp: None,
         shortest_feature: None,
