@@ -28,7 +28,9 @@ impl Visit for RowOf {
     type Output = Row;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Row {
         let diagnosis = Case::<C, N, M, A>::maneuver().ok().and_then(|case| {
-            let start = case.start().ok()?;
+            // the start a run takes (a rough default p0 resolved to the
+            // static equilibrium), so that list and run agree
+            let start = case.run_start().ok()?;
             crane_runtime::internal::internal_dynamics(case.model(), &start).ok()
         });
         let internal = match diagnosis {
