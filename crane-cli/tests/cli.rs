@@ -2665,3 +2665,28 @@ fn sweep_refuses_a_path_whose_inputs_carry_impulses() {
     );
     assert!(!out.exists());
 }
+
+/// Winch drums of 1e-6 m (torques a million times the paper's) at dt =
+/// 0.001 s give the inputs of dt = 0.01 s: peak |u1| 4.87674531e5 N m at
+/// t = 1.33 s both (a long run of singular steps once reached 3.6e49 N m).
+#[test]
+fn tiny_drums_at_a_fine_step_give_the_inputs_of_a_coarse_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("drums.toml");
+    std::fs::write(&scenario, "[parameters]\nr1 = 1e-6\nr2 = 1e-6\n").unwrap();
+    let peak = |dt: &str| {
+        let out = run_ok(
+            "navy-planar",
+            &["--scenario", scenario.to_str().unwrap(), "--dt", dt],
+            dir.path(),
+            dt,
+        );
+        let summary = summary_json(&out);
+        assert_eq!(summary["newton"]["min_norm_steps"].as_u64(), Some(0), "dt = {dt}");
+        summary["peak_torque"][0]["value"].as_f64().unwrap()
+    };
+    let (coarse, fine) = (peak("0.01"), peak("0.001"));
+    // both sample u1 at t = 1.33 s, its peak: the same equations there
+    assert!((coarse - 4.876_745_31e5).abs() < 1.0, "{coarse}");
+    assert!((fine - coarse).abs() < 1e-9 * coarse, "{fine} against {coarse}");
+}
