@@ -3,7 +3,8 @@
 //! for every scheme, in redundant and in minimal coordinates, including the
 //! first steps from the degenerate start where Newton falls back to the
 //! minimum-norm solve (and the minimal stepper's retry from the last step);
-//! the dummy-derivative stepper, its long steps by continuation included;
+//! the dummy-derivative stepper, its long steps by continuation and its
+//! steps of eqs. (22) where a rope is nearly slack included;
 //! and the forward problem's stepper.
 //! One test function, so that no other test allocates while one counts.
 
@@ -86,4 +87,21 @@ fn stepping_does_not_allocate() {
         assert_eq!(allocations, 0, "dummy-derivative dt = {dt}: {allocations} allocations");
         println!("dummy-derivative dt = {dt}: {substeps} shorter steps by continuation, 0 allocations");
     }
+    // steps of eqs. (22) that the reduced stepper takes and follows where a
+    // rope is nearly slack (the paper's move slowed to 1000 s: its rope N1
+    // starts at zero tension) allocate nothing either
+    let slow = PaperCase::new(1000.0).unwrap();
+    let start = slow.start().unwrap();
+    let options = Options::stepping(0.001).unwrap();
+    let mut reduced = DummyDerivativeStepper::new(slow.model(), slow.path(), &start, &options).unwrap();
+    let (allocations, _) = allocations_in(&mut reduced, 2000);
+    assert!(
+        reduced.fallback_steps() > 0,
+        "no step fell back: the check checks nothing"
+    );
+    assert_eq!(allocations, 0, "dummy-derivative, slow move: {allocations} allocations");
+    println!(
+        "dummy-derivative, slow move: {} of 2000 steps in eqs. (22), 0 allocations",
+        reduced.fallback_steps()
+    );
 }
