@@ -227,3 +227,63 @@ pub fn study_against<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
     }
     Ok(rows)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crane_runtime::State;
+    use crane_runtime::nalgebra::SVector;
+
+    /// States at `t = 0, dt, ...` with the one input `u(t, i)`.
+    fn states(n: usize, dt: f64, u: impl Fn(f64, usize) -> f64) -> Vec<State<1, 0, 1>> {
+        (0..n)
+            .map(|i| {
+                let t = i as f64 * dt;
+                State {
+                    t,
+                    q: SVector::zeros(),
+                    v: SVector::zeros(),
+                    u: SVector::from([u(t, i)]),
+                    lambda: SVector::zeros(),
+                }
+            })
+            .collect()
+    }
+
+    /// The floor on synthetic inputs. A polynomial of degree 5 has sixth
+    /// differences of zero: its floor is the rounding of the differences,
+    /// below 1e-12 of its size. White noise of standard deviation sigma
+    /// has sixth differences of standard deviation sigma sqrt(C(12, 6)) =
+    /// 30.4 sigma (the sum of the squared binomial coefficients of order
+    /// 6), so the floor, their largest over ~400 windows divided by 32, is
+    /// about 0.95 sigma times the largest of ~400 standard normal
+    /// magnitudes (about 3): within [1, 6] sigma.
+    #[test]
+    fn the_round_off_floor_sees_noise_and_not_a_smooth_input() {
+        let poly =
+            |t: f64, _: usize| 3.0 + 2.0 * t - 5.0 * t.powi(2) + 0.7 * t.powi(3) - 0.2 * t.powi(4) + 0.01 * t.powi(5);
+        let smooth = states(400, 0.01, poly);
+        let largest = smooth.iter().map(|s| s.u[0].abs()).fold(0.0, f64::max);
+        let floor = round_off_floor(&smooth, 0.0, 4.0);
+        assert!(floor < 1e-12 * largest, "{floor:e} of {largest}");
+        // seeded white noise, Box-Muller on a xorshift generator
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut uniform = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let noise: Vec<f64> = (0..400)
+            .map(|_| {
+                let (a, b) = (uniform().max(f64::MIN_POSITIVE), uniform());
+                (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
+            })
+            .collect();
+        let sigma = 1e-6;
+        let noisy = states(400, 0.01, |t, i| poly(t, i) + sigma * noise[i]);
+        let floor = round_off_floor(&noisy, 0.0, 4.0);
+        println!("floor {floor:e} for sigma {sigma:e}");
+        assert!((1.0 * sigma..=6.0 * sigma).contains(&floor), "{floor:e}");
+    }
+}
