@@ -698,6 +698,44 @@ pub fn constraint_distance<Mdl: CraneModel<N, M, A>, const N: usize, const M: us
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::navy_planar::PaperCase;
+
+    /// What [`StepAudit::step`] finds in one state of navy-planar's start,
+    /// changed by `change`, from a fresh audit.
+    fn step_finding(change: impl Fn(&mut State<7, 3, 2>)) -> Option<Finding> {
+        let case = PaperCase::new(4.0).unwrap();
+        let start = case.start().unwrap();
+        let (mut audit, _) = StepAudit::start("navy-planar", case.model(), &start, Some(4));
+        let mut state = start;
+        change(&mut state);
+        audit.step(case.model(), &state, false)
+    }
+
+    /// Each check of a step from both sides of its threshold: the load
+    /// lowered off its rope by 1e-3 of the coordinates' scale (10 m here) is
+    /// flagged, by 1e-9 not (Newton's tolerance is 1e-10 relative; the
+    /// threshold, `CONSTRAINT_TOLERANCE`, 1e-6); a rope of negative length
+    /// (its constraint, written in squares, still holds) is flagged, as is
+    /// an input a billion times its size at the start, and the start itself
+    /// is clean.
+    #[test]
+    fn a_step_audit_flags_each_fault_and_not_its_absence() {
+        assert_eq!(step_finding(|_| {}), None);
+        let off = |by: f64| move |s: &mut State<7, 3, 2>| s.q[6] += by * 10.0;
+        assert!(matches!(
+            step_finding(off(1e-3)),
+            Some(Finding::ConstraintsViolated { .. })
+        ));
+        assert_eq!(step_finding(off(1e-9)), None);
+        let negative = step_finding(|s| s.q[0] = -s.q[0]);
+        assert!(
+            matches!(&negative, Some(Finding::NonPositiveRopeLength { rope, .. }) if rope == "N1"),
+            "{negative:?}"
+        );
+        let runaway = step_finding(|s| s.u[1] *= 1e9);
+        assert!(matches!(runaway, Some(Finding::Runaway { .. })), "{runaway:?}");
+        assert_eq!(step_finding(|s| s.u[1] *= 10.0), None);
+    }
 
     /// A path too rough for the crane points to the smooth three-phase path
     /// only where that one is smooth enough and is not the path already: a
