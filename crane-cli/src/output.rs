@@ -154,14 +154,7 @@ impl Claim {
             .take_while(|folder| !folder.as_os_str().is_empty() && fs::symlink_metadata(folder).is_err())
             .last()
             .map(Path::to_path_buf);
-        fs::create_dir_all(dir).map_err(io_error(format!("creating {}", dir.display())))?;
-        let lock_path = dir.join(LOCK);
-        let lock = fs::OpenOptions::new()
-            .create(true)
-            .truncate(false)
-            .write(true)
-            .open(&lock_path)
-            .map_err(io_error(format!("opening {}", lock_path.display())))?;
+        let (lock_path, lock) = open_lock(dir)?;
         let claim = Self {
             dir: dir.to_path_buf(),
             created,
@@ -232,6 +225,20 @@ pub struct Staged {
 /// The lock file of an output folder.
 const LOCK: &str = ".crane.lock";
 
+/// `dir` (created if missing, with its parents) and its lock file, opened
+/// (not locked).
+fn open_lock(dir: &Path) -> Result<(PathBuf, fs::File), CliError> {
+    fs::create_dir_all(dir).map_err(io_error(format!("creating {}", dir.display())))?;
+    let lock_path = dir.join(LOCK);
+    let lock = fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&lock_path)
+        .map_err(io_error(format!("opening {}", lock_path.display())))?;
+    Ok((lock_path, lock))
+}
+
 /// The list of the files the last run wrote into an output folder.
 const MANIFEST: &str = ".crane-outputs";
 
@@ -266,14 +273,7 @@ pub fn remove_partials_on_signals() {
 impl Staged {
     /// Output into `dir` (created if missing), once its lock is ours.
     pub fn new(dir: &Path) -> Result<Self, CliError> {
-        fs::create_dir_all(dir).map_err(io_error(format!("creating {}", dir.display())))?;
-        let lock_path = dir.join(LOCK);
-        let lock = fs::OpenOptions::new()
-            .create(true)
-            .truncate(false)
-            .write(true)
-            .open(&lock_path)
-            .map_err(io_error(format!("opening {}", lock_path.display())))?;
+        let (lock_path, lock) = open_lock(dir)?;
         // under this process's claim the folder is ours already
         if claimed().as_deref() != Some(dir) {
             lock.lock()
