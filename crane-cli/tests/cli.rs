@@ -2690,3 +2690,25 @@ fn tiny_drums_at_a_fine_step_give_the_inputs_of_a_coarse_one() {
     assert!((coarse - 4.876_745_31e5).abs() < 1.0, "{coarse}");
     assert!((fine - coarse).abs() < 1e-9 * coarse, "{fine} against {coarse}");
 }
+
+/// Where the path itself passes a singular configuration (the paper's move
+/// in 3 s: rope N1 goes slack at t = 1.76 s, its tension through zero,
+/// where the reduced system is singular), the run says so in one line with
+/// the time and `summary.json` counts it; the paper's own move has none.
+#[test]
+fn a_singular_configuration_on_the_path_is_named_with_its_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fast");
+    let result = crane(&["run", "navy-planar", "--tf", "3", "--out", out.to_str().unwrap()]);
+    assert!(result.status.success());
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(
+        stdout.contains("the path passes a singular configuration at t = 1.76 s"),
+        "{stdout}"
+    );
+    let newton = &summary_json(&out)["newton"];
+    assert_eq!(newton["crossings"].as_u64(), Some(1), "{newton}");
+    assert_eq!(newton["first_crossing"].as_f64(), Some(1.76), "{newton}");
+    let paper = run_ok("navy-planar", &[], dir.path(), "paper");
+    assert_eq!(summary_json(&paper)["newton"]["crossings"].as_u64(), Some(0));
+}

@@ -482,6 +482,8 @@ mod tests {
             min_norm_steps: 0,
             held_steps: 0,
             continued_steps: 0,
+            crossings: 0,
+            first_crossing: None,
             path_order_covered: None,
             shortest_ropes: vec![],
             redundant_start_steps: 0,

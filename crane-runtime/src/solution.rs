@@ -50,6 +50,13 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     /// ([`Stepper::continue_to`](crate::stepper::Stepper::continue_to); the
     /// reduced formulation's long steps).
     pub continued_steps: usize,
+    /// Time steps in which the solution changed branch where the path does
+    /// ([`StepReport::crossed`](crate::stepper::StepReport::crossed): a
+    /// rope going slack, a singular configuration), and the first one's
+    /// time.
+    pub crossings: usize,
+    /// The time of the first of the [`crossings`](Self::crossings), s.
+    pub first_crossing: Option<f64>,
     /// The highest path order the formulation that computed it covers
     /// ([`Problem::path_order_covered`](crate::problem::Problem::path_order_covered));
     /// `None` if not a servo problem's run.
@@ -87,6 +94,8 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
             min_norm_steps: 0,
             held_steps: 0,
             continued_steps: 0,
+            crossings: 0,
+            first_crossing: None,
             path_order_covered: None,
             shortest_ropes: vec![(f64::INFINITY, f64::NAN); ropes],
             redundant_start_steps: 0,
@@ -120,6 +129,10 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
         self.min_norm_steps += usize::from(report.min_norm_steps > 0);
         self.held_steps += usize::from(report.held);
         self.continued_steps += usize::from(report.substeps > 0);
+        if report.crossed {
+            self.crossings += 1;
+            self.first_crossing.get_or_insert(state.t);
+        }
         let ropes = self.info.ropes.len();
         let first = self.tensions.len();
         self.tensions.resize(first + ropes, 0.0);

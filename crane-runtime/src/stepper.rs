@@ -60,6 +60,12 @@ pub struct StepReport {
     /// Of a step by continuation ([`Stepper::continue_to`]): the shorter
     /// steps it took to stay on its branch (0: one step).
     pub substeps: usize,
+    /// Whether the step changed branch where the path does: a rope's length
+    /// or a taut rope's tension changed sign within
+    /// [`CONTINUATION_SHORTEST`] of the step, or across a singular
+    /// configuration shorter steps could not follow
+    /// ([`Stepper::step_across`]).
+    pub crossed: bool,
 }
 
 impl StepReport {
@@ -392,6 +398,7 @@ where
             min_norm_steps: if held { 0 } else { converged.min_norm_steps },
             held,
             substeps: 0,
+            crossed: !self.check_branch,
         })
     }
 
@@ -521,7 +528,7 @@ where
         let mut known = 1;
         self.scratch[0].copy_from(&self.past[self.newest]);
         let mut h = 0.5 * (t - from);
-        let (mut iterations, mut substeps) = (0, 0);
+        let (mut iterations, mut substeps, mut crossed) = (0, 0, false);
         for _ in 0..CONTINUATION_SOLVES {
             let last = from + h >= t - 0.5 * shortest;
             let to = if last { t } else { from + h };
@@ -554,9 +561,12 @@ where
                 }
             };
             let accepted = self.problem.accept(to, &self.z)?;
-            if shorter && self.problem.leaves_branch(&at, &accepted.state) {
-                h = 0.5 * (to - from);
-                continue;
+            if self.problem.leaves_branch(&at, &accepted.state) {
+                if shorter {
+                    h = 0.5 * (to - from);
+                    continue;
+                }
+                crossed = true;
             }
             substeps += 1;
             if last {
@@ -567,6 +577,7 @@ where
                     min_norm_steps: converged.min_norm_steps,
                     held: false,
                     substeps,
+                    crossed,
                 });
             }
             // the newest known solution first, the one before it second

@@ -234,6 +234,18 @@ impl Visit for Run<'_> {
                 solution.steps()
             )?;
         }
+        if let Some(t) = solution.first_crossing {
+            say!(
+                "  the path passes a singular configuration at t = {} s{}: a rope's length or a taut rope's tension \
+                 changes sign there (a rope going slack), and the step takes the solution beyond it as found",
+                Seconds(t),
+                if solution.crossings > 1 {
+                    format!(" and {} more times", solution.crossings - 1)
+                } else {
+                    String::new()
+                }
+            )?;
+        }
         if solution.held_steps > 0 {
             say!(
                 "  {} of {} steps held what a nearly slack rope leaves free (a rope under {:e} of the largest \

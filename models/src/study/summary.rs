@@ -111,6 +111,13 @@ pub struct NewtonSummary {
     /// followed the path to the step time (only the step times are
     /// reported).
     pub continued_steps: usize,
+    /// Of those, the steps in which the solution changed branch where the
+    /// path does (a rope's length or a taut rope's tension changed sign
+    /// within 2^-20 of a step, or across a singular configuration), and
+    /// the first one's time, s.
+    pub crossings: usize,
+    /// The time of the first crossing, s.
+    pub first_crossing: Option<f64>,
 }
 
 /// A torque limit from the scenario's `[limits]` and when it is first exceeded.
@@ -637,6 +644,8 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         redundant_start_steps: solution.redundant_start_steps,
         held_steps: solution.held_steps,
         continued_steps: solution.continued_steps,
+        crossings: solution.crossings,
+        first_crossing: solution.first_crossing,
     };
     Summary {
         model: model.to_string(),
