@@ -155,3 +155,40 @@ fn a_ramp_shorter_than_four_steps_is_found() {
         "{smooth:?}"
     );
 }
+
+/// What the audit of a run finds where one state of the paper's move (at
+/// t = 2 s, in its default formulation) is changed by `change`.
+fn findings_with(change: impl Fn(&mut crane_runtime::State<7, 3, 2>)) -> Vec<Finding> {
+    let case = PaperCase::new(4.0).unwrap();
+    let settings = RunSettings {
+        formulation: Formulation::DummyDerivative,
+        ..RunSettings::default()
+    };
+    let start = case.start().unwrap();
+    let options = Options::new(0.01, 4.0).unwrap();
+    let mut solution = Formulation::DummyDerivative
+        .simulate(&case, &start, &options, &mut |_, _| {})
+        .unwrap();
+    change(&mut solution.states[200]);
+    let summary = study::summarize_run(&case, &settings, &solution, 0.0, study::DIAGNOSIS_SAMPLES);
+    study::audit(&summary)
+}
+
+/// The run's audit from both sides of each threshold of a state: the load
+/// lowered off its rope by 1e-3 of the coordinates' scale (14 m) is an
+/// error naming the states, by 1e-9 nothing (Newton's tolerance is 1e-10
+/// relative, the threshold 1e-6). (A rope of negative length is recorded
+/// as the run goes, `Solution::shortest_ropes`: the CLI's runs of a move too
+/// fast and `StepAudit`'s unit test check it.)
+#[test]
+fn the_audit_of_a_run_flags_each_fault_from_its_side_of_the_threshold() {
+    assert_eq!(findings_with(|_| {}), vec![]);
+    let off = |by: f64| move |s: &mut crane_runtime::State<7, 3, 2>| s.q[6] += by * 14.0;
+    let far = findings_with(off(1e-3));
+    assert!(
+        far.iter()
+            .any(|f| matches!(f, Finding::ConstraintsViolated { .. }) && f.severity() == Severity::Error),
+        "{far:?}"
+    );
+    assert_eq!(findings_with(off(1e-9)), vec![]);
+}
