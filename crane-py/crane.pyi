@@ -51,7 +51,8 @@ class Stepper:
     def step(self) -> dict[str, Any]:
         """One step; the new state. Raises CraneError if it fails."""
     def step_to(self, t: float) -> dict[str, Any]:
-        """Advance to the step at `t` (a step time not before the current one); the state there."""
+        """Advance to the step at `t` (a step time not before the current one, at most 1e9 steps
+        on); the state there. Ctrl-C stops it between steps (KeyboardInterrupt)."""
 
 def models() -> list[dict[str, Any]]:
     """The built-in cranes: name, description, sizes n, m, a, reference,

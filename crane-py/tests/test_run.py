@@ -203,6 +203,11 @@ def test_a_stepper_says_what_it_cannot_do():
     with pytest.raises(crane.CraneError, match="not a step time"):
         s.step_to(0.505)
     assert s.state["t"] == pytest.approx(0.5, abs=1e-12)
+    # a time too far on is refused at once (step_to(1e9) ran without end)
+    for far in (1e9, 1e300, 2.0**64 * 0.01):
+        with pytest.raises(crane.CraneError, match="step_to takes at most 1e9 steps per call"):
+            s.step_to(far)
+    assert s.state["t"] == pytest.approx(0.5, abs=1e-12)
 
 
 def test_a_replay_is_the_command_line_s(tmp_path):
@@ -273,3 +278,22 @@ def test_nothing_is_left_open():
     assert threading.active_count() == threads
     assert len(list(fds.iterdir())) == open_fds
     assert len(list(tasks.iterdir())) == native
+
+
+def test_ctrl_c_stops_a_long_step_to():
+    """Ctrl-C (SIGINT) stops `Stepper.step_to` between steps with
+    KeyboardInterrupt, the stepper at the last step it took; it used to run
+    on to the end, holding the interpreter."""
+    s = crane.stepper("navy-planar", dt=0.01)
+    # from another process, as a terminal sends it (a thread of this one
+    # would wait for the interpreter lock that the call holds)
+    kill = subprocess.Popen(["sh", "-c", f"sleep 0.3; kill -INT {os.getpid()}"])
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        s.step_to(1e6)  # 1e8 steps, about two minutes
+    kill.wait()
+    assert time.monotonic() - started < 30
+    t = s.state["t"]
+    assert 0 < t < 1e6
+    # the stepper goes on from where it stopped
+    assert s.step()["t"] == pytest.approx(t + 0.01, abs=1e-9)

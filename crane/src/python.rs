@@ -769,6 +769,15 @@ impl PyStepper {
     }
 }
 
+/// The most steps one `Stepper.step_to` takes (about a quarter of an hour
+/// at a microsecond a step): `step_to(1e9)` at dt = 0.01 s ran without end,
+/// holding the interpreter.
+const MAX_STEP_TO: usize = 1_000_000_000;
+
+/// Steps between two checks for Ctrl-C in `Stepper.step_to` (a check costs
+/// about as much as a step).
+const SIGNAL_STEPS: usize = 1024;
+
 #[pymethods]
 impl PyStepper {
     /// One step; returns the new state. Raises `CraneError` if the step
@@ -779,7 +788,9 @@ impl PyStepper {
     }
 
     /// Advance to the step at time `t` (a step time `t0 + k dt` not before
-    /// the current one); returns the state there.
+    /// the current one, at most [`MAX_STEP_TO`] steps on); returns the state
+    /// there. Ctrl-C stops it between steps (`KeyboardInterrupt`, the
+    /// stepper at the last step taken).
     fn step_to<'py>(&mut self, py: Python<'py>, t: f64) -> PyResult<Bound<'py, PyDict>> {
         let (now, dt) = (self.inner.state().t, self.inner.dt());
         let steps = ((t - now) / dt).round();
@@ -788,7 +799,15 @@ impl PyStepper {
                 "t = {t} s is not a step time at or after t = {now} s (the steps are {dt} s apart)"
             )));
         }
-        for _ in 0..steps as usize {
+        if steps > MAX_STEP_TO as f64 {
+            return Err(CraneError::new_err(format!(
+                "t = {t} s is {steps:.3e} steps of {dt} s on: step_to takes at most {MAX_STEP_TO:e} steps per call"
+            )));
+        }
+        for step in 0..steps as usize {
+            if step % SIGNAL_STEPS == SIGNAL_STEPS - 1 {
+                py.check_signals()?;
+            }
             self.inner.step().map_err(CraneError::new_err)?;
         }
         self.state_dict(py)
