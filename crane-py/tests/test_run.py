@@ -297,3 +297,21 @@ def test_ctrl_c_stops_a_long_step_to():
     assert 0 < t < 1e6
     # the stepper goes on from where it stopped
     assert s.step()["t"] == pytest.approx(t + 0.01, abs=1e-9)
+
+
+def test_a_stepper_works_from_any_thread():
+    """A stepper made in one thread steps in another (a thread pool's), one
+    call at a time, with the numbers of the same steps in one thread; it
+    raised PanicException ("PyStepper is unsendable, but sent to another
+    thread")."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    here = crane.stepper("navy-planar", dt=0.01)
+    there = crane.stepper("navy-planar", dt=0.01)
+    expected = [here.step() for _ in range(20)]
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        for want in expected:
+            got = pool.submit(there.step).result()
+            assert got["t"] == want["t"] and np.array_equal(got["u"], want["u"])
+        state = pool.submit(there.step_to, 0.5).result()
+    assert state["t"] == pytest.approx(0.5, abs=1e-12)

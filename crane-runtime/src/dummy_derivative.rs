@@ -686,10 +686,10 @@ pub fn boxed_stepper<H, Tr, S, const N: usize, const M: usize, const A: usize>(
     trajectory: Tr,
     start: &State<N, M, A>,
     options: &Options<S>,
-) -> Result<Box<dyn Advance<N, M, A, Model = H::Target>>, Error>
+) -> Result<Box<dyn Advance<N, M, A, Model = H::Target> + Send>, Error>
 where
-    H: Deref<Target: CraneModel<N, M, A> + Sized> + Clone + 'static,
-    Tr: Trajectory<A> + Clone + 'static,
+    H: Deref<Target: CraneModel<N, M, A> + Sized> + Clone + Send + 'static,
+    Tr: Trajectory<A> + Clone + Send + 'static,
     S: Method + 'static,
 {
     /// The stepper, with the system's size.
@@ -702,11 +702,11 @@ where
     impl<H, Tr, S, const N: usize, const M: usize, const A: usize> VisitDummyDerivatives<H::Target, N, M, A>
         for Build<'_, H, Tr, S, N, M, A>
     where
-        H: Deref<Target: CraneModel<N, M, A> + Sized> + Clone + 'static,
-        Tr: Trajectory<A> + Clone + 'static,
+        H: Deref<Target: CraneModel<N, M, A> + Sized> + Clone + Send + 'static,
+        Tr: Trajectory<A> + Clone + Send + 'static,
         S: Method + 'static,
     {
-        type Output = Result<Box<dyn Advance<N, M, A, Model = H::Target>>, Error>;
+        type Output = Result<Box<dyn Advance<N, M, A, Model = H::Target> + Send>, Error>;
         fn visit<const J: usize>(self) -> Self::Output
         where
             H::Target: DummyDerivatives<N, M, A, J>,

@@ -670,7 +670,7 @@ struct StateData {
 
 /// A stepper of any crane behind one interface (a Python class cannot be
 /// generic over the crane's sizes).
-trait AnyStepper {
+trait AnyStepper: Send {
     /// One step.
     fn step(&mut self) -> Result<(), String>;
     /// The state after the last step.
@@ -681,7 +681,7 @@ trait AnyStepper {
 
 /// A crane's stepper (eqs. 22 or the reduced system) behind [`AnyStepper`].
 struct Erased<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    Box<dyn Advance<N, M, A, Model = Mdl>>,
+    Box<dyn Advance<N, M, A, Model = Mdl> + Send>,
 );
 
 impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> AnyStepper for Erased<Mdl, N, M, A> {
@@ -723,7 +723,7 @@ impl Visit for StepperJob {
         let options = Options::new(settings.dt, case.tf())
             .map_err(|e| e.to_string())?
             .with_scheme(settings.scheme);
-        let advance: Box<dyn Advance<N, M, A, Model = C::Model>> = match settings.formulation {
+        let advance: Box<dyn Advance<N, M, A, Model = C::Model> + Send> = match settings.formulation {
             Formulation::DummyDerivative => {
                 dummy_derivative::boxed_stepper(Box::new(case.model), case.path, &start, &options)
                     .map_err(|e| study::StudyError::of_crane(C::NAME, e).to_string())?
@@ -750,14 +750,23 @@ impl Visit for StepperJob {
 /// A state is a dict of `t` and numpy arrays `q`, `v`, `u`, `lambda_`,
 /// `tensions`. The steps are those of `run` with the same keywords, bit for
 /// bit.
-#[pyclass(unsendable, name = "Stepper", module = "crane")]
+///
+/// It may be used from any thread, one call at a time (its calls hold the
+/// interpreter).
+#[pyclass(name = "Stepper", module = "crane")]
 struct PyStepper {
-    inner: Box<dyn AnyStepper>,
+    /// Behind a lock, so that the stepper may move between threads.
+    inner: std::sync::Mutex<Box<dyn AnyStepper>>,
 }
 
 impl PyStepper {
+    /// The stepper (a call that panicked inside it left it as it was).
+    fn stepper(&self) -> std::sync::MutexGuard<'_, Box<dyn AnyStepper>> {
+        self.inner.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
     fn state_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let state = self.inner.state();
+        let state = self.stepper().state();
         let dict = PyDict::new(py);
         dict.set_item("t", state.t)?;
         dict.set_item("q", PyArray1::from_vec(py, state.q))?;
@@ -783,7 +792,7 @@ impl PyStepper {
     /// One step; returns the new state. Raises `CraneError` if the step
     /// fails (the stepper is then left at the last good state).
     fn step<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.inner.step().map_err(CraneError::new_err)?;
+        self.stepper().step().map_err(CraneError::new_err)?;
         self.state_dict(py)
     }
 
@@ -792,7 +801,8 @@ impl PyStepper {
     /// there. Ctrl-C stops it between steps (`KeyboardInterrupt`, the
     /// stepper at the last step taken).
     fn step_to<'py>(&mut self, py: Python<'py>, t: f64) -> PyResult<Bound<'py, PyDict>> {
-        let (now, dt) = (self.inner.state().t, self.inner.dt());
+        let mut stepper = self.stepper();
+        let (now, dt) = (stepper.state().t, stepper.dt());
         let steps = ((t - now) / dt).round();
         if !(steps >= 0.0 && (t - now - steps * dt).abs() <= 1e-9 * dt * steps.max(1.0)) {
             return Err(CraneError::new_err(format!(
@@ -808,8 +818,9 @@ impl PyStepper {
             if step % SIGNAL_STEPS == SIGNAL_STEPS - 1 {
                 py.check_signals()?;
             }
-            self.inner.step().map_err(CraneError::new_err)?;
+            stepper.step().map_err(CraneError::new_err)?;
         }
+        drop(stepper);
         self.state_dict(py)
     }
 
@@ -822,7 +833,7 @@ impl PyStepper {
     /// The time step, s.
     #[getter]
     fn dt(&self) -> f64 {
-        self.inner.dt()
+        self.stepper().dt()
     }
 }
 
@@ -845,7 +856,9 @@ fn stepper(
     let inner = (cranes.stepper)(model, StepperJob { file, overrides })
         .ok_or_else(|| unknown_model(&cranes, model))?
         .map_err(CraneError::new_err)?;
-    Ok(PyStepper { inner })
+    Ok(PyStepper {
+        inner: std::sync::Mutex::new(inner),
+    })
 }
 
 /// Fill `module` with the cranes of registry `R`: `models()`, `run(...)`,
