@@ -315,3 +315,14 @@ def test_a_stepper_works_from_any_thread():
             assert got["t"] == want["t"] and np.array_equal(got["u"], want["u"])
         state = pool.submit(there.step_to, 0.5).result()
     assert state["t"] == pytest.approx(0.5, abs=1e-12)
+
+
+def test_a_fifo_scenario_is_refused_without_blocking(tmp_path):
+    """A named pipe without a writer as the scenario is refused by its type,
+    at once: opening it blocked for ever, deaf to Ctrl-C."""
+    fifo = tmp_path / "scenario.toml"
+    os.mkfifo(fifo)
+    started = time.monotonic()
+    with pytest.raises(crane.CraneError, match="not a regular file"):
+        crane.run("navy-planar", scenario=str(fifo))
+    assert time.monotonic() - started < 10
