@@ -184,9 +184,6 @@ pub struct Stepper<P, S: Method, const N: usize, const M: usize, const A: usize,
     scratch: [DVector<f64>; 2],
     /// How many of `past` are known (1 ..= MAX_EXTRAPOLATION).
     known: usize,
-    /// Whether a step is refused where it leaves its branch
-    /// ([`Problem::leaves_branch`]; not in [`step_across`](Self::step_across)).
-    check_branch: bool,
     /// Whether the last step took a minimum-norm step (a singular
     /// iteration matrix): the next one predicts with the scheme's degree.
     last_singular: bool,
@@ -246,7 +243,6 @@ where
             scratch: [z.clone(), z.clone()],
             z,
             known: 1,
-            check_branch: true,
             last_singular: false,
             state: *start,
             t0: start.t,
@@ -341,14 +337,20 @@ where
     /// singular configuration that shorter steps cannot follow (a rope whose
     /// tension passes zero leaves what it holds free there).
     pub fn step_across(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
-        self.check_branch = false;
-        let report = self.step_to(t, drive);
-        self.check_branch = true;
-        report
+        let expected = self.next_time();
+        check_step_time(t, expected, self.dt)?;
+        self.advance_checked(expected, drive, false)
     }
 
-    /// One step: the scheme's formula, the prediction, Newton, the state.
+    /// One step, refused where it leaves its branch.
     fn advance(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
+        self.advance_checked(t, drive, true)
+    }
+
+    /// One step: the scheme's formula, the prediction, Newton, the state;
+    /// with `check_branch`, refused where it leaves its branch
+    /// ([`Problem::leaves_branch`]), else taken as a crossing.
+    fn advance_checked(&mut self, t: f64, drive: &P::Drive, check_branch: bool) -> Result<StepReport, Error> {
         self.problem.check_drive(drive, t)?;
         self.problem.prepare(drive, self.history.formula(self.dt));
         let predictor = self.problem.predictor();
@@ -387,7 +389,7 @@ where
             Err(failure) => return Err(step_error(failure, t)),
         };
         let accepted = self.problem.accept(t, &self.z)?;
-        if self.check_branch && self.problem.leaves_branch(&self.state, &accepted.state) {
+        if check_branch && self.problem.leaves_branch(&self.state, &accepted.state) {
             return Err(Error::BranchLeft { t });
         }
         self.record(accepted);
@@ -398,7 +400,7 @@ where
             min_norm_steps: if held { 0 } else { converged.min_norm_steps },
             held,
             substeps: 0,
-            crossed: !self.check_branch,
+            crossed: !check_branch,
         })
     }
 
