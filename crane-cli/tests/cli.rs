@@ -1096,7 +1096,7 @@ fn replay_reports_how_the_torques_do_on_the_plant() {
         ),
         (
             "l=10.5",
-            "the plant cannot start where the inverse run starts: its constraint `rope1` is violated",
+            "the plant cannot start where the inverse run starts: its constraint `rope1` (g = 0, eq. 22d) is violated",
         ),
     ] {
         let out = dir.path().join(plant);

@@ -242,13 +242,14 @@ pub enum Error {
     },
     /// The replay's plant cannot start where the inverse run starts.
     #[error(
-        "the plant cannot start where the inverse run starts: its constraint `{constraint}` is violated by \
-         {residual:.3e} there (a plant parameter that changes the crane's geometry moves its start); replay on \
-         parameters that keep the geometry (masses, inertias, radii), or plan with the plant's"
+        "the plant cannot start where the inverse run starts: its {equation} is violated by {residual:.3e} there \
+         (a plant parameter that changes the crane's geometry moves its start); replay on parameters that keep \
+         the geometry (masses, inertias, radii), or plan with the plant's"
     )]
     ReplayStartInconsistent {
-        /// The plant's violated constraint.
-        constraint: &'static str,
+        /// The plant's violated constraint, named as in the model, e.g.
+        /// "constraint `rope1` (g = 0, eq. 22d)".
+        equation: String,
         /// Its residual at the start.
         residual: f64,
     },

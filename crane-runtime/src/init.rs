@@ -100,10 +100,7 @@ where
         });
     }
     let scale = q.amax().max(1.0);
-    let g = model.constraints(&q);
-    worst_row(g.as_slice(), CONSISTENCY_TOLERANCE * scale * scale, |i| {
-        format!("constraint `{}` (g = 0, eq. 22d)", info.constraints[i])
-    })?;
+    constraints_hold(model, &q)?;
 
     // G q' = 0 (eq. 23)
     let jac_g = model.constraint_jacobian(&q);
@@ -185,6 +182,20 @@ fn worst_row(residual: &[f64], tolerance: f64, name: impl Fn(usize) -> String) -
         });
     }
     Ok(())
+}
+
+/// Refuse coordinates `q` off the constraints `g(q) = 0` (eq. 22d) by more
+/// than [`CONSISTENCY_TOLERANCE`] of their squared size (`g` carries a
+/// factor 1/2 of squared lengths), naming the worst: the rule of a start.
+pub(crate) fn constraints_hold<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    model: &Mdl,
+    q: &SVector<f64, N>,
+) -> Result<(), Error> {
+    let scale = q.amax().max(1.0);
+    let g = model.constraints(q);
+    worst_row(g.as_slice(), CONSISTENCY_TOLERANCE * scale * scale, |i| {
+        format!("constraint `{}` (g = 0, eq. 22d)", Mdl::INFO.constraints[i])
+    })
 }
 
 /// Iterations of the static-equilibrium solve.

@@ -366,25 +366,16 @@ where
 
 /// Refuse a replay whose plant cannot start at the inverse run's start:
 /// a constraint of the plant violated there (a plant parameter that moves
-/// the geometry, a longer boom, moves the start with it), beyond
-/// [`CONSISTENCY_TOLERANCE`](crate::init::CONSISTENCY_TOLERANCE) of the
-/// squared size of the coordinates, as a start is checked.
+/// the geometry, a longer boom, moves the start with it), checked as a
+/// start is ([`CONSISTENCY_TOLERANCE`](crate::init::CONSISTENCY_TOLERANCE)).
 fn check_plant_start<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
     plant: &Mdl,
     start: &crate::solution::State<N, M, A>,
 ) -> Result<(), Error> {
-    let scale = start.q.amax().max(1.0);
-    let g = plant.constraints(&start.q);
-    let worst = (0..M).max_by(|&a, &b| g[a].abs().total_cmp(&g[b].abs()));
-    match worst {
-        Some(k) if !(g[k].abs() <= crate::init::CONSISTENCY_TOLERANCE * scale * scale) => {
-            Err(Error::ReplayStartInconsistent {
-                constraint: Mdl::INFO.constraints[k],
-                residual: g[k].abs(),
-            })
-        }
-        _ => Ok(()),
-    }
+    crate::init::constraints_hold(plant, &start.q).map_err(|error| match error {
+        Error::InconsistentStart { equation, residual, .. } => Error::ReplayStartInconsistent { equation, residual },
+        other => other,
+    })
 }
 
 /// The slack rule of a replay: its tensions come from a forward
@@ -414,29 +405,39 @@ fn rope_before<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A
         return error;
     };
     let ropes = Mdl::INFO.ropes;
-    let floor = -SLACK_TOLERANCE * solution.largest_tension();
+    let slack = (0..ropes.len())
+        .filter_map(|r| first_slack(solution, r).map(|i| (i, r)))
+        .min();
     let mut lengths = [0.0; M];
     let lengths = &mut lengths[..ropes.len().min(M)];
-    for (i, state) in solution.states.iter().enumerate() {
-        let tensions = solution.tensions_at(i);
+    let short = solution.states.iter().enumerate().find_map(|(i, state)| {
         plant.rope_lengths(&state.q, lengths);
-        let (rope, t) = (|r: usize| ropes[r].tension, state.t);
-        if let Some(r) = (0..lengths.len()).find(|&r| !(lengths[r] > 0.0)) {
-            return Error::ReplayRopeLength {
-                rope: rope(r),
-                t,
-                failed_at,
-            };
-        }
-        if let Some(r) = (0..lengths.len()).find(|&r| tensions[r] < floor) {
-            return Error::ReplayRopeSlack {
-                rope: rope(r),
-                t,
-                failed_at,
-            };
-        }
+        (0..lengths.len()).find(|&r| !(lengths[r] > 0.0)).map(|r| (i, r))
+    });
+    let at = |i: usize| solution.states[i].t;
+    match (short, slack) {
+        (Some((i, r)), slack) if slack.is_none_or(|(j, _)| i <= j) => Error::ReplayRopeLength {
+            rope: ropes[r].tension,
+            t: at(i),
+            failed_at,
+        },
+        (_, Some((i, r))) => Error::ReplayRopeSlack {
+            rope: ropes[r].tension,
+            t: at(i),
+            failed_at,
+        },
+        _ => error,
     }
-    error
+}
+
+/// The first state of a replay's `solution` at which rope `r` pushes:
+/// its tension below [`SLACK_TOLERANCE`] of the largest of the replay.
+pub fn first_slack<const N: usize, const M: usize, const A: usize>(
+    solution: &Solution<N, M, A>,
+    r: usize,
+) -> Option<usize> {
+    let floor = -SLACK_TOLERANCE * solution.largest_tension();
+    (0..solution.states.len()).find(|&i| solution.tensions_at(i)[r] < floor)
 }
 
 #[cfg(test)]

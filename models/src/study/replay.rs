@@ -11,7 +11,7 @@ use crane_runtime::replay::{Feedback, Pendulum, Replay, ReplayOptions, replay, r
 use crane_runtime::{CraneModel, Scheme, Solution, State};
 
 use super::StudyError;
-use super::summary::{self, ReplaySummary};
+use super::summary::ReplaySummary;
 use crate::case::Case;
 use crate::crane::Crane;
 
@@ -182,13 +182,9 @@ pub fn replay_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
     let result = closed_loop.as_ref().unwrap_or(&open_loop);
     let info = inverse.info;
     let solution = &result.solution;
-    let peak = solution.largest_tension();
-    let floor = -summary::REPLAY_SLACK_TOLERANCE * peak;
     let first_slack = (info.ropes.iter().enumerate())
         .filter_map(|(r, rope)| {
-            (0..solution.states.len())
-                .find(|&i| solution.tensions_at(i)[r] < floor)
-                .map(|i| (rope.tension.to_string(), solution.states[i].t))
+            crane_runtime::replay::first_slack(solution, r).map(|i| (rope.tension.to_string(), solution.states[i].t))
         })
         .collect();
     let spec = case.path().spec();
