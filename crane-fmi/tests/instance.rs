@@ -40,6 +40,28 @@ fn outputs<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(fm
     values
 }
 
+/// navy-planar's instance with the Integer `path` (1: the built-in move, 3:
+/// the external target) and the internal step `dt`, initialised.
+fn navy_planar_started(path: i32, dt: f64) -> Instance<navy_planar::Description, 7, 3, 2> {
+    let mut fmu = Instance::<navy_planar::Description, 7, 3, 2>::new().unwrap();
+    fmu.setup_experiment(0.0).unwrap();
+    fmu.enter_initialization_mode().unwrap();
+    fmu.set_integer(&[1], &[path]).unwrap();
+    fmu.set_real(&[vr::<navy_planar::Description, 7, 3, 2>(Role::Dt)], &[dt])
+        .unwrap();
+    fmu.exit_initialization_mode().unwrap();
+    fmu
+}
+
+/// navy-planar's external target's value references, `gamma_k^(o)` for
+/// each load coordinate `k` and order `o = 0, 1, 2`.
+fn target_refs() -> Vec<u32> {
+    (0..2)
+        .flat_map(|k| (0..3).map(move |o| (k, o)))
+        .map(|(k, o)| vr::<navy_planar::Description, 7, 3, 2>(Role::Target(k, o)))
+        .collect()
+}
+
 /// Every built-in crane's default move (dt = 0.01, one internal step per
 /// communication step) gives the API's run in the crane's default
 /// formulation (dummy derivatives for every flat crane, eqs. 22 for the
@@ -123,10 +145,7 @@ fn an_external_target_drives_the_same_crane() {
         external.enter_initialization_mode().unwrap();
         external.set_integer(&[1], &[3]).unwrap();
         external.exit_initialization_mode().unwrap();
-        let target_vr: Vec<u32> = (0..2)
-            .flat_map(|k| (0..3).map(move |o| (k, o)))
-            .map(|(k, o)| vr::<D, 7, 3, 2>(Role::Target(k, o)))
-            .collect();
+        let target_vr = target_refs();
         let steps = (4.0 / h).round() as usize;
         let per_step = (h / 0.01).round() as usize;
         let mut worst = 0.0f64;
@@ -497,13 +516,8 @@ fn a_path_that_does_not_determine_the_inputs_is_a_warning() {
 /// same point: round-off of the 1e2 N m inputs, 1e-9 relative bounds it.
 #[test]
 fn a_long_internal_step_stays_on_the_moves_branch() {
-    type D = navy_planar::Description;
     for dt in [0.5, 1.0] {
-        let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
-        fmu.setup_experiment(0.0).unwrap();
-        fmu.enter_initialization_mode().unwrap();
-        fmu.set_real(&[vr::<D, 7, 3, 2>(Role::Dt)], &[dt]).unwrap();
-        fmu.exit_initialization_mode().unwrap();
+        let mut fmu = navy_planar_started(1, dt);
         let mut t = 0.0;
         while t < 1e5 {
             let h = if t < 4.0 { dt } else { 1000.0 };
@@ -529,20 +543,11 @@ fn a_long_internal_step_stays_on_the_moves_branch() {
 /// takes the same step.
 #[test]
 fn one_step_of_a_million_seconds_off_the_constraints_is_an_fmi_error() {
-    type D = navy_planar::Description;
     for path in [1, 3] {
-        let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
-        fmu.setup_experiment(0.0).unwrap();
-        fmu.enter_initialization_mode().unwrap();
-        fmu.set_integer(&[1], &[path]).unwrap();
-        fmu.set_real(&[vr::<D, 7, 3, 2>(Role::Dt)], &[1e6]).unwrap();
-        fmu.exit_initialization_mode().unwrap();
+        let mut fmu = navy_planar_started(path, 1e6);
         if path == 3 {
-            let target_vr: Vec<u32> = (0..2)
-                .flat_map(|k| (0..3).map(move |o| (k, o)))
-                .map(|(k, o)| vr::<D, 7, 3, 2>(Role::Target(k, o)))
-                .collect();
-            fmu.set_real(&target_vr, &[-3.0, 0.0, 0.0, -14.0, 0.0, 0.0]).unwrap();
+            fmu.set_real(&target_refs(), &[-3.0, 0.0, 0.0, -14.0, 0.0, 0.0])
+                .unwrap();
         }
         let step = fmu.do_step(0.0, 1e6);
         if path == 3 {
