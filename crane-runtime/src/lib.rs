@@ -79,6 +79,7 @@
 #![warn(missing_docs)]
 
 pub mod check;
+pub mod double_double;
 pub mod driver;
 pub mod dummy_derivative;
 pub mod error;
