@@ -121,7 +121,12 @@ fn a_long_communication_step_is_several_internal_steps() {
 /// crane runs in eqs. (22a-d) (its default, the reduced system, needs the
 /// path's derivatives up to order 4). Fed with the default move's values at
 /// the end of every step, the run is the API's run of that move in eqs.
-/// (22a-d) bit for bit; with steps of 4 dt the internal targets come from
+/// (22a-d) to round-off: the external target arrives rounded to `f64`,
+/// where the API's run takes the path's own target in double-double, and
+/// the scheme's second differences amplify that rounding (1e-16 of the
+/// load's coordinates) like 1/dt^2 (measured at most 8.5e-11 of the
+/// largest output at dt = 0.01, the size of the round-off floor that
+/// eqs. (22) had in `f64`; held to 1e-9); with steps of 4 dt the internal targets come from
 /// the quintic through both ends, whose error is at most h^6/720
 /// max|gamma^(6)| (computed below on the path), and the coordinates at the
 /// communication points stay within that bound of the API's run (measured
@@ -159,7 +164,9 @@ fn an_external_target_drives_the_same_crane() {
             let state = &api.states[(i + 1) * per_step];
             let b: Vec<f64> = state.u.iter().chain(state.q.iter()).copied().collect();
             if h == 0.01 {
-                assert_eq!(a, b, "t = {}", t + h);
+                let largest = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                let off = a.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+                assert!(off <= 1e-9 * largest, "t = {}: {a:?} against {b:?}", t + h);
             }
             worst = worst.max(
                 a[2..]

@@ -401,6 +401,7 @@ where
             state: self.state(t, z),
             y: SVector::zeros(),
             v: SVector::zeros(),
+            trailing: None,
         })
     }
 

@@ -116,6 +116,7 @@ where
             &kinematics,
             &u_scaled,
             &lambda_scaled,
+            &model.constraints(&kinematics[0]),
             N,
             r,
             jac,
@@ -197,6 +198,7 @@ where
             },
             y: q,
             v,
+            trailing: None,
         })
     }
 }

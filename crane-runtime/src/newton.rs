@@ -30,6 +30,14 @@ pub trait NonlinearSystem {
     /// (e.g. coordinates, scaled inputs, scaled multipliers).
     fn blocks(&self) -> &[Range<usize>];
 
+    /// The sizes the relative stopping tests judge the unknowns `z` by:
+    /// `z` itself (the default), or, for unknowns that are corrections to
+    /// a base the system holds, what they correct (base plus correction,
+    /// as of the last [`evaluate`](Self::evaluate)).
+    fn magnitudes<'a>(&'a self, z: &'a DVector<f64>) -> &'a DVector<f64> {
+        z
+    }
+
     /// The block lower triangular form of the Jacobian, if it has one
     /// whatever `z` (then the linear solves take it block by block); `None`
     /// (the default): a dense Jacobian.
@@ -449,7 +457,7 @@ impl Newton {
                 .iter()
                 .map(|block| {
                     let step = largest(&dz.as_slice()[block.clone()]);
-                    let size = largest(&z.as_slice()[block.clone()]);
+                    let size = largest(&system.magnitudes(z).as_slice()[block.clone()]);
                     step / (self.options.rtol * size + self.options.atol)
                 })
                 .fold(0.0, f64::max);

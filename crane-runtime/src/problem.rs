@@ -45,6 +45,20 @@ pub enum Predictor {
         /// The most steps the polynomial goes through (4: the cubic).
         points: usize,
     },
+    /// As [`Scheme`](Self::Scheme), but every unknown is a correction: the
+    /// first `leading` to the scheme's extrapolation of the discretised
+    /// coordinates, which the problem gets in double-double with its step
+    /// formula ([`History::extended_formula`](crate::scheme::History::extended_formula)),
+    /// the others to what the problem holds from the last step (their
+    /// change over the step: after a regular step the line through their
+    /// last two changes, which is the quadratic through their last three
+    /// values, else none). A correction is small, so `f64` holds it with an
+    /// error far below the rounding of the values themselves.
+    Correction {
+        /// How many leading unknowns are corrections to the extrapolated
+        /// discretised coordinates.
+        leading: usize,
+    },
 }
 
 /// What a problem makes of the start state.
@@ -69,6 +83,9 @@ pub struct Accepted<const N: usize, const M: usize, const A: usize, const K: usi
     pub y: SVector<f64, K>,
     /// Their rates `y'_{n+1}`.
     pub v: SVector<f64, K>,
+    /// What rounding `y` and `y'` to `f64` took from them, for a problem
+    /// that holds them to double-double precision ([`Predictor::Correction`]).
+    pub trailing: Option<[SVector<f64, K>; 2]>,
 }
 
 /// One problem of crane dynamics on the seam of the schemes: `K`
@@ -181,7 +198,8 @@ pub struct DynamicTerms<const N: usize, const A: usize> {
 /// ```text
 /// r_dyn = M (dt^2 a) - dt^2 f(q, v) - B^T(q) (dt^2 u) + G^T(q) (dt^2 lambda),   r_g = g(q)
 /// ```
-/// into `r` (rows `0..n`, then the constraints), and into `jac` their
+/// into `r` (rows `0..n`, then the constraints `g(q)` as the caller
+/// evaluated them: in `f64`, or beyond where it holds `q` so), and into `jac` their
 /// columns for unknowns `z = [q_0 .. q_cols; ...; dt^2 lambda]` (the
 /// multipliers last): for the first `cols` coordinates, moved with the
 /// slopes of the step's `formula`, `c^2 M - dt^2 df/dq - c dt df/dv -
@@ -198,6 +216,7 @@ pub fn dynamic_rows<Mdl, const N: usize, const M: usize, const A: usize>(
     [q, v, a]: &[SVector<f64, N>; 3],
     u_scaled: &SVector<f64, A>,
     lambda_scaled: &SVector<f64, M>,
+    constraints: &SVector<f64, M>,
     cols: usize,
     r: &mut DVector<f64>,
     jac: &mut DMatrix<f64>,
@@ -218,7 +237,7 @@ where
     let inputs = bt * u_scaled;
     let residual = inertia - applied - inputs + jac_g.tr_mul(lambda_scaled);
     r.rows_mut(0, N).copy_from(&residual);
-    r.rows_mut(N, M).copy_from(&model.constraints(q));
+    r.rows_mut(N, M).copy_from(constraints);
     let (da, dv) = (slopes.acceleration_dt2, slopes.velocity_dt2);
     for j in 0..cols {
         for i in 0..N {

@@ -25,6 +25,7 @@ use std::ops::{Deref, Range};
 
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
+use crate::double_double::DoubleDouble;
 use crate::driver::solve;
 use crate::error::Error;
 use crate::init;
@@ -38,8 +39,20 @@ use crate::stepper::Stepper;
 use crate::trajectory::Trajectory;
 
 /// Eqs. (22a-d) of one step, as a [`Problem`] in the unknowns
-/// `z = [p; dt^2 u; dt^2 lambda]`, for the crane behind the handle `H`
+/// `z = [dp; dt^2 du; dt^2 dlambda]`, for the crane behind the handle `H`
 /// (`&Mdl`, `Box<Mdl>`, `Arc<Mdl>`) on the path `Tr`.
+///
+/// The unknowns are corrections, held in `f64`, to values held in
+/// double-double: `dp` to the scheme's prediction of `p_{n+1}`, which the
+/// step's formula gives ([`Predictor::Correction`]), `du` and `dlambda` to
+/// the last step's `u` and `lambda`. The history, the offsets of eq. (22a),
+/// the residual (22b-d) and the load's coordinates (the path's own
+/// [`position_extended`](Trajectory::position_extended), where the drive is
+/// the path's) are in that arithmetic too. The scheme's second differences
+/// of `p` then carry no noise from rounding `p`, `u`, `lambda` or the
+/// residual to `f64` (`~1e-16` of each, amplified like `1/dt^2` into `a`
+/// and `u`: see [`crate::double_double`]). A formula without that part (a
+/// test's) makes the unknowns the values themselves.
 #[derive(Clone)]
 pub struct Redundant<H, Tr, const N: usize, const M: usize, const A: usize> {
     model: H,
@@ -49,6 +62,27 @@ pub struct Redundant<H, Tr, const N: usize, const M: usize, const A: usize> {
     target: ServoTarget<A>,
     /// The scheme's affine maps `p -> v, a` for this step.
     formula: StepFormula<N>,
+    /// What the unknowns `dp` correct: the prediction of `p` (zero where
+    /// the unknowns are the coordinates), then the load's coordinates.
+    base: SVector<DoubleDouble, N>,
+    /// `base - ybar` and `vbar (c dt)` of eq. (22a).
+    lead: SVector<DoubleDouble, N>,
+    rate_term: SVector<DoubleDouble, N>,
+    /// `(c/dt)^2 dt^2`, the slope of `dt^2 a` in `p - ybar`.
+    lead_slope: DoubleDouble,
+    /// The load's `gamma'` and `dt^2 gamma''`.
+    load_rate: SVector<DoubleDouble, A>,
+    load_accel_dt2: SVector<DoubleDouble, A>,
+    /// What `dt^2 du` and `dt^2 dlambda` correct: the last step's (zero
+    /// where the unknowns are the values).
+    input_base: SVector<DoubleDouble, A>,
+    multiplier_base: SVector<DoubleDouble, M>,
+    /// `dt^2 u` and `dt^2 lambda` of the last accepted step.
+    last_inputs: SVector<DoubleDouble, A>,
+    last_multipliers: SVector<DoubleDouble, M>,
+    /// `[p; dt^2 u; dt^2 lambda]` at the last evaluation (the sizes the
+    /// stopping tests judge the unknowns by).
+    absolute: DVector<f64>,
     /// The dynamic rows' floors of the residual test (their inertia or
     /// applied forces, the larger) at the last evaluation.
     floors: SVector<f64, N>,
@@ -71,6 +105,17 @@ where
             mass,
             target: [SVector::zeros(); 3],
             formula: StepFormula::unprepared(),
+            base: SVector::zeros(),
+            lead: SVector::zeros(),
+            rate_term: SVector::zeros(),
+            lead_slope: DoubleDouble::from(f64::NAN),
+            load_rate: SVector::zeros(),
+            load_accel_dt2: SVector::zeros(),
+            input_base: SVector::zeros(),
+            multiplier_base: SVector::zeros(),
+            last_inputs: SVector::zeros(),
+            last_multipliers: SVector::zeros(),
+            absolute: DVector::zeros(N + M),
             floors: SVector::zeros(),
             blocks: [0..Self::P, Self::P..N, N..N + M],
         }
@@ -81,24 +126,96 @@ where
         &self.trajectory
     }
 
-    /// `q`, `v`, `a` at the new time from the unknowns.
-    fn kinematics(&self, z: &DVector<f64>) -> [SVector<f64, N>; 3] {
+    /// `q`, `v`, `a` at the new time from the unknowns, in `f64`, and `q`
+    /// and `v` in double-double (eq. 22a: `v = (c/dt) (p - ybar)`,
+    /// `dt^2 a = c^2 (p - ybar) - c dt vbar`).
+    fn kinematics(&self, z: &DVector<f64>) -> ([SVector<f64, N>; 3], [SVector<DoubleDouble, N>; 3]) {
         let (p, dt) = (Self::P, self.formula.dt);
         let mut q = SVector::<f64, N>::zeros();
         let mut v = SVector::<f64, N>::zeros();
         let mut a = SVector::<f64, N>::zeros();
+        let mut q_extended = self.base;
+        let mut v_extended = SVector::<DoubleDouble, N>::zeros();
+        let mut a_dt2_extended = SVector::<DoubleDouble, N>::zeros();
         for i in 0..p {
-            q[i] = z[i];
-            let (v_i, a_dt2) = self.formula.kinematics(i, z[i]); // eq. (22a)
-            v[i] = v_i;
-            a[i] = a_dt2 / (dt * dt);
+            let lead = self.lead[i] + z[i];
+            q_extended[i] = self.base[i] + z[i];
+            v_extended[i] = lead * self.formula.rate;
+            a_dt2_extended[i] = lead * self.lead_slope - self.rate_term[i];
+            q[i] = q_extended[i].hi;
+            v[i] = v_extended[i].hi;
+            a[i] = a_dt2_extended[i].to_f64() / (dt * dt);
         }
         for k in 0..A {
             q[p + k] = self.target[0][k];
             v[p + k] = self.target[1][k];
             a[p + k] = self.target[2][k];
+            v_extended[p + k] = self.load_rate[k];
+            a_dt2_extended[p + k] = self.load_accel_dt2[k];
         }
-        [q, v, a]
+        ([q, v, a], [q_extended, v_extended, a_dt2_extended])
+    }
+
+    /// `dt^2 u` and `dt^2 lambda` from the unknowns, in double-double.
+    fn scaled_forces(&self, z: &DVector<f64>) -> (SVector<DoubleDouble, A>, SVector<DoubleDouble, M>) {
+        let p = Self::P;
+        (
+            SVector::from_fn(|k, _| self.input_base[k] + z[p + k]),
+            SVector::from_fn(|i, _| self.multiplier_base[i] + z[N + i]),
+        )
+    }
+
+    /// The dynamic rows (22b, 22c) in double-double, rounded: `M (dt^2 a) -
+    /// dt^2 f(q, v) - B^T(q) (dt^2 u) + G^T(q) (dt^2 lambda)`.
+    fn dynamic_residual(
+        &self,
+        [q, v, a_dt2]: &[SVector<DoubleDouble, N>; 3],
+        inputs: &SVector<DoubleDouble, A>,
+        multipliers: &SVector<DoubleDouble, M>,
+    ) -> SVector<f64, N> {
+        let model = &*self.model;
+        let dt2 = self.formula.dt * self.formula.dt;
+        let f = model.forces(q, v);
+        let bt = model.input_matrix(q);
+        let jac_g = model.constraint_jacobian(q);
+        SVector::from_fn(|i, _| {
+            let mut row = -(f[i] * dt2);
+            for j in 0..N {
+                if self.mass[(i, j)] != 0.0 {
+                    row += a_dt2[j] * self.mass[(i, j)];
+                }
+            }
+            for k in 0..A {
+                row -= bt[(i, k)] * inputs[k];
+            }
+            for l in 0..M {
+                row += jac_g[(l, i)] * multipliers[l];
+            }
+            row.to_f64()
+        })
+    }
+
+    /// Keep `dt^2 u` and `dt^2 lambda` of `state` as the last step's.
+    fn remember(&mut self, state: &State<N, M, A>, dt: f64) {
+        let dt2 = dt * dt;
+        self.last_inputs = state.u.map(|u| DoubleDouble::product(u, dt2));
+        self.last_multipliers = state.lambda.map(|l| DoubleDouble::product(l, dt2));
+    }
+
+    /// The load target at the step's time in double-double: the path's
+    /// own where the drive is the path's there (to 1e-12), else the
+    /// drive's (an external target).
+    fn load_target(&self, time: DoubleDouble) -> [SVector<DoubleDouble, A>; 3] {
+        let given = self.target.map(|x| x.map(DoubleDouble::from));
+        let agrees = |own: &[SVector<DoubleDouble, A>; 3]| {
+            own.iter()
+                .zip(&self.target)
+                .all(|(own, given)| (0..A).all(|k| (own[k].hi - given[k]).abs() <= 1e-12 * (1.0 + given[k].abs())))
+        };
+        match self.trajectory.target_extended(time) {
+            Some(own) if agrees(&own) => own,
+            _ => given,
+        }
     }
 }
 
@@ -165,9 +282,16 @@ where
 
     fn evaluate(&mut self, z: &DVector<f64>, r: &mut DVector<f64>, jac: &mut DMatrix<f64>) {
         let p = Self::P;
-        let kinematics = self.kinematics(z);
-        let u_scaled = SVector::<f64, A>::from_fn(|k, _| z[p + k]);
-        let lambda_scaled = SVector::<f64, M>::from_fn(|i, _| z[N + i]);
+        let (kinematics, extended) = self.kinematics(z);
+        let (inputs, multipliers) = self.scaled_forces(z);
+        let u_scaled = inputs.map(|x| x.hi);
+        let lambda_scaled = multipliers.map(|x| x.hi);
+        self.absolute.rows_mut(0, p).copy_from(&kinematics[0].rows(0, p));
+        self.absolute.rows_mut(p, A).copy_from(&u_scaled);
+        self.absolute.rows_mut(N, M).copy_from(&lambda_scaled);
+        // the residual beyond double precision: its rounding would be the
+        // coordinates' noise
+        let constraints = self.model.constraints(&extended[0]).map(DoubleDouble::to_f64);
         let model = &*self.model;
         // residual: dynamic rows (22b, 22c) scaled by dt^2, then (22d); the
         // iteration matrix column by column of z: p, then dt^2 u (-B^T over
@@ -179,6 +303,7 @@ where
             &kinematics,
             &u_scaled,
             &lambda_scaled,
+            &constraints,
             p,
             r,
             jac,
@@ -188,17 +313,24 @@ where
                 jac[(i, p + k)] = -rows.input_matrix[(i, k)];
             }
         }
+        r.rows_mut(0, N)
+            .copy_from(&self.dynamic_residual(&extended, &inputs, &multipliers));
         // dynamic rows also by their largest term (the load row of x nearly
         // vanishes when the load hangs straight below the pulley)
         self.floors = SVector::from_fn(|i, _| rows.inertia[i].abs().max(rows.applied[i].abs()));
     }
 
-    fn normalised_residual(&self, z: &DVector<f64>, r: &DVector<f64>, jac: &DMatrix<f64>) -> f64 {
-        normalised_residual(r, jac, z, |i| if i < N { self.floors[i] } else { 0.0 })
+    fn normalised_residual(&self, _z: &DVector<f64>, r: &DVector<f64>, jac: &DMatrix<f64>) -> f64 {
+        normalised_residual(r, jac, &self.absolute, |i| if i < N { self.floors[i] } else { 0.0 })
     }
 
     fn blocks(&self) -> &[Range<usize>] {
         &self.blocks
+    }
+
+    /// The coordinates for their corrections.
+    fn magnitudes<'a>(&'a self, _z: &'a DVector<f64>) -> &'a DVector<f64> {
+        &self.absolute
     }
 }
 
@@ -226,7 +358,7 @@ where
     }
 
     fn predictor(&self) -> Predictor {
-        Predictor::Scheme { leading: Self::P }
+        Predictor::Correction { leading: Self::P }
     }
 
     fn drive(&self, t: f64) -> ServoTarget<A> {
@@ -239,6 +371,9 @@ where
 
     fn start(&mut self, start: &State<N, M, A>, dt: f64, z: &mut DVector<f64>) -> Result<Start<N>, Error> {
         write_unknowns(start, dt, z);
+        // no change of u and lambda known before the first step
+        z.rows_mut(N - A, A + M).fill(0.0);
+        self.remember(start, dt);
         Ok(Start {
             y0: start.q,
             v0: start.v,
@@ -249,17 +384,60 @@ where
     fn prepare(&mut self, target: &ServoTarget<A>, formula: StepFormula<N>) {
         self.target = *target;
         self.formula = formula;
+        let p = Self::P;
+        // dt^2 a = (c/dt)^2 dt^2 (p - ybar) - (c/dt) dt^2 vbar with the
+        // products of the rate and the step exact: their roundings (1e-16
+        // relative, of terms of the size of v dt) would bias a by 1e-16 v/dt
+        let rate_dt = DoubleDouble::product(formula.rate, formula.dt);
+        self.lead_slope = rate_dt * rate_dt;
+        let rate_slope = rate_dt * formula.dt;
+        let (prediction, value_offset, rate_offset, load) = match formula.extended {
+            Some(extended) => (
+                extended.prediction,
+                extended.value_offset,
+                extended.rate_offset,
+                self.load_target(extended.time),
+            ),
+            // the unknowns are the coordinates themselves
+            None => (
+                SVector::zeros(),
+                formula.value_offset.map(DoubleDouble::from),
+                formula.rate_offset.map(DoubleDouble::from),
+                target.map(|x| x.map(DoubleDouble::from)),
+            ),
+        };
+        for i in 0..p {
+            self.base[i] = prediction[i];
+            self.lead[i] = prediction[i] - value_offset[i];
+            self.rate_term[i] = rate_offset[i] * rate_slope;
+        }
+        let dt2 = formula.dt * formula.dt;
+        for k in 0..A {
+            self.base[p + k] = load[0][k];
+            self.load_rate[k] = load[1][k];
+            self.load_accel_dt2[k] = load[2][k] * dt2;
+        }
+        if formula.extended.is_some() {
+            self.input_base = self.last_inputs;
+            self.multiplier_base = self.last_multipliers;
+        } else {
+            self.input_base = SVector::zeros();
+            self.multiplier_base = SVector::zeros();
+        }
     }
 
     fn accept(&mut self, t: f64, z: &DVector<f64>) -> Result<Accepted<N, M, A, N>, Error> {
-        let (p, dt2) = (Self::P, self.formula.dt * self.formula.dt);
-        let [q, v, _] = self.kinematics(z);
-        let u = SVector::from_fn(|k, _| z[p + k] / dt2);
-        let lambda = SVector::from_fn(|i, _| z[N + i] / dt2);
+        let dt2 = self.formula.dt * self.formula.dt;
+        let ([q, v, _], [q_extended, v_extended, _]) = self.kinematics(z);
+        let (inputs, multipliers) = self.scaled_forces(z);
+        (self.last_inputs, self.last_multipliers) = (inputs, multipliers);
+        let u = SVector::from_fn(|k, _| inputs[k].hi / dt2);
+        let lambda = SVector::from_fn(|i, _| multipliers[i].hi / dt2);
         Ok(Accepted {
             state: State { t, q, v, u, lambda },
             y: q,
             v,
+            trailing: Some([q_extended.map(|x| x.lo), v_extended.map(|x| x.lo)]),
         })
     }
 }
@@ -283,6 +461,16 @@ where
         z: &mut DVector<f64>,
     ) -> Result<(SVector<f64, N>, SVector<f64, N>), Error> {
         write_unknowns(state, formula.dt, z);
+        // the corrections the stepper extrapolates: the change of u and
+        // lambda over the step
+        let (inputs, multipliers) = (self.last_inputs, self.last_multipliers);
+        self.remember(state, formula.dt);
+        for k in 0..A {
+            z[N - A + k] = (self.last_inputs[k] - inputs[k]).to_f64();
+        }
+        for i in 0..M {
+            z[N + i] = (self.last_multipliers[i] - multipliers[i]).to_f64();
+        }
         Ok((state.q, state.v))
     }
 }

@@ -52,6 +52,8 @@ use std::str::FromStr;
 
 use nalgebra::SVector;
 
+use crate::double_double::DoubleDouble;
+
 /// Largest history length of a scheme here (BDF-5).
 pub const MAX_STEPS: usize = 5;
 
@@ -336,6 +338,10 @@ pub struct History<const K: usize, S: Method = Scheme> {
     /// one after it, wrapping around.
     values: [SVector<f64, K>; MAX_STEPS],
     rates: [SVector<f64, K>; MAX_STEPS],
+    /// What rounding to `f64` took from each past value and rate, where a
+    /// problem keeps it ([`History::push_extended`]; zero otherwise).
+    values_lo: [SVector<f64, K>; MAX_STEPS],
+    rates_lo: [SVector<f64, K>; MAX_STEPS],
     newest: usize,
     /// How many entries are valid (oldest ones may be missing early on).
     known: usize,
@@ -353,6 +359,26 @@ pub struct StepFormula<const K: usize> {
     pub value_offset: SVector<f64, K>,
     /// `vbar` from the past rates.
     pub rate_offset: SVector<f64, K>,
+    /// The same beyond double precision, for a problem that solves for
+    /// corrections to the prediction ([`Predictor::Correction`](crate::problem::Predictor::Correction)).
+    pub extended: Option<Extended<K>>,
+}
+
+/// A step's affine maps, its prediction and its time in double-double
+/// ([`History::extended_formula`]): a problem that holds its discretised
+/// coordinates as the prediction plus a correction, both to that
+/// precision, takes `v` and `a` from them free of the noise that rounding
+/// the coordinates to `f64` would leave in their second differences.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extended<const K: usize> {
+    /// `ybar`.
+    pub value_offset: SVector<DoubleDouble, K>,
+    /// `vbar`.
+    pub rate_offset: SVector<DoubleDouble, K>,
+    /// The predictor's extrapolation of `y_{n+1}`.
+    pub prediction: SVector<DoubleDouble, K>,
+    /// The step's time `t0 + (n + 1) dt`.
+    pub time: DoubleDouble,
 }
 
 /// The slopes of one step's affine maps in the new value `y`, as the
@@ -391,6 +417,7 @@ impl<const K: usize> StepFormula<K> {
             dt: f64::NAN,
             value_offset: SVector::zeros(),
             rate_offset: SVector::zeros(),
+            extended: None,
         }
     }
 
@@ -438,6 +465,8 @@ impl<const K: usize, S: Method> History<K, S> {
             method,
             values: [y0; MAX_STEPS],
             rates: [SVector::zeros(); MAX_STEPS],
+            values_lo: [SVector::zeros(); MAX_STEPS],
+            rates_lo: [SVector::zeros(); MAX_STEPS],
             newest: 0,
             known: MAX_STEPS,
         }
@@ -449,6 +478,8 @@ impl<const K: usize, S: Method> History<K, S> {
             method,
             values: [y0; MAX_STEPS],
             rates: [v0; MAX_STEPS],
+            values_lo: [SVector::zeros(); MAX_STEPS],
+            rates_lo: [SVector::zeros(); MAX_STEPS],
             newest: 0,
             known: 1,
         }
@@ -474,10 +505,35 @@ impl<const K: usize, S: Method> History<K, S> {
 
     /// Record an accepted step: `y_{n+1}, y'_{n+1}` become the newest entry.
     pub fn push(&mut self, y: SVector<f64, K>, v: SVector<f64, K>) {
+        self.push_extended(y, SVector::zeros(), v, SVector::zeros());
+    }
+
+    /// Record an accepted step to double-double precision: `y + y_lo` and
+    /// `v + v_lo`.
+    pub fn push_extended(
+        &mut self,
+        y: SVector<f64, K>,
+        y_lo: SVector<f64, K>,
+        v: SVector<f64, K>,
+        v_lo: SVector<f64, K>,
+    ) {
         self.newest = self.newest.checked_sub(1).unwrap_or(MAX_STEPS - 1);
         self.values[self.newest] = y;
         self.rates[self.newest] = v;
+        self.values_lo[self.newest] = y_lo;
+        self.rates_lo[self.newest] = v_lo;
         self.known = (self.known + 1).min(MAX_STEPS);
+    }
+
+    /// The past values and rates in double-double, newest first.
+    fn past_extended(&self) -> impl Iterator<Item = (SVector<DoubleDouble, K>, SVector<DoubleDouble, K>)> + '_ {
+        let join =
+            |hi: &SVector<f64, K>, lo: &SVector<f64, K>| SVector::from_fn(|i, _| DoubleDouble::new(hi[i], lo[i]));
+        let values = newest_first(&self.values, self.newest).zip(newest_first(&self.values_lo, self.newest));
+        let rates = newest_first(&self.rates, self.newest).zip(newest_first(&self.rates_lo, self.newest));
+        values
+            .zip(rates)
+            .map(move |((y, y_lo), (v, v_lo))| (join(y, y_lo), join(v, v_lo)))
     }
 
     /// The past values and rates, newest first.
@@ -520,7 +576,64 @@ impl<const K: usize, S: Method> History<K, S> {
             dt,
             value_offset,
             rate_offset,
+            extended: None,
         }
+    }
+
+    /// [`formula`](Self::formula) with its [`Extended`] part: the offsets
+    /// and the prediction ([`predict`](Self::predict) with `extra` points)
+    /// summed in double-double from the past held to that precision, for
+    /// the step at `time`.
+    pub fn extended_formula(&self, dt: f64, extra: usize, time: DoubleDouble) -> StepFormula<K> {
+        let mut step = self.formula(dt);
+        let formula = self.method.formula(self.known);
+        // ybar = -sum_j alpha_j y_{n-j} summed by parts, y_n + sum_{j >= 1}
+        // B_j (y_{n-j+1} - y_{n-j}) with the tails B_j = sum_{i >= j}
+        // alpha_i: the coefficients' sum -1 is then exact, not that of
+        // their roundings (off by ~1e-16, which would bias v by 1e-16 y/dt
+        // and a by 1e-16 v/dt)
+        let mut tails = [0.0; MAX_STEPS];
+        for j in (1..formula.steps).rev() {
+            tails[j] = formula.alpha[j] + tails.get(j + 1).copied().unwrap_or(0.0);
+        }
+        let mut past = self.past_extended().take(formula.steps);
+        let (mut value_offset, mut rate_offset) = past.next().unwrap_or((SVector::zeros(), SVector::zeros()));
+        let (mut newer_value, mut newer_rate) = (value_offset, rate_offset);
+        for (j, (value, rate)) in past.enumerate().map(|(j, past)| (j + 1, past)) {
+            for i in 0..K {
+                value_offset[i] += (newer_value[i] - value[i]) * tails[j];
+                rate_offset[i] += (newer_rate[i] - rate[i]) * tails[j];
+            }
+            (newer_value, newer_rate) = (value, rate);
+        }
+        let mut prediction = SVector::<DoubleDouble, K>::zeros();
+        let mut past = self.past_extended();
+        if self.known < 2 {
+            if let Some((value, rate)) = past.next() {
+                prediction = SVector::from_fn(|i, _| value[i] + rate[i] * dt);
+            }
+        } else {
+            let weights = extrapolation_weights(self.prediction_points(extra));
+            for ((value, _), weight) in past.zip(&weights[..self.prediction_points(extra)]) {
+                for i in 0..K {
+                    prediction[i] += value[i] * *weight;
+                }
+            }
+        }
+        step.extended = Some(Extended {
+            value_offset,
+            rate_offset,
+            prediction,
+            time,
+        });
+        step
+    }
+
+    /// The points the predictor extrapolates through with `extra` more.
+    fn prediction_points(&self, extra: usize) -> usize {
+        (self.method.predictor_points(self.known) + extra)
+            .min(self.known)
+            .min(MAX_STEPS)
     }
 
     /// Predictor for the next value: the polynomial through the last
@@ -532,9 +645,7 @@ impl<const K: usize, S: Method> History<K, S> {
         if self.known < 2 {
             return self.value() + self.rate() * dt;
         }
-        let points = (self.method.predictor_points(self.known) + extra)
-            .min(self.known)
-            .min(MAX_STEPS);
+        let points = self.prediction_points(extra);
         let weights = extrapolation_weights(points);
         let mut prediction = SVector::zeros();
         for ((value, _), weight) in self.past().zip(&weights[..points]) {

@@ -38,13 +38,14 @@
 
 use nalgebra::{DVector, SVector};
 
+use crate::double_double::DoubleDouble;
 use crate::error::Error;
 use crate::model::check_parameters;
 use crate::model::{CraneModel, any_rope_tension};
 use crate::newton::{Newton, NewtonFailure};
 use crate::options::Options;
 use crate::problem::{Accepted, Follow, Predictor, Problem};
-use crate::scheme::{History, MAX_EXTRAPOLATION, Method, extrapolation_weights, newest_first};
+use crate::scheme::{History, MAX_EXTRAPOLATION, Method, StepFormula, extrapolation_weights, newest_first};
 use crate::solution::State;
 
 /// What one step reports.
@@ -352,8 +353,10 @@ where
     /// ([`Problem::leaves_branch`]), else taken as a crossing.
     fn advance_checked(&mut self, t: f64, drive: &P::Drive, check_branch: bool) -> Result<StepReport, Error> {
         self.problem.check_drive(drive, t)?;
-        self.problem.prepare(drive, self.history.formula(self.dt));
         let predictor = self.problem.predictor();
+        let smooth = self.smooth_prediction();
+        self.problem
+            .prepare(drive, self.formula(predictor, usize::from(smooth)));
         self.predict(predictor);
         let mut held = P::HOLDS_NEARLY_SLACK && self.steps > 0 && nearly_slack(self.problem.model(), &self.state);
         self.newton.set_hold(held);
@@ -374,9 +377,16 @@ where
             // discretised coordinates still from the scheme's predictor)
             Err(first) if self.known >= 3 => {
                 self.z.copy_from(&self.past[self.newest]);
-                if let Predictor::Scheme { leading } = predictor {
-                    let predicted = self.history.predict(self.dt, 0);
-                    self.z.rows_mut(0, leading).copy_from(&predicted.rows(0, leading));
+                match predictor {
+                    Predictor::Scheme { leading } => {
+                        let predicted = self.history.predict(self.dt, 0);
+                        self.z.rows_mut(0, leading).copy_from(&predicted.rows(0, leading));
+                    }
+                    Predictor::Correction { .. } => {
+                        self.problem.prepare(drive, self.formula(predictor, 0));
+                        self.z.fill(0.0);
+                    }
+                    Predictor::Extrapolation { .. } => {}
                 }
                 let mut retried = self
                     .newton
@@ -404,6 +414,25 @@ where
         })
     }
 
+    /// Whether the step's prediction may take one degree more than the
+    /// scheme's: after three regular steps.
+    fn smooth_prediction(&self) -> bool {
+        !self.last_singular && self.known >= 3
+    }
+
+    /// The scheme's formula of the next step; with its double-double part
+    /// (prediction with `extra` points) for a problem that solves for
+    /// corrections ([`Predictor::Correction`]).
+    fn formula(&self, predictor: Predictor, extra: usize) -> StepFormula<K> {
+        match predictor {
+            Predictor::Correction { .. } => {
+                let time = DoubleDouble::step_time(self.t0, self.steps as u64 + 1, self.dt);
+                self.history.extended_formula(self.dt, extra, time)
+            }
+            _ => self.history.formula(self.dt),
+        }
+    }
+
     /// Newton's first iterate of the step (see [`Predictor`]).
     fn predict(&mut self, predictor: Predictor) {
         match predictor {
@@ -419,11 +448,21 @@ where
             // would amplify (a slow move with a slack rope then fails at
             // t = 0.9 s): the scheme's degree and the last step's values.
             Predictor::Scheme { leading } => {
-                let smooth = !self.last_singular && self.known >= 3;
+                let smooth = self.smooth_prediction();
                 let predicted = self.history.predict(self.dt, usize::from(smooth));
                 self.z.rows_mut(0, leading).copy_from(&predicted.rows(0, leading));
                 if smooth {
                     self.extrapolate(leading, 3);
+                }
+            }
+            // the same as corrections: the leading unknowns' prediction is
+            // in the step's formula, the others' change over the step is
+            // the line through their last two changes (the quadratic
+            // through their last three values), or none
+            Predictor::Correction { leading } => {
+                self.z.fill(0.0);
+                if self.smooth_prediction() {
+                    self.extrapolate(leading, 2);
                 }
             }
             // the cubic through the last four steps after a regular step,
@@ -469,7 +508,10 @@ where
     /// predictor.
     fn record(&mut self, accepted: Accepted<N, M, A, K>) {
         self.state = accepted.state;
-        self.history.push(accepted.y, accepted.v);
+        match accepted.trailing {
+            Some([y_lo, v_lo]) => self.history.push_extended(accepted.y, y_lo, accepted.v, v_lo),
+            None => self.history.push(accepted.y, accepted.v),
+        }
         self.newest = self.newest.checked_sub(1).unwrap_or(MAX_EXTRAPOLATION - 1);
         self.past[self.newest].copy_from(&self.z);
         self.known = (self.known + 1).min(MAX_EXTRAPOLATION);
@@ -486,7 +528,12 @@ where
     {
         let formula = self.history.formula(self.dt);
         let (y, v) = self.problem.follow(state, self.history.value(), formula, &mut self.z)?;
-        self.record(Accepted { state: *state, y, v });
+        self.record(Accepted {
+            state: *state,
+            y,
+            v,
+            trailing: None,
+        });
         Ok(())
     }
 }

@@ -7,6 +7,9 @@
 //! mass up to order 6 (docs/errata.md).
 
 use nalgebra::SVector;
+use num_dual::DualNum;
+
+use crate::double_double::DoubleDouble;
 
 /// A load path with exact time derivatives.
 pub trait Trajectory<const A: usize> {
@@ -41,6 +44,18 @@ pub trait Trajectory<const A: usize> {
     fn continuity(&self) -> Option<usize> {
         None
     }
+
+    /// `gamma, gamma', gamma''` to double-double precision at a time given
+    /// to that precision ([`DoubleDouble::step_time`]), where the path can
+    /// compute them: the built-in paths can. Eqs. (22) then take the load
+    /// target free of its rounding to `f64`, whose noise the scheme's
+    /// second differences of the robot's coordinates (which the target
+    /// fixes) would amplify like `1/dt^2` ([`crate::double_double`]).
+    /// `None` (the default): the target in `f64` serves.
+    fn target_extended(&self, t: DoubleDouble) -> Option<[SVector<DoubleDouble, A>; 3]> {
+        let _ = t;
+        None
+    }
 }
 
 impl<const A: usize, T: Trajectory<A> + ?Sized> Trajectory<A> for &T {
@@ -50,6 +65,10 @@ impl<const A: usize, T: Trajectory<A> + ?Sized> Trajectory<A> for &T {
 
     fn derivatives_into(&self, t: f64, out: &mut [SVector<f64, A>]) {
         (**self).derivatives_into(t, out)
+    }
+
+    fn target_extended(&self, t: DoubleDouble) -> Option<[SVector<DoubleDouble, A>; 3]> {
+        (**self).target_extended(t)
     }
 
     fn continuity(&self) -> Option<usize> {
@@ -65,6 +84,29 @@ fn poly_derivative(coefficients: &[f64], s: f64, k: usize) -> f64 {
         value = value * s + coefficients[i] * falling(i, k);
     }
     value
+}
+
+/// [`poly_derivative`] in double-double (the falling factorials are exact
+/// integers).
+fn poly_derivative_extended(coefficients: &[f64], s: DoubleDouble, k: usize) -> DoubleDouble {
+    (k..coefficients.len()).rev().fold(DoubleDouble::from(0.0), |value, i| {
+        value * s + coefficients[i] * falling(i, k)
+    })
+}
+
+/// `[gamma0 + (gammaf - gamma0) c, (gammaf - gamma0) c', (gammaf - gamma0)
+/// c'']` in double-double, the difference of the points taken exactly.
+fn scaled_extended<const A: usize>(
+    start: &SVector<f64, A>,
+    end: &SVector<f64, A>,
+    c: [DoubleDouble; 3],
+) -> [SVector<DoubleDouble, A>; 3] {
+    let span = |k: usize| DoubleDouble::sum(end[k], -start[k]);
+    [
+        SVector::from_fn(|k, _| span(k) * c[0] + start[k]),
+        SVector::from_fn(|k, _| span(k) * c[1]),
+        SVector::from_fn(|k, _| span(k) * c[2]),
+    ]
 }
 
 /// [`poly_derivative`] of orders `0 .. out.len()` into `out`, the
@@ -227,6 +269,20 @@ impl<const A: usize> Trajectory<A> for Poly9<A> {
         };
         along_profile(&self.start, &self.end, out, profile, |k| self.derivative(t, k));
     }
+
+    fn target_extended(&self, t: DoubleDouble) -> Option<[SVector<DoubleDouble, A>; 3]> {
+        let duration = DoubleDouble::sum(self.tf, -self.t0);
+        let tau = (t - self.t0) / duration;
+        let zero = DoubleDouble::from(0.0);
+        let c = if tau.hi <= 0.0 {
+            [zero; 3]
+        } else if tau.hi >= 1.0 {
+            [DoubleDouble::from(1.0), zero, zero]
+        } else {
+            [0, 1, 2].map(|k| poly_derivative_extended(&POLY9, tau, k) / duration.powi(k as i32))
+        };
+        Some(scaled_extended(&self.start, &self.end, c))
+    }
 }
 
 /// `out` along the scalar profile whose derivatives `profile` writes in
@@ -341,6 +397,37 @@ impl<const A: usize> Phases<A> {
 
     fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
         scaled(&self.start, &self.end, k, self.profile(t - self.t0, k))
+    }
+
+    /// The target at `t` in double-double: [`profile`](Self::profile) of
+    /// orders 0 to 2 in that arithmetic.
+    fn target_extended(&self, t: DoubleDouble) -> [SVector<DoubleDouble, A>; 3] {
+        let (tau, tau0) = (self.tau, self.tau0);
+        let s = t - self.t0;
+        let cruise = DoubleDouble::sum(tau, -tau0);
+        let zero = DoubleDouble::from(0.0);
+        // h^(k)(r) = tau0 p^(k)(r / tau0) / tau0^k
+        let ramp = |r: DoubleDouble, k: usize| {
+            poly_derivative_extended(self.ramp, r / tau0, k) * tau0 / DoubleDouble::from(tau0).powi(k as i32)
+        };
+        let c = if s.hi <= 0.0 {
+            [zero; 3]
+        } else if s.hi >= tau {
+            [DoubleDouble::from(1.0), zero, zero]
+        } else if s.hi < tau0 {
+            [0, 1, 2].map(|k| ramp(s, k) / cruise)
+        } else if s.hi < tau - tau0 {
+            [(s - 0.5 * tau0) / cruise, DoubleDouble::from(1.0) / cruise, zero]
+        } else {
+            // d^k/dt^k h(tau - t) = (-1)^k h^(k)(tau - t)
+            let r = -(s - tau);
+            [
+                -(ramp(r, 0) / cruise) + 1.0,
+                ramp(r, 1) / cruise,
+                -(ramp(r, 2) / cruise),
+            ]
+        };
+        scaled_extended(&self.start, &self.end, c)
     }
 
     /// [`Trajectory::derivatives_into`]: the phase found once, a ramp's
@@ -475,6 +562,10 @@ impl<const A: usize, const SMOOTH: bool> Trajectory<A> for Phased<A, SMOOTH> {
 
     fn derivatives_into(&self, t: f64, out: &mut [SVector<f64, A>]) {
         self.0.derivatives_into(t, out)
+    }
+
+    fn target_extended(&self, t: DoubleDouble) -> Option<[SVector<DoubleDouble, A>; 3]> {
+        Some(self.0.target_extended(t))
     }
 
     /// 4 for the ramps of [`ThreePhase`], [`SMOOTH_THREE_PHASE_CONTINUITY`]

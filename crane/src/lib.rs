@@ -118,9 +118,9 @@
 //! Pryce's offsets with every derivative an unknown of its own
 //! ([`DummyDerivatives`](prelude::DummyDerivatives)): one algebraic system
 //! per time, which nothing discretises, so its inputs are exact at any step.
-//! The double pendulum's inputs need the path's 6th derivative; on it,
-//! eqs. (22) with BDF-4 diverge as dt shrinks, the reduced formulation
-//! matches the analytical reference to round-off at every step:
+//! The double pendulum's inputs need the path's 6th derivative; eqs. (22)
+//! approach them at the scheme's order, the reduced formulation matches
+//! the analytical reference to round-off at every step:
 //!
 //! ```
 //! use crane::models::double_pendulum::DefaultCase;

@@ -7,6 +7,7 @@
 //! default (the end point, the duration) and rebuild.
 
 use crane_runtime::Trajectory;
+use crane_runtime::double_double::DoubleDouble;
 use crane_runtime::trajectory::{Poly9, SmoothThreePhase, ThreePhase, TrajectoryError};
 use nalgebra::SVector;
 
@@ -255,6 +256,14 @@ impl<const A: usize> Trajectory<A> for Path<A> {
             Built::Poly9(p) => p.continuity(),
             Built::ThreePhase(p) => p.continuity(),
             Built::SmoothThreePhase(p) => p.continuity(),
+        }
+    }
+
+    fn target_extended(&self, t: DoubleDouble) -> Option<[SVector<DoubleDouble, A>; 3]> {
+        match &self.built {
+            Built::Poly9(p) => p.target_extended(t),
+            Built::ThreePhase(p) => p.target_extended(t),
+            Built::SmoothThreePhase(p) => p.target_extended(t),
         }
     }
 }

@@ -65,6 +65,7 @@ impl<const N: usize, const A: usize, const F: usize> MinimalEquations<N, A, F> {
                 dt,
                 value_offset: SVector::zeros(),
                 rate_offset: SVector::zeros(),
+                extended: None,
             },
             blocks: [0..F, F..F + A, F + A..F + 2 * A, F + 2 * A..F + 3 * A],
         }

@@ -222,6 +222,7 @@ where
             state: State { t, q, v, u, lambda },
             y: mu,
             v: mu_dot,
+            trailing: None,
         })
     }
 }

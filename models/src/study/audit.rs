@@ -67,8 +67,9 @@ pub enum Finding {
         continuous: usize,
     },
     /// The crane's inputs need a higher derivative of the path than the
-    /// formulation's index reduction covers: its errors may grow as dt
-    /// shrinks (they do with BDF-2 and above).
+    /// formulation's index reduction covers: no convergence theorem bounds
+    /// its errors (on the built-ins BDF-2..5 keep their order, backward
+    /// Euler on the double pendulum does not).
     BeyondFormulation {
         /// The crane's name.
         model: String,
@@ -292,9 +293,10 @@ impl fmt::Display for Finding {
                 f,
                 "the inputs of {model} depend on the load path's derivatives up to order {needed}, but this \
                  formulation (the paper's minimal extension, eqs. 22 and 24) covers order {covered}: the \
-                 discretised system's index is beyond what the scheme is known to converge on (BDF-2 to BDF-5 \
-                 diverge as dt shrinks on such cranes, backward Euler may converge), so the computed inputs are not \
-                 a reliable result; the dummy-derivative formulation, where the crane has it, gives them exactly"
+                 discretised system's index is beyond what the schemes are known to converge on, so no error bound \
+                 holds for the computed inputs (measured on the built-in cranes of path order 6: BDF-2 to BDF-5 \
+                 in eqs. 22 reach their order, backward Euler on the double pendulum does not); the \
+                 dummy-derivative formulation, where the crane has it, gives them exactly"
             ),
             Finding::Runaway { model, at } => write!(
                 f,
