@@ -512,18 +512,23 @@ where
     pub fn step(&mut self) -> Result<StepReport, Error> {
         let t = self.reduced.next_time();
         let jets = self.reduced.problem().drive(t);
-        self.step_to(t, &jets)
+        self.step_with(t, &jets, true)
     }
 
     /// Advance one step to `t` (`t_n + dt`) with the given path derivatives.
     pub fn step_to(&mut self, t: f64, jets: &PathJets<A>) -> Result<StepReport, Error> {
+        self.step_with(t, jets, false)
+    }
+
+    /// One step to `t` with `jets`, the path's `own` or not.
+    fn step_with(&mut self, t: f64, jets: &PathJets<A>, own: bool) -> Result<StepReport, Error> {
         // a rope nearly without tension leaves directions the reduced system
         // does not fix (its matrix singular to working precision, and its
         // minimum-norm steps wander off: inputs of 3e49 N m on a 1000 s
         // move); the redundant step holds them where the last step left
         // them, as a run in eqs. (22a-d) does (the first step is never held)
         if self.reduced.steps() > 0 && nearly_slack(self.reduced.problem().model(), self.reduced.state()) {
-            return self.fallback_step(t, jets, None);
+            return self.fallback_step(t, jets, None, own);
         }
         let report = match self.reduced.step_to(t, jets) {
             Ok(report) => report,
@@ -533,7 +538,7 @@ where
                 // eqs. (22) hold what the degenerate state leaves free; a
                 // step too long for their scheme is the reduced system's
                 // by shorter steps
-                match self.fallback_step(t, jets, None) {
+                match self.fallback_step(t, jets, None, own) {
                     Ok(report) => return Ok(report),
                     Err(_) => self.reduced.continue_to(t, jets).map_err(|_| error)?,
                 }
@@ -558,10 +563,22 @@ where
     }
 
     /// The step to `t` in eqs. (22a-d), which the reduced stepper follows;
-    /// where it fails, `error` (the reduced step's) stands, if given.
-    fn fallback_step(&mut self, t: f64, jets: &PathJets<A>, error: Option<Error>) -> Result<StepReport, Error> {
-        let target = [jets[0], jets[1], jets[2]];
-        let report = self.fallback.step_to(t, &target).map_err(|e| error.unwrap_or(e))?;
+    /// where it fails, `error` (the reduced step's) stands, if given. The
+    /// path's `own` jets let eqs. (22) take its target beyond double
+    /// precision.
+    fn fallback_step(
+        &mut self,
+        t: f64,
+        jets: &PathJets<A>,
+        error: Option<Error>,
+        own: bool,
+    ) -> Result<StepReport, Error> {
+        let report = if own {
+            self.fallback.step_own_to(t)
+        } else {
+            self.fallback.step_to(t, &[jets[0], jets[1], jets[2]])
+        };
+        let report = report.map_err(|e| error.unwrap_or(e))?;
         self.reduced.follow(self.fallback.state())?;
         self.fallback_steps += 1;
         Ok(report)

@@ -68,6 +68,11 @@ pub struct Redundant<H, Tr, const N: usize, const M: usize, const A: usize> {
     /// `base - ybar` and `vbar (c dt)` of eq. (22a).
     lead: SVector<DoubleDouble, N>,
     rate_term: SVector<DoubleDouble, N>,
+    /// Whether the step's residual is evaluated in double-double: where the
+    /// load target is known to that precision (the path's own), not where
+    /// it arrives in `f64` (an external target, whose rounding the
+    /// residual's precision would not remove).
+    beyond_double: bool,
     /// `(c/dt)^2 dt^2`, the slope of `dt^2 a` in `p - ybar`.
     lead_slope: DoubleDouble,
     /// The load's `gamma'` and `dt^2 gamma''`.
@@ -108,6 +113,7 @@ where
             base: SVector::zeros(),
             lead: SVector::zeros(),
             rate_term: SVector::zeros(),
+            beyond_double: false,
             lead_slope: DoubleDouble::from(f64::NAN),
             load_rate: SVector::zeros(),
             load_accel_dt2: SVector::zeros(),
@@ -185,10 +191,11 @@ where
                     row += a_dt2[j] * self.mass[(i, j)];
                 }
             }
-            for k in 0..A {
+            // (B and G are sparse)
+            for k in (0..A).filter(|&k| bt[(i, k)].hi != 0.0) {
                 row -= bt[(i, k)] * inputs[k];
             }
-            for l in 0..M {
+            for l in (0..M).filter(|&l| jac_g[(l, i)].hi != 0.0) {
                 row += jac_g[(l, i)] * multipliers[l];
             }
             row.to_f64()
@@ -200,22 +207,6 @@ where
         let dt2 = dt * dt;
         self.last_inputs = state.u.map(|u| DoubleDouble::product(u, dt2));
         self.last_multipliers = state.lambda.map(|l| DoubleDouble::product(l, dt2));
-    }
-
-    /// The load target at the step's time in double-double: the path's
-    /// own where the drive is the path's there (to 1e-12), else the
-    /// drive's (an external target).
-    fn load_target(&self, time: DoubleDouble) -> [SVector<DoubleDouble, A>; 3] {
-        let given = self.target.map(|x| x.map(DoubleDouble::from));
-        let agrees = |own: &[SVector<DoubleDouble, A>; 3]| {
-            own.iter()
-                .zip(&self.target)
-                .all(|(own, given)| (0..A).all(|k| (own[k].hi - given[k]).abs() <= 1e-12 * (1.0 + given[k].abs())))
-        };
-        match self.trajectory.target_extended(time) {
-            Some(own) if agrees(&own) => own,
-            _ => given,
-        }
     }
 }
 
@@ -289,9 +280,13 @@ where
         self.absolute.rows_mut(0, p).copy_from(&kinematics[0].rows(0, p));
         self.absolute.rows_mut(p, A).copy_from(&u_scaled);
         self.absolute.rows_mut(N, M).copy_from(&lambda_scaled);
-        // the residual beyond double precision: its rounding would be the
-        // coordinates' noise
-        let constraints = self.model.constraints(&extended[0]).map(DoubleDouble::to_f64);
+        // the residual beyond double precision, where the target is: its
+        // rounding would be the coordinates' noise
+        let constraints = if self.beyond_double {
+            self.model.constraints(&extended[0]).map(DoubleDouble::to_f64)
+        } else {
+            self.model.constraints(&kinematics[0])
+        };
         let model = &*self.model;
         // residual: dynamic rows (22b, 22c) scaled by dt^2, then (22d); the
         // iteration matrix column by column of z: p, then dt^2 u (-B^T over
@@ -313,8 +308,10 @@ where
                 jac[(i, p + k)] = -rows.input_matrix[(i, k)];
             }
         }
-        r.rows_mut(0, N)
-            .copy_from(&self.dynamic_residual(&extended, &inputs, &multipliers));
+        if self.beyond_double {
+            r.rows_mut(0, N)
+                .copy_from(&self.dynamic_residual(&extended, &inputs, &multipliers));
+        }
         // dynamic rows also by their largest term (the load row of x nearly
         // vanishes when the load hangs straight below the pulley)
         self.floors = SVector::from_fn(|i, _| rows.inertia[i].abs().max(rows.applied[i].abs()));
@@ -396,16 +393,18 @@ where
                 extended.prediction,
                 extended.value_offset,
                 extended.rate_offset,
-                self.load_target(extended.time),
+                extended.target_time.and_then(|t| self.trajectory.target_extended(t)),
             ),
             // the unknowns are the coordinates themselves
             None => (
                 SVector::zeros(),
                 formula.value_offset.map(DoubleDouble::from),
                 formula.rate_offset.map(DoubleDouble::from),
-                target.map(|x| x.map(DoubleDouble::from)),
+                None,
             ),
         };
+        self.beyond_double = load.is_some();
+        let load = load.unwrap_or_else(|| target.map(|x| x.map(DoubleDouble::from)));
         for i in 0..p {
             self.base[i] = prediction[i];
             self.lead[i] = prediction[i] - value_offset[i];
@@ -522,7 +521,40 @@ where
 mod tests {
     use super::*;
     use crate::test_support::{Gantry, central_difference_error, random_history, uniform};
-    use crate::trajectory::FromFn;
+    use crate::trajectory::{FromFn, Poly9};
+
+    /// The same in double-double, where the unknowns are corrections and
+    /// the residual is evaluated beyond double precision: the load target
+    /// is the path's own at the step's time (a poly9 move of the gantry).
+    #[test]
+    fn the_extended_iteration_matrix_matches_central_differences() {
+        let mut rnd = uniform(5);
+        let path = Poly9::new(0.0, 4.0, SVector::from([0.0, -4.0]), SVector::from([3.0, -3.0])).unwrap();
+        for scheme in Scheme::ALL {
+            for dt in [0.1, 0.01, 0.001] {
+                for _ in 0..10 {
+                    let (history, start) = random_history(scheme, &mut rnd);
+                    let mut problem = Redundant::new(&Gantry, &path);
+                    problem.start(&start, dt, &mut DVector::zeros(5)).unwrap();
+                    let t = 4.0 * rnd();
+                    let target = servo_target(&path, t);
+                    problem.prepare(&target, history.extended_formula(dt, 0, Some(DoubleDouble::from(t))));
+                    assert!(problem.beyond_double, "the path's own target at t = {t}");
+                    // corrections of the coordinates, dt^2 u and dt^2 lambda
+                    let z = DVector::from_fn(5, |i, _| match i {
+                        0 | 1 => 0.01 * rnd(),
+                        2 | 3 => dt * dt * 100.0 * rnd(),
+                        _ => dt * dt * 10.0 * rnd(),
+                    });
+                    let (worst, largest) = central_difference_error(&mut problem, &z);
+                    assert!(
+                        worst <= 1e-6 * largest,
+                        "{scheme}, dt = {dt}: worst {worst:e} of {largest:e}"
+                    );
+                }
+            }
+        }
+    }
 
     /// The redundant iteration matrix (eqs. 22b-d in `[p; dt^2 u; dt^2
     /// lambda]`) is the Jacobian of the residual: against central

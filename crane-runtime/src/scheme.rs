@@ -377,8 +377,10 @@ pub struct Extended<const K: usize> {
     pub rate_offset: SVector<DoubleDouble, K>,
     /// The predictor's extrapolation of `y_{n+1}`.
     pub prediction: SVector<DoubleDouble, K>,
-    /// The step's time `t0 + (n + 1) dt`.
-    pub time: DoubleDouble,
+    /// The step's time `t0 + (n + 1) dt`, where the step's drive is the
+    /// problem's own (its path's target there, which the problem may then
+    /// take to this precision); `None` for a drive given from outside.
+    pub target_time: Option<DoubleDouble>,
 }
 
 /// The slopes of one step's affine maps in the new value `y`, as the
@@ -583,8 +585,8 @@ impl<const K: usize, S: Method> History<K, S> {
     /// [`formula`](Self::formula) with its [`Extended`] part: the offsets
     /// and the prediction ([`predict`](Self::predict) with `extra` points)
     /// summed in double-double from the past held to that precision, for
-    /// the step at `time`.
-    pub fn extended_formula(&self, dt: f64, extra: usize, time: DoubleDouble) -> StepFormula<K> {
+    /// the step at `target_time` ([`Extended::target_time`]).
+    pub fn extended_formula(&self, dt: f64, extra: usize, target_time: Option<DoubleDouble>) -> StepFormula<K> {
         let mut step = self.formula(dt);
         let formula = self.method.formula(self.known);
         // ybar = -sum_j alpha_j y_{n-j} summed by parts, y_n + sum_{j >= 1}
@@ -624,7 +626,7 @@ impl<const K: usize, S: Method> History<K, S> {
             value_offset,
             rate_offset,
             prediction,
-            time,
+            target_time,
         });
         step
     }

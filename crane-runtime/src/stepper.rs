@@ -317,9 +317,17 @@ where
     /// Advance one step, to [`next_time`](Self::next_time), with the drive
     /// from the problem's own source.
     pub fn step(&mut self) -> Result<StepReport, Error> {
-        let t = self.next_time();
-        let drive = self.problem.drive(t);
-        self.advance(t, &drive)
+        self.step_own_to(self.next_time())
+    }
+
+    /// [`step_to`](Self::step_to) with the problem's own drive at `t`,
+    /// which the problem may then take beyond double precision
+    /// ([`Extended::target_time`](crate::scheme::Extended::target_time)).
+    pub(crate) fn step_own_to(&mut self, t: f64) -> Result<StepReport, Error> {
+        let expected = self.next_time();
+        check_step_time(t, expected, self.dt)?;
+        let drive = self.problem.drive(expected);
+        self.advance(expected, &drive, true)
     }
 
     /// Advance one step to time `t`, which must be
@@ -330,7 +338,7 @@ where
     pub fn step_to(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
         let expected = self.next_time();
         check_step_time(t, expected, self.dt)?;
-        self.advance(expected, drive)
+        self.advance(expected, drive, false)
     }
 
     /// [`step_to`](Self::step_to) taking the solution it finds even where it
@@ -340,23 +348,30 @@ where
     pub fn step_across(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
         let expected = self.next_time();
         check_step_time(t, expected, self.dt)?;
-        self.advance_checked(expected, drive, false)
+        self.advance_checked(expected, drive, false, false)
     }
 
-    /// One step, refused where it leaves its branch.
-    fn advance(&mut self, t: f64, drive: &P::Drive) -> Result<StepReport, Error> {
-        self.advance_checked(t, drive, true)
+    /// One step, refused where it leaves its branch; `own`: the drive is
+    /// the problem's own.
+    fn advance(&mut self, t: f64, drive: &P::Drive, own: bool) -> Result<StepReport, Error> {
+        self.advance_checked(t, drive, true, own)
     }
 
     /// One step: the scheme's formula, the prediction, Newton, the state;
     /// with `check_branch`, refused where it leaves its branch
     /// ([`Problem::leaves_branch`]), else taken as a crossing.
-    fn advance_checked(&mut self, t: f64, drive: &P::Drive, check_branch: bool) -> Result<StepReport, Error> {
+    fn advance_checked(
+        &mut self,
+        t: f64,
+        drive: &P::Drive,
+        check_branch: bool,
+        own: bool,
+    ) -> Result<StepReport, Error> {
         self.problem.check_drive(drive, t)?;
         let predictor = self.problem.predictor();
         let smooth = self.smooth_prediction();
         self.problem
-            .prepare(drive, self.formula(predictor, usize::from(smooth)));
+            .prepare(drive, self.formula(predictor, usize::from(smooth), own));
         self.predict(predictor);
         let mut held = P::HOLDS_NEARLY_SLACK && self.steps > 0 && nearly_slack(self.problem.model(), &self.state);
         self.newton.set_hold(held);
@@ -383,7 +398,7 @@ where
                         self.z.rows_mut(0, leading).copy_from(&predicted.rows(0, leading));
                     }
                     Predictor::Correction { .. } => {
-                        self.problem.prepare(drive, self.formula(predictor, 0));
+                        self.problem.prepare(drive, self.formula(predictor, 0, own));
                         self.z.fill(0.0);
                     }
                     Predictor::Extrapolation { .. } => {}
@@ -421,12 +436,13 @@ where
     }
 
     /// The scheme's formula of the next step; with its double-double part
-    /// (prediction with `extra` points) for a problem that solves for
+    /// (prediction with `extra` points, and the step's time where the
+    /// drive is the problem's `own`) for a problem that solves for
     /// corrections ([`Predictor::Correction`]).
-    fn formula(&self, predictor: Predictor, extra: usize) -> StepFormula<K> {
+    fn formula(&self, predictor: Predictor, extra: usize, own: bool) -> StepFormula<K> {
         match predictor {
             Predictor::Correction { .. } => {
-                let time = DoubleDouble::step_time(self.t0, self.steps as u64 + 1, self.dt);
+                let time = own.then(|| DoubleDouble::step_time(self.t0, self.steps as u64 + 1, self.dt));
                 self.history.extended_formula(self.dt, extra, time)
             }
             _ => self.history.formula(self.dt),
@@ -754,18 +770,27 @@ where
     pub fn step(&mut self) -> Result<StepReport, Error> {
         let t = self.second.next_time();
         let drive = self.second.problem.drive(t);
-        self.step_to(t, &drive)
+        self.step_with(t, &drive, true)
     }
 
     /// Advance one step to `t` (`t_n + dt`) with the given drive.
     pub fn step_to(&mut self, t: f64, drive: &P2::Drive) -> Result<StepReport, Error> {
+        self.step_with(t, drive, false)
+    }
+
+    /// One step to `t` with `drive`, the problems' `own` or not.
+    fn step_with(&mut self, t: f64, drive: &P2::Drive, own: bool) -> Result<StepReport, Error> {
         let Some(first) = self.first.as_mut() else {
-            return self.second.step_to(t, drive);
+            return if own {
+                self.second.step_own_to(t)
+            } else {
+                self.second.step_to(t, drive)
+            };
         };
         // the two start alike and step in lockstep: one check of the time
         let t_next = self.second.next_time();
         check_step_time(t, t_next, self.second.dt)?;
-        let report = first.advance(t_next, drive)?;
+        let report = first.advance(t_next, drive, own)?;
         let state = first.state;
         self.second.follow(&state)?;
         self.first_steps += 1;
