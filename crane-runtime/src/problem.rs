@@ -119,8 +119,8 @@ pub trait Problem<const N: usize, const M: usize, const A: usize, const K: usize
 
     /// The highest derivative of the load path ([`Structure::path_order`](crate::Structure::path_order))
     /// whose cranes the problem's index reduction covers: a crane needing
-    /// more is beyond it, and the problem's results for it are not reliable
-    /// (errors that grow as dt shrinks). `None` for a problem that is not a
+    /// more is beyond it, and no convergence theorem bounds the problem's
+    /// errors for it. `None` for a problem that is not a
     /// servo problem (the forward dynamics).
     fn path_order_covered(&self) -> Option<usize> {
         None

@@ -70,7 +70,9 @@ fn a_redundant_step_solves_n_plus_m_plus_a_unknowns() {
 /// predictor and stopping rule) computes what the stepper computes: on the
 /// paper's move at dt = 0.01 its inputs agree with `simulate`'s to 1e-9
 /// relative (both stop within 1e-10 of the unknowns, so they may differ at
-/// that level; measured 5.4e-13) and it takes as many Newton iterations
+/// that level; measured 6.7e-11: the floor runs in `f64`, the stepper's
+/// eqs. (22) in double-double, and the floor's round-off is that size
+/// here) and it takes as many Newton iterations
 /// (801 for 400 steps, both; at most 4 apart allowed for the first steps,
 /// where the stepper's matrix is near singular at the slack-rope start).
 #[test]
