@@ -651,7 +651,7 @@ impl DualNum for DoubleDouble {
 
     /// Reduced by a multiple `k` of `pi/2` (in double-double, exact for
     /// `|k|` up to about `2^50`), then by the Taylor series; the last few
-    /// arguments' values are kept per thread ([`SIN_COS_MEMO`]).
+    /// arguments' values are kept per thread.
     fn sin_cos(&self) -> (Self, Self) {
         if !self.is_finite() {
             return (Self::nan(), Self::nan());

@@ -47,7 +47,7 @@ use crate::trajectory::Trajectory;
 /// step's formula gives ([`Predictor::Correction`]), `du` and `dlambda` to
 /// the last step's `u` and `lambda`. The history, the offsets of eq. (22a),
 /// the residual (22b-d) and the load's coordinates (the path's own
-/// [`position_extended`](Trajectory::position_extended), where the drive is
+/// [`target_extended`](Trajectory::target_extended), where the drive is
 /// the path's) are in that arithmetic too. The scheme's second differences
 /// of `p` then carry no noise from rounding `p`, `u`, `lambda` or the
 /// residual to `f64` (`~1e-16` of each, amplified like `1/dt^2` into `a`
