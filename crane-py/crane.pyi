@@ -6,6 +6,10 @@ from typing import Any, Mapping, Optional, Sequence, Union
 import numpy as np
 import numpy.typing as npt
 
+__version__: str
+"""The version of the crane library the module was built with (the wheel's)."""
+__all__: list[str]
+
 class CraneError(ValueError):
     """A run the tool could not make, or an argument it refuses: the tool's one-line message."""
 
@@ -35,6 +39,23 @@ class Run:
     replay: Optional[dict[str, Any]]
     """With replay=True: the forward run of the computed inputs, a dict of
     `t`, `q`, `v`, `u`, `lambda_`, `tensions` (numpy arrays); else None."""
+    def __init__(
+        self,
+        t: npt.NDArray[np.float64],
+        q: npt.NDArray[np.float64],
+        v: npt.NDArray[np.float64],
+        u: npt.NDArray[np.float64],
+        lambda_: npt.NDArray[np.float64],
+        tensions: npt.NDArray[np.float64],
+        coordinates: list[str],
+        inputs: list[str],
+        ropes: list[str],
+        summary: dict[str, Any],
+        warnings: list[str],
+        replay: Optional[dict[str, Any]] = None,
+    ) -> None:
+        """A run from its parts (what unpickling calls); raises CraneError
+        where an array's shape does not match `t` and the names."""
     def to_csv(self, path: Union[str, PathLike[str]]) -> None:
         """Write the run as `crane run` writes results.csv (without the
         crane's derived outputs), whole or not at all; raises CraneError."""

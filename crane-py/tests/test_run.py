@@ -4,7 +4,9 @@ files, every error a crane.CraneError with the tool's message."""
 
 import csv
 import os
+import signal
 import subprocess
+import sys
 import threading
 import time
 from pathlib import Path
@@ -326,3 +328,92 @@ def test_a_fifo_scenario_is_refused_without_blocking(tmp_path):
     with pytest.raises(crane.CraneError, match="not a regular file"):
         crane.run("navy-planar", scenario=str(fifo))
     assert time.monotonic() - started < 10
+
+
+def test_scenario_values_that_contain_themselves_are_refused():
+    # a list or dict that contains itself, values nested 10^4 deep, and an
+    # object whose tolist() returns itself: each a CraneError, not a crash
+    # of the interpreter (SIGSEGV)
+    looped = []
+    looped.append(looped)
+    mapping = {}
+    mapping["end"] = mapping
+    deep = [0.0]
+    for _ in range(10_000):
+        deep = [deep]
+
+    class Itself:
+        def tolist(self):
+            return self
+
+    for scenario in ({"end": looped}, mapping, {"end": deep}, {"end": Itself()}):
+        with pytest.raises(crane.CraneError, match="nest deeper than 32 levels"):
+            crane.run("navy-planar", scenario=scenario)
+
+
+def test_a_failing_tolist_is_the_cause_of_the_error():
+    class Broken:
+        def tolist(self):
+            raise RuntimeError("no list today")
+
+    with pytest.raises(crane.CraneError, match=r"the Broken's tolist\(\) failed") as caught:
+        crane.run("navy-planar", scenario={"end": Broken()})
+    assert isinstance(caught.value.__cause__, RuntimeError)
+    assert str(caught.value.__cause__) == "no list today"
+
+
+def test_a_run_pickles_and_copies_bit_for_bit():
+    import copy
+    import pickle
+
+    r = crane.run("navy-planar")
+    for again in (pickle.loads(pickle.dumps(r)), copy.deepcopy(r)):
+        assert isinstance(again, crane.Run)
+        for name in ("t", "q", "v", "u", "lambda_", "tensions"):
+            assert np.array_equal(getattr(again, name), getattr(r, name)), name
+        assert (again.coordinates, again.inputs, again.ropes) == (r.coordinates, r.inputs, r.ropes)
+        assert again.summary == r.summary and again.warnings == r.warnings and again.replay is None
+    replayed = crane.run("navy-planar", replay=True)
+    back = pickle.loads(pickle.dumps(replayed))
+    assert np.array_equal(back.replay["u"], replayed.replay["u"])
+
+
+def test_runs_cross_a_process_pool():
+    import multiprocessing
+
+    with multiprocessing.get_context("spawn").Pool(2) as pool:
+        runs = pool.map(crane.run, ["navy-planar", "gantry-3d"])
+    assert [r.summary["model"] for r in runs] == ["navy-planar", "gantry-3d"]
+    assert np.array_equal(runs[0].u, crane.run("navy-planar").u)
+
+
+def test_a_run_from_parts_checks_their_shapes():
+    r = crane.run("navy-planar")
+    parts = (r.t, r.q, r.v, r.u[:-1], r.lambda_, r.tensions, r.coordinates, r.inputs, r.ropes, r.summary, r.warnings)
+    with pytest.raises(crane.CraneError, match="`u` has the shape"):
+        crane.Run(*parts)
+
+
+def test_ctrl_c_during_a_run_in_a_fresh_interpreter_is_keyboard_interrupt():
+    """Ctrl-C during `crane.run`, the first call to make numpy arrays in a
+    fresh interpreter, is KeyboardInterrupt when the run returns; it was
+    `PanicException: Failed to access NumPy array API capsule`."""
+    code = "import crane\ncrane.run('navy-planar', dt=2e-6)\n"
+    child = subprocess.Popen(
+        [sys.executable, "-c", code], stderr=subprocess.PIPE, text=True, env=dict(os.environ)
+    )
+    time.sleep(1.0)  # the import done, the run (2 000 000 steps, seconds) under way
+    child.send_signal(signal.SIGINT)
+    _, err = child.communicate(timeout=120)
+    assert child.returncode != 0
+    assert "KeyboardInterrupt" in err and "PanicException" not in err, err
+
+
+def test_the_module_has_its_version_and_its_public_names():
+    from importlib.metadata import version
+
+    assert crane.__version__ == version("crane")
+    assert sorted(crane.__all__) == sorted(
+        ["__version__", "CraneError", "Run", "Stepper", "models", "run", "stepper", "fastest", "sweep", "convergence"]
+    )
+    assert all(hasattr(crane, name) for name in crane.__all__)

@@ -303,9 +303,21 @@ fn models<'py>(module: &Bound<'py, PyModule>) -> PyResult<Bound<'py, PyList>> {
     Ok(list)
 }
 
+/// How deep scenario values may nest (a scenario's own are at most a
+/// table of lists of numbers, three levels): deeper is a list or dict that
+/// contains itself, or a mistake, refused before it exhausts the stack.
+const MAX_SCENARIO_DEPTH: usize = 32;
+
 /// A scenario value from Python: numbers, strings, booleans, lists and
-/// dicts of them.
-fn toml_value(value: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
+/// dicts of them, and what `tolist()` makes of a numpy array or scalar;
+/// `depth` levels below the scenario dict.
+fn toml_value(value: &Bound<'_, PyAny>, key: &str, depth: usize) -> PyResult<toml::Value> {
+    if depth > MAX_SCENARIO_DEPTH {
+        return Err(CraneError::new_err(format!(
+            "scenario: `{key}`: values nest deeper than {MAX_SCENARIO_DEPTH} levels (a list or dict that \
+             contains itself?)"
+        )));
+    }
     if value.is_instance_of::<PyBool>() {
         Ok(toml::Value::Boolean(value.extract()?))
     } else if value.is_instance_of::<PyInt>() {
@@ -317,13 +329,27 @@ fn toml_value(value: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
     } else if value.is_instance_of::<PyString>() {
         Ok(toml::Value::String(value.extract()?))
     } else if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
-        let items: PyResult<Vec<toml::Value>> = value.try_iter()?.map(|item| toml_value(&item?, key)).collect();
+        let items: PyResult<Vec<toml::Value>> = value
+            .try_iter()?
+            .map(|item| toml_value(&item?, key, depth + 1))
+            .collect();
         Ok(toml::Value::Array(items?))
     } else if let Ok(dict) = value.cast::<PyDict>() {
-        Ok(toml::Value::Table(toml_table(dict, Some(key))?))
-    } else if let Ok(array) = value.call_method0("tolist") {
-        // a numpy array or scalar
-        toml_value(&array, key)
+        Ok(toml::Value::Table(toml_table(dict, Some(key), depth + 1)?))
+    } else if value.hasattr("tolist")? {
+        // a numpy array or scalar; where its `tolist` fails, that failure
+        // is the cause
+        match value.call_method0("tolist") {
+            Ok(list) => toml_value(&list, key, depth + 1),
+            Err(cause) => {
+                let error = CraneError::new_err(format!(
+                    "scenario: `{key}`: the {}'s tolist() failed",
+                    value.get_type().name()?
+                ));
+                error.set_cause(value.py(), Some(cause));
+                Err(error)
+            }
+        }
     } else {
         Err(CraneError::new_err(format!(
             "scenario: `{key}`: a {} is not a scenario value (numbers, strings, lists and dicts are)",
@@ -333,15 +359,15 @@ fn toml_value(value: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
 }
 
 /// A dict of scenario keys as a TOML table (`parent` names the table in
-/// messages).
-fn toml_table(dict: &Bound<'_, PyDict>, parent: Option<&str>) -> PyResult<toml::Table> {
+/// messages), `depth` levels below the scenario dict.
+fn toml_table(dict: &Bound<'_, PyDict>, parent: Option<&str>, depth: usize) -> PyResult<toml::Table> {
     let mut table = toml::Table::new();
     for (key, value) in dict.iter() {
         let key: String = key
             .extract()
             .map_err(|_| CraneError::new_err("scenario: every key must be a string"))?;
         let path = parent.map_or_else(|| key.clone(), |p| format!("{p}.{key}"));
-        table.insert(key, toml_value(&value, &path)?);
+        table.insert(key, toml_value(&value, &path, depth)?);
     }
     Ok(table)
 }
@@ -353,7 +379,7 @@ fn scenario_of(scenario: Option<&Bound<'_, PyAny>>) -> PyResult<ScenarioFile> {
     };
     if let Ok(dict) = scenario.cast::<PyDict>() {
         let text =
-            toml::to_string(&toml_table(dict, None)?).map_err(|e| CraneError::new_err(format!("scenario: {e}")))?;
+            toml::to_string(&toml_table(dict, None, 0)?).map_err(|e| CraneError::new_err(format!("scenario: {e}")))?;
         return ScenarioFile::parse(&text, "the scenario dict").map_err(|e| CraneError::new_err(e.to_string()));
     }
     let path: PathBuf = scenario
@@ -429,6 +455,81 @@ struct Run {
 
 #[pymethods]
 impl Run {
+    /// A run from its parts, as a run has them (what unpickling calls): the
+    /// arrays' rows one per time of `t`, their columns as the names say.
+    #[new]
+    #[pyo3(signature = (t, q, v, u, lambda_, tensions, coordinates, inputs, ropes, summary, warnings, replay=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        t: Py<PyArray1<f64>>,
+        q: Py<PyArray2<f64>>,
+        v: Py<PyArray2<f64>>,
+        u: Py<PyArray2<f64>>,
+        lambda_: Py<PyArray2<f64>>,
+        tensions: Py<PyArray2<f64>>,
+        coordinates: Vec<String>,
+        inputs: Vec<String>,
+        ropes: Vec<String>,
+        summary: Py<PyDict>,
+        warnings: Vec<String>,
+        replay: Option<Py<PyDict>>,
+    ) -> PyResult<Self> {
+        let rows = t.bind(py).len()?;
+        let shapes = [
+            ("q", &q, Some(coordinates.len())),
+            ("v", &v, Some(coordinates.len())),
+            ("u", &u, Some(inputs.len())),
+            ("lambda_", &lambda_, None),
+            ("tensions", &tensions, Some(ropes.len())),
+        ];
+        for (name, array, width) in shapes {
+            let shape = numpy::PyUntypedArrayMethods::shape(array.bind(py)).to_vec();
+            if shape[0] != rows || width.is_some_and(|w| shape[1] != w) {
+                return Err(CraneError::new_err(format!(
+                    "Run: `{name}` has the shape {shape:?}, not {rows} rows of {} columns",
+                    width.map_or_else(|| "any number of".to_string(), |w| w.to_string())
+                )));
+            }
+        }
+        Ok(Self {
+            t,
+            q,
+            v,
+            u,
+            lambda: lambda_,
+            tensions,
+            coordinates,
+            inputs,
+            ropes,
+            summary,
+            warnings,
+            replay,
+        })
+    }
+
+    /// Pickling (and `copy.deepcopy`): the class and its parts.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let py = slf.py();
+        let run = slf.get();
+        let parts = (
+            run.t.clone_ref(py),
+            run.q.clone_ref(py),
+            run.v.clone_ref(py),
+            run.u.clone_ref(py),
+            run.lambda.clone_ref(py),
+            run.tensions.clone_ref(py),
+            run.coordinates.clone(),
+            run.inputs.clone(),
+            run.ropes.clone(),
+            run.summary.clone_ref(py),
+            run.warnings.clone(),
+            run.replay.as_ref().map(|r| r.clone_ref(py)),
+        )
+            .into_pyobject(py)?;
+        Ok((slf.get_type().into_any(), parts))
+    }
+
     /// Write the run to `path` as `crane run` writes results.csv: `t`, the
     /// coordinates, the inputs, `lambda1..` and the tensions, one row per
     /// step, the numbers in the shortest form that reads back exactly (the
@@ -647,8 +748,11 @@ fn visit_detached<J: Send, O: Send>(
     model: &str,
     job: J,
 ) -> PyResult<O> {
-    py.detach(|| visit(model, job))
-        .ok_or_else(|| unknown_model(cranes, model))?
+    let done = py.detach(|| visit(model, job));
+    // a Ctrl-C during the job: KeyboardInterrupt now, before its result is
+    // made into Python objects
+    py.check_signals()?;
+    done.ok_or_else(|| unknown_model(cranes, model))?
         .map_err(CraneError::new_err)
 }
 
@@ -867,6 +971,9 @@ fn stepper(
 /// [`export_module!`](crate::export_module) calls.
 pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = module.py();
+    // numpy's C API now, on import: fetched first at a run's end, a Ctrl-C
+    // pending then made its import fail inside the numpy crate, a panic
+    PyArray1::<f64>::zeros(py, 0, false);
     module.add("CraneError", py.get_type::<CraneError>())?;
     module.add_class::<Run>()?;
     module.add("_cranes", CranesObject(Cranes::of::<R>()))?;
@@ -877,6 +984,24 @@ pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyR
     module.add_function(wrap_pyfunction!(plan::fastest, module)?)?;
     module.add_function(wrap_pyfunction!(plan::sweep, module)?)?;
     module.add_function(wrap_pyfunction!(plan::convergence, module)?)?;
+    // the version of the library the module was built with (in `__all__`
+    // too: a wheel's package re-exports the module by `import *`)
+    module.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    module.add(
+        "__all__",
+        [
+            "__version__",
+            "CraneError",
+            "Run",
+            "Stepper",
+            "models",
+            "run",
+            "stepper",
+            "fastest",
+            "sweep",
+            "convergence",
+        ],
+    )?;
     Ok(())
 }
 
