@@ -73,7 +73,8 @@ class Stepper:
         """One step; the new state. Raises CraneError if it fails."""
     def step_to(self, t: float) -> dict[str, Any]:
         """Advance to the step at `t` (a step time not before the current one, at most 1e9 steps
-        on); the state there. Ctrl-C stops it between steps (KeyboardInterrupt)."""
+        on); the state there. Ctrl-C stops it between steps (KeyboardInterrupt); other
+        threads run while it steps (it releases the GIL)."""
 
 def models() -> list[dict[str, Any]]:
     """The built-in cranes: name, description, sizes n, m, a, reference,

@@ -417,3 +417,36 @@ def test_the_module_has_its_version_and_its_public_names():
         ["__version__", "CraneError", "Run", "Stepper", "models", "run", "stepper", "fastest", "sweep", "convergence"]
     )
     assert all(hasattr(crane, name) for name in crane.__all__)
+
+
+def test_a_stepper_releases_the_gil_while_it_steps():
+    """While `step_to` takes 400 000 steps in a thread, Python's main thread
+    keeps running; a call on the same stepper meanwhile raises (it is
+    borrowed) instead of waiting or corrupting it; the steps are those of
+    a stepper stepped alone."""
+    s = crane.stepper("navy-planar", dt=0.01)
+    alone = crane.stepper("navy-planar", dt=0.01)
+    done = threading.Event()
+    result = []
+
+    def work():
+        try:
+            result.append(s.step_to(4000.0))
+        finally:
+            done.set()
+
+    thread = threading.Thread(target=work)
+    ticks, refused = 0, 0
+    thread.start()
+    while not done.is_set():
+        ticks += 1
+        try:
+            s.step()
+        except RuntimeError:
+            refused += 1
+        time.sleep(0.001)
+    thread.join()
+    assert ticks > 20 and refused > 0, (ticks, refused)
+    assert result[0]["t"] == pytest.approx(4000.0)
+    expected = alone.step_to(4000.0)
+    assert np.array_equal(result[0]["u"], expected["u"])

@@ -855,8 +855,9 @@ impl Visit for StepperJob {
 /// `tensions`. The steps are those of `run` with the same keywords, bit for
 /// bit.
 ///
-/// It may be used from any thread, one call at a time (its calls hold the
-/// interpreter).
+/// It may be used from any thread, one call at a time (`step_to` releases
+/// the interpreter while it steps: other threads run, and a call on the same
+/// stepper meanwhile raises).
 #[pyclass(name = "Stepper", module = "crane")]
 struct PyStepper {
     /// Behind a lock, so that the stepper may move between threads.
@@ -887,8 +888,8 @@ impl PyStepper {
 /// holding the interpreter.
 const MAX_STEP_TO: usize = 1_000_000_000;
 
-/// Steps between two checks for Ctrl-C in `Stepper.step_to` (a check costs
-/// about as much as a step).
+/// Steps between two checks for Ctrl-C in `Stepper.step_to`, taken without
+/// the interpreter (a check and the release cost about as much as a step).
 const SIGNAL_STEPS: usize = 1024;
 
 #[pymethods]
@@ -918,11 +919,17 @@ impl PyStepper {
                 "t = {t} s is {steps:.3e} steps of {dt} s on: step_to takes at most {MAX_STEP_TO:e} steps per call"
             )));
         }
-        for step in 0..steps as usize {
-            if step % SIGNAL_STEPS == SIGNAL_STEPS - 1 {
-                py.check_signals()?;
-            }
-            stepper.step().map_err(CraneError::new_err)?;
+        // chunks of steps without the interpreter, so that other threads
+        // run meanwhile; Ctrl-C checked between them (another thread's call
+        // on this stepper meanwhile finds it borrowed and raises)
+        let inner: &mut dyn AnyStepper = &mut **stepper;
+        let mut left = steps as usize;
+        while left > 0 {
+            let chunk = left.min(SIGNAL_STEPS);
+            py.detach(|| (0..chunk).try_for_each(|_| inner.step()))
+                .map_err(CraneError::new_err)?;
+            left -= chunk;
+            py.check_signals()?;
         }
         drop(stepper);
         self.state_dict(py)
