@@ -13,6 +13,10 @@ __all__: list[str]
 class CraneError(ValueError):
     """A run the tool could not make, or an argument it refuses: the tool's one-line message."""
 
+class CraneWarning(UserWarning):
+    """What the audit found in a run, one warning per finding (`Run.warnings`
+    lists them too); filter them, or make them errors, with `warnings`."""
+
 class Run:
     """One run: its states (float64, one row per step), the names of their
     columns, the summary (summary.json as a dict) and what the audit found."""
@@ -59,6 +63,9 @@ class Run:
     def to_csv(self, path: Union[str, PathLike[str]]) -> None:
         """Write the run as `crane run` writes results.csv (without the
         crane's derived outputs), whole or not at all; raises CraneError."""
+    def to_dataframe(self) -> Any:
+        """The run as a pandas DataFrame (`t` the index, the columns of
+        `to_csv`, values copied); pandas is optional: ImportError without it."""
 
 class Stepper:
     """A crane one step at a time, from the start `run` takes; its steps are

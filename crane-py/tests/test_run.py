@@ -414,7 +414,19 @@ def test_the_module_has_its_version_and_its_public_names():
 
     assert crane.__version__ == version("crane")
     assert sorted(crane.__all__) == sorted(
-        ["__version__", "CraneError", "Run", "Stepper", "models", "run", "stepper", "fastest", "sweep", "convergence"]
+        [
+            "__version__",
+            "CraneError",
+            "CraneWarning",
+            "Run",
+            "Stepper",
+            "models",
+            "run",
+            "stepper",
+            "fastest",
+            "sweep",
+            "convergence",
+        ]
     )
     assert all(hasattr(crane, name) for name in crane.__all__)
 
@@ -450,3 +462,37 @@ def test_a_stepper_releases_the_gil_while_it_steps():
     assert result[0]["t"] == pytest.approx(4000.0)
     expected = alone.step_to(4000.0)
     assert np.array_equal(result[0]["u"], expected["u"])
+
+
+def test_the_audit_s_findings_are_crane_warnings():
+    import warnings
+
+    with pytest.warns(crane.CraneWarning, match="unstable internal dynamics") as caught:
+        r = crane.run("coupled-trolley")
+    assert [str(w.message) for w in caught if issubclass(w.category, crane.CraneWarning)] == r.warnings
+    # attributed to the line that made the run
+    assert all(w.filename == __file__ for w in caught)
+    # turned into errors by the warnings filter
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", crane.CraneWarning)
+        with pytest.raises(crane.CraneWarning):
+            crane.run("coupled-trolley")
+    # a trustworthy run warns of nothing
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert crane.run("navy-planar").warnings == []
+
+
+def test_a_run_as_a_dataframe_is_its_results_csv(tmp_path):
+    pd = pytest.importorskip("pandas")
+    r = crane.run("navy-planar")
+    frame = r.to_dataframe()
+    assert frame.index.name == "t" and np.array_equal(frame.index.to_numpy(), r.t)
+    r.to_csv(tmp_path / "results.csv")
+    written = pd.read_csv(tmp_path / "results.csv", index_col="t", float_precision="round_trip")
+    assert list(frame.columns) == list(written.columns)
+    assert np.array_equal(frame.to_numpy(), written.to_numpy())
+    assert np.array_equal(frame["u1"].to_numpy(), r.u[:, 0])
+    # the frame owns its numbers
+    frame.iloc[0, 0] = 1e9
+    assert r.q[0, 0] != 1e9

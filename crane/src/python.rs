@@ -46,7 +46,7 @@ use crane_runtime::{CraneModel, Options, Solution, dummy_derivative};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyModule, PyString, PyTuple};
+use pyo3::types::{IntoPyDict, PyBool, PyDict, PyFloat, PyInt, PyList, PyModule, PyString, PyTuple};
 
 #[doc(hidden)]
 pub use numpy;
@@ -63,6 +63,26 @@ pyo3::create_exception!(
     PyValueError,
     "A run the tool could not make, or an argument it refuses: the tool's one-line message."
 );
+
+pyo3::create_exception!(
+    crane,
+    CraneWarning,
+    pyo3::exceptions::PyUserWarning,
+    "What the audit found in a run: its findings, one warning each (`Run.warnings` lists them too). \
+     Filter them, or make them errors, with Python's `warnings` module."
+);
+
+/// Each of `findings` as a `CraneWarning` (`warnings.warn`), attributed to
+/// the caller of the function that made the run.
+fn warn_findings(py: Python<'_>, findings: &[String]) -> PyResult<()> {
+    let category = py.get_type::<CraneWarning>();
+    for finding in findings {
+        let message = std::ffi::CString::new(finding.replace('\0', " "))
+            .map_err(|e| CraneError::new_err(format!("warning: {e}")))?;
+        PyErr::warn(py, &category, &message, 1)?;
+    }
+    Ok(())
+}
 
 /// The states of a run as columns, row-major (one row per state).
 struct Columns {
@@ -573,6 +593,36 @@ impl Run {
         written.map_err(failed)
     }
 
+    /// The run as a pandas DataFrame: the times `t` its index, the columns
+    /// those of `to_csv` (the coordinates, the inputs, `lambda1..` and the
+    /// tensions), their values the arrays' (copied). pandas is an optional
+    /// dependency (`pip install crane[pandas]`): without it, ImportError.
+    fn to_dataframe<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let pandas = py.import("pandas").map_err(|cause| {
+            let error = pyo3::exceptions::PyImportError::new_err(
+                "Run.to_dataframe needs pandas: pip install pandas (or crane[pandas])",
+            );
+            error.set_cause(py, Some(cause));
+            error
+        })?;
+        let columns = PyDict::new(py);
+        let multipliers = self.lambda.bind(py).readonly().as_array().ncols();
+        let lambdas: Vec<String> = (1..=multipliers).map(|i| format!("lambda{i}")).collect();
+        for (array, names) in [
+            (&self.q, &self.coordinates),
+            (&self.u, &self.inputs),
+            (&self.lambda, &lambdas),
+            (&self.tensions, &self.ropes),
+        ] {
+            let array = array.bind(py).readonly();
+            for (i, name) in names.iter().enumerate() {
+                columns.set_item(name, PyArray1::from_owned_array(py, array.as_array().column(i).to_owned()))?;
+            }
+        }
+        let index = pandas.call_method("Index", (self.t.bind(py).call_method0("copy")?,), Some(&[("name", "t")].into_py_dict(py)?))?;
+        pandas.call_method("DataFrame", (columns,), Some(&[("index", index)].into_py_dict(py)?))
+    }
+
     fn __repr__(&self, py: Python<'_>) -> String {
         let steps = self.t.bind(py).len().map_or(0, |n| n.saturating_sub(1));
         let model = (self.summary.bind(py).get_item("model").ok().flatten())
@@ -596,7 +646,8 @@ impl Run {
 /// by name, after the scenario's `[plant]`) changes, with the feedback
 /// `feedback` (`"default"` or `(kp, kd)`) and the settling window `settle`
 /// (s); `Run.replay` then holds it, and the summary and warnings say how it
-/// went. Returns a `crane.Run`; raises `crane.CraneError` with the tool's
+/// went. Returns a `crane.Run`, whose audit findings are also warned of
+/// as `crane.CraneWarning`s; raises `crane.CraneError` with the tool's
 /// message.
 #[pyfunction]
 #[pyo3(pass_module, signature = (
@@ -655,7 +706,10 @@ fn run(
         inputs: data.inputs,
         ropes: data.ropes,
         summary: summary.unbind(),
-        warnings: data.warnings,
+        warnings: {
+            warn_findings(py, &data.warnings)?;
+            data.warnings
+        },
         replay,
     })
 }
@@ -982,6 +1036,7 @@ pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyR
     // pending then made its import fail inside the numpy crate, a panic
     PyArray1::<f64>::zeros(py, 0, false);
     module.add("CraneError", py.get_type::<CraneError>())?;
+    module.add("CraneWarning", py.get_type::<CraneWarning>())?;
     module.add_class::<Run>()?;
     module.add("_cranes", CranesObject(Cranes::of::<R>()))?;
     module.add_function(wrap_pyfunction!(models, module)?)?;
@@ -999,6 +1054,7 @@ pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyR
         [
             "__version__",
             "CraneError",
+            "CraneWarning",
             "Run",
             "Stepper",
             "models",
