@@ -616,10 +616,17 @@ impl Run {
         ] {
             let array = array.bind(py).readonly();
             for (i, name) in names.iter().enumerate() {
-                columns.set_item(name, PyArray1::from_owned_array(py, array.as_array().column(i).to_owned()))?;
+                columns.set_item(
+                    name,
+                    PyArray1::from_owned_array(py, array.as_array().column(i).to_owned()),
+                )?;
             }
         }
-        let index = pandas.call_method("Index", (self.t.bind(py).call_method0("copy")?,), Some(&[("name", "t")].into_py_dict(py)?))?;
+        let index = pandas.call_method(
+            "Index",
+            (self.t.bind(py).call_method0("copy")?,),
+            Some(&[("name", "t")].into_py_dict(py)?),
+        )?;
         pandas.call_method("DataFrame", (columns,), Some(&[("index", index)].into_py_dict(py)?))
     }
 

@@ -156,9 +156,9 @@ fn a_ramp_shorter_than_four_steps_is_found() {
     );
 }
 
-/// What the audit of a run finds where one state of the paper's move (at
-/// t = 2 s, in its default formulation) is changed by `change`.
-fn findings_with(change: impl Fn(&mut crane_runtime::State<7, 3, 2>)) -> Vec<Finding> {
+/// What the audit of the paper's move (in its default formulation) finds
+/// where its solution is changed by `change`.
+fn findings_with(change: impl Fn(&mut Solution<7, 3, 2>)) -> Vec<Finding> {
     let case = PaperCase::new(4.0).unwrap();
     let settings = RunSettings {
         formulation: Formulation::DummyDerivative,
@@ -169,21 +169,19 @@ fn findings_with(change: impl Fn(&mut crane_runtime::State<7, 3, 2>)) -> Vec<Fin
     let mut solution = Formulation::DummyDerivative
         .simulate(&case, &start, &options, &mut |_, _| {})
         .unwrap();
-    change(&mut solution.states[200]);
+    change(&mut solution);
     let summary = study::summarize_run(&case, &settings, &solution, 0.0, study::DIAGNOSIS_SAMPLES);
     study::audit(&summary)
 }
 
 /// The run's audit from both sides of each threshold of a state: the load
-/// lowered off its rope by 1e-3 of the coordinates' scale (14 m) is an
-/// error naming the states, by 1e-9 nothing (Newton's tolerance is 1e-10
-/// relative, the threshold 1e-6). (A rope of negative length is recorded
-/// as the run goes, `Solution::shortest_ropes`: the CLI's runs of a move too
-/// fast and `StepAudit`'s unit test check it.)
+/// lowered off its rope by 1e-3 of the coordinates' scale (14 m) at t = 2 s
+/// is an error naming the states, by 1e-9 nothing (Newton's tolerance is
+/// 1e-10 relative, the threshold 1e-6).
 #[test]
 fn the_audit_of_a_run_flags_each_fault_from_its_side_of_the_threshold() {
     assert_eq!(findings_with(|_| {}), vec![]);
-    let off = |by: f64| move |s: &mut crane_runtime::State<7, 3, 2>| s.q[6] += by * 14.0;
+    let off = |by: f64| move |s: &mut Solution<7, 3, 2>| s.states[200].q[6] += by * 14.0;
     let far = findings_with(off(1e-3));
     assert!(
         far.iter()
@@ -191,4 +189,50 @@ fn the_audit_of_a_run_flags_each_fault_from_its_side_of_the_threshold() {
         "{far:?}"
     );
     assert_eq!(findings_with(off(1e-9)), vec![]);
+}
+
+/// A rope whose shortest length along the run (recorded as the run goes,
+/// `Solution::shortest_ropes`) is 1 mm below zero is an error naming the
+/// rope; 1 mm above zero is none.
+#[test]
+fn a_rope_of_negative_length_is_found_and_a_short_one_is_not() {
+    let shortest = |length: f64| move |s: &mut Solution<7, 3, 2>| s.shortest_ropes[0] = (length, 2.0);
+    let negative = findings_with(shortest(-1e-3));
+    assert!(
+        negative
+            .iter()
+            .any(|f| matches!(f, Finding::NonPositiveRopeLength { rope, at, .. }
+            if rope == "N1" && *at == 2.0)
+                && f.severity() == Severity::Error),
+        "{negative:?}"
+    );
+    assert_eq!(findings_with(shortest(1e-3)), vec![]);
+}
+
+/// An input that exceeds `RUNAWAY_FACTOR` (1e6) times the largest input at
+/// the start is a runaway, found from where it begins; at a tenth of that
+/// it is no runaway (other findings, the jump's, may stand).
+#[test]
+fn a_runaway_is_found_from_its_side_of_the_threshold() {
+    use crane_runtime::internal::RUNAWAY_FACTOR;
+    let start_scale = |s: &Solution<7, 3, 2>| s.states[0].u.amax().max(1.0);
+    let grown = |factor: f64| {
+        move |s: &mut Solution<7, 3, 2>| {
+            let size = factor * RUNAWAY_FACTOR * start_scale(s);
+            for state in &mut s.states[300..] {
+                state.u[0] = size;
+            }
+        }
+    };
+    let away = findings_with(grown(2.0));
+    assert!(
+        away.iter()
+            .any(|f| matches!(f, Finding::Runaway { at, .. } if (*at - 3.0).abs() < 1e-9)),
+        "{away:?}"
+    );
+    let within = findings_with(grown(0.1));
+    assert!(
+        !within.iter().any(|f| matches!(f, Finding::Runaway { .. })),
+        "{within:?}"
+    );
 }
