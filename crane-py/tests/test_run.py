@@ -496,3 +496,18 @@ def test_a_run_as_a_dataframe_is_its_results_csv(tmp_path):
     # the frame owns its numbers
     frame.iloc[0, 0] = 1e9
     assert r.q[0, 0] != 1e9
+
+
+def test_a_bool_is_not_a_number():
+    # dt=True ran as dt = 1.0, while a scenario dict refused {"dt": True}
+    for call in (
+        lambda: crane.run("navy-planar", dt=True),
+        lambda: crane.run("navy-planar", tf=False),
+        lambda: crane.stepper("navy-planar", dt=True),
+        lambda: crane.run("navy-planar", parameters={"m_l": True}),
+        lambda: crane.fastest("navy-planar", limits={"u2": 150}, dt=True),
+    ):
+        with pytest.raises(crane.CraneError, match="bool|must be a number"):
+            call()
+    # numbers of every kind still are
+    assert crane.run("navy-planar", dt=np.float64(0.02), tf=4).u.shape == (201, 2)

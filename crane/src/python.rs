@@ -84,6 +84,25 @@ fn warn_findings(py: Python<'_>, findings: &[String]) -> PyResult<()> {
     Ok(())
 }
 
+/// A number argument (an int, a float, a numpy scalar), never a bool:
+/// `dt=True` is refused, not taken as 1.
+pub(crate) struct Number(pub(crate) f64);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Number {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if obj.is_instance_of::<PyBool>() {
+            return Err(CraneError::new_err(format!("expected a number, not the bool {}", *obj)));
+        }
+        Ok(Number(obj.extract()?))
+    }
+}
+
+/// The value of an optional [`Number`].
+pub(crate) fn value(number: Option<Number>) -> Option<f64> {
+    number.map(|n| n.0)
+}
+
 /// The states of a run as columns, row-major (one row per state).
 struct Columns {
     rows: usize,
@@ -415,9 +434,10 @@ fn numbers(what: &str, dict: Option<&Bound<'_, PyDict>>) -> PyResult<BTreeMap<St
         let name: String = key
             .extract()
             .map_err(|_| CraneError::new_err(format!("{what}: every name must be a string")))?;
-        let value: f64 = value
-            .extract()
-            .map_err(|_| CraneError::new_err(format!("{what}: `{name}` must be a number")))?;
+        let value = value
+            .extract::<Number>()
+            .map_err(|_| CraneError::new_err(format!("{what}: `{name}` must be a number")))?
+            .0;
         out.insert(name, value);
     }
     Ok(out)
@@ -665,8 +685,8 @@ impl Run {
 fn run(
     module: &Bound<'_, PyModule>,
     model: &str,
-    dt: Option<f64>,
-    tf: Option<f64>,
+    dt: Option<Number>,
+    tf: Option<Number>,
     scheme: Option<&str>,
     formulation: Option<&str>,
     scenario: Option<&Bound<'_, PyAny>>,
@@ -675,12 +695,12 @@ fn run(
     replay: bool,
     plant: Option<&Bound<'_, PyDict>>,
     feedback: Option<&Bound<'_, PyAny>>,
-    settle: Option<f64>,
+    settle: Option<Number>,
 ) -> PyResult<Run> {
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
-    let (file, overrides) = job(dt, tf, scheme, formulation, scenario, parameters, limits)?;
-    let request = replay_request(replay, plant, feedback, settle)?;
+    let (file, overrides) = job(value(dt), value(tf), scheme, formulation, scenario, parameters, limits)?;
+    let request = replay_request(replay, plant, feedback, value(settle))?;
     let job = RunJob {
         file,
         overrides,
@@ -1017,14 +1037,14 @@ impl PyStepper {
 fn stepper(
     module: &Bound<'_, PyModule>,
     model: &str,
-    dt: Option<f64>,
+    dt: Option<Number>,
     scheme: Option<&str>,
     formulation: Option<&str>,
     scenario: Option<&Bound<'_, PyAny>>,
     parameters: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyStepper> {
     let cranes = Cranes::of_module(module)?;
-    let (file, overrides) = job(dt, None, scheme, formulation, scenario, parameters, None)?;
+    let (file, overrides) = job(value(dt), None, scheme, formulation, scenario, parameters, None)?;
     let inner = (cranes.stepper)(model, StepperJob { file, overrides })
         .ok_or_else(|| unknown_model(&cranes, model))?
         .map_err(CraneError::new_err)?;

@@ -16,7 +16,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyModule};
 
-use super::{Columns, CraneError, Cranes, job, json_dict, numbers, visit_detached};
+use super::{Columns, CraneError, Cranes, Number, job, json_dict, numbers, value, visit_detached};
 
 /// The scenario and the planner's settings from the keywords.
 struct PlanInputs {
@@ -114,12 +114,12 @@ pub(super) fn fastest<'py>(
     scenario: Option<&Bound<'_, PyAny>>,
     parameters: Option<&Bound<'_, PyDict>>,
     scheme: Option<&str>,
-    dt: Option<f64>,
-    tolerance: Option<f64>,
+    dt: Option<Number>,
+    tolerance: Option<Number>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
-    let inputs = PlanInputs::new(scenario, parameters, limits, min_tension, scheme, dt, tolerance)?;
+    let inputs = PlanInputs::new(scenario, parameters, limits, min_tension, scheme, value(dt), value(tolerance))?;
     let data = visit_detached(py, &cranes, cranes.fastest, model, FastestJob(inputs))?;
     let dict = json_dict(py, data.report, "report")?;
     dict.set_item("run", data.run.into_dict(py, data.widths)?)?;
@@ -171,11 +171,11 @@ pub(super) fn sweep<'py>(
     scenario: Option<&Bound<'_, PyAny>>,
     parameters: Option<&Bound<'_, PyDict>>,
     scheme: Option<&str>,
-    dt: Option<f64>,
+    dt: Option<Number>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
-    let inputs = PlanInputs::new(scenario, parameters, limits, min_tension, scheme, dt, None)?;
+    let inputs = PlanInputs::new(scenario, parameters, limits, min_tension, scheme, value(dt), None)?;
     let mut swept = Vec::new();
     for (key, values) in grid.into_iter().flat_map(|g| g.iter()) {
         let name: String = key
