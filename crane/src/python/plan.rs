@@ -119,7 +119,8 @@ pub(super) fn fastest<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
-    let inputs = PlanInputs::new(scenario, parameters, limits, min_tension, scheme, value(dt), value(tolerance))?;
+    let (dt, tolerance) = (value(dt), value(tolerance));
+    let inputs = PlanInputs::new(scenario, parameters, limits, min_tension, scheme, dt, tolerance)?;
     let data = visit_detached(py, &cranes, cranes.fastest, model, FastestJob(inputs))?;
     let dict = json_dict(py, data.report, "report")?;
     dict.set_item("run", data.run.into_dict(py, data.widths)?)?;
