@@ -346,9 +346,22 @@ def test_scenario_values_that_contain_themselves_are_refused():
         def tolist(self):
             return self
 
-    for scenario in ({"end": looped}, mapping, {"end": deep}, {"end": Itself()}):
-        with pytest.raises(crane.CraneError, match="nest deeper than 32 levels"):
+    for scenario in ({"end": looped}, mapping, {"end": Itself()}):
+        with pytest.raises(crane.CraneError, match="contains itself"):
             crane.run("navy-planar", scenario=scenario)
+    with pytest.raises(crane.CraneError, match="nest deeper than 32 levels"):
+        crane.run("navy-planar", scenario={"end": deep})
+    # shared, not cyclic: the same list nested thirty times is 1e9 values
+    # (it ran out of memory, the interpreter held)
+    shared = [0.0]
+    for _ in range(30):
+        shared = [shared, shared]
+    twice = []
+    twice += [twice, twice]
+    with pytest.raises(crane.CraneError, match="more than 1000000 values"):
+        crane.run("navy-planar", scenario={"end": shared})
+    with pytest.raises(crane.CraneError, match="contains itself"):
+        crane.run("navy-planar", scenario={"end": twice})
 
 
 def test_a_failing_tolist_is_the_cause_of_the_error():

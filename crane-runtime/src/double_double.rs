@@ -183,8 +183,7 @@ impl DoubleDouble {
         m
     }
 
-    /// `sin` and `cos`, reduced by a multiple `k` of `pi/2` (in
-    /// double-double, exact for `|k|` up to about `2^50`), then by the
+    /// `sin` and `cos`, reduced by a multiple `k` of `pi/2`, then by the
     /// Taylor series.
     fn sin_cos_uncached(self) -> (Self, Self) {
         let k = (self.hi / HALF_PI.hi).round();
@@ -289,6 +288,10 @@ impl Add for DoubleDouble {
     /// The accurate sum (QD's `ieee_add`): both parts two-summed.
     fn add(self, b: Self) -> Self {
         let (s, e) = two_sum(self.hi, b.hi);
+        if !s.is_finite() {
+            // an infinity or NaN as f64 has it (the error terms would be NaN)
+            return Self::from(s);
+        }
         let (t, f) = two_sum(self.lo, b.lo);
         let (s, e) = quick_two_sum(s, e + t);
         let (hi, lo) = quick_two_sum(s, e + f);
@@ -300,6 +303,9 @@ impl Add<f64> for DoubleDouble {
     type Output = Self;
     fn add(self, b: f64) -> Self {
         let (s, e) = two_sum(self.hi, b);
+        if !s.is_finite() {
+            return Self::from(s);
+        }
         let (hi, lo) = quick_two_sum(s, e + self.lo);
         Self { hi, lo }
     }
@@ -337,9 +343,13 @@ impl Mul<f64> for DoubleDouble {
 
 impl Div for DoubleDouble {
     type Output = Self;
-    /// Three quotient digits (QD's accurate division).
+    /// Three quotient digits (QD's accurate division); by zero or an
+    /// infinity as `f64` divides.
     fn div(self, b: Self) -> Self {
         let q1 = self.hi / b.hi;
+        if !q1.is_finite() || !b.hi.is_finite() {
+            return Self::from(q1);
+        }
         let r = self - b * q1;
         let q2 = r.hi / b.hi;
         let r = r - b * q2;
@@ -358,15 +368,22 @@ impl Div<f64> for DoubleDouble {
 
 impl Rem for DoubleDouble {
     type Output = Self;
-    /// `self - trunc(self / b) b`, as `f64`'s `%`.
+    /// `self - trunc(self / b) b`, as `f64`'s `%`: the remainder has the
+    /// sign of `self` (a quotient just below a whole number, whose `hi` is
+    /// that number, takes the one below).
     fn rem(self, b: Self) -> Self {
         let q = self / b;
-        let whole = if q.hi.fract() == 0.0 {
+        let mut whole = if q.hi.fract() == 0.0 {
             Self::new(q.hi, q.lo.trunc())
         } else {
             Self::from(q.hi.trunc())
         };
-        self - b * whole
+        let mut rest = self - b * whole;
+        if rest.hi != 0.0 && (rest.hi < 0.0) != (self.hi < 0.0) {
+            whole -= q.hi.signum();
+            rest = self - b * whole;
+        }
+        rest
     }
 }
 
@@ -563,7 +580,7 @@ impl DualNum for DoubleDouble {
 
     /// One Newton step from the `f64` root: `s + (x - s^2) / (2 s)`.
     fn sqrt(&self) -> Self {
-        if self.hi <= 0.0 {
+        if self.hi <= 0.0 || !self.hi.is_finite() {
             return Self::from(self.hi.sqrt());
         }
         let s = self.hi.sqrt();
@@ -592,10 +609,13 @@ impl DualNum for DoubleDouble {
         let k = (self.hi / LN_2.hi).round();
         let r = *self - LN_2 * k;
         let e = Self::exp_m1_reduced(r) + 1.0;
-        let scale = 2f64.powi(k as i32);
+        // 2^k in two factors: 2^1024 alone overflows where the product does
+        // not (x up to 709.78), 2^-1075 alone underflows
+        let (k1, k2) = ((k as i32) / 2, (k as i32) - (k as i32) / 2);
+        let (s1, s2) = (2f64.powi(k1), 2f64.powi(k2));
         Self {
-            hi: e.hi * scale,
-            lo: e.lo * scale,
+            hi: e.hi * s1 * s2,
+            lo: e.lo * s1 * s2,
         }
     }
 
@@ -649,9 +669,10 @@ impl DualNum for DoubleDouble {
         s / c
     }
 
-    /// Reduced by a multiple `k` of `pi/2` (in double-double, exact for
-    /// `|k|` up to about `2^50`), then by the Taylor series; the last few
-    /// arguments' values are kept per thread.
+    /// Reduced by a multiple `k` of `pi/2` (in double-double, whose `pi/2`
+    /// is off by about 1e-33: the reduction's error grows like 1e-33 `|k|`,
+    /// negligible for the angles of a crane), then by the Taylor series;
+    /// the last few arguments' values are kept per thread.
     fn sin_cos(&self) -> (Self, Self) {
         if !self.is_finite() {
             return (Self::nan(), Self::nan());
@@ -837,6 +858,29 @@ mod tests {
                 value.lo
             );
         }
+    }
+
+    /// The edges, as `f64` has them: `exp` up to its overflow and down to
+    /// its underflow, `sqrt` and sums of infinities, division by zero, and
+    /// the remainder of a quotient just below a whole number.
+    #[test]
+    fn edges_are_those_of_f64() {
+        for x in [709.6, 709.78, -740.0, -20.5] {
+            let e = DoubleDouble::from(x).exp();
+            assert!(
+                e.is_finite() && (e.hi - x.exp()).abs() <= 4e-16 * x.exp(),
+                "exp({x}) = {e}"
+            );
+        }
+        assert_eq!(DoubleDouble::from(f64::INFINITY).sqrt().hi, f64::INFINITY);
+        assert_eq!((DoubleDouble::from(f64::INFINITY) + 1.0).hi, f64::INFINITY);
+        assert_eq!((DoubleDouble::from(1.0) / DoubleDouble::from(0.0)).hi, f64::INFINITY);
+        // (3 - 3e-17) % 1 = 1 - 3e-17, whose leading part rounds to 1
+        let rest = DoubleDouble::new(3.0, -3e-17) % 1.0;
+        assert!(rest > 0.999 && rest < 1.0 && (rest - 1.0).hi == -3e-17, "{rest}");
+        let rest = DoubleDouble::new(-3.0, 3e-17) % 1.0;
+        assert!(rest < -0.999 && rest > -1.0 && (rest + 1.0).hi == 3e-17, "{rest}");
+        assert_eq!((DoubleDouble::from(7.5) % 2.0).hi, 1.5);
     }
 
     /// The exact time of a step: `t0 + n dt` with what `f64` rounds away.

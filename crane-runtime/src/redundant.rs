@@ -436,7 +436,12 @@ where
             state: State { t, q, v, u, lambda },
             y: q,
             v,
-            trailing: Some([q_extended.map(|x| x.lo), v_extended.map(|x| x.lo)]),
+            // (the load's rows, which the history never reads, without
+            // their trailing parts: their leading ones are the drive's)
+            trailing: Some([
+                SVector::from_fn(|i, _| if i < Self::P { q_extended[i].lo } else { 0.0 }),
+                SVector::from_fn(|i, _| if i < Self::P { v_extended[i].lo } else { 0.0 }),
+            ]),
         })
     }
 }

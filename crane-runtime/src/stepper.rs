@@ -699,7 +699,10 @@ where
 /// Two problems in sequence: `first` takes the steps until `second` can
 /// take over from its state ([`Follow::can_take_over`]); meanwhile
 /// `second` follows each of those states ([`Stepper::follow`]), so its
-/// history is its own when it takes over.
+/// history is its own when it takes over. Both follow one path: the drive
+/// of [`step`](Self::step), the second problem's own, is taken as the
+/// first's own too (which a problem may take beyond double precision from
+/// its own path).
 #[derive(Clone)]
 pub struct Handover<P1, P2, S: Method, const N: usize, const M: usize, const A: usize, const K1: usize, const K2: usize>
 {

@@ -343,20 +343,59 @@ fn models<'py>(module: &Bound<'py, PyModule>) -> PyResult<Bound<'py, PyList>> {
 }
 
 /// How deep scenario values may nest (a scenario's own are at most a
-/// table of lists of numbers, three levels): deeper is a list or dict that
-/// contains itself, or a mistake, refused before it exhausts the stack.
+/// table of lists of numbers, three levels): deeper is a mistake, refused
+/// before it exhausts the stack.
 const MAX_SCENARIO_DEPTH: usize = 32;
 
-/// A scenario value from Python: numbers, strings, booleans, lists and
-/// dicts of them, and what `tolist()` makes of a numpy array or scalar;
-/// `depth` levels below the scenario dict.
-fn toml_value(value: &Bound<'_, PyAny>, key: &str, depth: usize) -> PyResult<toml::Value> {
-    if depth > MAX_SCENARIO_DEPTH {
-        return Err(CraneError::new_err(format!(
-            "scenario: `{key}`: values nest deeper than {MAX_SCENARIO_DEPTH} levels (a list or dict that \
-             contains itself?)"
-        )));
+/// How many values a scenario may hold (its own hold a few dozen): more is
+/// a mistake, refused before it exhausts the memory (a list that holds
+/// itself twice, or the same list nested thirty times, is 1e9 values).
+const MAX_SCENARIO_VALUES: usize = 1_000_000;
+
+/// The walk through a scenario's values: the lists and dicts on the way
+/// from the top (by identity, to refuse one that contains itself) and the
+/// values seen so far.
+#[derive(Default)]
+struct ScenarioWalk {
+    path: Vec<usize>,
+    values: usize,
+}
+
+impl ScenarioWalk {
+    /// Step into `container` (a list or dict) under `key`, refusing a cycle,
+    /// too deep a nesting and too many values.
+    fn enter(&mut self, container: &Bound<'_, PyAny>, key: &str) -> PyResult<()> {
+        let id = container.as_ptr() as usize;
+        if self.path.contains(&id) {
+            return Err(CraneError::new_err(format!(
+                "scenario: `{key}`: a list or dict that contains itself"
+            )));
+        }
+        if self.path.len() >= MAX_SCENARIO_DEPTH {
+            return Err(CraneError::new_err(format!(
+                "scenario: `{key}`: values nest deeper than {MAX_SCENARIO_DEPTH} levels"
+            )));
+        }
+        self.path.push(id);
+        Ok(())
     }
+
+    /// Count one value, refusing more than [`MAX_SCENARIO_VALUES`].
+    fn count(&mut self, key: &str) -> PyResult<()> {
+        self.values += 1;
+        if self.values > MAX_SCENARIO_VALUES {
+            return Err(CraneError::new_err(format!(
+                "scenario: `{key}`: more than {MAX_SCENARIO_VALUES} values"
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// A scenario value from Python: numbers, strings, booleans, lists and
+/// dicts of them, and what `tolist()` makes of a numpy array or scalar.
+fn toml_value(value: &Bound<'_, PyAny>, key: &str, walk: &mut ScenarioWalk) -> PyResult<toml::Value> {
+    walk.count(key)?;
     if value.is_instance_of::<PyBool>() {
         Ok(toml::Value::Boolean(value.extract()?))
     } else if value.is_instance_of::<PyInt>() {
@@ -368,18 +407,25 @@ fn toml_value(value: &Bound<'_, PyAny>, key: &str, depth: usize) -> PyResult<tom
     } else if value.is_instance_of::<PyString>() {
         Ok(toml::Value::String(value.extract()?))
     } else if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
-        let items: PyResult<Vec<toml::Value>> = value
-            .try_iter()?
-            .map(|item| toml_value(&item?, key, depth + 1))
-            .collect();
+        walk.enter(value, key)?;
+        let items: PyResult<Vec<toml::Value>> = value.try_iter()?.map(|item| toml_value(&item?, key, walk)).collect();
+        walk.path.pop();
         Ok(toml::Value::Array(items?))
     } else if let Ok(dict) = value.cast::<PyDict>() {
-        Ok(toml::Value::Table(toml_table(dict, Some(key), depth + 1)?))
+        walk.enter(value, key)?;
+        let table = toml_table(dict, Some(key), walk);
+        walk.path.pop();
+        Ok(toml::Value::Table(table?))
     } else if value.hasattr("tolist")? {
         // a numpy array or scalar; where its `tolist` fails, that failure
-        // is the cause
+        // is the cause (one that returns itself is a cycle)
         match value.call_method0("tolist") {
-            Ok(list) => toml_value(&list, key, depth + 1),
+            Ok(list) => {
+                walk.enter(value, key)?;
+                let converted = toml_value(&list, key, walk);
+                walk.path.pop();
+                converted
+            }
             Err(cause) => {
                 let error = CraneError::new_err(format!(
                     "scenario: `{key}`: the {}'s tolist() failed",
@@ -398,15 +444,15 @@ fn toml_value(value: &Bound<'_, PyAny>, key: &str, depth: usize) -> PyResult<tom
 }
 
 /// A dict of scenario keys as a TOML table (`parent` names the table in
-/// messages), `depth` levels below the scenario dict.
-fn toml_table(dict: &Bound<'_, PyDict>, parent: Option<&str>, depth: usize) -> PyResult<toml::Table> {
+/// messages).
+fn toml_table(dict: &Bound<'_, PyDict>, parent: Option<&str>, walk: &mut ScenarioWalk) -> PyResult<toml::Table> {
     let mut table = toml::Table::new();
     for (key, value) in dict.iter() {
         let key: String = key
             .extract()
             .map_err(|_| CraneError::new_err("scenario: every key must be a string"))?;
         let path = parent.map_or_else(|| key.clone(), |p| format!("{p}.{key}"));
-        table.insert(key, toml_value(&value, &path, depth)?);
+        table.insert(key, toml_value(&value, &path, walk)?);
     }
     Ok(table)
 }
@@ -417,8 +463,12 @@ fn scenario_of(scenario: Option<&Bound<'_, PyAny>>) -> PyResult<ScenarioFile> {
         return Ok(ScenarioFile::default());
     };
     if let Ok(dict) = scenario.cast::<PyDict>() {
-        let text =
-            toml::to_string(&toml_table(dict, None, 0)?).map_err(|e| CraneError::new_err(format!("scenario: {e}")))?;
+        let text = toml::to_string(&{
+            let mut walk = ScenarioWalk::default();
+            walk.enter(dict, "the scenario")?;
+            toml_table(dict, None, &mut walk)?
+        })
+        .map_err(|e| CraneError::new_err(format!("scenario: {e}")))?;
         return ScenarioFile::parse(&text, "the scenario dict").map_err(|e| CraneError::new_err(e.to_string()));
     }
     let path: PathBuf = scenario
