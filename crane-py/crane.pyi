@@ -76,6 +76,9 @@ class Stepper:
     """The time step, s."""
     state: dict[str, Any]
     """The state after the last step (the start before the first)."""
+    warnings: list[str]
+    """What the step audit (the FMU's) found so far, each also warned of as a
+    CraneWarning when found."""
     def step(self) -> dict[str, Any]:
         """One step; the new state. Raises CraneError if it fails."""
     def step_to(self, t: float) -> dict[str, Any]:

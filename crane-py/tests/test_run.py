@@ -524,3 +524,24 @@ def test_a_bool_is_not_a_number():
             call()
     # numbers of every kind still are
     assert crane.run("navy-planar", dt=np.float64(0.02), tf=4).u.shape == (201, 2)
+
+
+def test_a_stepper_is_audited_as_the_fmu_is():
+    """A stepper runs the FMU's step audit: what it finds is a CraneWarning
+    as it is found, and in `Stepper.warnings`; it used to return the numbers
+    `run` calls not reliable without a word. A regular move finds nothing."""
+    import warnings
+
+    scenario = {"end": [0.0, -5.0]}
+    flagged = crane.run("navy-planar", scenario=scenario).warnings
+    assert flagged
+    with pytest.warns(crane.CraneWarning) as caught:
+        s = crane.stepper("navy-planar", scenario=scenario)
+        s.step_to(4.0)
+    assert s.warnings and [str(w.message) for w in caught if issubclass(w.category, crane.CraneWarning)] == s.warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        clean = crane.stepper("navy-planar")
+        clean.step_to(4.0)
+        clean.step()
+    assert clean.warnings == []

@@ -37,6 +37,7 @@ use std::path::PathBuf;
 
 use crane_cli::scenario::{self, Overrides, ScenarioFile};
 use crane_models::registry::{Entry, Registry, Visit};
+use crane_models::study::audit::StepAudit;
 use crane_models::study::replay::{FeedbackSpec, ReplayRequest};
 use crane_models::study::{self, Formulation};
 use crane_models::{Case, Crane};
@@ -906,28 +907,55 @@ struct StateData {
 /// A stepper of any crane behind one interface (a Python class cannot be
 /// generic over the crane's sizes).
 trait AnyStepper: Send {
-    /// One step.
-    fn step(&mut self) -> Result<(), String>;
+    /// One step, and what the step audit found in it, if anything.
+    fn step(&mut self) -> Result<Option<String>, String>;
+    /// What the audit found at the start (once: then empty).
+    fn take_start_findings(&mut self) -> Vec<String>;
     /// The state after the last step.
     fn state(&self) -> StateData;
     /// The time step.
     fn dt(&self) -> f64;
 }
 
-/// A crane's stepper (eqs. 22 or the reduced system) behind [`AnyStepper`].
-struct Erased<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
-    Box<dyn Advance<N, M, A, Model = Mdl> + Send>,
-);
+/// A crane's stepper (eqs. 22 or the reduced system) behind [`AnyStepper`],
+/// with the step audit the FMU runs ([`StepAudit`]).
+struct Erased<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> {
+    advance: Box<dyn Advance<N, M, A, Model = Mdl> + Send>,
+    audit: StepAudit,
+    start_findings: Vec<String>,
+}
+
+impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> Erased<Mdl, N, M, A> {
+    /// The stepper of the crane called `name`, audited from its start.
+    fn new(name: &'static str, advance: Box<dyn Advance<N, M, A, Model = Mdl> + Send>) -> Self {
+        let (audit, findings) = StepAudit::start(name, advance.model(), advance.state(), advance.path_order_covered());
+        Self {
+            advance,
+            audit,
+            start_findings: findings.iter().map(ToString::to_string).collect(),
+        }
+    }
+}
 
 impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> AnyStepper for Erased<Mdl, N, M, A> {
-    fn step(&mut self) -> Result<(), String> {
-        self.0.step().map(|_| ()).map_err(|e| e.to_string())
+    fn step(&mut self) -> Result<Option<String>, String> {
+        let report = self.advance.step().map_err(|e| e.to_string())?;
+        let found = self
+            .audit
+            .step(self.advance.model(), self.advance.state(), report.left_free());
+        Ok(found.map(|finding| finding.to_string()))
+    }
+
+    fn take_start_findings(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.start_findings)
     }
 
     fn state(&self) -> StateData {
-        let state = self.0.state();
+        let state = self.advance.state();
         let mut tensions = vec![0.0; Mdl::INFO.ropes.len()];
-        self.0.model().rope_tensions(&state.q, &state.lambda, &mut tensions);
+        self.advance
+            .model()
+            .rope_tensions(&state.q, &state.lambda, &mut tensions);
         StateData {
             t: state.t,
             q: state.q.iter().copied().collect(),
@@ -939,7 +967,7 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> A
     }
 
     fn dt(&self) -> f64 {
-        self.0.dt()
+        self.advance.dt()
     }
 }
 
@@ -975,7 +1003,7 @@ impl Visit for StepperJob {
                 );
             }
         };
-        Ok(Box::new(Erased(advance)))
+        Ok(Box::new(Erased::new(C::NAME, advance)))
     }
 }
 
@@ -993,9 +1021,22 @@ impl Visit for StepperJob {
 struct PyStepper {
     /// Behind a lock, so that the stepper may move between threads.
     inner: std::sync::Mutex<Box<dyn AnyStepper>>,
+    /// What the step audit found so far (also warned of as
+    /// `CraneWarning`s as found).
+    #[pyo3(get)]
+    warnings: Vec<String>,
 }
 
 impl PyStepper {
+    /// What the audit found in a step, if anything: warned of, and kept.
+    fn found(&mut self, py: Python<'_>, finding: Option<String>) -> PyResult<()> {
+        if let Some(finding) = finding {
+            warn_findings(py, std::slice::from_ref(&finding))?;
+            self.warnings.push(finding);
+        }
+        Ok(())
+    }
+
     /// The stepper (a call that panicked inside it left it as it was).
     fn stepper(&self) -> std::sync::MutexGuard<'_, Box<dyn AnyStepper>> {
         self.inner.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
@@ -1028,7 +1069,8 @@ impl PyStepper {
     /// One step; returns the new state. Raises `CraneError` if the step
     /// fails (the stepper is then left at the last good state).
     fn step<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.stepper().step().map_err(CraneError::new_err)?;
+        let found = self.stepper().step().map_err(CraneError::new_err)?;
+        self.found(py, found)?;
         self.state_dict(py)
     }
 
@@ -1037,7 +1079,8 @@ impl PyStepper {
     /// there. Ctrl-C stops it between steps (`KeyboardInterrupt`, the
     /// stepper at the last step taken).
     fn step_to<'py>(&mut self, py: Python<'py>, t: f64) -> PyResult<Bound<'py, PyDict>> {
-        let mut stepper = self.stepper();
+        // (the lock of the one field, so that the warnings may grow meanwhile)
+        let mut stepper = self.inner.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         let (now, dt) = (stepper.state().t, stepper.dt());
         let steps = ((t - now) / dt).round();
         if !(steps >= 0.0 && (t - now - steps * dt).abs() <= 1e-9 * dt * steps.max(1.0)) {
@@ -1055,10 +1098,21 @@ impl PyStepper {
         // on this stepper meanwhile finds it borrowed and raises)
         let inner: &mut dyn AnyStepper = &mut **stepper;
         let mut left = steps as usize;
+        let mut found = Vec::new();
         while left > 0 {
             let chunk = left.min(SIGNAL_STEPS);
-            py.detach(|| (0..chunk).try_for_each(|_| inner.step()))
-                .map_err(CraneError::new_err)?;
+            let stepped = py.detach(|| {
+                for _ in 0..chunk {
+                    found.extend(inner.step()?);
+                }
+                Ok::<(), String>(())
+            });
+            // what the audit found is warned of even where a step failed
+            for finding in found.drain(..) {
+                warn_findings(py, std::slice::from_ref(&finding))?;
+                self.warnings.push(finding);
+            }
+            stepped.map_err(CraneError::new_err)?;
             left -= chunk;
             py.check_signals()?;
         }
@@ -1095,11 +1149,14 @@ fn stepper(
 ) -> PyResult<PyStepper> {
     let cranes = Cranes::of_module(module)?;
     let (file, overrides) = job(value(dt), None, scheme, formulation, scenario, parameters, None)?;
-    let inner = (cranes.stepper)(model, StepperJob { file, overrides })
+    let mut inner = (cranes.stepper)(model, StepperJob { file, overrides })
         .ok_or_else(|| unknown_model(&cranes, model))?
         .map_err(CraneError::new_err)?;
+    let warnings = inner.take_start_findings();
+    warn_findings(module.py(), &warnings)?;
     Ok(PyStepper {
         inner: std::sync::Mutex::new(inner),
+        warnings,
     })
 }
 
