@@ -1,7 +1,7 @@
 """Inverse dynamics of underactuated cranes: whole runs into numpy arrays."""
 
 from os import PathLike
-from typing import Any, Mapping, Optional, Sequence, Union
+from typing import IO, Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -60,9 +60,11 @@ class Run:
     ) -> None:
         """A run from its parts (what unpickling calls); raises CraneError
         where an array's shape does not match `t` and the names."""
-    def to_csv(self, path: Union[str, PathLike[str]]) -> None:
+    def to_csv(self, target: Union[str, PathLike[str], IO[str]]) -> None:
         """Write the run as `crane run` writes results.csv (without the
-        crane's derived outputs), whole or not at all; raises CraneError."""
+        crane's derived outputs): to a path, whole or not at all, refusing a
+        symbolic link, folder, FIFO or device there (CraneError); or through
+        a file object's write()."""
     def to_dataframe(self) -> Any:
         """The run as a pandas DataFrame (`t` the index, the columns of
         `to_csv`, values copied); pandas is optional: ImportError without it."""

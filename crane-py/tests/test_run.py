@@ -545,3 +545,45 @@ def test_a_stepper_is_audited_as_the_fmu_is():
         clean.step_to(4.0)
         clean.step()
     assert clean.warnings == []
+
+
+def test_to_csv_refuses_what_it_would_replace_and_writes_through_file_objects(tmp_path):
+    """A symbolic link, a FIFO there are refused (the link was replaced by a
+    regular file and its target left as it was; a FIFO was replaced, its
+    reader got nothing); a file object, a FIFO opened by its caller
+    included, is written through."""
+    import io
+
+    r = crane.run("navy-planar")
+    whole = tmp_path / "whole.csv"
+    r.to_csv(whole)
+    target = tmp_path / "target.csv"
+    target.write_text("mine\n")
+    link = tmp_path / "link.csv"
+    link.symlink_to(target)
+    with pytest.raises(crane.CraneError, match="symbolic link"):
+        r.to_csv(link)
+    assert link.is_symlink() and target.read_text() == "mine\n"
+    fifo = tmp_path / "pipe.csv"
+    os.mkfifo(fifo)
+    with pytest.raises(crane.CraneError, match="FIFO"):
+        r.to_csv(str(fifo))
+    assert fifo.is_fifo()
+    # a file object: the same text
+    buffer = io.StringIO()
+    r.to_csv(buffer)
+    assert buffer.getvalue() == whole.read_text()
+    # a FIFO read by another thread, opened here
+    got = []
+    reader = threading.Thread(target=lambda: got.append(fifo.read_text()))
+    reader.start()
+    with open(fifo, "w") as pipe:
+        r.to_csv(pipe)
+    reader.join(timeout=10)
+    assert got == [whole.read_text()]
+    with pytest.raises(crane.CraneError, match="neither a path nor a file object"):
+        r.to_csv(42)
+    # a partial file left in the way (here a link) is not written through
+    (tmp_path / ".fresh.csv.partial").symlink_to(target)
+    r.to_csv(tmp_path / "fresh.csv")
+    assert target.read_text() == "mine\n" and (tmp_path / "fresh.csv").read_text() == whole.read_text()

@@ -621,47 +621,28 @@ impl Run {
         Ok((slf.get_type().into_any(), parts))
     }
 
-    /// Write the run to `path` as `crane run` writes results.csv: `t`, the
+    /// Write the run as `crane run` writes results.csv: `t`, the
     /// coordinates, the inputs, `lambda1..` and the tensions, one row per
     /// step, the numbers in the shortest form that reads back exactly (the
     /// crane's derived outputs, which results.csv appends, are not here).
-    /// The file is written whole or not at all.
-    fn to_csv(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        use std::io::Write as _;
-        let failed = |e: std::io::Error| CraneError::new_err(format!("writing {}: {e}", path.display()));
-        let t = self.t.bind(py).readonly();
-        let columns = [&self.q, &self.u, &self.lambda, &self.tensions].map(|a| a.bind(py).readonly());
-        let mut header = vec!["t".to_string()];
-        header.extend(self.coordinates.iter().cloned());
-        header.extend(self.inputs.iter().cloned());
-        let multipliers = columns[2].as_array().ncols();
-        header.extend((1..=multipliers).map(|i| format!("lambda{i}")));
-        header.extend(self.ropes.iter().cloned());
-        let mut text = header.join(",");
-        text.push('\n');
-        let t = t.as_slice()?;
-        for (i, time) in t.iter().enumerate() {
-            text.push_str(&format!("{time}"));
-            for column in &columns {
-                let row = column.as_array();
-                for value in row.row(i) {
-                    text.push_str(&format!(",{value:e}"));
-                }
-            }
-            text.push('\n');
+    /// `target` is a path (str or os.PathLike), written whole or not at all
+    /// and never a symbolic link, folder, FIFO or device, which it refuses
+    /// rather than replace; or a file object (`sys.stdout`, `io.StringIO`,
+    /// an open file, or a FIFO opened by its caller), written through its
+    /// `write`.
+    fn to_csv(&self, py: Python<'_>, target: &Bound<'_, PyAny>) -> PyResult<()> {
+        let text = self.csv_text(py)?;
+        if let Ok(path) = target.extract::<PathBuf>() {
+            write_whole(&path, &text)
+        } else if target.hasattr("write")? {
+            target.call_method1("write", (text,))?;
+            Ok(())
+        } else {
+            Err(CraneError::new_err(format!(
+                "to_csv: a {} is neither a path nor a file object with write()",
+                target.get_type().name()?
+            )))
         }
-        // written whole or not at all: a partial file beside it, renamed
-        let name = path
-            .file_name()
-            .ok_or_else(|| CraneError::new_err(format!("{} names no file", path.display())))?;
-        let partial = path.with_file_name(format!(".{}.partial", name.to_string_lossy()));
-        let written = std::fs::File::create(&partial)
-            .and_then(|mut file| file.write_all(text.as_bytes()))
-            .and_then(|()| std::fs::rename(&partial, &path));
-        if written.is_err() {
-            let _ = std::fs::remove_file(&partial);
-        }
-        written.map_err(failed)
     }
 
     /// The run as a pandas DataFrame: the times `t` its index, the columns
@@ -712,6 +693,65 @@ impl Run {
             self.warnings.len()
         )
     }
+}
+
+impl Run {
+    /// The run as results.csv's text (without the crane's derived outputs).
+    fn csv_text(&self, py: Python<'_>) -> PyResult<String> {
+        let t = self.t.bind(py).readonly();
+        let columns = [&self.q, &self.u, &self.lambda, &self.tensions].map(|a| a.bind(py).readonly());
+        let mut header = vec!["t".to_string()];
+        header.extend(self.coordinates.iter().cloned());
+        header.extend(self.inputs.iter().cloned());
+        let multipliers = columns[2].as_array().ncols();
+        header.extend((1..=multipliers).map(|i| format!("lambda{i}")));
+        header.extend(self.ropes.iter().cloned());
+        let mut text = header.join(",");
+        text.push('\n');
+        let t = t.as_slice()?;
+        for (i, time) in t.iter().enumerate() {
+            text.push_str(&format!("{time}"));
+            for column in &columns {
+                let row = column.as_array();
+                for value in row.row(i) {
+                    text.push_str(&format!(",{value:e}"));
+                }
+            }
+            text.push('\n');
+        }
+        Ok(text)
+    }
+}
+
+/// `text` into the file at `path`, whole or not at all: through a partial
+/// file beside it (made new, never through a link left there), renamed;
+/// a path that is a symbolic link, a folder, a FIFO or a device is refused,
+/// as `crane run` refuses it, not replaced.
+fn write_whole(path: &std::path::Path, text: &str) -> PyResult<()> {
+    use std::io::Write as _;
+    if let Some(kind) = crane_models::files::not_a_regular_file(path) {
+        return Err(CraneError::new_err(format!(
+            "{}: it exists and is {kind}, which to_csv does not replace: remove it, choose another path, or \
+             pass a file object opened on it",
+            path.display()
+        )));
+    }
+    let name = path
+        .file_name()
+        .ok_or_else(|| CraneError::new_err(format!("{} names no file", path.display())))?;
+    let partial = path.with_file_name(format!(".{}.partial", name.to_string_lossy()));
+    // (a partial file left by a crash, or a link planted in its place, goes)
+    let _ = std::fs::remove_file(&partial);
+    let written = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&partial)
+        .and_then(|mut file| file.write_all(text.as_bytes()))
+        .and_then(|()| std::fs::rename(&partial, path));
+    if written.is_err() {
+        let _ = std::fs::remove_file(&partial);
+    }
+    written.map_err(|e| CraneError::new_err(format!("writing {}: {e}", path.display())))
 }
 
 /// Run `model` as `crane run` does: its default manoeuvre, changed by the
