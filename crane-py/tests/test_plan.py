@@ -104,6 +104,8 @@ def test_a_study_of_given_steps_and_a_reduced_reference():
         (lambda: crane.fastest("navy-planar", limits={"u2": 1e-3}), "no feasible duration"),
         (lambda: crane.fastest("no-such-crane", limits={"u2": 150.0}), "unknown model"),
         (lambda: crane.convergence("navy-planar", dts=[]), "at least one time step"),
+        # the 1.5 s is the study's (where it measures e_u), named as such
+        (lambda: crane.convergence("navy-planar", dts=[1.0]), "each run of the study stops at t = 1.5 s"),
         (lambda: crane.convergence("coupled-trolley"), "internal dynamics of dimension 2"),
     ],
 )

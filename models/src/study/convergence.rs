@@ -187,7 +187,17 @@ pub fn study_against<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
     let mut rows: Vec<Row> = Vec::new();
     for &dt in dts {
         let options = Options::new(dt, T_ERROR)?.with_scheme(scheme);
-        let solution = formulation.simulate(case, &start, &options, &mut |_, _| {})?;
+        let solution = formulation
+            .simulate(case, &start, &options, &mut |_, _| {})
+            .map_err(|error| match error {
+                // the span is the study's, not one the user set
+                StudyError::Runtime(crane_runtime::Error::StepsDoNotFit { .. }) => StudyError::Convergence(format!(
+                    "dt = {dt} s: each run of the study stops at t = {T_ERROR} s, where it measures e_u (eq. 48), \
+                     and the run from t = {} s is not a whole number of steps of {dt} s; choose steps that divide it",
+                    case.t0()
+                )),
+                other => other,
+            })?;
         let state = solution
             .states
             .iter()
