@@ -78,11 +78,8 @@ pub struct Redundant<H, Tr, const N: usize, const M: usize, const A: usize> {
     /// The load's `gamma'` and `dt^2 gamma''`.
     load_rate: SVector<DoubleDouble, A>,
     load_accel_dt2: SVector<DoubleDouble, A>,
-    /// What `dt^2 du` and `dt^2 dlambda` correct: the last step's (zero
-    /// where the unknowns are the values).
-    input_base: SVector<DoubleDouble, A>,
-    multiplier_base: SVector<DoubleDouble, M>,
-    /// `dt^2 u` and `dt^2 lambda` of the last accepted step.
+    /// `dt^2 u` and `dt^2 lambda` of the last accepted step: what `dt^2 du`
+    /// and `dt^2 dlambda` correct (where the unknowns are corrections).
     last_inputs: SVector<DoubleDouble, A>,
     last_multipliers: SVector<DoubleDouble, M>,
     /// `[p; dt^2 u; dt^2 lambda]` at the last evaluation (the sizes the
@@ -117,8 +114,6 @@ where
             lead_slope: DoubleDouble::from(f64::NAN),
             load_rate: SVector::zeros(),
             load_accel_dt2: SVector::zeros(),
-            input_base: SVector::zeros(),
-            multiplier_base: SVector::zeros(),
             last_inputs: SVector::zeros(),
             last_multipliers: SVector::zeros(),
             absolute: DVector::zeros(N + M),
@@ -162,12 +157,18 @@ where
         ([q, v, a], [q_extended, v_extended, a_dt2_extended])
     }
 
-    /// `dt^2 u` and `dt^2 lambda` from the unknowns, in double-double.
+    /// `dt^2 u` and `dt^2 lambda` from the unknowns, in double-double: the
+    /// last step's plus the corrections, or the unknowns themselves where
+    /// the step's formula has no double-double part.
     fn scaled_forces(&self, z: &DVector<f64>) -> (SVector<DoubleDouble, A>, SVector<DoubleDouble, M>) {
         let p = Self::P;
+        let (inputs, multipliers) = match self.formula.extended {
+            Some(_) => (self.last_inputs, self.last_multipliers),
+            None => (SVector::zeros(), SVector::zeros()),
+        };
         (
-            SVector::from_fn(|k, _| self.input_base[k] + z[p + k]),
-            SVector::from_fn(|i, _| self.multiplier_base[i] + z[N + i]),
+            SVector::from_fn(|k, _| inputs[k] + z[p + k]),
+            SVector::from_fn(|i, _| multipliers[i] + z[N + i]),
         )
     }
 
@@ -415,13 +416,6 @@ where
             self.base[p + k] = load[0][k];
             self.load_rate[k] = load[1][k];
             self.load_accel_dt2[k] = load[2][k] * dt2;
-        }
-        if formula.extended.is_some() {
-            self.input_base = self.last_inputs;
-            self.multiplier_base = self.last_multipliers;
-        } else {
-            self.input_base = SVector::zeros();
-            self.multiplier_base = SVector::zeros();
         }
     }
 
