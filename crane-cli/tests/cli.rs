@@ -883,8 +883,9 @@ fn extreme_numbers_neither_hang_nor_print_every_digit() {
 
 /// A scenario that changes the crane or the path's start but gives no `p0`
 /// runs from the static equilibrium found from the crane's default `p0`
-/// (a guess made for the default manoeuvre); a `p0` the user gave is never
-/// moved (`inconsistent_start_names_the_constraint`).
+/// (a guess made for the default manoeuvre), or where that equilibrium is
+/// a family, from the member the crane's flatness solution starts at; a
+/// `p0` the user gave is never moved (`inconsistent_start_names_the_constraint`).
 #[test]
 fn a_changed_crane_without_p0_starts_from_its_equilibrium() {
     let dir = tempfile::tempdir().unwrap();
@@ -921,6 +922,24 @@ fn a_changed_crane_without_p0_starts_from_its_equilibrium() {
         "{:?}",
         rows[0]
     );
+    // navy-planar's boom of 12 m at 0.8 rad: at rest its pulley is free
+    // (rope L1 slack), and the run starts where the flatness solution does,
+    // level with winch A: L1 = l sin(alpha), L0 = l cos(alpha), z0 = -L0
+    let file = dir.path().join("boom.toml");
+    std::fs::write(&file, "[parameters]\nl = 12\nalpha = 0.8\n").unwrap();
+    let out = run_ok(
+        "navy-planar",
+        &["--scenario", file.to_str().unwrap()],
+        dir.path(),
+        "boom",
+    );
+    let (header, rows) = results(&out);
+    assert_eq!(header[1..6], ["L1", "L2", "L0", "x0", "z0"]);
+    let (s, c) = 0.8f64.sin_cos();
+    for (q, expected) in rows[0][1..6].iter().zip([12.0 * s, 10.0, 12.0 * c, 0.0, -12.0 * c]) {
+        // the flatness formulas at t0, to round-off of 10 m
+        assert!((q - expected).abs() < 1e-12, "{:?}", &rows[0][1..6]);
+    }
 }
 
 /// A run that fails in its middle (an unreachable end point: Newton fails at

@@ -107,7 +107,24 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
     pub fn run_start(&self) -> Result<State<N, M, A>, Error> {
         match self.start() {
             Err(e @ Error::InconsistentStart { .. }) if self.p0 == C::maneuver().p0 => {
-                init::static_equilibrium(&self.model, &self.path, self.t0(), &self.p0).map_err(|_| e)
+                self.rest_start(self.t0()).map_err(|_| e)
+            }
+            other => other,
+        }
+    }
+
+    /// The start at rest at `t0` found from `p0`: the static equilibrium;
+    /// where that is a family (a slack rope leaves a massless pulley free,
+    /// as at navy-planar's start, eq. 46), the member the analytical
+    /// reference reaches at `t0`, if the crane has one.
+    fn rest_start(&self, t0: f64) -> Result<State<N, M, A>, Error> {
+        match init::static_equilibrium(&self.model, &self.path, t0, &self.p0) {
+            Err(e @ Error::NonUniqueEquilibrium { .. }) => {
+                let Some(reference) = self.reference(t0) else {
+                    return Err(e);
+                };
+                let p = N - A;
+                init::check_start(&self.model, &self.path, t0, &reference.q.as_slice()[..p], None)
             }
             other => other,
         }
@@ -121,7 +138,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
     pub fn consistent_start(&self, t0: f64) -> Result<State<N, M, A>, Error> {
         init::check_start(&self.model, &self.path, t0, &self.p0, None).or_else(|e| match e {
             Error::StartOutOfRange { .. } => Err(e),
-            _ => init::static_equilibrium(&self.model, &self.path, t0, &self.p0),
+            _ => self.rest_start(t0),
         })
     }
 

@@ -218,3 +218,47 @@ fn invalid_settings_are_typed_errors() {
         Err(Error::NonFiniteParameter { name: "m_l", .. })
     ));
 }
+
+/// Another boom (`l`, `alpha` in a scenario's parameters) with the default
+/// `p0`: the start at rest is again degenerate (rope L1 slack, the pulley
+/// free along the hoist rope), so the static solve finds a family; the run
+/// starts from the member the flatness solution reaches at t0, in closed
+/// form: the pulley B on the vertical through P and the load, level with
+/// winch A at (-l sin alpha, -l cos alpha), so `L1 = l sin alpha`,
+/// `L0 = l cos alpha`, `L2 = 10 m` (the load 10 m below P). It once needed
+/// a hand-computed `p0`.
+#[test]
+fn another_boom_starts_from_the_flatness_limit_without_a_p0() {
+    use crane_models::Case;
+    use crane_runtime::CraneModel;
+    use crane_models::navy_planar::Description;
+    let default = PaperCase::new(4.0).unwrap();
+    for (l, alpha) in [(12.0f64, 0.8f64), (9.0, 1.2), (10.0, 1.0)] {
+        let mut model = *default.model();
+        model.set_parameter("l", l).unwrap();
+        model.set_parameter("alpha", alpha).unwrap();
+        let case = Case::<Description, 7, 3, 2>::from_parts(
+            model,
+            default.path().clone(),
+            paper_p0().to_vec(),
+            default.tf(),
+        );
+        assert!(case.start().is_err(), "the paper's p0 does not fit l = {l}, alpha = {alpha}");
+        let start = case.run_start().unwrap_or_else(|e| panic!("l = {l}, alpha = {alpha}: {e}"));
+        let (s, c) = alpha.sin_cos();
+        let expected = [l * s, 10.0, l * c, 0.0, -l * c, 0.0, -10.0];
+        // the reference's formulas at theta = 0 are exact: round-off of 10 m
+        for (q, e) in start.q.iter().zip(expected) {
+            assert!((q - e).abs() < 1e-12, "l = {l}, alpha = {alpha}: {:?}", start.q);
+        }
+        assert!(start.lambda[0].abs() < 1e-10, "rope L1 slack: {}", start.lambda);
+        // the run from there is the flatness solution's, to the reduced
+        // formulation's round-off (2e-14 measured bound on the paper's crane)
+        let options = Options::new(0.01, case.tf()).unwrap();
+        let solution = Formulation::DummyDerivative
+            .simulate(&case, &start, &options, &mut |_, _| {})
+            .unwrap();
+        let e_u = kit::e_u(&case, &solution);
+        assert!(e_u < kit::exactness_bound("navy-planar"), "l = {l}, alpha = {alpha}: e_u = {e_u}");
+    }
+}
