@@ -583,6 +583,10 @@ pub struct DenseSolver {
     row_scale: Vec<f64>,
     col_scale: Vec<f64>,
     equilibrate: bool,
+    /// Whether the factors in `lu` are those of the equilibrated matrix
+    /// (always when equilibrating; otherwise only where the plain matrix
+    /// was singular to working precision and the equilibrated one not).
+    scaled_factors: bool,
     scaled: DMatrix<f64>,
     /// Smallest-to-largest pivot ratio of the last LU attempt.
     pivot_ratio: f64,
@@ -613,6 +617,7 @@ impl DenseSolver {
             row_scale: vec![1.0; n],
             col_scale: vec![1.0; n],
             equilibrate: false,
+            scaled_factors: false,
             scaled: DMatrix::zeros(0, 0),
             pivot_ratio: f64::NAN,
             hold: false,
@@ -674,6 +679,7 @@ impl DenseSolver {
     pub fn equilibrated(n: usize) -> Self {
         Self {
             equilibrate: true,
+            scaled_factors: true,
             scaled: DMatrix::zeros(n, n),
             ..Self::new(n)
         }
@@ -788,7 +794,33 @@ impl DenseSolver {
     /// entries, by columns, are `entries`.
     fn factor_entries(&mut self, entries: &[f64], rescale: bool) -> bool {
         if !self.equilibrate {
+            if self.scaled_factors {
+                // the scales of an earlier equilibrated retry
+                self.row_scale.fill(1.0);
+                self.col_scale.fill(1.0);
+                self.scaled_factors = false;
+            }
             self.lu.as_mut_slice().copy_from_slice(entries);
+            let regular = self.factor_in_lu();
+            if regular || self.hold {
+                return regular;
+            }
+            // singular to working precision as it stands, perhaps only
+            // because its rows and columns are in very different units
+            // (winches of 1e6 kg m^2 beside ropes): the pivot ratio is not
+            // invariant under scaling, so the equilibrated matrix decides
+            self.find_scales(entries);
+            let mut lu = std::mem::take(&mut self.lu);
+            self.write_scaled(entries, &mut lu);
+            self.lu = lu;
+            self.scaled_factors = true;
+            if self.factor_in_lu() {
+                return true;
+            }
+            self.row_scale.fill(1.0);
+            self.col_scale.fill(1.0);
+            self.scaled_factors = false;
+            return false;
         } else {
             if rescale {
                 self.find_scales(entries);
@@ -812,7 +844,7 @@ impl DenseSolver {
             self.permutation.swap(k, p);
         }
         for (scale, &row) in self.permuted_row_scale.iter_mut().zip(&self.permutation) {
-            *scale = if self.equilibrate { self.row_scale[row] } else { 1.0 };
+            *scale = if self.scaled_factors { self.row_scale[row] } else { 1.0 };
         }
     }
 
@@ -820,11 +852,11 @@ impl DenseSolver {
     /// matrix (all of them, or a nested leading block of its pivot ends)
     /// with its factors and scales.
     fn solve_leading(&self, x: &mut [f64]) {
-        if self.equilibrate {
+        if self.scaled_factors {
             self.scale_rows(x);
         }
         lu_solve(&self.lu, &self.pivots, &self.inverse_diagonal, x);
-        if self.equilibrate {
+        if self.scaled_factors {
             for (x, col) in x.iter_mut().zip(&self.col_scale) {
                 *x *= col;
             }
@@ -1160,6 +1192,45 @@ mod tests {
         assert_eq!(kind, SolveKind::Lu);
         // a well-conditioned 3x3 system: error of order eps * cond
         assert!((b - x).amax() < 1e-14);
+    }
+
+    /// A regular matrix in very different units, `D B D` with `B` of
+    /// condition 3 and `D = diag(1e6, 1, 1e-6)` (pivot ratio 8e-25 as it
+    /// stands), is solved by LU of its equilibrated form, not taken for
+    /// singular, whether or not the solver equilibrates; its factors serve
+    /// the next solve with their scales, and a well-scaled matrix after it
+    /// is solved unscaled.
+    #[test]
+    fn a_regular_matrix_in_mixed_units_is_not_singular() {
+        let a = DMatrix::from_row_slice(3, 3, &[2e12, 1e6, 0.0, 1e6, 3.0, 1e-6, 0.0, 1e-6, 2e-12]);
+        let x = DVector::from_row_slice(&[1e-6, 2.0, -1e6]);
+        for mut solver in [DenseSolver::new(3), DenseSolver::equilibrated(3)] {
+            let mut b = &a * &x;
+            assert_eq!(solver.solve(&a, &mut b).unwrap(), SolveKind::Lu);
+            // the equilibrated matrix is B up to powers of two: relative
+            // error of a few eps cond(B) per unknown
+            for i in 0..3 {
+                assert!((b[i] - x[i]).abs() <= 1e-14 * x[i].abs(), "{b} vs {x}");
+            }
+            // the kept factors solve another right-hand side with their scales
+            let mut b = &a * &x;
+            solver.solve_factored(&mut b);
+            for i in 0..3 {
+                assert!((b[i] - x[i]).abs() <= 1e-14 * x[i].abs(), "{b} vs {x}");
+            }
+            let well = DMatrix::from_row_slice(3, 3, &[0.0, 2.0, 1.0, 1.0, 1.0, 1.0, 4.0, -1.0, 3.0]);
+            let y = DVector::from_row_slice(&[1.0, -2.0, 0.5]);
+            let mut b = &well * &y;
+            assert_eq!(solver.solve(&well, &mut b).unwrap(), SolveKind::Lu);
+            assert!((b - &y).amax() < 1e-14);
+        }
+        // truly singular stays singular: rank 2 in any units
+        let singular = DMatrix::from_row_slice(3, 3, &[1e12, 3e5, 0.0, 2e5, 1e-6, 0.0, 0.0, 0.0, 0.0]);
+        let mut b = DVector::from_row_slice(&[1.0, 1.0, 0.0]);
+        assert_eq!(
+            DenseSolver::new(3).solve(&singular, &mut b).unwrap(),
+            SolveKind::MinNorm
+        );
     }
 
     /// The sizes compiled on their own and the others (1, beyond 24) are
