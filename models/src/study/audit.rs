@@ -96,6 +96,11 @@ pub enum Finding {
         /// Its length with the load at rest at the same point of the path
         /// ([`RopeSummary::length_at_rest`]), where known.
         at_rest: Option<f64>,
+        /// The step, s, where it is too long for the path's shortest feature
+        /// ([`resolves`](super::summary::resolves)) in a discretised
+        /// formulation: its equations then also solve on the mirror side of
+        /// a rope, and the step, not the move, may be the cause.
+        long_step: Option<f64>,
     },
     /// The reported states leave their constraints
     /// ([`ConstraintResidual::violated`](super::summary::ConstraintResidual::violated)).
@@ -255,6 +260,7 @@ impl fmt::Display for Finding {
                 length,
                 at,
                 at_rest,
+                long_step,
             } => {
                 write!(
                     f,
@@ -262,6 +268,16 @@ impl fmt::Display for Finding {
                      computed motion is not one the crane can make; ",
                     Seconds(*at)
                 )?;
+                if let Some(dt) = long_step {
+                    return write!(
+                        f,
+                        "the step of {} s is too long for the path (a twentieth of its shortest feature at most): the \
+                         scheme's equations at such a step also solve on the mirror side of a rope, so the step, not \
+                         the move, may be the cause (a shorter step tells; the dummy-derivative formulation stays on \
+                         the crane's branch at any step)",
+                        Seconds(*dt)
+                    );
+                }
                 match at_rest {
                     Some(rest) if *rest > 0.0 => write!(
                         f,
@@ -374,6 +390,14 @@ impl fmt::Display for Finding {
     }
 }
 
+/// The run's step where it is too long for the path's shortest feature in a
+/// formulation that discretises the path (eqs. 22 or 24): a rope of
+/// non-positive length may then be the step's mirror root, not the move's.
+fn long_step(summary: &Summary) -> Option<f64> {
+    let discretised = summary.formulation != super::Formulation::DummyDerivative.name();
+    (discretised && !super::summary::resolves(summary.shortest_feature, summary.dt)).then_some(summary.dt)
+}
+
 /// Every finding on a run's summary, in this order: a crane beyond the
 /// formulation, states off their constraints, unstable internal dynamics,
 /// a path too rough, ropes of non-positive length, a runaway input, many
@@ -419,6 +443,7 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
             length: r.min_length,
             at: r.t_min_length,
             at_rest: r.length_at_rest,
+            long_step: long_step(summary),
         });
     }
     if let Some(at) = internal.runaway_at {
@@ -620,6 +645,7 @@ impl StepAudit {
                 length: self.lengths[r],
                 at: state.t,
                 at_rest: None,
+                long_step: None,
             });
         }
         if !(state.u.amax() <= RUNAWAY_FACTOR * self.scale) {
