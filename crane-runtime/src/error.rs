@@ -311,6 +311,25 @@ pub enum Error {
         /// Why.
         reason: crate::model::NoDummyDerivatives,
     },
+    /// Internal dynamics with an eigenvalue on the imaginary axis (an
+    /// undamped oscillation the path leaves free): no unique bounded
+    /// solution on the whole time axis, so no stable inversion.
+    #[error(
+        "the internal dynamics at t = {} s have the eigenvalue {re:.4e} {sign} {:.4}i 1/s on the imaginary axis: an \
+         undamped oscillation the path leaves free has no unique bounded solution, so there is no stable inversion; \
+         the causal run (eqs. 22) stays bounded",
+        Seconds::of(.t),
+        .im.abs(),
+        sign = if *.im < 0.0 { "-" } else { "+" }
+    )]
+    NoBoundedSolution {
+        /// Time of the rest state, s.
+        t: f64,
+        /// The eigenvalue's real part, 1/s.
+        re: f64,
+        /// Its imaginary part, 1/s.
+        im: f64,
+    },
     /// The crane's inputs need more derivatives of the load path than the
     /// dummy-derivative problem carries.
     #[error(

@@ -96,6 +96,7 @@ pub mod redundant;
 pub mod replay;
 pub mod scheme;
 pub mod solution;
+pub mod stable_inversion;
 pub mod stepper;
 pub mod trajectory;
 

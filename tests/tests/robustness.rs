@@ -93,6 +93,7 @@ fn assert_descriptive(error: &Error) {
         Error::NonPositiveRopeLength { rope, .. } => message.contains(&format!("`{rope}`")),
         Error::TooManySteps { .. } => message.contains("steps cannot be held"),
         Error::PathOrderTooHigh { .. } => message.contains("derivative of order"),
+        Error::NoBoundedSolution { .. } => message.contains("t = ") && message.contains("imaginary axis"),
         Error::StartOutOfRange { coordinate, .. } => message.contains(&format!("`{coordinate}`")),
         Error::PathOutOfRange { coordinate, .. } => {
             message.contains(&format!("`{coordinate}`")) && message.contains("t = ")
