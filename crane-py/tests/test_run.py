@@ -37,7 +37,7 @@ def test_models_lists_the_built_in_cranes():
     assert navy["reference"] and navy["minimal"]
     # every flat crane runs its exact reduced system by default
     assert navy["path_order"] == 4 and navy["formulation"] == "dummy-derivative"
-    assert models["coupled-trolley"]["formulation"] == "redundant"
+    assert models["coupled-trolley"]["formulation"] == "stable-inversion"
     assert navy["internal_dimension"] == 0
     assert models["navy-3d-pulley"]["formulation"] == "dummy-derivative"
     assert models["coupled-trolley"]["internal_dimension"] == 2
@@ -137,9 +137,25 @@ def test_a_scenario_dict_is_the_scenario_file(tmp_path):
 
 
 def test_the_audit_s_findings_are_the_warnings():
-    r = crane.run("coupled-trolley")
+    # the causal inverse of the coupled trolley runs away
+    r = crane.run("coupled-trolley", formulation="redundant")
     assert any("unstable internal dynamics" in w for w in r.warnings), r.warnings
     assert "coupled-trolley" in repr(r)
+
+
+def test_the_coupled_trolley_gets_bounded_inputs_by_stable_inversion():
+    # its default: the bounded inputs, acting before the load moves
+    r = crane.run("coupled-trolley")
+    assert r.summary["formulation"] == "stable-inversion" and r.warnings == []
+    assert r.t[0] < -1.0 and r.t[-1] > 6.0
+    assert np.abs(r.u[:, 0]).max() < 200.0  # the causal inverse: 3.5e16 N
+    inversion = r.summary["stable_inversion"]
+    assert abs(inversion["t_pre"] - 2.33) < 0.02 and inversion["boundary_residual"] < 1e-9
+    # the trolley moves before the load: pre-actuation
+    before = r.t < 0.0
+    assert np.abs(r.q[before, 0]).max() > 1e-3 and np.all(r.q[before, 2] == 0.0)
+    with pytest.raises(crane.CraneError, match="a stepper cannot know the path ahead"):
+        crane.stepper("coupled-trolley", formulation="stable-inversion")
 
 
 @pytest.mark.parametrize(
@@ -481,7 +497,7 @@ def test_the_audit_s_findings_are_crane_warnings():
     import warnings
 
     with pytest.warns(crane.CraneWarning, match="unstable internal dynamics") as caught:
-        r = crane.run("coupled-trolley")
+        r = crane.run("coupled-trolley", formulation="redundant")
     assert [str(w.message) for w in caught if issubclass(w.category, crane.CraneWarning)] == r.warnings
     # attributed to the line that made the run
     assert all(w.filename == __file__ for w in caught)
@@ -489,7 +505,7 @@ def test_the_audit_s_findings_are_crane_warnings():
     with warnings.catch_warnings():
         warnings.simplefilter("error", crane.CraneWarning)
         with pytest.raises(crane.CraneWarning):
-            crane.run("coupled-trolley")
+            crane.run("coupled-trolley", formulation="redundant")
     # a trustworthy run warns of nothing
     with warnings.catch_warnings():
         warnings.simplefilter("error")

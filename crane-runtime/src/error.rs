@@ -330,6 +330,13 @@ pub enum Error {
         /// Its imaginary part, 1/s.
         im: f64,
     },
+    /// The internal dynamics at a rest state that stable inversion needs
+    /// could not be computed.
+    #[error("stable inversion needs the internal dynamics at the rest states: {reason}")]
+    InternalDynamicsUnknown {
+        /// Why they could not be computed.
+        reason: crate::internal::InternalDynamicsError,
+    },
     /// The crane's inputs need more derivatives of the load path than the
     /// dummy-derivative problem carries.
     #[error(

@@ -266,8 +266,6 @@ where
     let mut solution = solution_capacity;
     let mut lengths = vec![0.0; Mdl::INFO.ropes.len()];
     let coordinate = |k: usize, i: usize| z[k * block + i];
-    let mut largest_rate = 0.0f64;
-    let mut boundary_rate = 0.0f64;
     for k in 0..nodes {
         let [gamma, rate, _] = path[k];
         let q = SVector::<f64, N>::from_fn(|i, _| if i < p { coordinate(k, i) } else { gamma[i - p] });
@@ -280,11 +278,6 @@ where
                 (coordinate(k + 1, i) - coordinate(k - 1, i)) / (2.0 * dt)
             }
         });
-        let robot_rate = v.rows(0, p).amax();
-        largest_rate = largest_rate.max(robot_rate);
-        if k == 1 || k + 2 == nodes {
-            boundary_rate = boundary_rate.max(robot_rate);
-        }
         let state = State {
             t: time(k),
             q,
@@ -299,16 +292,29 @@ where
         solution.push(model, &state, report, &mut lengths);
     }
     Ok(StableInversion {
+        boundary_residual: boundary_residual(&solution),
         solution,
         t_pre: n_pre as f64 * dt,
         t_post: n_post as f64 * dt,
         iterations,
-        boundary_residual: if largest_rate > 0.0 {
-            boundary_rate / largest_rate
-        } else {
-            0.0
-        },
     })
+}
+
+/// The robot coordinates' largest rate at the nodes next to the two ends
+/// of a stable inversion's `solution`, relative to their largest rate over
+/// it (0 where nothing moves): how far from rest the solution is where rest
+/// was imposed, about [`HORIZON_DECAY`] when the horizons are long enough.
+pub fn boundary_residual<const N: usize, const M: usize, const A: usize>(solution: &Solution<N, M, A>) -> f64 {
+    let states = &solution.states;
+    let robot_rate = |s: &State<N, M, A>| s.v.rows(0, N - A).amax();
+    let largest = states.iter().map(robot_rate).fold(0.0, f64::max);
+    let n = states.len();
+    let boundary = [1, n.saturating_sub(2)]
+        .into_iter()
+        .filter_map(|k| states.get(k))
+        .map(robot_rate)
+        .fold(0.0, f64::max);
+    if largest > 0.0 { boundary / largest } else { 0.0 }
 }
 
 /// The residual and Jacobian of the whole boundary value problem.

@@ -1042,6 +1042,14 @@ impl Visit for StepperJob {
                         .to_string(),
                 );
             }
+            Formulation::StableInversion => {
+                return Err(
+                    "a stepper cannot know the path ahead, which stable inversion needs (it acts before the load \
+                     moves): it runs whole, run(..., formulation=\"stable-inversion\"); a stepper of eqs. (22a-d) \
+                     is formulation=\"redundant\""
+                        .to_string(),
+                );
+            }
         };
         Ok(Box::new(Erased::new(C::NAME, advance)))
     }

@@ -70,3 +70,10 @@ du -ch "$dest"/*.svg | tail -1
 # computed input work?")
 crane run navy-planar-pulley --scheme bdf4 --replay --settle 9 --plant m_l=110 --feedback default --out "$work/replay" --quiet >/dev/null
 pick replay replay.svg replay-pulley-heavier-load.svg
+
+# Stable inversion (docs/internal-dynamics.md): the coupled trolley's bounded
+# inputs against its causal ones
+crane run coupled-trolley --out "$work/coupled-stable" --quiet >/dev/null
+crane run coupled-trolley --formulation redundant --out "$work/coupled-causal" --quiet >/dev/null 2>&1
+pick coupled-stable inputs.svg coupled-trolley-stable-inputs.svg
+pick coupled-causal inputs.svg coupled-trolley-causal-inputs.svg

@@ -4,6 +4,8 @@
 
 use std::marker::PhantomData;
 
+use crane_runtime::internal::internal_dynamics;
+use crane_runtime::stable_inversion::{self, StableInversion, StableInversionOptions};
 use crane_runtime::trajectory::TrajectoryError;
 use crane_runtime::{Error, Options, Solution, State, dummy_derivative, init, redundant};
 
@@ -200,6 +202,35 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<Solution<N, M, A>, Error> {
         dummy_derivative::simulate_dummy_derivative(&self.model, &self.path, start, options, progress)
+    }
+
+    /// The bounded solution by stable inversion
+    /// ([`crane_runtime::stable_inversion`]) from the rest
+    /// state `start` at the path's start: the whole move, to the later of
+    /// `options.tf()` and the path's end, with the pre- and post-actuation
+    /// horizons of the internal dynamics at the two rest states, on nodes
+    /// `options.dt()` apart.
+    pub fn simulate_stable_inversion(
+        &self,
+        start: &State<N, M, A>,
+        options: &Options,
+    ) -> Result<StableInversion<N, M, A>, Error> {
+        let t0 = self.t0();
+        let tf = options.tf().max(self.path.spec().t1);
+        let p = N - A;
+        let end = init::static_equilibrium(&self.model, &self.path, tf, &start.q.as_slice()[..p])?;
+        let diagnosis = |state: &State<N, M, A>| {
+            internal_dynamics(&self.model, state).map_err(|reason| Error::InternalDynamicsUnknown { reason })
+        };
+        let (t_pre, t_post) = stable_inversion::horizons(&diagnosis(start)?, &diagnosis(&end)?)?;
+        let settings = StableInversionOptions {
+            dt: options.dt(),
+            t0,
+            tf,
+            t_pre,
+            t_post,
+        };
+        stable_inversion::stable_inversion(&self.model, &self.path, start, &settings)
     }
 
     /// Names of the derived outputs.

@@ -94,6 +94,7 @@ fn assert_descriptive(error: &Error) {
         Error::TooManySteps { .. } => message.contains("steps cannot be held"),
         Error::PathOrderTooHigh { .. } => message.contains("derivative of order"),
         Error::NoBoundedSolution { .. } => message.contains("t = ") && message.contains("imaginary axis"),
+        Error::InternalDynamicsUnknown { reason } => message.contains(&reason.to_string()),
         Error::StartOutOfRange { coordinate, .. } => message.contains(&format!("`{coordinate}`")),
         Error::PathOutOfRange { coordinate, .. } => {
             message.contains(&format!("`{coordinate}`")) && message.contains("t = ")

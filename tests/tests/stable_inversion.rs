@@ -179,7 +179,7 @@ fn default_move(dt: f64) -> StableInversion<4, 1, 2> {
 }
 
 /// The nonlinear default move: bounded inputs (the causal inverse reaches
-/// 3.5e16 N), second order in dt (the differences of successive halvings
+/// 1.4e18 N at dt = 0.01), second order in dt (the differences of successive halvings
 /// at the common nodes fall by 4), pre-actuation at the rest state's
 /// unstable eigenvalue 9.9045 1/s.
 #[test]

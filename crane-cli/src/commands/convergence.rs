@@ -90,8 +90,8 @@ fn write<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     out: &Path,
 ) -> Result<Vec<String>, CliError> {
     let name = C::NAME;
-    let method = if formulation.discretised() {
-        format!("{}, {scheme}, order {}", formulation.name(), scheme.order())
+    let method = if let Some(order) = formulation.order(scheme) {
+        format!("{}, order {order}", formulation.method(scheme))
     } else {
         format!(
             "{}: algebraic at each step, {scheme} discretises nothing; errors at round-off have no order",
@@ -157,7 +157,7 @@ fn write<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         formulation.name()
     );
     let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.dt, r.e_u)).collect();
-    let guide = formulation.discretised().then(|| scheme.order());
+    let guide = formulation.order(scheme);
     let svg = plot::convergence(&title, &points, guide)?;
     staged.text("convergence.csv", csv)?;
     staged.text("convergence.svg", svg)?;

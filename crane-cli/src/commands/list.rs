@@ -90,8 +90,10 @@ pub fn list<R: Registry>(tool: &Tool<R>) -> Result<(), CliError> {
     eprintln!(
         "note: the formulation column is the default: {} for a crane without internal dynamics (its exact \
          inputs at each step time, solved stage by stage for less per step than eqs. (22a-d) with backward \
-         Euler), {} (eqs. 22a-d) for the others; --formulation runs another",
+         Euler), {} for one whose internal dynamics are unstable (the bounded inputs, with pre- and \
+         post-actuation), {} (eqs. 22a-d) for the others; --formulation runs another",
         Formulation::DummyDerivative,
+        Formulation::StableInversion,
         Formulation::Redundant
     );
     Ok(())

@@ -298,12 +298,9 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let wall = clock.elapsed().as_secs_f64();
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
     let report = best.report::<C>(settings, wall);
-    // a reduced run is exact at each step and uses no scheme
-    let method = if Formulation::default_for::<C, N, M, A>().discretised() {
-        format!("{}, {}", report.formulation, settings.scheme)
-    } else {
-        report.formulation.to_string()
-    };
+    // a reduced run is exact at each step and uses no scheme, stable
+    // inversion its own
+    let method = Formulation::default_for::<C, N, M, A>().method(settings.scheme);
     let text = serde_json::to_string_pretty(&report).map_err(|e| CliError::Output {
         what: "fastest.json".into(),
         message: e.to_string(),

@@ -195,12 +195,19 @@ impl Visit for Run<'_> {
             "{} ({}, {}): {} steps of dt = {} s in {:.1} ms ({:.2} Newton iterations per step)",
             C::NAME,
             settings.formulation.name(),
-            settings.scheme,
+            summary.scheme,
             solution.steps(),
             settings.dt,
             summary.wall_time_s * 1e3,
             solution.mean_newton_iterations()
         )?;
+        if settings.formulation == Formulation::StableInversion && settings.scheme != Scheme::default() {
+            say!(
+                "  {} is not used: stable inversion solves the whole move at once, by central differences of \
+                 order 2",
+                settings.scheme
+            )?;
+        }
         if !settings.formulation.discretised() && settings.scheme != Scheme::default() {
             say!(
                 "  {} discretises nothing here: the {} system is algebraic at each step (a scheme serves only steps \
@@ -426,7 +433,15 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
             internal.unresolved, internal.samples
         ),
         (k, true) => format!("internal dynamics: dimension {k}, stable"),
-        (k, false) => format!("internal dynamics: dimension {k}, unstable (see the warning)"),
+        (k, false) => match &summary.stable_inversion {
+            Some(inversion) => format!(
+                "internal dynamics: dimension {k}, unstable: the bounded inputs by stable inversion, acting {} s \
+                 before the move (pre-actuation) and settling {} s after it (post-actuation)",
+                Seconds(inversion.t_pre),
+                Seconds(inversion.t_post)
+            ),
+            None => format!("internal dynamics: dimension {k}, unstable (see the warning)"),
+        },
     });
     if let Some(replay) = &summary.replay {
         // what the torques do on the plant, where the files say it in full

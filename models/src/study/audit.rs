@@ -420,7 +420,10 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
             residual: residual.clone(),
         });
     }
-    if !internal.stable {
+    // stable inversion's inputs are the bounded ones whatever the internal
+    // dynamics do
+    let inverted = summary.formulation == super::Formulation::StableInversion.name();
+    if !internal.stable && !inverted {
         out.push(Finding::UnstableInternalDynamics {
             model: model.clone(),
             dimension: internal.dimension,

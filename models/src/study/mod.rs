@@ -35,7 +35,7 @@ use crate::crane::Crane;
 pub use audit::{Finding, Severity, audit};
 pub use replay::{FeedbackSpec, ReplayOutcome, ReplayRequest};
 pub use spec::{RunSpec, SpecError};
-pub use summary::{PathSmoothnessSummary, Summary, below_floor};
+pub use summary::{PathSmoothnessSummary, StableInversionSummary, Summary, below_floor};
 
 /// Which formulation of the servo problem a run solves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -52,25 +52,44 @@ pub enum Formulation {
     /// dynamics: exact at every step time whatever the path order (the
     /// default of every such crane, [`default_for`](Self::default_for)).
     DummyDerivative,
+    /// Stable inversion ([`crane_runtime::stable_inversion`]): the bounded
+    /// solution of eqs. (22b-d) on the whole time axis, with pre- and
+    /// post-actuation, for a crane whose internal dynamics are unstable
+    /// (the default of such a crane, [`default_for`](Self::default_for));
+    /// central differences of order 2 whatever the scheme.
+    StableInversion,
 }
 
 impl Formulation {
-    /// Both, in order.
-    pub const ALL: [Formulation; 3] = [
+    /// All of them, in order.
+    pub const ALL: [Formulation; 4] = [
         Formulation::Redundant,
         Formulation::Minimal,
         Formulation::DummyDerivative,
+        Formulation::StableInversion,
     ];
 
     /// The default of crane `C`: [`DummyDerivative`](Self::DummyDerivative)
     /// where it has the reduced system (no internal dynamics: every flat
     /// crane), which gives the exact inputs at every step time whatever the
     /// path order and, solved stage by stage, costs less per step than
-    /// eqs. (22a-d) with backward Euler on every flat built-in; else
-    /// [`Redundant`](Self::Redundant).
+    /// eqs. (22a-d) with backward Euler on every flat built-in;
+    /// [`StableInversion`](Self::StableInversion) where the internal
+    /// dynamics at the start of the crane's default manoeuvre are unstable
+    /// and have no eigenvalue on the imaginary axis (the causal inverse
+    /// explodes, the bounded one exists); else [`Redundant`](Self::Redundant).
     pub fn default_for<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Self {
         if dummy_derivative::system_size::<C::Model, N, M, A>().is_ok() {
-            Formulation::DummyDerivative
+            return Formulation::DummyDerivative;
+        }
+        let hyperbolic_and_unstable = Case::<C, N, M, A>::maneuver().ok().and_then(|case| {
+            let start = case.run_start().ok()?;
+            let d = crane_runtime::internal::internal_dynamics(&case.model, &start).ok()?;
+            let hyperbolic = crane_runtime::stable_inversion::horizons(&d, &d).is_ok();
+            Some(d.dimension > 0 && !d.is_stable() && hyperbolic)
+        });
+        if hyperbolic_and_unstable == Some(true) {
+            Formulation::StableInversion
         } else {
             Formulation::Redundant
         }
@@ -82,6 +101,7 @@ impl Formulation {
             Formulation::Redundant => "redundant",
             Formulation::Minimal => "minimal",
             Formulation::DummyDerivative => "dummy-derivative",
+            Formulation::StableInversion => "stable-inversion",
         }
     }
 
@@ -92,6 +112,10 @@ impl Formulation {
             Formulation::Minimal => "minimal coordinates, eqs. (24a-e)",
             Formulation::DummyDerivative => {
                 "eqs. (22a-d) reduced by dummy derivatives, exact for flat cranes of any path order"
+            }
+            Formulation::StableInversion => {
+                "the bounded solution on the whole time axis, with pre- and post-actuation, for unstable internal \
+                 dynamics (central differences, order 2)"
             }
         }
     }
@@ -104,7 +128,29 @@ impl Formulation {
         !matches!(self, Formulation::DummyDerivative)
     }
 
-    /// The names, "redundant, minimal or dummy-derivative".
+    /// The order of the run's inputs in dt: the scheme's for eqs. (22) and
+    /// (24), 2 for stable inversion's central differences, none for the
+    /// dummy-derivative formulation (exact at each step).
+    pub fn order(self, scheme: Scheme) -> Option<usize> {
+        match self {
+            Formulation::Redundant | Formulation::Minimal => Some(scheme.order()),
+            Formulation::DummyDerivative => None,
+            Formulation::StableInversion => Some(2),
+        }
+    }
+
+    /// How a run of it is made, in a few words: the formulation with the
+    /// scheme where one applies (`redundant, bdf4`), with its own
+    /// discretisation (`stable-inversion, central differences`), or alone.
+    pub fn method(self, scheme: Scheme) -> String {
+        match self {
+            Formulation::Redundant | Formulation::Minimal => format!("{}, {scheme}", self.name()),
+            Formulation::DummyDerivative => self.name().to_string(),
+            Formulation::StableInversion => format!("{}, central differences", self.name()),
+        }
+    }
+
+    /// The names, "redundant, minimal, dummy-derivative or stable-inversion".
     pub fn names() -> String {
         let names: Vec<&str> = Self::ALL.iter().map(|f| f.name()).collect();
         let (last, first) = names.split_last().expect("formulations");
@@ -140,6 +186,12 @@ impl Formulation {
             Formulation::DummyDerivative => case
                 .simulate_dummy_derivative(start, options, progress)
                 .map_err(|error| StudyError::of_crane(C::NAME, error)),
+            Formulation::StableInversion => {
+                let inversion = case.simulate_stable_inversion(start, options)?;
+                let nodes = inversion.solution.states.len();
+                progress(nodes, nodes);
+                Ok(inversion.solution)
+            }
         }
     }
 }
@@ -400,7 +452,34 @@ pub fn summarize_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
             rope.length_at_rest = length_at_rest(case, r, rope.t_min_length);
         }
     }
+    if settings.formulation == Formulation::StableInversion {
+        summary.stable_inversion = stable_inversion_summary(case, solution);
+    }
     summary
+}
+
+/// The horizons of a run by stable inversion, from its first and last
+/// states (the rest states at `t0 - t_pre` and `tf + t_post`), and the
+/// eigenvalues at them.
+fn stable_inversion_summary<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    solution: &Solution<N, M, A>,
+) -> Option<StableInversionSummary> {
+    let (first, last) = (solution.states.first()?, solution.states.last()?);
+    let eigenvalues = |state: &State<N, M, A>| {
+        crane_runtime::internal::internal_dynamics(case.model(), state)
+            .map(|d| d.eigenvalues)
+            .unwrap_or_default()
+    };
+    let move_end = case.tf().max(case.path().spec().t1);
+    Some(StableInversionSummary {
+        discretisation: "central differences, order 2".to_string(),
+        t_pre: case.t0() - first.t,
+        t_post: last.t - move_end,
+        eigenvalues_start: eigenvalues(first),
+        eigenvalues_end: eigenvalues(last),
+        boundary_residual: crane_runtime::stable_inversion::boundary_residual(solution),
+    })
 }
 
 /// The length of rope `r` with the load at rest at the point of `case`'s

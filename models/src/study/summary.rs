@@ -193,6 +193,32 @@ pub struct Summary {
     /// known, as a host's): spikes are judged only where the steps resolve
     /// it ([`SPIKE_RESOLUTION`]).
     pub shortest_feature: Option<f64>,
+    /// Of a run by stable inversion: its horizons and the internal
+    /// dynamics they come from ([`StableInversionSummary`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stable_inversion: Option<StableInversionSummary>,
+}
+
+/// A run by stable inversion (`crane_runtime::stable_inversion`): the bounded
+/// inputs act from `t0 - t_pre` (pre-actuation) and settle by `tf + t_post`
+/// (post-actuation).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StableInversionSummary {
+    /// The discretisation: central differences, order 2.
+    pub discretisation: String,
+    /// Pre-actuation before the move starts, s.
+    pub t_pre: f64,
+    /// Post-actuation after the move ends, s.
+    pub t_post: f64,
+    /// The eigenvalues `(re, im)` of the internal dynamics at the start's
+    /// rest state, 1/s (`t_pre` decays the slowest to 1e-10).
+    pub eigenvalues_start: Vec<(f64, f64)>,
+    /// The same at the end's rest state (`t_post`).
+    pub eigenvalues_end: Vec<(f64, f64)>,
+    /// The robot coordinates' rate next to the two end nodes, relative to
+    /// their largest rate: how far from rest the solution is where rest
+    /// was imposed.
+    pub boundary_residual: f64,
 }
 
 /// The largest second difference of an input between steps, `|u_{k+1} -
@@ -671,6 +697,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         input_spike: input_spike(solution),
         ramp: None,
         shortest_feature: None,
+        stable_inversion: None,
     }
 }
 
