@@ -330,6 +330,19 @@ pub enum Error {
         /// Its imaginary part, 1/s.
         im: f64,
     },
+    /// Stable inversion's Newton iteration over the whole move did not
+    /// converge.
+    #[error(
+        "stable inversion did not converge after {iterations} Newton iterations over the whole move (residual \
+         {residual:.3e}) from the quasi-static motion: the move may be too fast or leave the crane's workspace; \
+         try a longer move"
+    )]
+    StableInversionNotConverged {
+        /// Iterations taken.
+        iterations: usize,
+        /// Largest residual (dt^2-scaled forces, constraints) at the last iterate.
+        residual: f64,
+    },
     /// The internal dynamics at a rest state that stable inversion needs
     /// could not be computed.
     #[error("stable inversion needs the internal dynamics at the rest states: {reason}")]

@@ -223,6 +223,25 @@ where
                 pivot_ratio: 0.0,
             });
         }
+        // converged when each kind of unknown moves by at most the
+        // tolerance of its largest size (coordinates, inputs, multipliers):
+        // the step is taken whole, its residual at round-off, where a line
+        // search would see only noise
+        let converged = [0..p, p..N, N..block].into_iter().all(|range| {
+            let (mut size, mut moved) = (0.0f64, 0.0f64);
+            for k in 0..nodes {
+                for i in range.clone() {
+                    size = size.max(z[k * block + i].abs());
+                    moved = moved.max(step[k * block + i].abs());
+                }
+            }
+            moved <= UPDATE_TOLERANCE * size.max(f64::MIN_POSITIVE)
+        });
+        iterations += 1;
+        if converged {
+            z += &step;
+            break;
+        }
         // backtracking on the residual: a full step where it does not grow
         let mut alpha = 1.0;
         let mut trial = &z + &step;
@@ -236,26 +255,9 @@ where
             trial = &z + &step * alpha;
         }
         z = trial;
-        iterations += 1;
-        // converged when each kind of unknown moved by at most the
-        // tolerance of its largest size (coordinates, inputs, multipliers)
-        let converged = [0..p, p..N, N..block].into_iter().all(|range| {
-            let (mut size, mut moved) = (0.0f64, 0.0f64);
-            for k in 0..nodes {
-                for i in range.clone() {
-                    size = size.max(z[k * block + i].abs());
-                    moved = moved.max((alpha * step[k * block + i]).abs());
-                }
-            }
-            moved <= UPDATE_TOLERANCE * size.max(f64::MIN_POSITIVE)
-        });
-        if converged && alpha == 1.0 {
-            break;
-        }
         if iterations >= MAX_ITERATIONS {
             system.evaluate(&z, false);
-            return Err(Error::NewtonNotConverged {
-                t: t0,
+            return Err(Error::StableInversionNotConverged {
                 iterations,
                 residual: system.residual.amax(),
             });

@@ -95,6 +95,7 @@ fn assert_descriptive(error: &Error) {
         Error::PathOrderTooHigh { .. } => message.contains("derivative of order"),
         Error::NoBoundedSolution { .. } => message.contains("t = ") && message.contains("imaginary axis"),
         Error::InternalDynamicsUnknown { reason } => message.contains(&reason.to_string()),
+        Error::StableInversionNotConverged { .. } => message.contains("residual"),
         Error::StartOutOfRange { coordinate, .. } => message.contains(&format!("`{coordinate}`")),
         Error::PathOutOfRange { coordinate, .. } => {
             message.contains(&format!("`{coordinate}`")) && message.contains("t = ")

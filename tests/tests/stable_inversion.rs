@@ -227,3 +227,44 @@ fn the_default_move_has_bounded_inputs_of_second_order() {
     eprintln!("pre-actuation rate {rate:.6} 1/s");
     assert!((rate - 9.9045).abs() < 1e-3 * 9.9045, "rate {rate}");
 }
+
+/// Faster and slower moves of the coupled trolley (3 s and 2 s instead of
+/// 5 s): Newton converges from the quasi-static motion (a 3 s move once
+/// ended at a residual of 7e-15, its round-off, with every full step
+/// refused by the line search) and the inputs stay bounded; a faster move
+/// needs larger ones.
+#[test]
+fn faster_moves_converge_with_larger_bounded_inputs() {
+    let default = DefaultCase::maneuver().unwrap();
+    let mut peaks = Vec::new();
+    for duration in [5.0, 3.0, 2.0] {
+        let path = kit::stand_in_path(vector![0.0, -5.0], vector![4.0, -3.0], duration);
+        let case = Case::<Description, 4, 1, 2>::from_parts(*default.model(), path, vec![0.0, 5.0], duration);
+        let start = case.start().unwrap();
+        let options = crane_runtime::Options::new(0.01, duration).unwrap();
+        let inversion = case
+            .simulate_stable_inversion(&start, &options)
+            .unwrap_or_else(|e| panic!("{duration} s: {e}"));
+        let peak = inversion
+            .solution
+            .states
+            .iter()
+            .map(|s| s.u[0].abs())
+            .fold(0.0, f64::max);
+        eprintln!(
+            "{duration} s: peak |u1| = {peak:.3} N, {} iterations",
+            inversion.iterations
+        );
+        assert!(
+            inversion.iterations <= 10,
+            "{duration} s: {} iterations",
+            inversion.iterations
+        );
+        peaks.push(peak);
+    }
+    // measured 154.6, 349.7 and 825.0 N
+    assert!(
+        peaks[0] < peaks[1] && peaks[1] < peaks[2] && peaks[2] < 1e3,
+        "{peaks:?}"
+    );
+}
