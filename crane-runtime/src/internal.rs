@@ -358,15 +358,20 @@ pub const RUNAWAY_FACTOR: f64 = 1e6;
 pub struct RunDiagnosis {
     /// The count from the declaration ([`CraneModel::STRUCTURE`]).
     pub structural_dimension: Option<usize>,
-    /// Largest dimension found at the sampled states (0: flat at all).
+    /// Largest dimension found at the sampled states (0: flat at all); the
+    /// structural count where no sampled state was resolved.
     pub dimension: usize,
     /// Largest real part of an eigenvalue, 1/s, and the time of its state
     /// (`None` when flat).
     pub max_real_part: Option<f64>,
     /// The time of `max_real_part`.
     pub at: Option<f64>,
-    /// No eigenvalue at any sampled state with a real part above round-off.
-    pub stable: bool,
+    /// No eigenvalue at any sampled state with a real part above round-off
+    /// (`Some(true)`), one above it (`Some(false)`), or not known: the
+    /// structure counts internal dynamics and no sampled state was resolved
+    /// (`None`; a damped free mode, whose rows the frozen-time reduction
+    /// does not split).
+    pub stable: Option<bool>,
     /// Sampled states where the diagnosis could not tell, and the first
     /// reason.
     pub unresolved: usize,
@@ -426,7 +431,7 @@ impl RunDiagnosis {
             dimension: 0,
             max_real_part: None,
             at: None,
-            stable: true,
+            stable: Some(true),
             unresolved: 0,
             unresolved_reason: None,
             samples: 0,
@@ -435,11 +440,11 @@ impl RunDiagnosis {
         }
     }
 
-    /// Whether the run's torques can be used as a feedforward: stable
-    /// internal dynamics, no runaway input, and a formulation that covers
-    /// the crane's path order.
+    /// Whether the run's torques can be used as a feedforward: internal
+    /// dynamics not found unstable, no runaway input, and a formulation
+    /// that covers the crane's path order.
     pub fn is_usable(&self) -> bool {
-        self.stable && self.runaway_at.is_none() && self.path_order.is_none_or(|p| p.is_covered())
+        self.stable != Some(false) && self.runaway_at.is_none() && self.path_order.is_none_or(|p| p.is_covered())
     }
 }
 
@@ -489,6 +494,7 @@ where
     let runaway_at = diagnosis.runaway_at;
     let physical = |t: f64| runaway_at.is_none_or(|runaway| t < runaway);
     let sampled = if samples == 0 { 0 } else { states.len() };
+    let mut resolved = 0;
     for state in states[..sampled].iter().step_by(stride).take_while(|s| physical(s.t)) {
         diagnosis.samples += 1;
         match internal_dynamics(model, state) {
@@ -498,13 +504,21 @@ where
                     diagnosis.max_real_part = Some(d.max_real_part);
                     diagnosis.at = Some(state.t);
                 }
-                diagnosis.stable &= d.is_stable();
+                diagnosis.stable = Some(diagnosis.stable != Some(false) && d.is_stable());
+                resolved += 1;
             }
             Err(e) => {
                 diagnosis.unresolved += 1;
                 diagnosis.unresolved_reason.get_or_insert(e);
             }
         }
+    }
+    // nothing resolved where the structure counts free states: not "flat
+    // and stable", but the structure's count and stability unknown
+    let structural = diagnosis.structural_dimension.unwrap_or(0);
+    if diagnosis.samples > 0 && resolved == 0 && structural > 0 {
+        diagnosis.dimension = structural;
+        diagnosis.stable = None;
     }
     diagnosis
 }

@@ -256,3 +256,86 @@ fn a_path_too_rough_for_the_crane_gives_impulses() {
         .is_sufficient()
     );
 }
+
+crane_macros::crane_model! {
+    /// Overhead crane whose belt drive has a damper beside its spring: the
+    /// motor angle follows a first-order ODE the path leaves free.
+    pub struct DampedDrive {
+        params {
+            J_m: positive = 0.02,
+            r_m: positive = 0.05,
+            k: positive = 2.0e5,
+            d: positive = 4.0e5,
+            m_t: positive = 50.0,
+            J_w: positive = 0.05,
+            r_w: positive = 0.1,
+            m_l: positive = 200.0,
+            g: positive = 9.81,
+        }
+        robot  [phi, s, L]
+        load   [x, z]
+        inputs [u1, u2]
+        kinetic = 0.5*J_m*dot(phi)^2 + 0.5*m_t*dot(s)^2 + 0.5*J_w/r_w^2*dot(L)^2
+                + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+        forces {
+            phi: u1 - r_m*(k*(r_m*phi - s) + d*(r_m*dot(phi) - dot(s))),
+            s: k*(r_m*phi - s) + d*(r_m*dot(phi) - dot(s)),
+            L: u2/r_w,
+            z: -m_l*g,
+        }
+        constraints {
+            #[rope(N = L)]
+            rope: 0.5*((x - s)^2 + z^2 - L^2),
+        }
+        sample { phi = -100.0 .. 100.0, s = -5.0 .. 5.0, L = 1.0 .. 8.0, x = -5.0 .. 5.0, z = -8.0 .. -1.0 }
+    }
+}
+
+/// A belt with a damper beside its spring leaves the motor angle a
+/// first-order free state (eigenvalue -k/d = -0.5 1/s): one the frozen-time
+/// reduction does not split (first derivatives in the rows without second
+/// ones), so no sampled state is resolved. The diagnosis reads the
+/// structural dimension, 1, and stability unknown, not "flat and stable"
+/// as it did ("dimension": 0, "stable": true).
+#[test]
+fn an_unresolved_diagnosis_does_not_read_as_flat_and_stable() {
+    use crane_runtime::CraneModel;
+    use crane_runtime::internal::diagnose;
+    let crane = DampedDrive::default();
+    assert_eq!(
+        <DampedDrive as CraneModel<5, 1, 2>>::STRUCTURE.map(|s| s.dimension),
+        Some(1)
+    );
+    let path = Poly9::new(0.0, 4.0, vector![0.0, -5.0], vector![3.0, -4.0]).unwrap();
+    let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 0.0, 5.0]).unwrap();
+    let run = crane_runtime::simulate(&crane, &path, &start, &crane_runtime::Options::new(0.01, 4.0).unwrap()).unwrap();
+    let diagnosis = diagnose(&crane, &run, 100);
+    assert_eq!(diagnosis.samples, 101, "{diagnosis:?}");
+    assert_eq!(diagnosis.unresolved, 101, "{diagnosis:?}");
+    assert_eq!(diagnosis.dimension, 1, "the structure's count: {diagnosis:?}");
+    assert_eq!(diagnosis.stable, None, "{diagnosis:?}");
+    assert!(diagnosis.max_real_part.is_none());
+    // the run's audit says so, and calls nothing unstable (its other
+    // finding: the damper makes the inputs need the path's 5th derivative,
+    // beyond eqs. 22's 4th)
+    use crane_models::study::{Finding, audit, summary::summarize};
+    let mut summary = summarize("damped-drive", "redundant", &run, None, &[], 0.0);
+    summary.internal_dynamics = diagnosis;
+    let findings = audit(&summary);
+    let unknown: Vec<String> = findings
+        .iter()
+        .filter(|f| matches!(f, Finding::InternalDynamicsUnknown { dimension: 1, .. }))
+        .map(|f| f.to_string())
+        .collect();
+    assert_eq!(unknown.len(), 1, "{findings:?}");
+    assert!(
+        unknown[0].contains("dimension 1 by its structure") && unknown[0].contains("not known"),
+        "{unknown:?}"
+    );
+    assert!(
+        !findings
+            .iter()
+            .any(|f| matches!(f, Finding::UnstableInternalDynamics { .. })),
+        "{findings:?}"
+    );
+}

@@ -425,6 +425,15 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
     }
     let internal = &summary.internal_dynamics;
     lines.push(match (internal.dimension, internal.stable) {
+        (k, None) => format!(
+            "internal dynamics: dimension {k} by the structure, not resolved at any of the {} sampled states ({}): \
+             whether they are stable is not known",
+            internal.samples,
+            internal
+                .unresolved_reason
+                .as_ref()
+                .map_or_else(|| "no reason given".to_string(), |r| r.to_string())
+        ),
         (0, _) if internal.unresolved == 0 => {
             "internal dynamics: none (flat), the torques are the unique ones".to_string()
         }
@@ -432,8 +441,8 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
             "internal dynamics: not resolved at {} of {} sampled states",
             internal.unresolved, internal.samples
         ),
-        (k, true) => format!("internal dynamics: dimension {k}, stable"),
-        (k, false) => match &summary.stable_inversion {
+        (k, Some(true)) => format!("internal dynamics: dimension {k}, stable"),
+        (k, Some(false)) => match &summary.stable_inversion {
             Some(inversion) => format!(
                 "internal dynamics: dimension {k}, unstable: the bounded inputs by stable inversion, acting {} s \
                  before the move (pre-actuation) and settling {} s after it (post-actuation)",

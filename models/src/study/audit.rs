@@ -57,6 +57,16 @@ pub enum Finding {
         /// Where, s.
         at: f64,
     },
+    /// The structure counts internal dynamics, but no sampled state of the
+    /// run was resolved: whether they are stable is not known.
+    InternalDynamicsUnknown {
+        /// The crane's name.
+        model: String,
+        /// The structural count.
+        dimension: usize,
+        /// Why the first sampled state was not resolved.
+        reason: String,
+    },
     /// The inputs depend on derivatives of the path beyond its continuity.
     PathTooRough {
         /// The crane's name.
@@ -230,6 +240,16 @@ impl fmt::Display for Finding {
                  in the guide",
                 Seconds(*at)
             ),
+            Finding::InternalDynamicsUnknown {
+                model,
+                dimension,
+                reason,
+            } => write!(
+                f,
+                "{model} has internal dynamics of dimension {dimension} by its structure, but the diagnosis resolved \
+                 none of the run's sampled states ({reason}): whether they are stable, and so whether its inputs \
+                 stay bounded, is not known; look at the inputs before using them"
+            ),
             Finding::PathTooRough {
                 model,
                 needed,
@@ -400,7 +420,7 @@ fn long_step(summary: &Summary) -> Option<f64> {
 
 /// Every finding on a run's summary, in this order: a crane beyond the
 /// formulation, states off their constraints, unstable internal dynamics,
-/// a path too rough, ropes of non-positive length, a runaway input, many
+/// internal dynamics the diagnosis could not resolve, a path too rough, ropes of non-positive length, a runaway input, many
 /// singular steps, ramps the steps do not resolve, a spiking input, slack
 /// ropes, exceeded limits, and the replay's, if the summary has one.
 pub fn audit(summary: &Summary) -> Vec<Finding> {
@@ -423,12 +443,22 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
     // stable inversion's inputs are the bounded ones whatever the internal
     // dynamics do
     let inverted = summary.formulation == super::Formulation::StableInversion.name();
-    if !internal.stable && !inverted {
+    if internal.stable == Some(false) && !inverted {
         out.push(Finding::UnstableInternalDynamics {
             model: model.clone(),
             dimension: internal.dimension,
             max_real_part: internal.max_real_part.unwrap_or(f64::NAN),
             at: internal.at.unwrap_or(f64::NAN),
+        });
+    }
+    if internal.stable.is_none() {
+        out.push(Finding::InternalDynamicsUnknown {
+            model: model.clone(),
+            dimension: internal.dimension,
+            reason: internal
+                .unresolved_reason
+                .as_ref()
+                .map_or_else(|| "no reason given".to_string(), |r| r.to_string()),
         });
     }
     if let Some(smooth) = summary.path_smoothness.as_ref().filter(|s| !s.sufficient) {

@@ -557,7 +557,7 @@ mod tests {
         let d = &summary.internal_dynamics;
         assert_eq!(d.structural_dimension, Some(2), "{d:?}");
         assert_eq!(d.dimension, 2, "{d:?}");
-        assert!(!d.stable, "{d:?}");
+        assert_eq!(d.stable, Some(false), "{d:?}");
         assert!(d.max_real_part.unwrap() >= 9.9, "{d:?}");
         assert!(d.runaway_at.is_some_and(|t| t < 2.5), "{d:?}");
         // diagnosed up to the runaway (1.8 s of 5 s: 37 of the 101 samples)
@@ -585,7 +585,7 @@ mod tests {
         // structurally 2 (c is a parameter), numerically 0 at c = 0
         assert_eq!(d.structural_dimension, Some(2), "{d:?}");
         assert_eq!(d.dimension, 0, "{d:?}");
-        assert!(d.stable && d.runaway_at.is_none(), "{d:?}");
+        assert!(d.stable == Some(true) && d.runaway_at.is_none(), "{d:?}");
     }
 
     /// A crane whose inputs need the path's 6th derivative (navy-3d-pulley)
@@ -606,7 +606,7 @@ mod tests {
             Some(crane_runtime::internal::PathOrder { needed: 6, covered: 4 }),
             "{d:?}"
         );
-        assert!(d.stable && !d.is_usable(), "{d:?}");
+        assert!(d.stable == Some(true) && !d.is_usable(), "{d:?}");
         assert!(
             matches!(
                 outcome.findings[..],
