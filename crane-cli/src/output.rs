@@ -389,7 +389,13 @@ pub fn write_all<const N: usize, const M: usize, const A: usize>(
     } else {
         summary.formulation.clone()
     };
-    for (name, svg) in plot::all(solution, references, &method)?
+    // stable inversion acts before the move starts and after it ends: the
+    // plots mark where the load moves
+    let moving = summary
+        .stable_inversion
+        .as_ref()
+        .map(|inversion| (summary.t0 + inversion.t_pre, summary.tf - inversion.t_post));
+    for (name, svg) in plot::all(solution, references, &method, moving)?
         .into_iter()
         .chain(extra.iter().cloned())
     {

@@ -372,12 +372,46 @@ pub fn heat_map(
     Ok(svg)
 }
 
+/// Grey dashed vertical lines at the start and end of the load's move
+/// (`moving`), across the range of `series`, one legend entry: where a run
+/// by stable inversion acts before the move (pre-actuation) and after it
+/// (post-actuation).
+fn mark_move(mut series: Vec<Series>, moving: Option<(f64, f64)>) -> Vec<Series> {
+    let Some((start, end)) = moving else {
+        return series;
+    };
+    let (low, high) = series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|&(_, y)| y))
+        .filter(|y| y.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| (a.min(y), b.max(y)));
+    if !(low <= high) {
+        return series;
+    }
+    for (k, t) in [start, end].into_iter().enumerate() {
+        series.push(Series {
+            name: if k == 0 {
+                "the load moves (before: pre-, after: post-actuation)".into()
+            } else {
+                String::new()
+            },
+            points: vec![(t, low), (t, high)],
+            color: RGBColor(128, 128, 128),
+            dashed: true,
+        });
+    }
+    series
+}
+
 /// All plots of a run as `(file name, SVG text)`; `method` (the
-/// formulation and scheme) goes into the titles.
+/// formulation and scheme) goes into the titles; `moving`, the times the
+/// load starts and stops moving where the run extends beyond them (stable
+/// inversion), is marked on each.
 pub fn all<const N: usize, const M: usize, const A: usize>(
     solution: &Solution<N, M, A>,
     references: Option<&[State<N, M, A>]>,
     method: &str,
+    moving: Option<(f64, f64)>,
 ) -> Result<Vec<(String, String)>, CliError> {
     let info = solution.info;
     let title = |what: &str| format!("{} - {what} ({method}, dt = {} s)", info.name, solution.dt);
@@ -400,7 +434,7 @@ pub fn all<const N: usize, const M: usize, const A: usize>(
             draw(
                 &title("inputs u"),
                 "u [N m]",
-                &curves(solution, references, &inputs, |s, k| s.u[k]),
+                &mark_move(curves(solution, references, &inputs, |s, k| s.u[k]), moving),
             )?,
         ),
         (
@@ -408,7 +442,7 @@ pub fn all<const N: usize, const M: usize, const A: usize>(
             draw(
                 &title("coordinates q"),
                 "q [m]",
-                &curves(solution, references, &coords, |s, k| s.q[k]),
+                &mark_move(curves(solution, references, &coords, |s, k| s.q[k]), moving),
             )?,
         ),
         (
@@ -416,7 +450,7 @@ pub fn all<const N: usize, const M: usize, const A: usize>(
             draw(
                 &title("multipliers lambda"),
                 "lambda [N/m]",
-                &curves(solution, references, &lambdas, |s, k| s.lambda[k]),
+                &mark_move(curves(solution, references, &lambdas, |s, k| s.lambda[k]), moving),
             )?,
         ),
     ];
@@ -436,7 +470,7 @@ pub fn all<const N: usize, const M: usize, const A: usize>(
             .collect();
         plots.push((
             "tensions.svg".to_string(),
-            draw(&title("rope tensions"), "N [N]", &series)?,
+            draw(&title("rope tensions"), "N [N]", &mark_move(series, moving))?,
         ));
     }
     Ok(plots)

@@ -2481,6 +2481,23 @@ fn coupled_trolley_gets_bounded_inputs_by_stable_inversion() {
     let order = (difference(&runs[0], &runs[1]) / difference(&runs[1], &runs[2])).log2();
     assert!(order >= 1.8, "order {order}");
     let out = run_ok("coupled-trolley", &["--replay"], dir.path(), "replay");
+    // the plots mark where the load moves, in the pre- and post-actuation
+    for plot in ["inputs.svg", "coordinates.svg", "tensions.svg"] {
+        let svg = std::fs::read_to_string(out.join(plot)).unwrap();
+        assert!(
+            svg.contains("the load moves (before: pre-, after: post-actuation)"),
+            "{plot}"
+        );
+    }
+    // and only there: a causal run has no such mark
+    let causal = run_ok(
+        "coupled-trolley",
+        &["--formulation", "redundant", "--tf", "1"],
+        dir.path(),
+        "causal",
+    );
+    let svg = std::fs::read_to_string(causal.join("inputs.svg")).unwrap();
+    assert!(!svg.contains("the load moves"));
     let replay = &summary_json(&out)["replay"];
     let deviation = replay["max_load_deviation"].as_f64().unwrap();
     assert!(deviation < 1e-3, "{replay}");

@@ -21,9 +21,9 @@
 
 use crane_models::Case;
 use crane_models::coupled_trolley::{DefaultCase, Description};
-use crane_runtime::init;
 use crane_runtime::internal::internal_dynamics;
 use crane_runtime::stable_inversion::{StableInversion, StableInversionOptions, horizons, stable_inversion};
+use crane_runtime::{Trajectory, init};
 use crane_tests::kit;
 use nalgebra::vector;
 
@@ -92,22 +92,7 @@ fn level_move() -> Case<Description, 4, 1, 2> {
 /// The largest `|w - w_exact|` over the nodes in [-1, 6] s and `max |w|`,
 /// with the fitted pre-actuation rate on [-1, -0.3] s.
 fn offset_error(dt: f64) -> (f64, f64, f64) {
-    let case = level_move();
-    let start = case.start().unwrap();
-    let end = init::static_equilibrium(case.model(), case.path(), DURATION, &[TRAVEL, HEIGHT]).unwrap();
-    let (t_pre, t_post) = horizons(
-        &internal_dynamics(case.model(), &start).unwrap(),
-        &internal_dynamics(case.model(), &end).unwrap(),
-    )
-    .unwrap();
-    let options = StableInversionOptions {
-        dt,
-        t0: 0.0,
-        tf: DURATION,
-        t_pre,
-        t_post,
-    };
-    let inversion = stable_inversion(case.model(), case.path(), &start, &options).unwrap();
+    let inversion = invert(&level_move(), dt);
     let states = &inversion.solution.states;
     assert!(states[0].t <= -1.0 && states.last().unwrap().t >= 6.0);
     let (mut error, mut size) = (0.0f64, 0.0f64);
@@ -160,9 +145,17 @@ fn the_level_move_matches_the_two_sided_greens_function() {
 /// `(0, -5)` to `(4, -3)` in 5 s, the load lifted as it travels: the
 /// multiplier, and with it the internal dynamics, change along the move).
 fn default_move(dt: f64) -> StableInversion<4, 1, 2> {
-    let case = DefaultCase::maneuver().unwrap();
+    invert(&DefaultCase::maneuver().unwrap(), dt)
+}
+
+/// The stable inversion of `case`'s move (5 s from rest to rest) through
+/// the runtime's API: the horizons from the internal dynamics at the two
+/// rest states (the end's found from the path's end point, the trolley
+/// above the load), then the boundary value problem on nodes `dt` apart.
+fn invert(case: &Case<Description, 4, 1, 2>, dt: f64) -> StableInversion<4, 1, 2> {
     let start = case.start().unwrap();
-    let end = init::static_equilibrium(case.model(), case.path(), DURATION, &[4.0, 3.0]).unwrap();
+    let end_point = case.path().derivative(DURATION, 0);
+    let end = init::static_equilibrium(case.model(), case.path(), DURATION, &[end_point[0], -end_point[1]]).unwrap();
     let (t_pre, t_post) = horizons(
         &internal_dynamics(case.model(), &start).unwrap(),
         &internal_dynamics(case.model(), &end).unwrap(),
