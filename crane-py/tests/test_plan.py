@@ -5,7 +5,9 @@ the same numbers bit for bit, and every refusal a crane.CraneError."""
 import csv
 import json
 import os
+import signal
 import subprocess
+import time
 from pathlib import Path
 
 import numpy as np
@@ -112,3 +114,30 @@ def test_a_study_of_given_steps_and_a_reduced_reference():
 def test_refusals_raise_with_the_tool_s_message(call, message):
     with pytest.raises(crane.CraneError, match=message):
         call()
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="no os.fork on this platform")
+def test_a_sweep_in_a_forked_child_does_not_hang():
+    # the parent sweeps first, so its thread pool exists when it forks
+    grid = {"m_l": [90.0, 110.0]}
+    before = crane.sweep("navy-planar", grid)
+    pid = os.fork()
+    if pid == 0:
+        try:
+            again = crane.sweep("navy-planar", grid)
+            same = all(np.array_equal(again[k], before[k]) for k in ("peak_u1", "peak_u2"))
+            os._exit(0 if same else 3)
+        except BaseException:
+            os._exit(4)
+    # the child hung for ever before: give it 60 s
+    deadline = time.monotonic() + 60.0
+    while True:
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            break
+        if time.monotonic() > deadline:
+            os.kill(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
+            pytest.fail("the sweep in the forked child did not finish within 60 s")
+        time.sleep(0.05)
+    assert os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0, status

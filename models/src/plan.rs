@@ -28,6 +28,7 @@
 
 use rayon::prelude::*;
 use serde::Serialize;
+use std::sync::{Arc, Mutex};
 
 use crane_runtime::error::{Number, Rounded};
 use crane_runtime::{CraneModel, Options, Scheme, Solution};
@@ -847,13 +848,42 @@ pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         .into_iter()
         .flat_map(|(values, _)| durations.iter().map(move |&d| (values.clone(), d)))
         .collect();
-    grid.into_par_iter()
-        .map(|(values, duration)| {
-            let point = sweep_point(case, params, &values, duration, limits, settings);
-            progress();
-            point
-        })
-        .collect()
+    let run = move || {
+        grid.into_par_iter()
+            .map(|(values, duration)| {
+                let point = sweep_point(case, params, &values, duration, limits, settings);
+                progress();
+                point
+            })
+            .collect()
+    };
+    match sweep_pool() {
+        Some(pool) => pool.install(run),
+        None => run(),
+    }
+}
+
+/// The thread pool sweeps run on, built by this process: a process forked
+/// from one that swept inherits the pool's handles but none of its threads,
+/// and rayon's global pool then waits for ever in the child (a Python
+/// sweep, `os.fork()`, a sweep in the child). `None` where no pool can be
+/// built (the sweep then runs on the global one).
+fn sweep_pool() -> Option<Arc<rayon::ThreadPool>> {
+    static POOL: Mutex<Option<(u32, Arc<rayon::ThreadPool>)>> = Mutex::new(None);
+    let pid = std::process::id();
+    let mut pool = POOL.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    if let Some((owner, built)) = pool.as_ref()
+        && *owner == pid
+    {
+        return Some(Arc::clone(built));
+    }
+    let built = Arc::new(rayon::ThreadPoolBuilder::new().build().ok()?);
+    // the parent's pool, in a forked child: its threads are not here, so
+    // it is left alone rather than dropped (dropping signals them)
+    if let Some(inherited) = pool.replace((pid, Arc::clone(&built))) {
+        std::mem::forget(inherited);
+    }
+    Some(built)
 }
 
 /// One sweep point: the model with `values` set, scaled to `duration`.
