@@ -793,43 +793,47 @@ impl DenseSolver {
     /// [`factor`](Self::factor) of the matrix of this solver's size whose
     /// entries, by columns, are `entries`.
     fn factor_entries(&mut self, entries: &[f64], rescale: bool) -> bool {
-        if !self.equilibrate {
-            if self.scaled_factors {
-                // the scales of an earlier equilibrated retry
-                self.row_scale.fill(1.0);
-                self.col_scale.fill(1.0);
-                self.scaled_factors = false;
-            }
-            self.lu.as_mut_slice().copy_from_slice(entries);
-            let regular = self.factor_in_lu();
-            if regular || self.hold {
-                return regular;
-            }
-            // singular to working precision as it stands, perhaps only
-            // because its rows and columns are in very different units
-            // (winches of 1e6 kg m^2 beside ropes): the pivot ratio is not
-            // invariant under scaling, so the equilibrated matrix decides
+        if self.equilibrate {
+            return self.factor_equilibrated(entries, rescale);
+        }
+        self.unscale();
+        self.lu.as_mut_slice().copy_from_slice(entries);
+        let regular = self.factor_in_lu();
+        if regular || self.hold {
+            return regular;
+        }
+        // singular to working precision as it stands, perhaps only because
+        // its rows and columns are in very different units (winches of 1e6
+        // kg m^2 beside ropes): the pivot ratio is not invariant under
+        // scaling, so the equilibrated matrix decides
+        if self.factor_equilibrated(entries, true) {
+            return true;
+        }
+        self.unscale();
+        false
+    }
+
+    /// The LU factors of the equilibrated matrix whose entries, by columns,
+    /// are `entries` (its scales found anew, `rescale`, or kept).
+    fn factor_equilibrated(&mut self, entries: &[f64], rescale: bool) -> bool {
+        if rescale {
             self.find_scales(entries);
-            let mut lu = std::mem::take(&mut self.lu);
-            self.write_scaled(entries, &mut lu);
-            self.lu = lu;
-            self.scaled_factors = true;
-            if self.factor_in_lu() {
-                return true;
-            }
+        }
+        let mut lu = std::mem::take(&mut self.lu);
+        self.write_scaled(entries, &mut lu);
+        self.lu = lu;
+        self.scaled_factors = true;
+        self.factor_in_lu()
+    }
+
+    /// Unit scales again for a solver that does not equilibrate, after an
+    /// equilibrated retry of its last matrix.
+    fn unscale(&mut self) {
+        if self.scaled_factors {
             self.row_scale.fill(1.0);
             self.col_scale.fill(1.0);
             self.scaled_factors = false;
-            return false;
-        } else {
-            if rescale {
-                self.find_scales(entries);
-            }
-            let mut lu = std::mem::take(&mut self.lu);
-            self.write_scaled(entries, &mut lu);
-            self.lu = lu;
         }
-        self.factor_in_lu()
     }
 
     /// The row exchanges of the last factors as one permutation, and the

@@ -64,21 +64,15 @@ const UPDATE_TOLERANCE: f64 = 1e-11;
 /// unique bounded solution: [`Error::NoBoundedSolution`].
 pub fn horizons(start: &InternalDynamics, end: &InternalDynamics) -> Result<(f64, f64), Error> {
     let horizon = |d: &InternalDynamics| -> Result<f64, Error> {
-        let size = d.eigenvalues.iter().map(|e| e.0.hypot(e.1)).fold(1.0, f64::max);
-        let slowest = d.eigenvalues.iter().map(|e| e.0.abs()).fold(f64::INFINITY, f64::min);
-        if d.eigenvalues.is_empty() {
+        // the eigenvalue nearest the imaginary axis decays slowest
+        let Some(&(re, im)) = d.eigenvalues.iter().min_by(|a, b| a.0.abs().total_cmp(&b.0.abs())) else {
             return Ok(0.0);
-        }
-        if !(slowest > IMAGINARY_AXIS * size) {
-            let (re, im) = d
-                .eigenvalues
-                .iter()
-                .copied()
-                .min_by(|a, b| a.0.abs().total_cmp(&b.0.abs()))
-                .unwrap_or((0.0, 0.0));
+        };
+        let size = d.eigenvalues.iter().map(|e| e.0.hypot(e.1)).fold(1.0, f64::max);
+        if !(re.abs() > IMAGINARY_AXIS * size) {
             return Err(Error::NoBoundedSolution { t: d.t, re, im });
         }
-        Ok((1.0 / HORIZON_DECAY).ln() / slowest)
+        Ok((1.0 / HORIZON_DECAY).ln() / re.abs())
     };
     Ok((horizon(start)?, horizon(end)?))
 }

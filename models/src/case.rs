@@ -216,7 +216,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
         options: &Options,
     ) -> Result<StableInversion<N, M, A>, Error> {
         let t0 = self.t0();
-        let tf = options.tf().max(self.path.spec().t1);
+        let tf = self.move_end(options.tf());
         let p = N - A;
         let end = init::static_equilibrium(&self.model, &self.path, tf, &start.q.as_slice()[..p])?;
         let diagnosis = |state: &State<N, M, A>| {
@@ -231,6 +231,13 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
             t_post,
         };
         stable_inversion::stable_inversion(&self.model, &self.path, start, &settings)
+    }
+
+    /// Where a stable inversion of a run to `tf` ends its move: the later of
+    /// `tf` and the path's end (the bounded solution needs the whole move;
+    /// its post-actuation follows).
+    pub fn move_end(&self, tf: f64) -> f64 {
+        tf.max(self.path.spec().t1)
     }
 
     /// Names of the derived outputs.

@@ -426,13 +426,9 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
     let internal = &summary.internal_dynamics;
     lines.push(match (internal.dimension, internal.stable) {
         (k, None) => format!(
-            "internal dynamics: dimension {k} by the structure, not resolved at any of the {} sampled states ({}): \
-             whether they are stable is not known",
-            internal.samples,
-            internal
-                .unresolved_reason
-                .as_ref()
-                .map_or_else(|| "no reason given".to_string(), |r| r.to_string())
+            "internal dynamics: dimension {k} by the structure, not resolved at any of the {} sampled states: \
+             whether they are stable is not known (see the warning)",
+            internal.samples
         ),
         (0, _) if internal.unresolved == 0 => {
             "internal dynamics: none (flat), the torques are the unique ones".to_string()

@@ -451,14 +451,13 @@ pub fn audit(summary: &Summary) -> Vec<Finding> {
             at: internal.at.unwrap_or(f64::NAN),
         });
     }
-    if internal.stable.is_none() {
+    // (stability is unknown only where every sampled state was unresolved,
+    // each with its reason)
+    if let (None, Some(reason)) = (internal.stable, internal.unresolved_reason.as_ref()) {
         out.push(Finding::InternalDynamicsUnknown {
             model: model.clone(),
             dimension: internal.dimension,
-            reason: internal
-                .unresolved_reason
-                .as_ref()
-                .map_or_else(|| "no reason given".to_string(), |r| r.to_string()),
+            reason: reason.to_string(),
         });
     }
     if let Some(smooth) = summary.path_smoothness.as_ref().filter(|s| !s.sufficient) {

@@ -471,7 +471,7 @@ fn stable_inversion_summary<C: Crane<N, M, A>, const N: usize, const M: usize, c
             .map(|d| d.eigenvalues)
             .unwrap_or_default()
     };
-    let move_end = case.tf().max(case.path().spec().t1);
+    let move_end = case.move_end(case.tf());
     Some(StableInversionSummary {
         discretisation: "central differences, order 2".to_string(),
         t_pre: case.t0() - first.t,
