@@ -13,7 +13,7 @@ use crane_models::{Crane, Path, PathSpec, Profile};
 use crane_runtime::options::steps_in;
 use crane_runtime::problem::ServoTarget;
 use crane_runtime::redundant::{Redundant, RedundantStepper};
-use crane_runtime::{Advance, CraneModel, Options, Scheme, Stepper, dummy_derivative};
+use crane_runtime::{Advance, CraneModel, Options, Scheme, Stepper, state_selection};
 use nalgebra::SVector;
 
 use crate::variables::{
@@ -301,30 +301,33 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         // is replaced by eqs. (22a-d) where those reduce it (path order 4 at
         // most: the scheme's discretisation in place of the higher ones)
         let order = <C::Model as CraneModel<N, M, A>>::STRUCTURE.map_or(0, |s| s.path_order(A));
-        let reduced = settings.formulation == Formulation::DummyDerivative && !(external.is_some() && order <= 4);
-        let stepper = if reduced {
-            if external.is_some() {
-                return Err(format!(
-                    "path = {EXTERNAL_PATH} (external) gives gamma, gamma' and gamma'' only, but the inputs of {} \
+        let reduced = matches!(
+            settings.formulation,
+            Formulation::DummyDerivative | Formulation::StateSelection
+        ) && !(external.is_some() && order <= 4);
+        let stepper =
+            if reduced {
+                if external.is_some() {
+                    return Err(format!(
+                        "path = {EXTERNAL_PATH} (external) gives gamma, gamma' and gamma'' only, but the inputs of {} \
                      need the path's derivatives up to order {order}: use a built-in move",
-                    C::NAME
-                ));
-            }
-            let stepper = dummy_derivative::boxed_stepper(Box::new(case.model), case.path, &start, &options).map_err(
-                |error| match error {
-                    crane_runtime::Error::NoDummyDerivatives { reason, .. } => {
-                        format!("{} has no dummy-derivative formulation: {reason}", C::NAME)
-                    }
-                    error => error.to_string(),
-                },
-            )?;
-            Stepping::Reduced(stepper)
-        } else {
-            Stepping::Redundant(Box::new(
-                Stepper::new(Redundant::new(Box::new(case.model), case.path), &start, &options)
-                    .map_err(|e| e.to_string())?,
-            ))
-        };
+                        C::NAME
+                    ));
+                }
+                let stepper = state_selection::boxed_stepper(Box::new(case.model), case.path, &start, &options)
+                    .map_err(|error| match error {
+                        crane_runtime::Error::NoDummyDerivatives { reason, .. } => {
+                            format!("{} has no dummy-derivative formulation: {reason}", C::NAME)
+                        }
+                        error => error.to_string(),
+                    })?;
+                Stepping::Reduced(stepper)
+            } else {
+                Stepping::Redundant(Box::new(
+                    Stepper::new(Redundant::new(Box::new(case.model), case.path), &start, &options)
+                        .map_err(|e| e.to_string())?,
+                ))
+            };
         let (run, mut findings) = Run::new(C::NAME, stepper, external);
         // a built-in move's ramps the step cannot resolve (an external
         // target has no ramps known in advance)

@@ -15,7 +15,9 @@
 //! diagonal (one per derivative level), so it is regular exactly where
 //! Pryce's `J` is, and no derivative is approximated by a difference: the
 //! inputs come out exact to round-off at any time step. A crane with
-//! internal dynamics keeps differential states and is not reduced here.
+//! internal dynamics of dimension `d` gets the same system with `d` more
+//! unknowns than equations: the jets the load path leaves free, which the
+//! runtime selects as states and integrates (state selection).
 
 use std::collections::HashMap;
 
@@ -42,6 +44,9 @@ pub struct DummyKernels {
     pub equations: Vec<(usize, u8)>,
     /// The highest derivative of the load path the system reads.
     pub path_order: u8,
+    /// How many more unknowns than equations: the structural dimension of
+    /// the internal dynamics (0 for a flat crane).
+    pub dimension: usize,
     /// The residual, one entry per equation.
     pub residual: Vec<Id>,
     /// `d residual / d z`, rows = equations, columns = unknowns.
@@ -64,14 +69,14 @@ fn time_derivative(d: &mut Differentiator<'_>, e: Id) -> Id {
 }
 
 impl DummyKernels {
-    /// The system of a crane with no internal dynamics; `None` for one with
-    /// internal dynamics (or a singular structure), whose reduction keeps
-    /// differential states.
+    /// The system of a crane with a regular structure (`dimension` more
+    /// unknowns than equations where it has internal dynamics); `None` for
+    /// a singular structure.
     pub fn derive(model: &mut Model, k: &Kernels, structure: &Structure) -> Option<DummyKernels> {
-        let Structure::Internal {
-            dimension: 0,
-            unknowns: c,
-            equations: d,
+        let &Structure::Internal {
+            dimension,
+            unknowns: ref c,
+            equations: ref d,
         } = structure
         else {
             return None;
@@ -141,7 +146,7 @@ impl DummyKernels {
             .filter(|&j| j < nr || j >= n)
             .flat_map(|j| (0..=c[j]).map(move |order| (j, order)))
             .collect();
-        if unknowns.len() != equations.len() {
+        if unknowns.len() != equations.len() + dimension {
             return None;
         }
         let jacobian = residual
@@ -154,6 +159,7 @@ impl DummyKernels {
             unknowns,
             equations,
             path_order,
+            dimension,
             residual,
             jacobian,
         })

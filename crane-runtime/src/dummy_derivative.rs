@@ -80,12 +80,12 @@ pub type PathJets<const A: usize> = [SVector<f64, A>; MAX_PATH_ORDER + 1];
 /// `Arc<Mdl>`) on the path `Tr`; see the module docs.
 #[derive(Clone)]
 pub struct DummyDerivative<H, Tr, const N: usize, const M: usize, const A: usize, const J: usize> {
-    model: H,
+    pub(crate) model: H,
     trajectory: Tr,
-    gamma: PathJets<A>,
+    pub(crate) gamma: PathJets<A>,
     /// The slot in `z` of jet 0 of each unknown of `[q, lambda, u]` (the
     /// load coordinates' slots are unused).
-    slots: Vec<usize>,
+    pub(crate) slots: Vec<usize>,
     /// One relative stopping test for all of `z` (the residual test decides
     /// for the small jets).
     blocks: Vec<Range<usize>>,
@@ -213,13 +213,13 @@ where
     }
 
     /// The slot in `z` of derivative `order` of unknown `j` of `[q, lambda, u]`.
-    fn slot(&self, j: usize, order: usize) -> usize {
+    pub(crate) fn slot(&self, j: usize, order: usize) -> usize {
         self.slots[j] + order
     }
 
     /// The jets of order 0 and 1 of `state` (coordinates, velocities,
     /// multipliers, inputs) into `z`; the higher jets are left as they are.
-    fn write_state(&self, state: &State<N, M, A>, z: &mut DVector<f64>) {
+    pub(crate) fn write_state(&self, state: &State<N, M, A>, z: &mut DVector<f64>) {
         let offsets = <H::Target as DummyDerivatives<N, M, A, J>>::OFFSETS;
         for i in 0..Self::P {
             z[self.slot(i, 0)] = state.q[i];
@@ -236,7 +236,7 @@ where
     }
 
     /// The crane's state at `t` from the jets `z`.
-    fn state(&self, t: f64, z: &DVector<f64>) -> State<N, M, A> {
+    pub(crate) fn state(&self, t: f64, z: &DVector<f64>) -> State<N, M, A> {
         let p = Self::P;
         let q = SVector::from_fn(|i, _| {
             if i < p {
@@ -472,6 +472,7 @@ where
     /// A stepper for the crane behind `model` on `trajectory` from the
     /// consistent `start`, with the step, scheme and tolerances of `options`.
     pub fn new(model: H, trajectory: Tr, start: &State<N, M, A>, options: &Options<S>) -> Result<Self, Error> {
+        flat::<H::Target, N, M, A, J>()?;
         let fallback = Stepper::new(Redundant::new(model.clone(), trajectory.clone()), start, options)?;
         let reduced = Stepper::new(DummyDerivative::new(model, trajectory), start, options)?;
         Ok(Self {
@@ -674,8 +675,10 @@ where
     })?
 }
 
-/// The size `J` of `Mdl`'s dummy-derivative system
-/// ([`CraneModel::visit_dummy_derivatives`]), or why it has none.
+/// The size `J` of `Mdl`'s dummy-derivative system of a flat crane
+/// ([`CraneModel::visit_dummy_derivatives`]), or why it has none (one with
+/// internal dynamics has the system with free jets, which
+/// [`crate::state_selection`] integrates).
 pub fn system_size<Mdl, const N: usize, const M: usize, const A: usize>() -> Result<usize, NoDummyDerivatives>
 where
     Mdl: CraneModel<N, M, A>,
@@ -683,15 +686,33 @@ where
     /// `J`.
     struct Size;
     impl<Mdl, const N: usize, const M: usize, const A: usize> VisitDummyDerivatives<Mdl, N, M, A> for Size {
-        type Output = usize;
-        fn visit<const J: usize>(self) -> usize
+        type Output = Result<usize, NoDummyDerivatives>;
+        fn visit<const J: usize>(self) -> Self::Output
         where
             Mdl: DummyDerivatives<N, M, A, J>,
         {
-            J
+            match Mdl::DIMENSION {
+                0 => Ok(J),
+                dimension => Err(NoDummyDerivatives::InternalDynamics { dimension }),
+            }
         }
     }
-    Mdl::visit_dummy_derivatives(Size)
+    Mdl::visit_dummy_derivatives(Size)?
+}
+
+/// Refuse a system with free jets (internal dynamics), which this module's
+/// problem, algebraic at each time, cannot solve.
+fn flat<Mdl, const N: usize, const M: usize, const A: usize, const J: usize>() -> Result<(), Error>
+where
+    Mdl: DummyDerivatives<N, M, A, J>,
+{
+    match Mdl::DIMENSION {
+        0 => Ok(()),
+        dimension => Err(Error::NoDummyDerivatives {
+            model: Mdl::INFO.name,
+            reason: NoDummyDerivatives::InternalDynamics { dimension },
+        }),
+    }
 }
 
 /// A [`DummyDerivativeStepper`] of the crane behind `model` (`Box<Mdl>`,

@@ -311,6 +311,15 @@ pub enum Error {
         /// Why.
         reason: crate::model::NoDummyDerivatives,
     },
+    /// No jets of the robot coordinates can be the states the load path
+    /// leaves free ([`crate::state_selection`]).
+    #[error("the states the load path leaves free on the crane `{model}` cannot be selected: {reason}")]
+    StatesNotSelected {
+        /// The model's type name.
+        model: &'static str,
+        /// Why.
+        reason: String,
+    },
     /// Internal dynamics with an eigenvalue on the imaginary axis (an
     /// undamped oscillation the path leaves free): no unique bounded
     /// solution on the whole time axis, so no stable inversion.

@@ -97,6 +97,7 @@ pub mod replay;
 pub mod scheme;
 pub mod solution;
 pub mod stable_inversion;
+pub mod state_selection;
 pub mod stepper;
 pub mod trajectory;
 

@@ -256,6 +256,16 @@ pub trait DummyDerivatives<const N: usize, const M: usize, const A: usize, const
     /// The highest derivative of the load path the system reads.
     const PATH_ORDER: usize;
 
+    /// How many jets the equations leave free: the structural dimension `d`
+    /// of the internal dynamics ([`Structure::dimension`]), 0 for a flat
+    /// crane. The system then has `J - d` equations in its `J` unknowns:
+    /// [`dummy_derivative_system_into`](Self::dummy_derivative_system_into)
+    /// writes the first `J - d` entries of the residual and those rows of
+    /// the Jacobian (still by columns of `J` entries), and the `d` jets the
+    /// path leaves free are states that a scheme integrates
+    /// ([`crate::state_selection`]).
+    const DIMENSION: usize = 0;
+
     /// The Jacobian's entries that are not zero by structure, as indices
     /// `j J + i` of entry `(i, j)` (by columns), ascending: those
     /// [`dummy_derivative_system_into`](Self::dummy_derivative_system_into)

@@ -72,6 +72,9 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     /// or wherever a rope was nearly slack, not only the first ones. 0
     /// otherwise.
     pub redundant_start_steps: usize,
+    /// Of a run with state selection ([`crate::state_selection`]): the jets
+    /// integrated as states (`phi`, `phi'`), empty otherwise.
+    pub selected_states: Vec<String>,
 }
 
 impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
@@ -99,6 +102,7 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
             path_order_covered: None,
             shortest_ropes: vec![(f64::INFINITY, f64::NAN); ropes],
             redundant_start_steps: 0,
+            selected_states: Vec::new(),
         };
         solution.states.try_reserve_exact(states).map_err(|_| too_many())?;
         solution

@@ -43,7 +43,7 @@ use crane_models::study::{self, Formulation};
 use crane_models::{Case, Crane};
 use crane_runtime::redundant::Redundant;
 use crane_runtime::stepper::{Advance, Stepper};
-use crane_runtime::{CraneModel, Options, Solution, dummy_derivative};
+use crane_runtime::{CraneModel, Options, Solution, dummy_derivative, state_selection};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -1031,14 +1031,18 @@ impl Visit for StepperJob {
                 dummy_derivative::boxed_stepper(Box::new(case.model), case.path, &start, &options)
                     .map_err(|e| study::StudyError::of_crane(C::NAME, e).to_string())?
             }
+            Formulation::StateSelection => {
+                state_selection::boxed_stepper(Box::new(case.model), case.path, &start, &options)
+                    .map_err(|e| study::StudyError::of_crane(C::NAME, e).to_string())?
+            }
             Formulation::Redundant => Box::new(
                 Stepper::new(Redundant::new(Box::new(case.model), case.path), &start, &options)
                     .map_err(|e| e.to_string())?,
             ),
             Formulation::Minimal => {
                 return Err(
-                    "a stepper runs the redundant and the dummy-derivative formulation; the minimal one runs \
-                     whole: run(..., formulation=\"minimal\")"
+                    "a stepper runs the redundant, the dummy-derivative and the state-selection formulation; the \
+                     minimal one runs whole: run(..., formulation=\"minimal\")"
                         .to_string(),
                 );
             }

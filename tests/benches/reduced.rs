@@ -123,8 +123,10 @@ impl Visit for OnCrane<'_> {
             c: self.c,
             table: self.table,
         };
-        // cranes with internal dynamics have no reduced system
-        let _ = <C::Model as CraneModel<N, M, A>>::visit_dummy_derivatives(ways);
+        // cranes with internal dynamics have no flat reduced system
+        if crane_runtime::dummy_derivative::system_size::<C::Model, N, M, A>().is_ok() {
+            let _ = <C::Model as CraneModel<N, M, A>>::visit_dummy_derivatives(ways);
+        }
     }
 }
 

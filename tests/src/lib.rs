@@ -2,6 +2,7 @@
 //! hand-written model, numerical solutions against the analytical references.
 
 pub mod counting;
+pub mod damped;
 pub mod floor;
 pub mod handwritten;
 pub mod kit;

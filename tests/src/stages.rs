@@ -164,6 +164,8 @@ pub struct OnCrane;
 impl Visit for OnCrane {
     type Output = Option<Comparison>;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        // (a crane with internal dynamics has free jets: no stages)
+        crane_runtime::dummy_derivative::system_size::<C::Model, N, M, A>().ok()?;
         let case = Case::<C, N, M, A>::maneuver().unwrap();
         <C::Model as CraneModel<N, M, A>>::visit_dummy_derivatives(Compare { case: &case }).ok()
     }

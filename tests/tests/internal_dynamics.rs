@@ -6,6 +6,7 @@ use crane_runtime::internal::internal_dynamics;
 use crane_runtime::nalgebra::vector;
 use crane_runtime::trajectory::Poly9;
 use crane_runtime::{Trajectory, init};
+use crane_tests::damped::DampedDrive;
 
 /// The coupled crane at rest, load straight below the trolley at depth |z|:
 /// the load's row reads c s'' - lambda s = -lambda x - m x'' with
@@ -255,40 +256,6 @@ fn a_path_too_rough_for_the_crane_gives_impulses() {
         .unwrap()
         .is_sufficient()
     );
-}
-
-crane_macros::crane_model! {
-    /// Overhead crane whose belt drive has a damper beside its spring: the
-    /// motor angle follows a first-order ODE the path leaves free.
-    pub struct DampedDrive {
-        params {
-            J_m: positive = 0.02,
-            r_m: positive = 0.05,
-            k: positive = 2.0e5,
-            d: positive = 4.0e5,
-            m_t: positive = 50.0,
-            J_w: positive = 0.05,
-            r_w: positive = 0.1,
-            m_l: positive = 200.0,
-            g: positive = 9.81,
-        }
-        robot  [phi, s, L]
-        load   [x, z]
-        inputs [u1, u2]
-        kinetic = 0.5*J_m*dot(phi)^2 + 0.5*m_t*dot(s)^2 + 0.5*J_w/r_w^2*dot(L)^2
-                + 0.5*m_l*(dot(x)^2 + dot(z)^2);
-        forces {
-            phi: u1 - r_m*(k*(r_m*phi - s) + d*(r_m*dot(phi) - dot(s))),
-            s: k*(r_m*phi - s) + d*(r_m*dot(phi) - dot(s)),
-            L: u2/r_w,
-            z: -m_l*g,
-        }
-        constraints {
-            #[rope(N = L)]
-            rope: 0.5*((x - s)^2 + z^2 - L^2),
-        }
-        sample { phi = -100.0 .. 100.0, s = -5.0 .. 5.0, L = 1.0 .. 8.0, x = -5.0 .. 5.0, z = -8.0 .. -1.0 }
-    }
 }
 
 /// A belt with a damper beside its spring leaves the motor angle a

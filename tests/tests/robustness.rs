@@ -103,6 +103,9 @@ fn assert_descriptive(error: &Error) {
         Error::MinimalStartNotFound { .. } | Error::EquilibriumNotFound { .. } => message.contains("residual"),
         Error::MinimalGuessSize { expected, .. } => message.contains(&format!("the map has {expected}")),
         Error::NoDummyDerivatives { model, .. } => message.contains(&format!("`{model}`")),
+        Error::StatesNotSelected { model, reason } => {
+            message.contains(&format!("`{model}`")) && message.contains(reason.as_str())
+        }
         Error::NothingToReplay => message.contains("no states"),
         Error::HandoverMismatch { what } => message.contains(what.as_str()),
         Error::ReplayStartInconsistent { equation, .. } => !equation.is_empty() && message.contains(equation.as_str()),

@@ -90,9 +90,11 @@ pub fn list<R: Registry>(tool: &Tool<R>) -> Result<(), CliError> {
     eprintln!(
         "note: the formulation column is the default: {} for a crane without internal dynamics (its exact \
          inputs at each step time, solved stage by stage for less per step than eqs. (22a-d) with backward \
-         Euler), {} for one whose internal dynamics are unstable (the bounded inputs, with pre- and \
+         Euler), {} for one whose internal dynamics are stable (the free states by the scheme, the rest \
+         exact), {} for one whose internal dynamics are unstable (the bounded inputs, with pre- and \
          post-actuation), {} (eqs. 22a-d) for the others; --formulation runs another",
         Formulation::DummyDerivative,
+        Formulation::StateSelection,
         Formulation::StableInversion,
         Formulation::Redundant
     );

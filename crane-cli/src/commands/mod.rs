@@ -37,10 +37,11 @@ pub fn scheme_help(default: Scheme) -> String {
 /// The help of a `--formulation` flag, from the one list of formulations.
 pub fn formulation_help() -> String {
     format!(
-        "Formulation: {} (default {} for a crane without internal dynamics, {} for unstable ones, {} for the \
-         others)",
+        "Formulation: {} (default {} for a crane without internal dynamics, {} for stable ones, {} for unstable \
+         ones, {} for the others)",
         Formulation::help(),
         Formulation::DummyDerivative,
+        Formulation::StateSelection,
         Formulation::StableInversion,
         Formulation::Redundant
     )

@@ -20,6 +20,11 @@ pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &To
     let (n_lit, m_lit, a_lit, j_lit, jj_lit) = (index(n), index(m), index(a), index(size), index(size * size));
     let offsets = k.offsets.iter().map(|&c| index(c.into()));
     let path_order = index(k.path_order.into());
+    // (the runtime's default is a flat crane's 0)
+    let dimension = (k.dimension > 0).then(|| {
+        let d = index(k.dimension);
+        quote!(const DIMENSION: usize = #d;)
+    });
     let sv = quote!(__crane_runtime::nalgebra::SVector);
     let (gamma, z) = (internal("gamma"), internal("z"));
 
@@ -96,6 +101,7 @@ pub(super) fn dummy_derivatives_impl(model: &Model, k: &DummyKernels, lints: &To
         impl __crane_runtime::DummyDerivatives<#n_lit, #m_lit, #a_lit, #j_lit> for #name {
             const OFFSETS: &'static [u8] = &[#(#offsets),*];
             const PATH_ORDER: usize = #path_order;
+            #dimension
             const JACOBIAN_NONZEROS: &'static [u32] = &[#(#nonzeros),*];
 
             /// The residual of the dummy-derivative system and its Jacobian

@@ -28,14 +28,14 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use crane_runtime::internal::{diagnose, path_smoothness};
-use crane_runtime::{CraneModel, Options, Scheme, Solution, State, dummy_derivative};
+use crane_runtime::{CraneModel, Options, Scheme, Solution, State, dummy_derivative, state_selection};
 
 use crate::case::Case;
 use crate::crane::Crane;
 pub use audit::{Finding, Severity, audit};
 pub use replay::{FeedbackSpec, ReplayOutcome, ReplayRequest};
 pub use spec::{RunSpec, SpecError};
-pub use summary::{PathSmoothnessSummary, StableInversionSummary, Summary, below_floor};
+pub use summary::{PathSmoothnessSummary, StableInversionSummary, StateSelectionSummary, Summary, below_floor};
 
 /// Which formulation of the servo problem a run solves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -58,14 +58,22 @@ pub enum Formulation {
     /// (the default of such a crane, [`default_for`](Self::default_for));
     /// central differences of order 2 whatever the scheme.
     StableInversion,
+    /// Eqs. (22a-d) reduced by dummy derivatives with state selection
+    /// ([`crane_runtime::state_selection`]): the states the path leaves
+    /// free integrated by the scheme, every other unknown algebraic at each
+    /// step time (the default of a crane whose internal dynamics are
+    /// stable, [`default_for`](Self::default_for)); a flat crane's run is
+    /// the dummy-derivative one.
+    StateSelection,
 }
 
 impl Formulation {
     /// All of them, in order.
-    pub const ALL: [Formulation; 4] = [
+    pub const ALL: [Formulation; 5] = [
         Formulation::Redundant,
         Formulation::Minimal,
         Formulation::DummyDerivative,
+        Formulation::StateSelection,
         Formulation::StableInversion,
     ];
 
@@ -74,21 +82,33 @@ impl Formulation {
     /// crane), which gives the exact inputs at every step time whatever the
     /// path order and, solved stage by stage, costs less per step than
     /// eqs. (22a-d) with backward Euler on every flat built-in;
+    /// [`StateSelection`](Self::StateSelection) where every eigenvalue of
+    /// the selected states' equations at the start of the crane's default
+    /// manoeuvre has a negative real part (stable internal dynamics: the
+    /// scheme's error in the free states only);
     /// [`StableInversion`](Self::StableInversion) where the internal
-    /// dynamics at the start of the crane's default manoeuvre are unstable
-    /// and have no eigenvalue on the imaginary axis (the causal inverse
-    /// explodes, the bounded one exists); else [`Redundant`](Self::Redundant).
+    /// dynamics there are unstable and have no eigenvalue on the imaginary
+    /// axis (the causal inverse explodes, the bounded one exists); else
+    /// [`Redundant`](Self::Redundant).
     pub fn default_for<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Self {
         if dummy_derivative::system_size::<C::Model, N, M, A>().is_ok() {
             return Formulation::DummyDerivative;
         }
-        let hyperbolic_and_unstable = Case::<C, N, M, A>::maneuver().ok().and_then(|case| {
-            let start = case.run_start().ok()?;
-            let d = crane_runtime::internal::internal_dynamics(&case.model, &start).ok()?;
-            let hyperbolic = crane_runtime::stable_inversion::horizons(&d, &d).is_ok();
-            Some(d.dimension > 0 && !d.is_stable() && hyperbolic)
+        let Some((case, start)) = Case::<C, N, M, A>::maneuver()
+            .ok()
+            .and_then(|case| case.run_start().ok().map(|start| (case, start)))
+        else {
+            return Formulation::Redundant;
+        };
+        let stable = state_selection::eigenvalues_at(case.model(), case.path(), &start)
+            .is_some_and(|eigenvalues| eigenvalues.iter().all(|lambda| lambda.re < 0.0));
+        if stable {
+            return Formulation::StateSelection;
+        }
+        let hyperbolic_and_unstable = crane_runtime::internal::internal_dynamics(&case.model, &start).is_ok_and(|d| {
+            d.dimension > 0 && !d.is_stable() && crane_runtime::stable_inversion::horizons(&d, &d).is_ok()
         });
-        if hyperbolic_and_unstable == Some(true) {
+        if hyperbolic_and_unstable {
             Formulation::StableInversion
         } else {
             Formulation::Redundant
@@ -102,6 +122,7 @@ impl Formulation {
             Formulation::Minimal => "minimal",
             Formulation::DummyDerivative => "dummy-derivative",
             Formulation::StableInversion => "stable-inversion",
+            Formulation::StateSelection => "state-selection",
         }
     }
 
@@ -117,6 +138,10 @@ impl Formulation {
                 "the bounded solution on the whole time axis, with pre- and post-actuation, for unstable internal \
                  dynamics (central differences, order 2)"
             }
+            Formulation::StateSelection => {
+                "eqs. (22a-d) reduced by dummy derivatives, the states the path leaves free integrated by the \
+                 scheme, for stable internal dynamics"
+            }
         }
     }
 
@@ -129,11 +154,12 @@ impl Formulation {
     }
 
     /// The order of the run's inputs in dt: the scheme's for eqs. (22) and
-    /// (24), 2 for stable inversion's central differences, none for the
-    /// dummy-derivative formulation (exact at each step).
+    /// (24) and for the states of state selection, 2 for stable
+    /// inversion's central differences, none for the dummy-derivative
+    /// formulation (exact at each step).
     pub fn order(self, scheme: Scheme) -> Option<usize> {
         match self {
-            Formulation::Redundant | Formulation::Minimal => Some(scheme.order()),
+            Formulation::Redundant | Formulation::Minimal | Formulation::StateSelection => Some(scheme.order()),
             Formulation::DummyDerivative => None,
             Formulation::StableInversion => Some(2),
         }
@@ -144,13 +170,16 @@ impl Formulation {
     /// discretisation (`stable-inversion, central differences`), or alone.
     pub fn method(self, scheme: Scheme) -> String {
         match self {
-            Formulation::Redundant | Formulation::Minimal => format!("{}, {scheme}", self.name()),
+            Formulation::Redundant | Formulation::Minimal | Formulation::StateSelection => {
+                format!("{}, {scheme}", self.name())
+            }
             Formulation::DummyDerivative => self.name().to_string(),
             Formulation::StableInversion => format!("{}, central differences", self.name()),
         }
     }
 
-    /// The names, "redundant, minimal, dummy-derivative or stable-inversion".
+    /// The names, "redundant, minimal, dummy-derivative, state-selection or
+    /// stable-inversion".
     pub fn names() -> String {
         let names: Vec<&str> = Self::ALL.iter().map(|f| f.name()).collect();
         let (last, first) = names.split_last().expect("formulations");
@@ -186,6 +215,10 @@ impl Formulation {
             Formulation::DummyDerivative => case
                 .simulate_dummy_derivative(start, options, progress)
                 .map_err(|error| StudyError::of_crane(C::NAME, error)),
+            Formulation::StateSelection => {
+                state_selection::simulate(case.model(), case.path(), start, options, progress)
+                    .map_err(|error| StudyError::of_crane(C::NAME, error))
+            }
             Formulation::StableInversion => {
                 let inversion = case.simulate_stable_inversion(start, options)?;
                 let nodes = inversion.solution.states.len();
@@ -243,7 +276,14 @@ pub enum StudyError {
     },
     /// The dummy-derivative formulation of a crane that has none (internal
     /// dynamics, or a path order beyond what the runtime carries).
-    #[error("model `{model}` has no dummy-derivative formulation: {reason}; run it in the redundant formulation")]
+    #[error(
+        "model `{model}` has no dummy-derivative formulation: {reason}; run it {}",
+        if matches!(reason, crane_runtime::NoDummyDerivatives::InternalDynamics { .. }) {
+            "with state selection (formulation `state-selection`) or in the redundant formulation"
+        } else {
+            "in the redundant formulation"
+        }
+    )]
     NoDummyDerivatives {
         /// The crane's name.
         model: &'static str,
@@ -454,6 +494,16 @@ pub fn summarize_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
     }
     if settings.formulation == Formulation::StableInversion {
         summary.stable_inversion = stable_inversion_summary(case, solution);
+    }
+    if !solution.selected_states.is_empty() {
+        summary.state_selection = solution.states.first().map(|start| StateSelectionSummary {
+            states: solution.selected_states.clone(),
+            eigenvalues_start: state_selection::eigenvalues_at(case.model(), case.path(), start)
+                .unwrap_or_default()
+                .iter()
+                .map(|lambda| (lambda.re, lambda.im))
+                .collect(),
+        });
     }
     summary
 }

@@ -197,6 +197,23 @@ pub struct Summary {
     /// dynamics they come from ([`StableInversionSummary`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stable_inversion: Option<StableInversionSummary>,
+    /// Of a run with state selection: the states and the eigenvalues of
+    /// their equations at the start ([`StateSelectionSummary`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub state_selection: Option<StateSelectionSummary>,
+}
+
+/// A run with state selection (`crane_runtime::state_selection`): the jets
+/// the path leaves free, integrated by the run's scheme, and the
+/// linearisation of their equations at the start.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StateSelectionSummary {
+    /// The states (`x2`, `x2'`), selected at the start.
+    pub states: Vec<String>,
+    /// The eigenvalues `(re, im)` of the states' equations linearised at
+    /// the start, 1/s (all with negative real part: stable internal
+    /// dynamics, which the scheme integrates forward in time).
+    pub eigenvalues_start: Vec<(f64, f64)>,
 }
 
 /// A run by stable inversion (`crane_runtime::stable_inversion`): the bounded
@@ -698,6 +715,7 @@ pub fn summarize<const N: usize, const M: usize, const A: usize>(
         ramp: None,
         shortest_feature: None,
         stable_inversion: None,
+        state_selection: None,
     }
 }
 
