@@ -448,6 +448,20 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
             None => format!("internal dynamics: dimension {k}, unstable (see the warning)"),
         },
     });
+    if let Some(selection) = &summary.state_selection {
+        let eigenvalues: Vec<String> = (selection.eigenvalues_start.iter())
+            .map(|&(re, im)| match im {
+                0.0 => format!("{re:.4}"),
+                _ => format!("{re:.4} {} {:.4}i", if im < 0.0 { "-" } else { "+" }, im.abs()),
+            })
+            .collect();
+        lines.push(format!(
+            "state selection: {} integrated by the scheme (eigenvalues at the start {} 1/s), every other unknown \
+             exact at each step",
+            selection.states.join(", "),
+            eigenvalues.join(", ")
+        ));
+    }
     if let Some(replay) = &summary.replay {
         // what the torques do on the plant, where the files say it in full
         let plant = if replay.plant.is_empty() {

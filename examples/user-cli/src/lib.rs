@@ -1,12 +1,17 @@
-//! Two cranes of a user's own with the whole tool: a planar gantry crane
-//! (trolley, hoist winch, load on one rope) and a workshop crane whose load
+//! Three cranes of a user's own with the whole tool: a planar gantry crane
+//! (trolley, hoist winch, load on one rope), a workshop crane whose load
 //! hangs on a sling below a hook block (a double pendulum, whose inputs
-//! need the path's 6th derivative), each declared once, described once
-//! ([`PlanarGantry`], [`HookCrane`]), listed in the registry [`MyCranes`]
-//! that the binary `my-cranes` runs and the FMU functions of this `cdylib`
-//! export. Every formulation their models support comes with the
-//! declaration: the hook crane runs the exact reduced (dummy-derivative)
-//! formulation by default, as a built-in crane of path order 6 does.
+//! need the path's 6th derivative) and a gantry with a damped second
+//! pendulum on its trolley (internal dynamics the load path leaves free),
+//! each declared once, described once ([`PlanarGantry`], [`HookCrane`],
+//! [`SwingCrane`]), listed in the registry [`MyCranes`] that the binary
+//! `my-cranes` runs and the FMU functions of this `cdylib` export. Every
+//! formulation their models support comes with the declaration: the hook
+//! crane runs the exact reduced (dummy-derivative) formulation by default,
+//! as a built-in crane of path order 6 does, and the swing crane the
+//! reduced formulation with state selection (its free swing integrated by
+//! the scheme, everything else exact), as every crane whose internal
+//! dynamics are stable does.
 
 use crane::prelude::*;
 
@@ -120,11 +125,60 @@ impl Crane<6, 2, 2> for HookCrane {
     }
 }
 
+crane_model! {
+    /// Gantry crane with a second pendulum on its trolley, its swing damped.
+    pub struct Swing {
+        params { m_t: positive = 50.0, J: positive = 0.05, r: positive = 0.1, m_l: positive = 200.0,
+                 m2: positive = 20.0, l2: positive = 2.0, b: positive = 40.0, g: positive = 9.81 }
+        robot  [s, L, x2, z2]
+        load   [x, z]
+        inputs [u1, u2]
+        kinetic = 0.5*m_t*dot(s)^2 + 0.5*J/r^2*dot(L)^2 + 0.5*m2*(dot(x2)^2 + dot(z2)^2)
+                + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+        // a damper of rate b between the trolley and the second pendulum's bob
+        forces { s: u1 + b*(dot(x2) - dot(s)), L: u2/r, x2: -b*(dot(x2) - dot(s)), z2: -m2*g, z: -m_l*g }
+        constraints {
+            #[rope(N = L)]
+            rope: 0.5*((x - s)^2 + z^2 - L^2),
+            rod: 0.5*((x2 - s)^2 + z2^2 - l2^2),
+        }
+    }
+}
+
+/// The swing crane and its default move: 3 m across and 1 m up in 4 s (the
+/// swing it starts dies out after it with the eigenvalues -1 +- 1.976i 1/s
+/// of the swing at rest: `--tf 8` shows it).
+pub struct SwingCrane;
+
+impl Crane<6, 2, 2> for SwingCrane {
+    type Model = Swing;
+    const NAME: &'static str = "swing-crane";
+    const DESCRIPTION: &'static str = "gantry crane with a damped second pendulum on its trolley";
+
+    fn input_units() -> &'static [&'static str] {
+        &["N", "N m"]
+    }
+
+    fn maneuver() -> Maneuver<2> {
+        Maneuver {
+            path: PathSpec {
+                profile: Profile::Poly9,
+                t0: 0.0,
+                t1: 4.0,
+                start: SVector::from([0.0, -5.0]),
+                end: SVector::from([3.0, -4.0]),
+            },
+            // the start guess [s, L, x2, z2]: everything at rest below the trolley
+            p0: vec![0.0, 5.0, 0.0, -2.0],
+        }
+    }
+}
+
 crane::registry! {
     /// The cranes of `my-cranes` (add `crane::models::BuiltIn` as a pair,
     /// `(MyCranes, BuiltIn)`, in both places below to get the built-in
     /// ones too).
-    pub struct MyCranes { PlanarGantry, HookCrane }
+    pub struct MyCranes { PlanarGantry, HookCrane, SwingCrane }
 }
 
 crane::fmi::export_fmu!(registry = MyCranes);

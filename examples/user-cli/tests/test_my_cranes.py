@@ -18,15 +18,20 @@ CLI = Path(os.environ.get("MY_CRANES_BIN", ROOT / "target" / "release" / "my-cra
 
 def test_models_lists_the_registry_s_cranes():
     models = {m["name"]: m for m in my_cranes.models()}
-    assert list(models) == ["planar-gantry", "hook-crane"]
+    assert list(models) == ["planar-gantry", "hook-crane", "swing-crane"]
     # flat, of path order 4 and 6: the exact reduced formulation by
     # default, as a built-in crane's
     assert models["planar-gantry"]["formulation"] == "dummy-derivative"
     assert models["hook-crane"]["path_order"] == 6
     assert models["hook-crane"]["formulation"] == "dummy-derivative"
+    # stable internal dynamics: the reduced formulation with state selection
+    assert models["swing-crane"]["formulation"] == "state-selection"
 
 
-@pytest.mark.parametrize("model,args", [("hook-crane", ["--dt", "0.02"]), ("planar-gantry", ["--scheme", "bdf4"])])
+@pytest.mark.parametrize(
+    "model,args",
+    [("hook-crane", ["--dt", "0.02"]), ("planar-gantry", ["--scheme", "bdf4"]), ("swing-crane", ["--scheme", "bdf4"])],
+)
 def test_a_run_is_the_tool_s_bit_for_bit(tmp_path, model, args):
     keywords = {"dt": 0.02} if model == "hook-crane" else {"scheme": "bdf4"}
     r = my_cranes.run(model, **keywords)
@@ -43,7 +48,7 @@ def test_a_run_is_the_tool_s_bit_for_bit(tmp_path, model, args):
 
 
 def test_a_model_of_another_registry_is_unknown():
-    with pytest.raises(my_cranes.CraneError, match="unknown model `navy-planar`; expected one of planar-gantry, hook-crane"):
+    with pytest.raises(my_cranes.CraneError, match="unknown model `navy-planar`; expected one of planar-gantry, hook-crane, swing-crane"):
         my_cranes.run("navy-planar")
 
 
@@ -51,7 +56,7 @@ def test_the_built_in_package_keeps_its_own_cranes():
     import crane
 
     assert len(crane.models()) == 9
-    assert len(my_cranes.models()) == 2
+    assert len(my_cranes.models()) == 3
     assert crane.run("navy-planar").u.shape == (401, 2)
 
 
@@ -60,6 +65,16 @@ def test_a_stepper_of_the_user_s_crane_takes_the_run_s_steps():
     r = my_cranes.run("hook-crane", dt=0.02)
     s = my_cranes.stepper("hook-crane", dt=0.02)
     for i in range(1, 21):
+        assert np.array_equal(s.step()["u"], r.u[i]), i
+    assert np.array_equal(s.step_to(r.t[-1])["u"], r.u[-1])
+
+
+def test_a_stepper_of_the_swing_crane_integrates_its_states_as_the_run():
+    """State selection one step at a time: the free swing's BDF-2 history
+    carried from step to step gives the run's inputs bit for bit."""
+    r = my_cranes.run("swing-crane", scheme="bdf2")
+    s = my_cranes.stepper("swing-crane", scheme="bdf2")
+    for i in range(1, 51):
         assert np.array_equal(s.step()["u"], r.u[i]), i
     assert np.array_equal(s.step_to(r.t[-1])["u"], r.u[-1])
 
