@@ -120,3 +120,74 @@ fn a_flat_crane_has_no_states_and_todays_inputs() {
     assert!(run.selected_states.is_empty());
     assert_eq!(run.states, flat.states);
 }
+
+/// On the coupled trolley (unstable internal dynamics) the states'
+/// linearisation at rest has the eigenvalues the frozen-time diagnosis
+/// finds there, +-9.9045 1/s: two computations from different equations
+/// (the dummy-derivative system's Jacobian against the projection of eqs.
+/// 1a-b onto the free directions) agreeing to 1e-9 relative, where both are
+/// exact at rest.
+#[test]
+fn the_coupled_trolleys_states_have_the_diagnosis_eigenvalues_at_rest() {
+    use crane_models::coupled_trolley::CoupledTrolley;
+    let crane = CoupledTrolley::default();
+    let path = Poly9::new(0.0, 5.0, vector![0.0, -5.0], vector![4.0, -3.0]).unwrap();
+    let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0]).unwrap();
+    let mut selected: Vec<f64> = state_selection::eigenvalues_at(&crane, &path, &start)
+        .unwrap()
+        .iter()
+        .map(|lambda| {
+            assert_eq!(lambda.im, 0.0, "a real pair: {lambda}");
+            lambda.re
+        })
+        .collect();
+    let diagnosis = crane_runtime::internal::internal_dynamics(&crane, &start).unwrap();
+    let mut frozen: Vec<f64> = diagnosis.eigenvalues.iter().map(|&(re, _)| re).collect();
+    selected.sort_by(f64::total_cmp);
+    frozen.sort_by(f64::total_cmp);
+    assert_eq!(selected.len(), 2);
+    assert_eq!(frozen.len(), 2);
+    for (a, b) in selected.iter().zip(&frozen) {
+        assert!((a - b).abs() < 1e-9 * b.abs(), "{selected:?} {frozen:?}");
+    }
+    assert!((selected[1] - 9.9045).abs() < 1e-4, "{selected:?}");
+}
+
+/// The default formulation follows from the states' eigenvalues at the
+/// start: the coupled trolley's are unstable (stable inversion), the
+/// damped swing's stable (state selection), a flat crane has none (its
+/// exact dummy-derivative system).
+#[test]
+fn the_default_follows_from_the_eigenvalues() {
+    use crane_models::study::Formulation;
+    assert_eq!(
+        Formulation::default_for::<crane_models::coupled_trolley::Description, 4, 1, 2>(),
+        Formulation::StableInversion
+    );
+    assert_eq!(
+        Formulation::default_for::<crane_models::navy_planar::Description, 7, 3, 2>(),
+        Formulation::DummyDerivative
+    );
+    assert_eq!(Formulation::default_for::<Swing, 6, 2, 2>(), Formulation::StateSelection);
+}
+
+/// The damped swing as a crane with a default move.
+struct Swing;
+
+impl crane_models::Crane<6, 2, 2> for Swing {
+    type Model = DampedSwing;
+    const NAME: &'static str = "damped-swing";
+
+    fn maneuver() -> crane_models::Maneuver<2> {
+        crane_models::Maneuver {
+            path: crane_models::PathSpec {
+                profile: crane_models::Profile::Poly9,
+                t0: 0.0,
+                t1: 4.0,
+                start: vector![0.0, -5.0],
+                end: vector![3.0, -4.0],
+            },
+            p0: vec![0.0, 5.0, 0.0, -2.0],
+        }
+    }
+}

@@ -5,14 +5,19 @@
 //! minimum-norm solve (and the minimal stepper's retry from the last step);
 //! the dummy-derivative stepper, its long steps by continuation and its
 //! steps of eqs. (22) where a rope is nearly slack included;
-//! and the forward problem's stepper.
+//! the forward problem's stepper; and state selection's (a crane with a
+//! damped free swing).
 //! One test function, so that no other test allocates while one counts.
 
 use crane_models::navy_planar::{PaperCase, minimal_guess};
 use crane_runtime::dummy_derivative::DummyDerivativeStepper;
 use crane_runtime::forward::Forward;
 use crane_runtime::redundant::Redundant;
-use crane_runtime::{Advance, Options, Scheme, Stepper, minimal};
+use crane_runtime::nalgebra::vector;
+use crane_runtime::state_selection::SelectedStates;
+use crane_runtime::trajectory::Poly9;
+use crane_runtime::{Advance, Options, Scheme, Stepper, init, minimal};
+use crane_tests::damped::DampedSwing;
 use crane_tests::counting::{Counting, allocations_during, assert_counter_works};
 
 #[global_allocator]
@@ -104,4 +109,21 @@ fn stepping_does_not_allocate() {
         "dummy-derivative, slow move: {} of 2000 steps in eqs. (22), 0 allocations",
         reduced.fallback_steps()
     );
+
+    // state selection: the damped swing's free swing by BDF-1..5
+    let crane = DampedSwing::default();
+    let path = Poly9::new(0.0, 4.0, vector![0.0, -5.0], vector![3.0, -4.0]).unwrap();
+    let start = init::static_equilibrium(&crane, &path, 0.0, &[0.0, 5.0, 0.0, -2.0]).unwrap();
+    for k in 1..=5 {
+        let scheme = Scheme::bdf(k).unwrap();
+        let options = Options::new(0.01, 4.0).unwrap().with_scheme(scheme);
+        let mut stepper = Stepper::new(SelectedStates::new(&crane, &path), &start, &options).unwrap();
+        let (allocations, _) = allocations_during(|| {
+            for _ in 0..400 {
+                stepper.step().unwrap();
+            }
+        });
+        assert_eq!(allocations, 0, "state selection {scheme}: {allocations} allocations in 400 steps");
+        println!("state selection {scheme}: 400 steps, 0 allocations");
+    }
 }
