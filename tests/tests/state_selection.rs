@@ -168,7 +168,10 @@ fn the_default_follows_from_the_eigenvalues() {
         Formulation::default_for::<crane_models::navy_planar::Description, 7, 3, 2>(),
         Formulation::DummyDerivative
     );
-    assert_eq!(Formulation::default_for::<Swing, 6, 2, 2>(), Formulation::StateSelection);
+    assert_eq!(
+        Formulation::default_for::<Swing, 6, 2, 2>(),
+        Formulation::StateSelection
+    );
 }
 
 /// The damped swing as a crane with a default move.

@@ -12,13 +12,13 @@
 use crane_models::navy_planar::{PaperCase, minimal_guess};
 use crane_runtime::dummy_derivative::DummyDerivativeStepper;
 use crane_runtime::forward::Forward;
-use crane_runtime::redundant::Redundant;
 use crane_runtime::nalgebra::vector;
+use crane_runtime::redundant::Redundant;
 use crane_runtime::state_selection::SelectedStates;
 use crane_runtime::trajectory::Poly9;
 use crane_runtime::{Advance, Options, Scheme, Stepper, init, minimal};
-use crane_tests::damped::DampedSwing;
 use crane_tests::counting::{Counting, allocations_during, assert_counter_works};
+use crane_tests::damped::DampedSwing;
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -123,7 +123,10 @@ fn stepping_does_not_allocate() {
                 stepper.step().unwrap();
             }
         });
-        assert_eq!(allocations, 0, "state selection {scheme}: {allocations} allocations in 400 steps");
+        assert_eq!(
+            allocations, 0,
+            "state selection {scheme}: {allocations} allocations in 400 steps"
+        );
         println!("state selection {scheme}: 400 steps, 0 allocations");
     }
 }
