@@ -3,8 +3,8 @@
  * internal step, prints the requested Real variables as CSV on stdout and
  * the median time per fmi2DoStep on stderr.
  *
- *   host LIBRARY.so GUID STOP_TIME STEP VR...        run, print t,VR...
- *   host LIBRARY.so GUID --bad VR VALUE              expect fmi2Error from
+ *   host LIBRARY.so GUID START STOP STEP VR...       run from START, print t,VR...
+ *   host LIBRARY.so GUID START --bad VR VALUE        expect fmi2Error from
  *                                                     fmi2ExitInitializationMode,
  *                                                     fmi2DoStep after it, and
  *                                                     fmi2DoStep after
@@ -58,8 +58,8 @@ static int compare(const void *a, const void *b) {
 }
 
 int main(int argc, char **argv) {
-    if (argc < 5) {
-        fprintf(stderr, "usage: host LIBRARY.so GUID STOP_TIME STEP VR... | host LIBRARY.so GUID --bad VR VALUE\n");
+    if (argc < 6) {
+        fprintf(stderr, "usage: host LIBRARY.so GUID START STOP STEP VR... | host LIBRARY.so GUID START --bad VR VALUE\n");
         return 2;
     }
     void *library = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
@@ -84,20 +84,21 @@ int main(int argc, char **argv) {
         fprintf(stderr, "host: fmi2Instantiate failed\n");
         return 1;
     }
-    if (setup(c, 0, 0.0, 0.0, 0, 0.0) != 0 || enter(c) != 0) {
+    double start = strtod(argv[3], NULL);
+    if (setup(c, 0, 0.0, start, 0, 0.0) != 0 || enter(c) != 0) {
         fprintf(stderr, "host: initialisation failed\n");
         return 1;
     }
-    if (strcmp(argv[3], "--bad") == 0) {
-        fmi2ValueReference vr = (fmi2ValueReference)strtoul(argv[4], NULL, 10);
-        double value = argc > 5 ? strtod(argv[5], NULL) : -1.0;
+    if (strcmp(argv[4], "--bad") == 0) {
+        fmi2ValueReference vr = (fmi2ValueReference)strtoul(argv[5], NULL, 10);
+        double value = argc > 6 ? strtod(argv[6], NULL) : -1.0;
         set_real(c, &vr, 1, &value);
         fmi2Status status = exit_init(c);
         /* the instance must still answer after the error */
-        fmi2Status again = do_step(c, 0.0, 0.01, 1);
+        fmi2Status again = do_step(c, start, 0.01, 1);
         free_instance(c);
         /* a host's misuse after the free: an error status, not a crash */
-        fmi2Status freed = do_step(c, 0.0, 0.01, 1);
+        fmi2Status freed = do_step(c, start, 0.01, 1);
         free_instance(c);
         printf("fmi2ExitInitializationMode: %d, fmi2DoStep after it: %d, fmi2DoStep and fmi2FreeInstance after "
                "fmi2FreeInstance: %d\n", status, again, freed);
@@ -111,19 +112,19 @@ int main(int argc, char **argv) {
         return 1;
     }
     warnings += started == 1;
-    double stop = strtod(argv[3], NULL), h = strtod(argv[4], NULL);
-    size_t n = (size_t)(argc - 5);
+    double stop = strtod(argv[4], NULL), h = strtod(argv[5], NULL);
+    size_t n = (size_t)(argc - 6);
     fmi2ValueReference *vr = malloc(n * sizeof *vr);
     double *values = malloc(n * sizeof *values);
-    for (size_t i = 0; i < n; i++) vr[i] = (fmi2ValueReference)strtoul(argv[5 + i], NULL, 10);
-    long steps = lround(stop / h);
+    for (size_t i = 0; i < n; i++) vr[i] = (fmi2ValueReference)strtoul(argv[6 + i], NULL, 10);
+    long steps = lround((stop - start) / h);
     double *times = malloc((size_t)steps * sizeof *times);
     for (long k = 0; k <= steps; k++) {
-        double t = k * h;
+        double t = start + k * h;
         if (k > 0) {
             struct timespec a, b;
             clock_gettime(CLOCK_MONOTONIC, &a);
-            fmi2Status status = do_step(c, (k - 1) * h, h, 1);
+            fmi2Status status = do_step(c, start + (k - 1) * h, h, 1);
             clock_gettime(CLOCK_MONOTONIC, &b);
             times[k - 1] = (b.tv_sec - a.tv_sec) * 1e6 + (b.tv_nsec - a.tv_nsec) * 1e-3;
             if (status > 1) {

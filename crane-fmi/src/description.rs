@@ -3,7 +3,9 @@
 
 use std::fmt::Write;
 
-use crane_models::Crane;
+use crane_models::study::Formulation;
+use crane_models::{Case, Crane};
+use crane_runtime::Options;
 
 use crate::variables::{Causality, NameClash, variables};
 
@@ -53,11 +55,29 @@ fn guid(body: &str) -> String {
     )
 }
 
+/// The default experiment's start and stop times of crane `C`: its default
+/// move's, and for a crane whose default is stable inversion the span of
+/// the bounded solution at the default step (from `t0 - T_pre` to `tf +
+/// T_post`: the FMU plays it back from there).
+pub fn default_experiment<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> (f64, f64) {
+    let path = C::maneuver().path;
+    let bounded = (Formulation::default_for::<C, N, M, A>() == Formulation::StableInversion)
+        .then(|| {
+            let case = Case::<C, N, M, A>::maneuver().ok()?;
+            let options = Options::new(crate::variables::DEFAULT_DT, case.tf()).ok()?;
+            let start = case.run_start().ok()?;
+            let states = case.simulate_stable_inversion(&start, &options).ok()?.solution.states;
+            Some((states.first()?.t, states.last()?.t))
+        })
+        .flatten();
+    bounded.unwrap_or((path.t0, path.t1))
+}
+
 /// `modelDescription.xml` of crane `C` and its GUID.
 pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>()
 -> Result<(String, String), NameClash> {
     let table = variables::<C, N, M, A>()?;
-    let maneuver = C::maneuver();
+    let (start, stop) = default_experiment::<C, N, M, A>();
     let mut vars = String::new();
     for v in &table {
         let (causality, variability, initial) = match v.causality {
@@ -93,8 +113,8 @@ pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, cons
     let body = format!(
         "  <CoSimulation modelIdentifier=\"{identifier}\" canHandleVariableCommunicationStepSize=\"true\" \
             canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"false\" canSerializeFMUstate=\"false\" providesDirectionalDerivative=\"false\"/>\n  <DefaultExperiment startTime=\"{}\" stopTime=\"{}\" stepSize=\"{}\"/>\n  <ModelVariables>\n{vars}  </ModelVariables>\n  <ModelStructure>\n    <Outputs>\n{outputs}    </Outputs>\n    <InitialUnknowns>\n{outputs}    </InitialUnknowns>\n  </ModelStructure>\n",
-        number(maneuver.path.t0),
-        number(maneuver.path.t1),
+        number(start),
+        number(stop),
         number(crate::variables::DEFAULT_DT),
     );
     let version = env!("CARGO_PKG_VERSION");

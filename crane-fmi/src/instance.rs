@@ -9,13 +9,15 @@
 
 use crane_models::study::audit::{Finding, Severity, StepAudit, unresolved_ramp};
 use crane_models::study::{Formulation, RunSpec, SpecError};
-use crane_models::{Crane, Path, PathSpec, Profile};
+use crane_models::{Case, Crane, Path, PathSpec, Profile};
 use crane_runtime::options::steps_in;
 use crane_runtime::problem::ServoTarget;
 use crane_runtime::redundant::{Redundant, RedundantStepper};
+use crane_runtime::stable_inversion::Playback;
 use crane_runtime::{Advance, CraneModel, Options, Scheme, Stepper, state_selection};
 use nalgebra::SVector;
 
+use crate::description::default_experiment;
 use crate::variables::{
     Causality, EXTERNAL_PATH, NameClash, PathChoice, Role, Variable, path_help, path_of_code, status, variables,
 };
@@ -90,8 +92,9 @@ fn hermite<const A: usize>(ta: f64, a: &ServoTarget<A>, tb: f64, b: &ServoTarget
 }
 
 /// The stepper of a run, which owns its model: eqs. (22a-d), which also
-/// follow an external target, or the dummy-derivative formulation on a
-/// built-in move (the default of every flat crane).
+/// follow an external target, or on a built-in move the crane's default
+/// formulation (dummy derivatives, state selection, or the bounded solution
+/// by stable inversion played back).
 enum Stepping<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> {
     Redundant(Box<RedundantStepper<Box<Mdl>, Path<A>, N, M, A>>),
     Reduced(Box<dyn Advance<N, M, A, Model = Mdl>>),
@@ -175,7 +178,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
             reals,
             integers,
             mode: Mode::Instantiated,
-            start_time: C::maneuver().path.t0,
+            start_time: default_experiment::<C, N, M, A>().0,
             run: None,
             warning: None,
         })
@@ -290,6 +293,15 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
             }
             other => other.to_string(),
         })?;
+        if settings.formulation == Formulation::StableInversion && external.is_none() {
+            let dt = settings.dt;
+            let (run, mut findings) = Run::new(C::NAME, Stepping::Reduced(self.bounded(case, dt)?), None);
+            // bounded whatever the internal dynamics: not warned of them,
+            // as `crane run`'s audit does not warn a run by stable inversion
+            findings.retain(|f| !matches!(f, Finding::UnstableInternalDynamics { .. }));
+            findings.extend(unresolved_ramp(spec.path.profile.tau0(), dt));
+            return Ok((run, findings));
+        }
         let options = Options::stepping(settings.dt)
             .map_err(|e| format!("`dt`: {e}"))?
             .with_scheme(settings.scheme);
@@ -334,6 +346,35 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         let ramp = spec.path.profile.tau0().filter(|_| run.external.is_none());
         findings.extend(unresolved_ramp(ramp, settings.dt));
         Ok((run, findings))
+    }
+
+    /// The bounded solution of `case` (a built-in move) by stable inversion
+    /// on steps of `dt`, played back from the start time: the solution acts
+    /// from `t0 - T_pre`, and a start time after that, or not a whole number
+    /// of steps before it, is refused with the time to start at.
+    fn bounded(&self, case: Case<C, N, M, A>, dt: f64) -> Result<Box<dyn Advance<N, M, A, Model = C::Model>>, String> {
+        let options = Options::new(dt, case.tf()).map_err(|e| format!("`dt`: {e}"))?;
+        let start = case
+            .run_start()
+            .map_err(|e| format!("no consistent start at t = {}: {e}", case.t0()))?;
+        let inversion = case
+            .simulate_stable_inversion(&start, &options)
+            .map_err(|e| e.to_string())?;
+        let first = inversion.solution.states.first().map_or(case.t0(), |s| s.t);
+        let lead = (first - self.start_time) / dt;
+        if lead < -1e-9 || (lead - lead.round()).abs() > 1e-6 {
+            return Err(format!(
+                "the bounded inputs of {} by stable inversion act from t = {first} s, {} s before the move \
+                 (pre-actuation): set the start time to {first} s (the default experiment's), or earlier by whole \
+                 steps of dt = {dt} s; it is {} s",
+                C::NAME,
+                inversion.t_pre,
+                self.start_time
+            ));
+        }
+        let playback = Playback::new(Box::new(case.model), inversion.solution, lead.round() as usize)
+            .map_err(|e| e.to_string())?;
+        Ok(Box::new(playback))
     }
 
     /// Copy the last state into the outputs.
@@ -537,7 +578,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Componen
         self.integers = self.defaults.1;
         self.warning = None;
         self.mode = Mode::Instantiated;
-        self.start_time = C::maneuver().path.t0;
+        self.start_time = default_experiment::<C, N, M, A>().0;
     }
 
     fn time(&self) -> f64 {

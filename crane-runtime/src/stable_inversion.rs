@@ -38,7 +38,7 @@ use crate::init;
 use crate::internal::InternalDynamics;
 use crate::model::CraneModel;
 use crate::solution::{Solution, State};
-use crate::stepper::StepReport;
+use crate::stepper::{Advance, StepReport};
 use crate::trajectory::Trajectory;
 
 /// How far the bounded solution may still be from rest at the ends of the
@@ -400,6 +400,83 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> S
                 }
             }
         }
+    }
+}
+
+/// A computed bounded solution played back one step at a time, behind
+/// [`Advance`]: for a host that steps a crane along a path known in advance
+/// (an FMU's built-in move). It starts `lead` steps before the solution's
+/// first node, at its rest state there, and after its last node stays at
+/// the last node's rest state, the time going on by whole steps. A step
+/// does not allocate.
+pub struct Playback<H, const N: usize, const M: usize, const A: usize> {
+    model: H,
+    states: Vec<State<N, M, A>>,
+    /// The current state (its time counts the steps taken).
+    state: State<N, M, A>,
+    /// The start's time.
+    t_first: f64,
+    /// Steps taken.
+    steps: usize,
+    /// Steps before the solution's first node.
+    lead: usize,
+    dt: f64,
+    path_order_covered: Option<usize>,
+}
+
+impl<H, const N: usize, const M: usize, const A: usize> Playback<H, N, M, A>
+where
+    H: std::ops::Deref<Target: CraneModel<N, M, A> + Sized>,
+{
+    /// The playback of `solution` (at least one state) from `lead` steps of
+    /// its step before its first node; [`Error::NothingToReplay`] for an
+    /// empty solution.
+    pub fn new(model: H, solution: Solution<N, M, A>, lead: usize) -> Result<Self, Error> {
+        let first = *solution.states.first().ok_or(Error::NothingToReplay)?;
+        let t_first = first.t - lead as f64 * solution.dt;
+        Ok(Self {
+            model,
+            state: State { t: t_first, ..first },
+            states: solution.states,
+            t_first,
+            steps: 0,
+            lead,
+            dt: solution.dt,
+            path_order_covered: solution.path_order_covered,
+        })
+    }
+}
+
+impl<H, const N: usize, const M: usize, const A: usize> Advance<N, M, A> for Playback<H, N, M, A>
+where
+    H: std::ops::Deref<Target: CraneModel<N, M, A> + Sized>,
+{
+    type Model = H::Target;
+    fn model(&self) -> &H::Target {
+        &self.model
+    }
+    /// The next state of the solution (its first before it, its last after
+    /// it), at the next step's time.
+    fn step(&mut self) -> Result<StepReport, Error> {
+        self.steps += 1;
+        let node = self.steps.saturating_sub(self.lead).min(self.states.len() - 1);
+        self.state = State {
+            t: self.t_first + self.steps as f64 * self.dt,
+            ..self.states[node]
+        };
+        Ok(StepReport::default())
+    }
+    fn state(&self) -> &State<N, M, A> {
+        &self.state
+    }
+    fn dt(&self) -> f64 {
+        self.dt
+    }
+    fn scheme_name(&self) -> &'static str {
+        "central-differences"
+    }
+    fn path_order_covered(&self) -> Option<usize> {
+        self.path_order_covered
     }
 }
 
