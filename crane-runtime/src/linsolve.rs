@@ -635,6 +635,19 @@ impl DenseSolver {
         self.blocks = Some(Box::new(BlockSolver::new(form, self.equilibrate)));
     }
 
+    /// Find the scale factors anew at the next solve (for a matrix that
+    /// changed its form, not only its entries).
+    pub fn forget_scales(&mut self) {
+        self.scales_found = false;
+    }
+
+    /// The smallest-to-largest pivot ratio of the last LU of a matrix
+    /// solved whole (equilibrated where the solver equilibrates): how close
+    /// to singular it was; NaN before the first.
+    pub fn pivot_ratio(&self) -> f64 {
+        self.pivot_ratio
+    }
+
     /// LU factorisations the solves so far took: one per matrix solved
     /// whole, one per matrix whose blocks nest, one per diagonal block of
     /// another solved by blocks (a deterministic cost, for tests).

@@ -377,6 +377,18 @@ impl Newton {
         self.chord_updates
     }
 
+    /// Find the equilibration's scale factors anew at the next solve
+    /// ([`DenseSolver::forget_scales`]).
+    pub fn forget_scales(&mut self) {
+        self.solver.forget_scales();
+    }
+
+    /// The pivot ratio of the last LU of an iteration matrix
+    /// ([`DenseSolver::pivot_ratio`]).
+    pub fn pivot_ratio(&self) -> f64 {
+        self.solver.pivot_ratio()
+    }
+
     /// LU factorisations of the iteration matrices so far
     /// ([`DenseSolver::factorisations`]).
     pub fn factorisations(&self) -> usize {

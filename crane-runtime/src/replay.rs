@@ -489,6 +489,7 @@ mod tests {
             shortest_ropes: vec![],
             redundant_start_steps: 0,
             selected_states: Vec::new(),
+            reselected_states: Vec::new(),
         };
         let inputs = InterpolatedInputs::new(&run, 4);
         for t in [0.0, 0.03, 0.55, 1.234, 1.999, 2.0] {

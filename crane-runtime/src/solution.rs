@@ -75,6 +75,9 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
     /// Of a run with state selection ([`crate::state_selection`]): the jets
     /// integrated as states (`phi`, `phi'`), empty otherwise.
     pub selected_states: Vec<String>,
+    /// Of a run with state selection: when the states were selected anew
+    /// along the move (the selection degenerated), and the new states.
+    pub reselected_states: Vec<(f64, Vec<String>)>,
 }
 
 impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
@@ -103,6 +106,7 @@ impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
             shortest_ropes: vec![(f64::INFINITY, f64::NAN); ropes],
             redundant_start_steps: 0,
             selected_states: Vec::new(),
+            reselected_states: Vec::new(),
         };
         solution.states.try_reserve_exact(states).map_err(|_| too_many())?;
         solution

@@ -34,7 +34,7 @@ use crate::options::Options;
 use crate::problem::{Accepted, Predictor, Problem, Start};
 use crate::scheme::{Method, StepFormula};
 use crate::solution::{Solution, State};
-use crate::stepper::{Advance, Stepper, rope_branch_left};
+use crate::stepper::{Advance, StepReport, Stepper, rope_branch_left};
 use crate::trajectory::Trajectory;
 
 /// Consecutive jets of one robot coordinate selected as states: `x^(order)`
@@ -49,6 +49,17 @@ pub struct Chain {
     pub count: u8,
 }
 
+/// How much further from singular a new selection's algebraic block must
+/// be than the present one's for the states to change
+/// ([`SelectedStates::reselect`]): a margin that keeps a selection from
+/// switching back and forth where two are about as good.
+pub const RESELECT_GAIN: f64 = 10.0;
+
+/// How far the pivot ratio of a step's iteration matrix may fall below the
+/// first step's before the states are selected anew
+/// ([`SelectedStatesStepper`]): the ratio is free, the selection is not.
+pub const RESELECT_TRIGGER: f64 = 1e-2;
+
 /// Relative size below which a column of the row-equilibrated Jacobian is
 /// taken as dependent on the columns already chosen (the Jacobian's entries
 /// are exact derivatives: a dependent column is so to round-off, 1e-16).
@@ -60,7 +71,9 @@ const DEPENDENT: f64 = 1e-9;
 /// `robot` coordinates, below each coordinate's highest, that a regular
 /// square block of the row-equilibrated Jacobian leaves out, chosen
 /// greedily (the highest derivatives first as dummy derivatives, within a
-/// derivative the column most independent of those chosen).
+/// derivative the column most independent of those chosen; a jet below a
+/// state is a state, so that each coordinate's states are its lowest
+/// jets).
 pub fn select(
     jacobian: &DMatrix<f64>,
     columns: &[(usize, u8)],
@@ -113,9 +126,13 @@ pub fn select(
     let top = columns.iter().filter(|c| candidate(c)).map(|c| c.1).max().unwrap_or(0);
     let mut states: Vec<(usize, u8)> = Vec::new();
     for order in (0..=top).rev() {
-        let mut pending: Vec<usize> = (0..columns.len())
+        // a jet below a state is a state too (Mattsson and Soderlind: the
+        // dummies of a level are chosen among the jets whose derivatives
+        // are dummies), so the states of a coordinate are its lowest jets
+        let (forced, mut pending): (Vec<usize>, Vec<usize>) = (0..columns.len())
             .filter(|&k| candidate(&columns[k]) && columns[k].1 == order)
-            .collect();
+            .partition(|&k| states.contains(&(columns[k].0, order + 1)));
+        states.extend(forced.iter().map(|&k| columns[k]));
         while basis.len() < rows && !pending.is_empty() {
             let (at, (independence, direction)) = pending
                 .iter()
@@ -236,6 +253,106 @@ where
             .collect()
     }
 
+    /// The discretised coordinates of the jets `z` (each coordinate with
+    /// states: its lowest state jet) and their rates (the next jets).
+    pub fn coordinates(&self, z: &DVector<f64>) -> (SVector<f64, N>, SVector<f64, N>) {
+        let mut y = SVector::zeros();
+        let mut v = SVector::zeros();
+        for chain in &self.chains {
+            let slot = self.system.slot(chain.coordinate, chain.order.into());
+            y[chain.coordinate] = z[slot];
+            v[chain.coordinate] = z[slot + 1];
+        }
+        (y, v)
+    }
+
+    /// Take `chains` as the states, with the Jacobian's pattern of their
+    /// rows (the model's entries, then the states' rows). It allocates.
+    fn set_chains(&mut self, chains: Vec<Chain>) {
+        self.chains = chains;
+        let nonzeros = <H::Target as DummyDerivatives<N, M, A, J>>::JACOBIAN_NONZEROS;
+        let mut entries: Vec<u32> = nonzeros.to_vec();
+        let mut row = Self::equations();
+        for chain in &self.chains {
+            for k in 0..chain.count {
+                let y = self.system.slot(chain.coordinate, usize::from(chain.order + k));
+                entries.extend([y * J + row, (y + 1) * J + row].map(|e| e as u32));
+                row += 1;
+            }
+        }
+        self.nonzeros = RowPattern::new(J, &entries);
+    }
+
+    /// The slots of the states of `chains` in `z`, in chain order.
+    fn state_slots(&self, chains: &[Chain]) -> Vec<usize> {
+        (chains.iter())
+            .flat_map(|c| (c.order..c.order + c.count).map(move |o| (c.coordinate, o)))
+            .map(|(j, order)| self.system.slot(j, order.into()))
+            .collect()
+    }
+
+    /// How far from singular the algebraic block of `jacobian` is with
+    /// `chains` as the states: the smallest-to-largest pivot ratio of the
+    /// LU of the block of the other columns, rows and columns scaled to a
+    /// largest entry of 1 (0 where it is singular).
+    fn quality(&self, jacobian: &DMatrix<f64>, chains: &[Chain]) -> f64 {
+        let rows = Self::equations();
+        let states = self.state_slots(chains);
+        let algebraic: Vec<usize> = (0..J).filter(|k| !states.contains(k)).collect();
+        if algebraic.len() != rows {
+            return 0.0;
+        }
+        let mut block = DMatrix::from_fn(rows, rows, |i, k| jacobian[(i, algebraic[k])]);
+        for mut row in block.row_iter_mut() {
+            let largest = row.amax();
+            if largest > 0.0 {
+                row /= largest;
+            }
+        }
+        for mut column in block.column_iter_mut() {
+            let largest = column.amax();
+            if largest > 0.0 {
+                column /= largest;
+            }
+        }
+        let u = block.lu().u();
+        let pivots = u.diagonal().map(f64::abs);
+        let (smallest, largest) = (pivots.min(), pivots.max());
+        if largest > 0.0 && smallest.is_finite() {
+            smallest / largest
+        } else {
+            0.0
+        }
+    }
+
+    /// Set the path's derivatives to those at `t` (the time of jets about
+    /// to be [`reselect`](Self::reselect)ed after a failed step prepared
+    /// another).
+    pub fn prepare_time(&mut self, t: f64) {
+        self.system.gamma = self.system.drive(t);
+    }
+
+    /// Select the states anew at the jets `z` (and the prepared path
+    /// derivatives): the new selection where it differs from the present
+    /// one and its algebraic block is at least [`RESELECT_GAIN`] times
+    /// further from singular ([`quality`](Self::quality)); `None` where the
+    /// present one stays. It allocates.
+    pub fn reselect(&mut self, z: &DVector<f64>) -> Option<&[Chain]> {
+        if self.chains.is_empty() {
+            return None;
+        }
+        let jacobian = self.model_jacobian(z);
+        let offsets = <H::Target as DummyDerivatives<N, M, A, J>>::OFFSETS;
+        let dimension = <H::Target as DummyDerivatives<N, M, A, J>>::DIMENSION;
+        let chains = select(&jacobian, &self.columns, offsets, N - A, dimension).ok()?;
+        let better = chains != self.chains
+            && self.quality(&jacobian, &self.chains) * RESELECT_GAIN < self.quality(&jacobian, &chains);
+        better.then(|| {
+            self.set_chains(chains);
+            self.chains.as_slice()
+        })
+    }
+
     /// The rows of the model's equations.
     fn equations() -> usize {
         J - <H::Target as DummyDerivatives<N, M, A, J>>::DIMENSION
@@ -269,10 +386,7 @@ where
         let rows = Self::equations();
         let jacobian = self.model_jacobian(z);
         // the states' columns in chain order, the other columns in order
-        let states: Vec<usize> = (self.chains.iter())
-            .flat_map(|c| (c.order..c.order + c.count).map(move |o| (c.coordinate, o)))
-            .map(|(j, order)| self.system.slot(j, order.into()))
-            .collect();
+        let states = self.state_slots(&self.chains);
         let algebraic: Vec<usize> = (0..J).filter(|k| !states.contains(k)).collect();
         let f_a = DMatrix::from_fn(rows, rows, |i, k| jacobian[(i, algebraic[k])]);
         let f_s = DMatrix::from_fn(rows, d, |i, k| jacobian[(i, states[k])]);
@@ -316,6 +430,8 @@ where
         );
         let step = 1.0 / self.formula.rate;
         let mut row = Self::equations();
+        // (rows a selection of other states wrote are cleared)
+        jac.rows_mut(row, J - row).fill(0.0);
         for chain in &self.chains {
             let i = chain.coordinate;
             for k in 0..chain.count {
@@ -390,8 +506,9 @@ where
         self.system.gamma = self.system.drive(start.t);
         let jacobian = self.model_jacobian(z);
         let offsets = <H::Target as DummyDerivatives<N, M, A, J>>::OFFSETS;
-        self.chains = select(&jacobian, &self.columns, offsets, N - A, dimension)
+        let chains = select(&jacobian, &self.columns, offsets, N - A, dimension)
             .map_err(|reason| Error::StatesNotSelected { model: name, reason })?;
+        self.set_chains(chains);
         if !flat.at_rest && self.chains.iter().any(|c| c.order + c.count > 2) {
             return Err(Error::StatesNotSelected {
                 model: name,
@@ -400,25 +517,7 @@ where
                     .into(),
             });
         }
-        // the model's entries, then the states' rows
-        let nonzeros = <H::Target as DummyDerivatives<N, M, A, J>>::JACOBIAN_NONZEROS;
-        let mut entries: Vec<u32> = nonzeros.to_vec();
-        let mut row = Self::equations();
-        for chain in &self.chains {
-            for k in 0..chain.count {
-                let y = self.system.slot(chain.coordinate, usize::from(chain.order + k));
-                entries.extend([y * J + row, (y + 1) * J + row].map(|e| e as u32));
-                row += 1;
-            }
-        }
-        self.nonzeros = RowPattern::new(J, &entries);
-        let mut y0 = SVector::zeros();
-        let mut v0 = SVector::zeros();
-        for chain in &self.chains {
-            let y = self.system.slot(chain.coordinate, chain.order.into());
-            y0[chain.coordinate] = z[y];
-            v0[chain.coordinate] = z[y + 1];
-        }
+        let (y0, v0) = self.coordinates(z);
         Ok(Start {
             y0,
             v0,
@@ -432,13 +531,7 @@ where
     }
 
     fn accept(&mut self, t: f64, z: &DVector<f64>) -> Result<Accepted<N, M, A, N>, Error> {
-        let mut y = SVector::zeros();
-        let mut v = SVector::zeros();
-        for chain in &self.chains {
-            let slot = self.system.slot(chain.coordinate, chain.order.into());
-            y[chain.coordinate] = z[slot];
-            v[chain.coordinate] = z[slot + 1];
-        }
+        let (y, v) = self.coordinates(z);
         Ok(Accepted {
             state: self.system.state(t, z),
             y,
@@ -450,6 +543,117 @@ where
     /// Where a rope's length or a taut rope's tension changed sign.
     fn leaves_branch(&self, before: &State<N, M, A>, after: &State<N, M, A>) -> bool {
         rope_branch_left(&*self.system.model, before, after)
+    }
+}
+
+/// The reduced servo problem with state selection one step at a time, on
+/// the scheme `S`: a [`Stepper`] of [`SelectedStates`] that selects the
+/// states anew where the selection degenerates along the move (a bob whose
+/// horizontal position is a state passing the horizontal, where its height
+/// no longer follows from it): where a step's iteration matrix has a pivot
+/// ratio below [`RESELECT_TRIGGER`] times the first step's, or a step
+/// fails, [`SelectedStates::reselect`] at the last accepted jets, and the
+/// scheme's history of the new states from the last steps' jets
+/// ([`Stepper::rediscretise`]). [`reselections`](Self::reselections) says
+/// when and to what. A step that does not reselect does not allocate.
+pub struct SelectedStatesStepper<H, Tr, S: Method, const N: usize, const M: usize, const A: usize, const J: usize> {
+    stepper: Stepper<SelectedStates<H, Tr, N, M, A, J>, S, N, M, A, N>,
+    /// The first step's pivot ratio.
+    healthy: f64,
+    reselections: Vec<(f64, Vec<String>)>,
+}
+
+impl<H, Tr, S, const N: usize, const M: usize, const A: usize, const J: usize>
+    SelectedStatesStepper<H, Tr, S, N, M, A, J>
+where
+    H: Deref<Target: DummyDerivatives<N, M, A, J> + Sized>,
+    Tr: Trajectory<A>,
+    S: Method,
+{
+    /// A stepper for the crane behind `model` on `trajectory` from the
+    /// consistent `start`, with the step, scheme and tolerances of
+    /// `options`; the states selected at the start.
+    pub fn new(model: H, trajectory: Tr, start: &State<N, M, A>, options: &Options<S>) -> Result<Self, Error> {
+        Ok(Self {
+            stepper: Stepper::new(SelectedStates::new(model, trajectory), start, options)?,
+            healthy: f64::NAN,
+            reselections: Vec::new(),
+        })
+    }
+
+    /// The stepper of the problem.
+    pub fn stepper(&self) -> &Stepper<SelectedStates<H, Tr, N, M, A, J>, S, N, M, A, N> {
+        &self.stepper
+    }
+
+    /// When the states were selected anew, and the new states.
+    pub fn reselections(&self) -> &[(f64, Vec<String>)] {
+        &self.reselections
+    }
+
+    /// Advance one step on the problem's path, the states selected anew
+    /// before it where it fails, after it where its matrix degenerates.
+    pub fn step(&mut self) -> Result<StepReport, Error> {
+        let report = match self.stepper.step() {
+            Ok(report) => report,
+            Err(error @ (Error::NewtonNotConverged { .. } | Error::SingularIterationMatrix { .. })) => {
+                if !self.reselect() {
+                    return Err(error);
+                }
+                self.stepper.step()?
+            }
+            Err(error) => return Err(error),
+        };
+        let ratio = self.stepper.pivot_ratio();
+        if self.healthy.is_nan() {
+            self.healthy = ratio;
+        } else if ratio < RESELECT_TRIGGER * self.healthy {
+            self.reselect();
+        }
+        Ok(report)
+    }
+
+    /// Select the states anew at the last accepted step; whether they
+    /// changed.
+    fn reselect(&mut self) -> bool {
+        let z = self.stepper.accepted_unknowns().clone();
+        let t = self.stepper.state().t;
+        let problem = self.stepper.problem_mut();
+        problem.prepare_time(t);
+        if problem.reselect(&z).is_none() {
+            return false;
+        }
+        self.stepper.rediscretise(|problem, z| problem.coordinates(z));
+        self.reselections.push((t, self.stepper.problem().state_names()));
+        true
+    }
+}
+
+impl<H, Tr, S, const N: usize, const M: usize, const A: usize, const J: usize> Advance<N, M, A>
+    for SelectedStatesStepper<H, Tr, S, N, M, A, J>
+where
+    H: Deref<Target: DummyDerivatives<N, M, A, J> + Sized>,
+    Tr: Trajectory<A>,
+    S: Method,
+{
+    type Model = H::Target;
+    fn model(&self) -> &H::Target {
+        self.stepper.problem().model()
+    }
+    fn step(&mut self) -> Result<StepReport, Error> {
+        SelectedStatesStepper::step(self)
+    }
+    fn state(&self) -> &State<N, M, A> {
+        self.stepper.state()
+    }
+    fn dt(&self) -> f64 {
+        self.stepper.dt()
+    }
+    fn scheme_name(&self) -> &'static str {
+        Advance::scheme_name(&self.stepper)
+    }
+    fn path_order_covered(&self) -> Option<usize> {
+        self.stepper.problem().path_order_covered()
     }
 }
 
@@ -502,10 +706,16 @@ where
                 solution.redundant_start_steps = stepper.fallback_steps();
                 return Ok(solution);
             }
-            let problem = SelectedStates::<_, _, N, M, A, J>::new(self.model, self.trajectory);
-            let mut stepper = Stepper::new(problem, self.start, self.options)?;
+            let mut stepper = SelectedStatesStepper::<_, _, _, N, M, A, J>::new(
+                self.model,
+                self.trajectory,
+                self.start,
+                self.options,
+            )?;
+            let selected = stepper.stepper().problem().state_names();
             let mut solution = record(&mut stepper, self.options.tf(), self.progress)?;
-            solution.selected_states = stepper.problem().state_names();
+            solution.selected_states = selected;
+            solution.reselected_states = stepper.reselections().to_vec();
             Ok(solution)
         }
     }
@@ -605,8 +815,13 @@ where
             if <H::Target as DummyDerivatives<N, M, A, J>>::DIMENSION == 0 {
                 return dummy_derivative::boxed_stepper(self.model, self.trajectory, self.start, self.options);
             }
-            let problem = SelectedStates::<_, _, N, M, A, J>::new(self.model, self.trajectory);
-            Ok(Box::new(Stepper::new(problem, self.start, self.options)?))
+            let stepper = SelectedStatesStepper::<_, _, _, N, M, A, J>::new(
+                self.model,
+                self.trajectory,
+                self.start,
+                self.options,
+            )?;
+            Ok(Box::new(stepper))
         }
     }
     let build = Build {

@@ -263,6 +263,29 @@ where
         (*self.history.value(), *self.history.rate())
     }
 
+    /// Rebuild the scheme's history from the unknowns of the last steps
+    /// (as many as are known, up to the scheme's), each mapped by
+    /// `coordinates` to its discretised coordinates and rates: for a
+    /// problem that changed which of its unknowns are discretised (a new
+    /// selection of states). It allocates.
+    pub fn rediscretise(&mut self, coordinates: impl Fn(&P, &DVector<f64>) -> (SVector<f64, K>, SVector<f64, K>)) {
+        let (values, rates): (Vec<SVector<f64, K>>, Vec<SVector<f64, K>>) = newest_first(&self.past, self.newest)
+            .take(self.known)
+            .map(|z| coordinates(&self.problem, z))
+            .unzip();
+        if let Some(history) = History::from_past(*self.history.method(), &values, &rates) {
+            self.history = history;
+        }
+        // the iteration matrix has another form: new scales
+        self.newton.forget_scales();
+    }
+
+    /// The pivot ratio of the last LU of an iteration matrix
+    /// ([`Newton::pivot_ratio`]).
+    pub fn pivot_ratio(&self) -> f64 {
+        self.newton.pivot_ratio()
+    }
+
     /// The problem.
     pub fn problem(&self) -> &P {
         &self.problem
@@ -272,6 +295,17 @@ where
     /// the first), in the problem's layout.
     pub fn unknowns(&self) -> &DVector<f64> {
         &self.z
+    }
+
+    /// The unknowns of the last accepted step (of the start before the
+    /// first), whatever a failed step left in [`unknowns`](Self::unknowns).
+    pub fn accepted_unknowns(&self) -> &DVector<f64> {
+        &self.past[self.newest]
+    }
+
+    /// The problem, to change between steps.
+    pub fn problem_mut(&mut self) -> &mut P {
+        &mut self.problem
     }
 
     /// The time step.

@@ -14,7 +14,7 @@ use crane_runtime::dummy_derivative::DummyDerivativeStepper;
 use crane_runtime::forward::Forward;
 use crane_runtime::nalgebra::vector;
 use crane_runtime::redundant::Redundant;
-use crane_runtime::state_selection::SelectedStates;
+use crane_runtime::state_selection::SelectedStatesStepper;
 use crane_runtime::trajectory::Poly9;
 use crane_runtime::{Advance, Options, Scheme, Stepper, init, minimal};
 use crane_tests::counting::{Counting, allocations_during, assert_counter_works};
@@ -117,7 +117,7 @@ fn stepping_does_not_allocate() {
     for k in 1..=5 {
         let scheme = Scheme::bdf(k).unwrap();
         let options = Options::new(0.01, 4.0).unwrap().with_scheme(scheme);
-        let mut stepper = Stepper::new(SelectedStates::new(&crane, &path), &start, &options).unwrap();
+        let mut stepper = SelectedStatesStepper::new(&crane, &path, &start, &options).unwrap();
         let (allocations, _) = allocations_during(|| {
             for _ in 0..400 {
                 stepper.step().unwrap();

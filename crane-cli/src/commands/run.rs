@@ -461,6 +461,21 @@ pub fn highlights(summary: &Summary) -> Vec<String> {
             selection.states.join(", "),
             eigenvalues.join(", ")
         ));
+        // the first few; summary.json has them all
+        const SHOWN: usize = 4;
+        for reselection in selection.reselections.iter().take(SHOWN) {
+            lines.push(format!(
+                "  selected anew at t = {} s, where the selection degenerated: {}",
+                Seconds(reselection.t),
+                reselection.states.join(", ")
+            ));
+        }
+        if selection.reselections.len() > SHOWN {
+            lines.push(format!(
+                "  and {} times more (summary.json: state_selection.reselections)",
+                selection.reselections.len() - SHOWN
+            ));
+        }
     }
     if let Some(replay) = &summary.replay {
         // what the torques do on the plant, where the files say it in full

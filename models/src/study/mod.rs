@@ -503,6 +503,12 @@ pub fn summarize_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
                 .iter()
                 .map(|lambda| (lambda.re, lambda.im))
                 .collect(),
+            reselections: (solution.reselected_states.iter())
+                .map(|(t, states)| summary::Reselection {
+                    t: *t,
+                    states: states.clone(),
+                })
+                .collect(),
         });
     }
     summary

@@ -214,6 +214,18 @@ pub struct StateSelectionSummary {
     /// the start, 1/s (all with negative real part: stable internal
     /// dynamics, which the scheme integrates forward in time).
     pub eigenvalues_start: Vec<(f64, f64)>,
+    /// Where the selection degenerated along the move and the states were
+    /// selected anew: when, and the new states.
+    pub reselections: Vec<Reselection>,
+}
+
+/// The states selected anew at one time of a run with state selection.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Reselection {
+    /// When, s.
+    pub t: f64,
+    /// The new states.
+    pub states: Vec<String>,
 }
 
 /// A run by stable inversion (`crane_runtime::stable_inversion`): the bounded
