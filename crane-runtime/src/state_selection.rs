@@ -335,7 +335,7 @@ where
     /// Select the states anew at the jets `z` (and the prepared path
     /// derivatives): the new selection where it differs from the present
     /// one and its algebraic block is at least [`RESELECT_GAIN`] times
-    /// further from singular ([`quality`](Self::quality)); `None` where the
+    /// further from singular (the pivot ratio of its scaled LU); `None` where the
     /// present one stays. It allocates.
     pub fn reselect(&mut self, z: &DVector<f64>) -> Option<&[Chain]> {
         if self.chains.is_empty() {
