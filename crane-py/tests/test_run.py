@@ -212,7 +212,7 @@ def test_a_stepper_takes_the_run_s_steps_bit_for_bit(model, formulation):
 def test_a_stepper_says_what_it_cannot_do():
     with pytest.raises(crane.CraneError, match="unknown model `nope`; expected one of navy-planar"):
         crane.stepper("nope")
-    with pytest.raises(crane.CraneError, match="a stepper runs the redundant and the dummy-derivative formulation"):
+    with pytest.raises(crane.CraneError, match="a stepper runs the redundant, the dummy-derivative and the state-selection formulation"):
         crane.stepper("navy-planar", formulation="minimal")
     s = crane.stepper("navy-planar", dt=0.01)
     s.step_to(0.5)
