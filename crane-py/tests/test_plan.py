@@ -141,3 +141,48 @@ def test_a_sweep_in_a_forked_child_does_not_hang():
             pytest.fail("the sweep in the forked child did not finish within 60 s")
         time.sleep(0.05)
     assert os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0, status
+
+
+def interrupt_after(delay):
+    """A timer thread that sends this process SIGINT (as a terminal's
+    Ctrl-C) after `delay` seconds; the times it sent it at."""
+    import threading
+
+    sent = []
+
+    def send():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(delay, send)
+    timer.start()
+    return timer, sent
+
+
+def test_ctrl_c_stops_a_long_sweep_within_half_a_second():
+    """Ctrl-C during a sweep of about 20 s (120 000 points) is
+    KeyboardInterrupt within 0.5 s: the points not started are not
+    evaluated, the one under way stops at its next step; the sweep used to
+    run to its end (4.5 to 17.7 s late). The same sweep works afterwards."""
+    timer, sent = interrupt_after(1.0)
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        crane.sweep("navy-planar", {"m_l": np.linspace(100.0, 120.0, 120_000)})
+    stopped = time.monotonic()
+    timer.join()
+    assert sent, "the sweep ended before the signal"
+    assert stopped - sent[0] < 0.5, f"{stopped - sent[0]:.3f} s after Ctrl-C ({stopped - started:.1f} s in all)"
+    s = crane.sweep("navy-planar", {"m_l": [100.0, 110.0]})
+    assert list(s["feasible"]) == [True, True]
+
+
+def test_ctrl_c_stops_a_long_fastest_search_within_half_a_second():
+    """The same for `fastest`, whose bisection runs one move after another
+    (here each at dt = 5e-5)."""
+    timer, sent = interrupt_after(1.0)
+    with pytest.raises(KeyboardInterrupt):
+        crane.fastest("navy-planar", limits={"u1": 1e4}, dt=5e-5)
+    stopped = time.monotonic()
+    timer.join()
+    assert sent, "the search ended before the signal"
+    assert stopped - sent[0] < 0.5, f"{stopped - sent[0]:.3f} s after Ctrl-C"

@@ -19,6 +19,7 @@ pub fn run<const N: usize, const M: usize, const A: usize>(
     mut observe: impl FnMut(usize, &State<N, M, A>, &StepReport) -> Result<(), Error>,
 ) -> Result<(), Error> {
     for step in 1..=steps {
+        crate::cancel::check()?;
         let report = stepper.step()?;
         observe(step, stepper.state(), &report)?;
     }
@@ -45,6 +46,7 @@ where
     let mut lengths = vec![0.0; info.ropes.len()];
     solution.push(stepper.model(), &start, StepReport::default(), &mut lengths);
     for step in 1..=steps {
+        crate::cancel::check()?;
         let report = stepper.step()?;
         solution.push(stepper.model(), stepper.state(), report, &mut lengths);
         progress(step, steps);

@@ -311,6 +311,9 @@ pub enum Error {
         /// Why.
         reason: crate::model::NoDummyDerivatives,
     },
+    /// The computation was stopped from outside ([`crate::cancel`]).
+    #[error("cancelled (a Ctrl-C or the host stopped the computation)")]
+    Cancelled,
     /// No jets of the robot coordinates can be the states the load path
     /// leaves free ([`crate::state_selection`]).
     #[error("the states the load path leaves free on the crane `{model}` cannot be selected: {reason}")]

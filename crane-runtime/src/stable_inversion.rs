@@ -190,6 +190,7 @@ where
     };
     let mut iterations = 0;
     loop {
+        crate::cancel::check()?;
         system.evaluate(&z, true);
         let norm = system.residual.amax();
         if !norm.is_finite() {

@@ -41,6 +41,7 @@ use crane_models::study::audit::StepAudit;
 use crane_models::study::replay::{FeedbackSpec, ReplayRequest};
 use crane_models::study::{self, Formulation};
 use crane_models::{Case, Crane};
+use crane_runtime::cancel::Cancel;
 use crane_runtime::redundant::Redundant;
 use crane_runtime::stepper::{Advance, Stepper};
 use crane_runtime::{CraneModel, Options, Solution, dummy_derivative, state_selection};
@@ -910,9 +911,15 @@ fn job(
     Ok((file, overrides))
 }
 
+/// How often a thread waiting for a job looks for a Ctrl-C.
+const SIGNAL_POLL: std::time::Duration = std::time::Duration::from_millis(20);
+
 /// `job` on the crane `model` by `visit`, one of the registry's functions
 /// in [`Cranes`], with the GIL released; a model the registry does not have,
-/// or the job's failure, as `CraneError`.
+/// or the job's failure, as `CraneError`. The job runs on a thread of its
+/// own while this one looks for signals every [`SIGNAL_POLL`]: a Ctrl-C
+/// cancels the job at its next step or sweep point ([`Cancel`]) and is
+/// raised as KeyboardInterrupt, nothing of the job returned.
 fn visit_detached<J: Send, O: Send>(
     py: Python<'_>,
     cranes: &Cranes,
@@ -920,9 +927,34 @@ fn visit_detached<J: Send, O: Send>(
     model: &str,
     job: J,
 ) -> PyResult<O> {
-    let done = py.detach(|| visit(model, job));
-    // a Ctrl-C during the job: KeyboardInterrupt now, before its result is
-    // made into Python objects
+    let cancel = Cancel::default();
+    let mut interrupted = None;
+    let waiting = std::thread::current();
+    let joined = py.detach(|| {
+        std::thread::scope(|scope| {
+            let worker = scope.spawn(|| {
+                let done = cancel.scope(|| visit(model, job));
+                waiting.unpark();
+                done
+            });
+            while !worker.is_finished() {
+                std::thread::park_timeout(SIGNAL_POLL);
+                if interrupted.is_none()
+                    && let Err(signal) = Python::attach(|py| py.check_signals())
+                {
+                    interrupted = Some(signal);
+                    cancel.set();
+                }
+            }
+            worker.join()
+        })
+    });
+    let done = joined.unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+    if let Some(signal) = interrupted {
+        return Err(signal);
+    }
+    // a Ctrl-C as the job ended: KeyboardInterrupt now, before its result
+    // is made into Python objects
     py.check_signals()?;
     done.ok_or_else(|| unknown_model(cranes, model))?
         .map_err(CraneError::new_err)

@@ -30,6 +30,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 use std::sync::{Arc, Mutex};
 
+use crane_runtime::cancel::Cancel;
 use crane_runtime::error::{Number, Rounded};
 use crane_runtime::{CraneModel, Options, Scheme, Solution};
 
@@ -219,6 +220,18 @@ impl Limits {
 }
 
 impl Evaluation {
+    /// The evaluation of a run of `duration` that could not be made, and why.
+    pub fn failed(duration: f64, error: String) -> Self {
+        Evaluation {
+            duration,
+            peak_u: Vec::new(),
+            min_tension: Vec::new(),
+            largest_tension: 0.0,
+            error: Some(error),
+            findings: Vec::new(),
+        }
+    }
+
     /// Each limited quantity's margin, largest relative excess first.
     pub fn bindings<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
         &self,
@@ -440,19 +453,7 @@ fn evaluate_model<C: Crane<N, M, A>, const N: usize, const M: usize, const A: us
     duration: f64,
     settings: &Settings,
 ) -> (Evaluation, Option<Solution<N, M, A>>) {
-    let failed = |error: String| {
-        (
-            Evaluation {
-                duration,
-                peak_u: Vec::new(),
-                min_tension: Vec::new(),
-                largest_tension: 0.0,
-                error: Some(error),
-                findings: Vec::new(),
-            },
-            None,
-        )
-    };
+    let failed = |error: String| (Evaluation::failed(duration, error), None);
     let scaled = match with_duration(case, model, duration) {
         Ok(c) => c,
         Err(e) => return failed(e),
@@ -848,10 +849,22 @@ pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         .into_iter()
         .flat_map(|(values, _)| durations.iter().map(move |&d| (values.clone(), d)))
         .collect();
+    // a flag in scope here stops the points on the pool's threads too: a
+    // point not started once it is set is not evaluated
+    let cancel = Cancel::current();
     let run = move || {
         grid.into_par_iter()
             .map(|(values, duration)| {
-                let point = sweep_point(case, params, &values, duration, limits, settings);
+                let point = match &cancel {
+                    Some(cancel) if cancel.is_set() => SweepPoint {
+                        evaluation: Evaluation::failed(duration, crane_runtime::Error::Cancelled.to_string()),
+                        values,
+                        duration,
+                        feasible: false,
+                    },
+                    Some(cancel) => cancel.scope(|| sweep_point(case, params, &values, duration, limits, settings)),
+                    None => sweep_point(case, params, &values, duration, limits, settings),
+                };
                 progress();
                 point
             })
@@ -903,14 +916,7 @@ pub fn sweep_point<C: Crane<N, M, A>, const N: usize, const M: usize, const A: u
         }
     }
     let evaluation = match error {
-        Some(e) => Evaluation {
-            duration,
-            peak_u: Vec::new(),
-            min_tension: Vec::new(),
-            largest_tension: 0.0,
-            error: Some(e),
-            findings: Vec::new(),
-        },
+        Some(e) => Evaluation::failed(duration, e),
         None => evaluate_model(case, model, duration, settings).0,
     };
     let feasible = evaluation.feasible::<C::Model, N, M, A>(limits);

@@ -103,6 +103,7 @@ fn assert_descriptive(error: &Error) {
         Error::MinimalStartNotFound { .. } | Error::EquilibriumNotFound { .. } => message.contains("residual"),
         Error::MinimalGuessSize { expected, .. } => message.contains(&format!("the map has {expected}")),
         Error::NoDummyDerivatives { model, .. } => message.contains(&format!("`{model}`")),
+        Error::Cancelled => message.contains("cancelled"),
         Error::StatesNotSelected { model, reason } => {
             message.contains(&format!("`{model}`")) && message.contains(reason.as_str())
         }
