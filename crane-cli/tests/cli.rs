@@ -2841,3 +2841,32 @@ fn a_singular_configuration_on_the_path_is_named_with_its_time() {
     let paper = run_ok("navy-planar", &[], dir.path(), "paper");
     assert_eq!(summary_json(&paper)["newton"]["crossings"].as_u64(), Some(0));
 }
+
+/// `--replay` with a step whose replay would step the plant below the
+/// smallest time step is refused before the run (nothing written), naming
+/// the step given; it failed after the whole run, naming dt = 2.5e-7.
+#[test]
+fn a_replay_step_below_the_smallest_is_refused_before_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("short");
+    let started = std::time::Instant::now();
+    let result = crane(&[
+        "run",
+        "navy-planar",
+        "--dt",
+        "1e-6",
+        "--replay",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!result.status.success());
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        stderr.contains("dt = 1e-6 s would step it at 2.5e-7 s") && stderr.contains("take dt >= 4e-6 s"),
+        "{stderr}"
+    );
+    assert!(!out.exists(), "nothing written");
+    // a run of 4e6 steps takes seconds; the refusal comes before it
+    assert!(started.elapsed().as_secs_f64() < 2.0, "{:?}", started.elapsed());
+}

@@ -186,3 +186,12 @@ def test_ctrl_c_stops_a_long_fastest_search_within_half_a_second():
     timer.join()
     assert sent, "the search ended before the signal"
     assert stopped - sent[0] < 0.5, f"{stopped - sent[0]:.3f} s after Ctrl-C"
+
+
+def test_a_duration_too_short_to_resolve_is_named_as_such():
+    """A swept duration of 1e-9 s is reported as a move too short to
+    evaluate, not as a time step the user never gave."""
+    s = crane.sweep("navy-planar", {"m_l": [100.0]}, durations=[1e-9, 4.0])
+    assert s["error"][0].startswith("a move of 1e-9 s is too short to evaluate"), s["error"][0]
+    assert "invalid time step" not in s["error"][0]
+    assert s["error"][1] == ""

@@ -610,3 +610,43 @@ def test_to_csv_refuses_what_it_would_replace_and_writes_through_file_objects(tm
     (tmp_path / ".fresh.csv.partial").symlink_to(target)
     r.to_csv(tmp_path / "fresh.csv")
     assert target.read_text() == "mine\n" and (tmp_path / "fresh.csv").read_text() == whole.read_text()
+
+
+def test_a_scenario_dict_error_names_the_key_and_no_toml_position():
+    """A wrong value in a scenario dict names the key, not a line and
+    column of TOML the user never wrote (it read "scenario the scenario
+    dict: key `dt`: ... (line 1, column 6)")."""
+    with pytest.raises(crane.CraneError) as error:
+        crane.run("navy-planar", scenario={"dt": "x"})
+    message = str(error.value)
+    assert message.startswith("scenario: key `dt`: invalid type"), message
+    assert "line" not in message and "the scenario dict" not in message, message
+
+
+def test_a_replay_step_below_the_smallest_is_refused_before_the_run():
+    """`run(dt=1e-6, replay=True)` is refused at once, naming the step the
+    user gave (it failed after the whole run, naming dt = 2.5e-7)."""
+    started = time.monotonic()
+    with pytest.raises(crane.CraneError, match=r"dt = 1e-6 s would step it at 2.5e-7 s.*take dt >= 4e-6 s"):
+        crane.run("navy-planar", dt=1e-6, replay=True)
+    assert time.monotonic() - started < 0.5
+
+
+def test_any_mapping_goes_where_a_dict_does():
+    """Mappings that are not dicts (a MappingProxyType; a pandas Series,
+    which has keys() and item access) give the dict's run bit for bit; a
+    list is refused naming what is expected."""
+    import types
+
+    expected = crane.run("navy-planar", parameters={"m_l": 110.0}, scenario={"dt": 0.02})
+    proxy = crane.run(
+        "navy-planar",
+        parameters=types.MappingProxyType({"m_l": 110.0}),
+        scenario=types.MappingProxyType({"dt": 0.02}),
+    )
+    assert np.array_equal(proxy.u, expected.u)
+    pandas = pytest.importorskip("pandas")
+    series = crane.run("navy-planar", parameters=pandas.Series({"m_l": 110.0}), scenario={"dt": 0.02})
+    assert np.array_equal(series.u, expected.u)
+    with pytest.raises(TypeError, match="expected a mapping of names to values"):
+        crane.run("navy-planar", parameters=[("m_l", 110.0)])

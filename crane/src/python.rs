@@ -100,6 +100,40 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Number {
     }
 }
 
+/// A keyword argument that maps names to values: a dict, or any mapping
+/// (a `MappingProxyType`, a pandas Series: anything with `keys()` and
+/// item access), copied into a dict.
+pub(crate) struct Mapping<'py>(Bound<'py, PyDict>);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Mapping<'py> {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        let obj = obj.to_owned();
+        if let Ok(dict) = obj.cast::<PyDict>() {
+            return Ok(Mapping(dict.clone()));
+        }
+        if obj.hasattr("keys")? {
+            let dict = PyDict::new(obj.py());
+            for key in obj.call_method0("keys")?.try_iter()? {
+                let key = key?;
+                dict.set_item(&key, obj.get_item(&key)?)?;
+            }
+            return Ok(Mapping(dict));
+        }
+        Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "expected a mapping of names to values (a dict, a MappingProxyType, a pandas Series), not a {}",
+            obj.get_type().name()?
+        )))
+    }
+}
+
+impl<'py> std::ops::Deref for Mapping<'py> {
+    type Target = Bound<'py, PyDict>;
+    fn deref(&self) -> &Bound<'py, PyDict> {
+        &self.0
+    }
+}
+
 /// The value of an optional [`Number`].
 pub(crate) fn value(number: Option<Number>) -> Option<f64> {
     number.map(|n| n.0)
@@ -218,13 +252,18 @@ impl Visit for RunJob {
                 names.join(", ")
             ));
         }
+        // the scenario's [plant] first, then the keywords'
+        let replay = self.replay.map(|request| ReplayRequest {
+            plant: settings.plant.iter().cloned().chain(request.plant).collect(),
+            ..request
+        });
+        // a replay's own checks before the run is made
+        if let Some(request) = &replay {
+            study::replay::plant(&case, request).map_err(|e| e.to_string())?;
+            study::replay::check_step(settings.dt).map_err(|e| e.to_string())?;
+        }
         let mut outcome = study::run(&case, &settings, &mut |_, _| {}).map_err(|e| e.to_string())?;
-        if let Some(request) = self.replay {
-            // the scenario's [plant] first, then the keywords'
-            let request = ReplayRequest {
-                plant: settings.plant.iter().cloned().chain(request.plant).collect(),
-                ..request
-            };
+        if let Some(request) = replay {
             outcome
                 .replay(&case, &request)
                 .map_err(|e| format!("the replay failed: {e}"))?;
@@ -464,6 +503,12 @@ fn scenario_of(scenario: Option<&Bound<'_, PyAny>>) -> PyResult<ScenarioFile> {
     let Some(scenario) = scenario.filter(|s| !s.is_none()) else {
         return Ok(ScenarioFile::default());
     };
+    // a mapping other than a dict (a MappingProxyType) as the dict it holds
+    let copied = match scenario.cast::<PyDict>() {
+        Err(_) if scenario.hasattr("keys")? => Some(scenario.extract::<Mapping<'_>>()?.0),
+        _ => None,
+    };
+    let scenario = copied.as_ref().map_or(scenario, |dict| dict.as_any());
     if let Ok(dict) = scenario.cast::<PyDict>() {
         let text = toml::to_string(&{
             let mut walk = ScenarioWalk::default();
@@ -471,7 +516,7 @@ fn scenario_of(scenario: Option<&Bound<'_, PyAny>>) -> PyResult<ScenarioFile> {
             toml_table(dict, None, &mut walk)?
         })
         .map_err(|e| CraneError::new_err(format!("scenario: {e}")))?;
-        return ScenarioFile::parse(&text, "the scenario dict").map_err(|e| CraneError::new_err(e.to_string()));
+        return ScenarioFile::parse_keys(&text).map_err(|e| CraneError::new_err(e.to_string()));
     }
     let path: PathBuf = scenario
         .extract()
@@ -782,17 +827,25 @@ fn run(
     scheme: Option<&str>,
     formulation: Option<&str>,
     scenario: Option<&Bound<'_, PyAny>>,
-    parameters: Option<&Bound<'_, PyDict>>,
-    limits: Option<&Bound<'_, PyDict>>,
+    parameters: Option<Mapping<'_>>,
+    limits: Option<Mapping<'_>>,
     replay: bool,
-    plant: Option<&Bound<'_, PyDict>>,
+    plant: Option<Mapping<'_>>,
     feedback: Option<&Bound<'_, PyAny>>,
     settle: Option<Number>,
 ) -> PyResult<Run> {
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
-    let (file, overrides) = job(value(dt), value(tf), scheme, formulation, scenario, parameters, limits)?;
-    let request = replay_request(replay, plant, feedback, value(settle))?;
+    let (file, overrides) = job(
+        value(dt),
+        value(tf),
+        scheme,
+        formulation,
+        scenario,
+        parameters.as_deref(),
+        limits.as_deref(),
+    )?;
+    let request = replay_request(replay, plant.as_deref(), feedback, value(settle))?;
     let job = RunJob {
         file,
         overrides,
@@ -1229,10 +1282,18 @@ fn stepper(
     scheme: Option<&str>,
     formulation: Option<&str>,
     scenario: Option<&Bound<'_, PyAny>>,
-    parameters: Option<&Bound<'_, PyDict>>,
+    parameters: Option<Mapping<'_>>,
 ) -> PyResult<PyStepper> {
     let cranes = Cranes::of_module(module)?;
-    let (file, overrides) = job(value(dt), None, scheme, formulation, scenario, parameters, None)?;
+    let (file, overrides) = job(
+        value(dt),
+        None,
+        scheme,
+        formulation,
+        scenario,
+        parameters.as_deref(),
+        None,
+    )?;
     let mut inner = (cranes.stepper)(model, StepperJob { file, overrides })
         .ok_or_else(|| unknown_model(&cranes, model))?
         .map_err(CraneError::new_err)?;

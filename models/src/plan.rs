@@ -338,8 +338,19 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     // at most the settings' step, and short enough to resolve the move: a
     // move of 2 ms in one step of 2 s has its inputs only at rest, and
     // passed every limit
-    let resolved = case.path().spec().shortest_feature() / crate::study::summary::SPIKE_RESOLUTION;
+    let feature = case.path().spec().shortest_feature();
+    let resolved = feature / crate::study::summary::SPIKE_RESOLUTION;
     let dt = step_for(span, settings.dt.min(resolved));
+    if dt < crane_runtime::options::MIN_DT {
+        return Err(format!(
+            "a move of {} s is too short to evaluate: resolving its shortest feature ({} s) takes steps of {} s, \
+             below the smallest time step, {} s",
+            Number(span),
+            Number(feature),
+            Number(dt),
+            Number(crane_runtime::options::MIN_DT)
+        ));
+    }
     within_evaluation_steps(span, dt)?;
     let start = case.consistent_start(t0).map_err(|e| e.to_string())?;
     let options = Options::new(dt, tf)

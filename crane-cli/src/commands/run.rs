@@ -173,6 +173,7 @@ impl Visit for Run<'_> {
         // inverse run written
         if let Some(request) = &replay {
             study::replay::plant(&case, request)?;
+            study::replay::check_step(settings.dt)?;
         }
         let mut progress = progress::Progress::new(C::NAME, self.quiet);
         let outcome = study::run(&case, &settings, &mut |step, steps| progress.tick(step, steps));

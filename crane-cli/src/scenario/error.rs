@@ -17,6 +17,8 @@ pub enum ScenarioError {
     Read { path: String, source: std::io::Error },
     #[error("scenario {path}: {message}")]
     Parse { path: String, message: String },
+    #[error("scenario: {message}")]
+    Keys { message: String },
     #[error("scenario {path}: {what}; a scenario is a TOML file of at most {} KiB", MAX_SCENARIO_BYTES / 1024)]
     NotAScenario { path: String, what: String },
     #[error("{flag} {value}: {need}")]
@@ -95,7 +97,7 @@ impl ScenarioError {
     pub fn key(&self) -> Option<String> {
         use ScenarioError::*;
         match self {
-            Read { .. } | Parse { .. } | NotAScenario { .. } | Flag { .. } | EndTwice => None,
+            Read { .. } | Parse { .. } | Keys { .. } | NotAScenario { .. } | Flag { .. } | EndTwice => None,
             WrongModel { .. } => Some("model".into()),
             NotPositiveTime { key, .. } | WrongCount { key, .. } | EntryNotFinite { key, .. } => Some(key.to_string()),
             StepTooSmall(_) => Some("dt".to_string()),

@@ -70,7 +70,16 @@ impl ScenarioFile {
     pub fn parse(text: &str, origin: &str) -> Result<Self, ScenarioError> {
         toml::from_str(text).map_err(|e| ScenarioError::Parse {
             path: origin.to_string(),
-            message: describe(text, &e),
+            message: describe(text, &e, true),
+        })
+    }
+
+    /// Parse scenario keys given as data, not as a file (a Python dict
+    /// written as TOML by the caller): errors name the key, and no line or
+    /// column of a text the user never wrote.
+    pub fn parse_keys(text: &str) -> Result<Self, ScenarioError> {
+        toml::from_str(text).map_err(|e| ScenarioError::Keys {
+            message: describe(text, &e, false),
         })
     }
 }
@@ -109,8 +118,8 @@ fn read_bounded(path: &Path) -> Result<String, ScenarioError> {
 }
 
 /// One line for a TOML error: the key it is about (with its table), the
-/// message and the position.
-fn describe(text: &str, error: &toml::de::Error) -> String {
+/// message and, where `located`, the position in `text`.
+fn describe(text: &str, error: &toml::de::Error, located: bool) -> String {
     let message = error.message().trim_end().replace('\n', " ");
     let Some(span) = error.span() else {
         return message;
@@ -133,10 +142,14 @@ fn describe(text: &str, error: &toml::de::Error) -> String {
         .split_once('=')
         .map(|(k, _)| k.trim().trim_matches('"').to_string())
         .filter(|k| !k.is_empty());
-    let at = format!("line {line_no}, column {column}");
+    let at = if located {
+        format!(" (line {line_no}, column {column})")
+    } else {
+        String::new()
+    };
     match key {
-        Some(key) if table.is_empty() => format!("key `{key}`: {message} ({at})"),
-        Some(key) => format!("key `{table}.{key}`: {message} ({at})"),
-        None => format!("{message} ({at})"),
+        Some(key) if table.is_empty() => format!("key `{key}`: {message}{at}"),
+        Some(key) => format!("key `{table}.{key}`: {message}{at}"),
+        None => format!("{message}{at}"),
     }
 }

@@ -16,7 +16,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyModule};
 
-use super::{Columns, CraneError, Cranes, Number, job, json_dict, numbers, value, visit_detached};
+use super::{Columns, CraneError, Cranes, Mapping, Number, job, json_dict, numbers, value, visit_detached};
 
 /// The scenario and the planner's settings from the keywords.
 struct PlanInputs {
@@ -109,10 +109,10 @@ impl Visit for FastestJob {
 pub(super) fn fastest<'py>(
     module: &Bound<'py, PyModule>,
     model: &str,
-    limits: Option<&Bound<'_, PyDict>>,
-    min_tension: Option<&Bound<'_, PyDict>>,
+    limits: Option<Mapping<'_>>,
+    min_tension: Option<Mapping<'_>>,
     scenario: Option<&Bound<'_, PyAny>>,
-    parameters: Option<&Bound<'_, PyDict>>,
+    parameters: Option<Mapping<'_>>,
     scheme: Option<&str>,
     dt: Option<Number>,
     tolerance: Option<Number>,
@@ -120,7 +120,15 @@ pub(super) fn fastest<'py>(
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
     let (dt, tolerance) = (value(dt), value(tolerance));
-    let inputs = PlanInputs::new(scenario, parameters, limits, min_tension, scheme, dt, tolerance)?;
+    let inputs = PlanInputs::new(
+        scenario,
+        parameters.as_deref(),
+        limits.as_deref(),
+        min_tension.as_deref(),
+        scheme,
+        dt,
+        tolerance,
+    )?;
     let data = visit_detached(py, &cranes, cranes.fastest, model, FastestJob(inputs))?;
     let dict = json_dict(py, data.report, "report")?;
     dict.set_item("run", data.run.into_dict(py, data.widths)?)?;
@@ -165,20 +173,28 @@ impl Visit for SweepJob {
 pub(super) fn sweep<'py>(
     module: &Bound<'py, PyModule>,
     model: &str,
-    grid: Option<&Bound<'_, PyDict>>,
+    grid: Option<Mapping<'_>>,
     durations: Option<Vec<f64>>,
-    limits: Option<&Bound<'_, PyDict>>,
-    min_tension: Option<&Bound<'_, PyDict>>,
+    limits: Option<Mapping<'_>>,
+    min_tension: Option<Mapping<'_>>,
     scenario: Option<&Bound<'_, PyAny>>,
-    parameters: Option<&Bound<'_, PyDict>>,
+    parameters: Option<Mapping<'_>>,
     scheme: Option<&str>,
     dt: Option<Number>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
-    let inputs = PlanInputs::new(scenario, parameters, limits, min_tension, scheme, value(dt), None)?;
+    let inputs = PlanInputs::new(
+        scenario,
+        parameters.as_deref(),
+        limits.as_deref(),
+        min_tension.as_deref(),
+        scheme,
+        value(dt),
+        None,
+    )?;
     let mut swept = Vec::new();
-    for (key, values) in grid.into_iter().flat_map(|g| g.iter()) {
+    for (key, values) in grid.as_deref().into_iter().flat_map(|g| g.iter()) {
         let name: String = key
             .extract()
             .map_err(|_| CraneError::new_err("grid: every name must be a string"))?;
@@ -275,11 +291,11 @@ pub(super) fn convergence<'py>(
     scheme: Option<&str>,
     formulation: Option<&str>,
     scenario: Option<&Bound<'_, PyAny>>,
-    parameters: Option<&Bound<'_, PyDict>>,
+    parameters: Option<Mapping<'_>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
-    let (file, overrides) = job(None, None, scheme, formulation, scenario, parameters, None)?;
+    let (file, overrides) = job(None, None, scheme, formulation, scenario, parameters.as_deref(), None)?;
     let dts = dts.unwrap_or_else(|| DTS.to_vec());
     if dts.is_empty() {
         return Err(CraneError::new_err("dts: give at least one time step"));

@@ -27,6 +27,7 @@ use std::fmt;
 use std::str::FromStr;
 use std::time::Instant;
 
+use crane_runtime::error::Number;
 use crane_runtime::internal::{diagnose, path_smoothness};
 use crane_runtime::{CraneModel, Options, Scheme, Solution, State, dummy_derivative, state_selection};
 
@@ -298,6 +299,21 @@ pub enum StudyError {
     /// a rope of non-positive length).
     #[error("nothing to replay: {0}")]
     NotAResult(String),
+    /// A run's step too short for its replay's forward steps.
+    #[error(
+        "a replay steps the plant {refine} times per step of the run: dt = {} s would step it at {} s, below the \
+         smallest time step, {} s; take dt >= {} s for a replay",
+        Number(*.dt),
+        Number(*.dt / *.refine as f64),
+        Number(crane_runtime::options::MIN_DT),
+        Number(crane_runtime::options::MIN_DT * *.refine as f64)
+    )]
+    ReplayStep {
+        /// The run's step, s.
+        dt: f64,
+        /// Forward steps per step of the run.
+        refine: usize,
+    },
     /// A plant parameter of a replay is unknown or not finite.
     #[error("plant parameter `{name}`: {message}")]
     PlantParameter {

@@ -87,6 +87,18 @@ impl FeedbackSpec {
 /// crane's swing, and below where the replay's end time loses the step).
 pub const MAX_SETTLE: f64 = 1e6;
 
+/// Refuse a run's step `dt` whose replay would step the plant below the
+/// runtime's smallest step (a replay takes [`ReplayOptions`]' `refine`
+/// forward steps per step of the run): before the run is made, naming the
+/// step the user gave.
+pub fn check_step(dt: f64) -> Result<(), StudyError> {
+    let refine = ReplayOptions::new(0.0, Scheme::Bdf2).refine.max(1);
+    if dt / refine as f64 >= crane_runtime::options::MIN_DT {
+        return Ok(());
+    }
+    Err(StudyError::ReplayStep { dt, refine })
+}
+
 /// Whether `settle` is a settling window a replay takes: positive and at
 /// most [`MAX_SETTLE`].
 pub fn valid_settle(settle: f64) -> bool {
