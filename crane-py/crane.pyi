@@ -1,14 +1,30 @@
 """Inverse dynamics of underactuated cranes: whole runs into numpy arrays."""
 
 from os import PathLike
-from typing import IO, Any, Mapping, Optional, Sequence, Union
+from typing import IO, Any, Mapping, Optional, Sequence, Union, final
 
 import numpy as np
 import numpy.typing as npt
+from typing_extensions import Self, TypeAlias
 
 __version__: str
 """The version of the crane library the module was built with (the wheel's)."""
-__all__: list[str]
+__all__ = [
+    "__version__",
+    "CraneError",
+    "CraneWarning",
+    "Run",
+    "Stepper",
+    "models",
+    "run",
+    "stepper",
+    "fastest",
+    "sweep",
+    "convergence",
+]
+
+_Floats: TypeAlias = Union[Sequence[float], npt.NDArray[np.floating[Any]]]
+"""Numbers as a sequence or a numpy array (grids, durations, steps)."""
 
 class CraneError(ValueError):
     """A run the tool could not make, or an argument it refuses: the tool's one-line message."""
@@ -17,34 +33,51 @@ class CraneWarning(UserWarning):
     """What the audit found in a run, one warning per finding (`Run.warnings`
     lists them too); filter them, or make them errors, with `warnings`."""
 
+@final
 class Run:
     """One run: its states (float64, one row per step), the names of their
-    columns, the summary (summary.json as a dict) and what the audit found."""
+    columns, the summary (summary.json as a dict) and what the audit found.
+    Its attributes are read-only."""
 
-    t: npt.NDArray[np.float64]
-    """Times, s: shape (steps + 1,)."""
-    q: npt.NDArray[np.float64]
-    """Coordinates: shape (steps + 1, n), columns `coordinates`."""
-    v: npt.NDArray[np.float64]
-    """Velocities: shape (steps + 1, n), columns `coordinates`."""
-    u: npt.NDArray[np.float64]
-    """Inputs: shape (steps + 1, a), columns `inputs`."""
-    lambda_: npt.NDArray[np.float64]
-    """Multipliers: shape (steps + 1, m)."""
-    tensions: npt.NDArray[np.float64]
-    """Rope tensions, N: shape (steps + 1, ropes), columns `ropes`."""
-    coordinates: list[str]
-    inputs: list[str]
-    ropes: list[str]
-    summary: dict[str, Any]
-    """The summary `crane run` writes as summary.json."""
-    warnings: list[str]
-    """What the audit found: empty for a trustworthy run."""
-    replay: Optional[dict[str, Any]]
-    """With replay=True: the forward run of the computed inputs, a dict of
-    `t`, `q`, `v`, `u`, `lambda_`, `tensions` (numpy arrays); else None."""
-    def __init__(
-        self,
+    @property
+    def t(self) -> npt.NDArray[np.float64]:
+        """Times, s: shape (steps + 1,)."""
+    @property
+    def q(self) -> npt.NDArray[np.float64]:
+        """Coordinates: shape (steps + 1, n), columns `coordinates`."""
+    @property
+    def v(self) -> npt.NDArray[np.float64]:
+        """Velocities: shape (steps + 1, n), columns `coordinates`."""
+    @property
+    def u(self) -> npt.NDArray[np.float64]:
+        """Inputs: shape (steps + 1, a), columns `inputs`."""
+    @property
+    def lambda_(self) -> npt.NDArray[np.float64]:
+        """Multipliers: shape (steps + 1, m)."""
+    @property
+    def tensions(self) -> npt.NDArray[np.float64]:
+        """Rope tensions, N: shape (steps + 1, ropes), columns `ropes`."""
+    @property
+    def coordinates(self) -> list[str]:
+        """The names of the coordinates."""
+    @property
+    def inputs(self) -> list[str]:
+        """The names of the inputs."""
+    @property
+    def ropes(self) -> list[str]:
+        """The names of the rope tensions."""
+    @property
+    def summary(self) -> dict[str, Any]:
+        """The summary `crane run` writes as summary.json."""
+    @property
+    def warnings(self) -> list[str]:
+        """What the audit found: empty for a trustworthy run."""
+    @property
+    def replay(self) -> Optional[dict[str, Any]]:
+        """With replay=True: the forward run of the computed inputs, a dict of
+        `t`, `q`, `v`, `u`, `lambda_`, `tensions` (numpy arrays); else None."""
+    def __new__(
+        cls,
         t: npt.NDArray[np.float64],
         q: npt.NDArray[np.float64],
         v: npt.NDArray[np.float64],
@@ -57,7 +90,7 @@ class Run:
         summary: dict[str, Any],
         warnings: list[str],
         replay: Optional[dict[str, Any]] = None,
-    ) -> None:
+    ) -> Self:
         """A run from its parts (what unpickling calls); raises CraneError
         where an array's shape does not match `t` and the names."""
     def to_csv(self, target: Union[str, PathLike[str], IO[str]]) -> None:
@@ -69,18 +102,22 @@ class Run:
         """The run as a pandas DataFrame (`t` the index, the columns of
         `to_csv`, values copied); pandas is optional: ImportError without it."""
 
+@final
 class Stepper:
     """A crane one step at a time, from the start `run` takes; its steps are
     the run's, bit for bit. A state is a dict of `t` (float) and numpy
-    arrays `q`, `v`, `u`, `lambda_`, `tensions`."""
+    arrays `q`, `v`, `u`, `lambda_`, `tensions`. Made by `stepper(...)`."""
 
-    dt: float
-    """The time step, s."""
-    state: dict[str, Any]
-    """The state after the last step (the start before the first)."""
-    warnings: list[str]
-    """What the step audit (the FMU's) found so far, each also warned of as a
-    CraneWarning when found."""
+    @property
+    def dt(self) -> float:
+        """The time step, s."""
+    @property
+    def state(self) -> dict[str, Any]:
+        """The state after the last step (the start before the first)."""
+    @property
+    def warnings(self) -> list[str]:
+        """What the step audit (the FMU's) found so far, each also warned of as a
+        CraneWarning when found."""
     def step(self) -> dict[str, Any]:
         """One step; the new state. Raises CraneError if it fails."""
     def step_to(self, t: float) -> dict[str, Any]:
@@ -118,7 +155,8 @@ def stepper(
     scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
     parameters: Optional[Mapping[str, float]] = None,
 ) -> Stepper:
-    """A Stepper of `model` (formulations `redundant` and `dummy-derivative`); raises CraneError."""
+    """A Stepper of `model` (formulations `redundant`, `dummy-derivative` and
+    `state-selection`); raises CraneError."""
 
 def fastest(
     model: str,
@@ -137,9 +175,9 @@ def fastest(
 
 def sweep(
     model: str,
-    grid: Optional[Mapping[str, Sequence[float]]] = None,
+    grid: Optional[Mapping[str, _Floats]] = None,
     *,
-    durations: Optional[Sequence[float]] = None,
+    durations: Optional[_Floats] = None,
     limits: Optional[Mapping[str, float]] = None,
     min_tension: Optional[Mapping[str, float]] = None,
     scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
@@ -154,7 +192,7 @@ def sweep(
 def convergence(
     model: str,
     *,
-    dts: Optional[Sequence[float]] = None,
+    dts: Optional[_Floats] = None,
     scheme: Optional[str] = None,
     formulation: Optional[str] = None,
     scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
