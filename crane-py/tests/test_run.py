@@ -650,3 +650,38 @@ def test_any_mapping_goes_where_a_dict_does():
     assert np.array_equal(series.u, expected.u)
     with pytest.raises(TypeError, match="expected a mapping of names to values"):
         crane.run("navy-planar", parameters=[("m_l", 110.0)])
+
+
+def test_a_run_beyond_the_machines_memory_is_refused_before_it_starts():
+    """A run whose states and their numpy copies need more than the machine
+    has available (tf = 1e8 s at dt = 0.01: 1e10 steps, terabytes) is a
+    CraneError at once, naming the size; tf = 1e6 s (17 GiB) was accepted
+    and could only end in the kernel's OOM killer."""
+    started = time.monotonic()
+    with pytest.raises(crane.CraneError, match=r"a run of 1\.000e10 steps needs about .* GiB at its peak .* more than"):
+        crane.run("navy-planar", tf=1e8)
+    assert time.monotonic() - started < 1.0
+
+
+def test_a_run_under_a_memory_limit_is_an_error_not_an_abort():
+    """Under an address-space limit of 1.5 GB (`ulimit -v 1500000`) a run
+    whose results need more (tf = 5e4 s: 5e6 steps, about 1 GB of states and
+    0.9 GB of numpy copies) raises CraneError; the interpreter used to abort
+    ("memory allocation failed", SIGABRT) while copying the results."""
+    import resource
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (1_500_000 * 1024, 1_500_000 * 1024))
+
+    code = (
+        "import crane\n"
+        "try:\n"
+        "    crane.run('navy-planar', tf=5e4)\n"
+        "except crane.CraneError as e:\n"
+        "    print('CraneError:', e)\n"
+    )
+    child = subprocess.run(
+        [sys.executable, "-c", code], preexec_fn=limit, capture_output=True, text=True, timeout=300
+    )
+    assert child.returncode == 0, child.stderr[-2000:]
+    assert child.stdout.startswith("CraneError:") and "memory" in child.stdout, child.stdout

@@ -134,6 +134,34 @@ impl<'py> std::ops::Deref for Mapping<'py> {
     }
 }
 
+/// The memory the machine has available, bytes (`MemAvailable` of
+/// /proc/meminfo; `None` where it cannot be read).
+fn available_memory() -> Option<f64> {
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = meminfo.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024.0)
+}
+
+/// Refuse a run of `steps` whose results take `bytes` at their peak (the
+/// run's states and their numpy copies) where that is more than the
+/// machine has available: an error before the run, not an interpreter
+/// killed or aborted by a failed allocation.
+fn check_memory(steps: f64, bytes: f64) -> Result<(), String> {
+    match available_memory() {
+        Some(available) if bytes > available => Err(format!(
+            "a run of {steps:.3e} steps needs about {:.1} GiB at its peak (its states and their numpy copies), \
+             more than the {:.1} GiB this machine has available: take a longer dt or a shorter run",
+            bytes / GIB,
+            available / GIB
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Bytes in a GiB.
+const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
+
 /// The value of an optional [`Number`].
 pub(crate) fn value(number: Option<Number>) -> Option<f64> {
     number.map(|n| n.0)
@@ -151,23 +179,35 @@ struct Columns {
 }
 
 impl Columns {
-    fn of<const N: usize, const M: usize, const A: usize>(solution: &Solution<N, M, A>) -> Self {
+    /// The columns of `solution`, or where the memory for them cannot be
+    /// had, why (an error for Python, not an abort of the interpreter).
+    fn of<const N: usize, const M: usize, const A: usize>(solution: &Solution<N, M, A>) -> Result<Self, String> {
         let states = &solution.states;
-        let flat = |width: usize, value: &dyn Fn(usize, usize) -> f64| -> Vec<f64> {
-            (0..states.len())
-                .flat_map(|i| (0..width).map(move |k| (i, k)))
-                .map(|(i, k)| value(i, k))
-                .collect()
+        let ropes = solution.info.ropes.len();
+        let bytes = states.len() * (1 + 2 * N + A + M + ropes) * std::mem::size_of::<f64>();
+        let out_of_memory = |_| {
+            format!(
+                "out of memory: the run's {} states take {:.1} MB more as numpy arrays; take a longer dt or a \
+                 shorter run",
+                states.len(),
+                bytes as f64 / 1e6
+            )
         };
-        Self {
+        let flat = |width: usize, value: &dyn Fn(usize, usize) -> f64| -> Result<Vec<f64>, String> {
+            let mut column = Vec::new();
+            column.try_reserve_exact(states.len() * width).map_err(out_of_memory)?;
+            column.extend((0..states.len()).flat_map(|i| (0..width).map(move |k| value(i, k))));
+            Ok(column)
+        };
+        Ok(Self {
             rows: states.len(),
-            t: states.iter().map(|s| s.t).collect(),
-            q: flat(N, &|i, k| states[i].q[k]),
-            v: flat(N, &|i, k| states[i].v[k]),
-            u: flat(A, &|i, k| states[i].u[k]),
-            lambda: flat(M, &|i, k| states[i].lambda[k]),
-            tensions: flat(solution.info.ropes.len(), &|i, r| solution.tensions_at(i)[r]),
-        }
+            t: flat(1, &|i, _| states[i].t)?,
+            q: flat(N, &|i, k| states[i].q[k])?,
+            v: flat(N, &|i, k| states[i].v[k])?,
+            u: flat(A, &|i, k| states[i].u[k])?,
+            lambda: flat(M, &|i, k| states[i].lambda[k])?,
+            tensions: flat(ropes, &|i, r| solution.tensions_at(i)[r])?,
+        })
     }
 }
 
@@ -262,6 +302,16 @@ impl Visit for RunJob {
             study::replay::plant(&case, request).map_err(|e| e.to_string())?;
             study::replay::check_step(settings.dt).map_err(|e| e.to_string())?;
         }
+        // the peak: the run's states and their numpy copies, and a replay's
+        // (its forward steps, four per step of the run)
+        let steps = ((case.tf() - case.t0()) / settings.dt).max(0.0);
+        let ropes = <C::Model as CraneModel<N, M, A>>::INFO.ropes.len();
+        let per_state = std::mem::size_of::<crane_runtime::State<N, M, A>>()
+            + std::mem::size_of::<usize>()
+            + ropes * 8
+            + (1 + 2 * N + A + M + ropes) * 8;
+        let runs = if replay.is_some() { 1.0 + 4.0 } else { 1.0 };
+        check_memory(steps, runs * steps * per_state as f64)?;
         let mut outcome = study::run(&case, &settings, &mut |_, _| {}).map_err(|e| e.to_string())?;
         if let Some(request) = replay {
             outcome
@@ -270,11 +320,12 @@ impl Visit for RunJob {
         }
         let info = outcome.solution.info;
         Ok(RunData {
-            columns: Columns::of(&outcome.solution),
+            columns: Columns::of(&outcome.solution)?,
             replay: outcome
                 .replay
                 .as_ref()
-                .map(|replay| Columns::of(&replay.result().solution)),
+                .map(|replay| Columns::of(&replay.result().solution))
+                .transpose()?,
             coordinates: info.coordinates.iter().map(|s| s.to_string()).collect(),
             inputs: info.inputs.iter().map(|s| s.to_string()).collect(),
             ropes: info.ropes.iter().map(|r| r.tension.to_string()).collect(),

@@ -84,7 +84,7 @@ impl Visit for FastestJob {
         let info = <C::Model as CraneModel<N, M, A>>::INFO;
         Ok(FastestData {
             report: serde_json::to_string(&report).map_err(|e| format!("report: {e}"))?,
-            run: Columns::of(&best.solution),
+            run: Columns::of(&best.solution)?,
             widths: [N, A, M, info.ropes.len()],
         })
     }
