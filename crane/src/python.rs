@@ -1376,6 +1376,14 @@ pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyR
     module.add_function(wrap_pyfunction!(plan::fastest, module)?)?;
     module.add_function(wrap_pyfunction!(plan::sweep, module)?)?;
     module.add_function(wrap_pyfunction!(plan::convergence, module)?)?;
+    // the classes under the package's own name (`my_cranes.Run` for a
+    // user's module, which pickling then finds there, not in `crane`): the
+    // package of the module (`crane` of `crane.crane`)
+    let name: String = module.name()?.extract()?;
+    let package = name.split_once('.').map_or(name.as_str(), |(package, _)| package);
+    for class in ["CraneError", "CraneWarning", "Run", "Stepper"] {
+        module.getattr(class)?.setattr("__module__", &package)?;
+    }
     // the version of the library the module was built with (in `__all__`
     // too: a wheel's package re-exports the module by `import *`)
     module.add("__version__", env!("CARGO_PKG_VERSION"))?;

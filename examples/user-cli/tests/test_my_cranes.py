@@ -101,3 +101,23 @@ def test_the_user_s_crane_converges_to_its_exact_inputs():
     assert c["reference"] == "the exact inputs of the dummy-derivative formulation"
     assert np.all(np.diff(c["e_u"]) < 0)
     assert abs(c["order"][-1] - 2.0) < 0.2
+
+
+def test_the_module_s_classes_are_its_own():
+    """The user's module names its classes after itself (they read
+    `crane.Run` before), so a pickled run comes back as a `my_cranes.Run`;
+    its exception is a ValueError, the base it shares with `crane`'s."""
+    import pickle
+
+    import crane
+
+    for name in ["Run", "Stepper", "CraneError", "CraneWarning"]:
+        assert getattr(my_cranes, name).__module__ == "my_cranes", name
+        assert getattr(crane, name).__module__ == "crane", name
+    r = my_cranes.run("hook-crane", dt=0.02)
+    back = pickle.loads(pickle.dumps(r))
+    assert type(back) is my_cranes.Run
+    assert np.array_equal(back.u, r.u)
+    assert issubclass(my_cranes.CraneError, ValueError) and issubclass(crane.CraneError, ValueError)
+    with pytest.raises(ValueError):
+        my_cranes.run("navy-planar")
