@@ -106,7 +106,19 @@ class Run:
 class Stepper:
     """A crane one step at a time, from the start `run` takes; its steps are
     the run's, bit for bit. A state is a dict of `t` (float) and numpy
-    arrays `q`, `v`, `u`, `lambda_`, `tensions`. Made by `stepper(...)`."""
+    arrays `q`, `v`, `u`, `lambda_`, `tensions`."""
+
+    def __new__(
+        cls,
+        model: str,
+        *,
+        dt: Optional[float] = None,
+        scheme: Optional[str] = None,
+        formulation: Optional[str] = None,
+        scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
+        parameters: Optional[Mapping[str, float]] = None,
+    ) -> Self:
+        """The same as `stepper(model, ...)`; raises CraneError."""
 
     @property
     def dt(self) -> float:

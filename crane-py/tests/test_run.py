@@ -685,3 +685,14 @@ def test_a_run_under_a_memory_limit_is_an_error_not_an_abort():
     )
     assert child.returncode == 0, child.stderr[-2000:]
     assert child.stdout.startswith("CraneError:") and "memory" in child.stdout, child.stdout
+
+
+def test_a_stepper_is_made_by_its_class_too():
+    """`crane.Stepper(model, ...)` is `crane.stepper(model, ...)` (it
+    raised TypeError: cannot create 'crane.Stepper' instances)."""
+    made = crane.Stepper("navy-planar", dt=0.01, scheme="bdf2")
+    called = crane.stepper("navy-planar", dt=0.01, scheme="bdf2")
+    for _ in range(10):
+        assert np.array_equal(made.step()["u"], called.step()["u"])
+    with pytest.raises(crane.CraneError, match="unknown model `nope`"):
+        crane.Stepper("nope")

@@ -399,6 +399,11 @@ impl Cranes {
     }
 }
 
+/// The registry of the module this library made (one per extension: a
+/// user's module is a library of its own), for the classes' constructors,
+/// which are not called from the module.
+static MODULE_CRANES: std::sync::OnceLock<Cranes> = std::sync::OnceLock::new();
+
 /// The registry's functions as a Python object.
 #[pyclass(frozen, name = "_Cranes")]
 struct CranesObject(Cranes);
@@ -1254,6 +1259,26 @@ const SIGNAL_STEPS: usize = 1024;
 
 #[pymethods]
 impl PyStepper {
+    /// `Stepper(model, dt=..., ...)`: the same as `stepper(model, ...)`, with
+    /// the cranes of the module the class belongs to.
+    #[new]
+    #[pyo3(signature = (model, *, dt=None, scheme=None, formulation=None, scenario=None, parameters=None))]
+    fn new(
+        py: Python<'_>,
+        model: &str,
+        dt: Option<Number>,
+        scheme: Option<&str>,
+        formulation: Option<&str>,
+        scenario: Option<&Bound<'_, PyAny>>,
+        parameters: Option<Mapping<'_>>,
+    ) -> PyResult<Self> {
+        let cranes = MODULE_CRANES
+            .get()
+            .copied()
+            .ok_or_else(|| CraneError::new_err("the module of Stepper has no registry: import it first"))?;
+        PyStepper::made(py, &cranes, model, dt, scheme, formulation, scenario, parameters)
+    }
+
     /// One step; returns the new state. Raises `CraneError` if the step
     /// fails (the stepper is then left at the last good state).
     fn step<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
@@ -1336,24 +1361,50 @@ fn stepper(
     parameters: Option<Mapping<'_>>,
 ) -> PyResult<PyStepper> {
     let cranes = Cranes::of_module(module)?;
-    let (file, overrides) = job(
-        value(dt),
-        None,
+    PyStepper::made(
+        module.py(),
+        &cranes,
+        model,
+        dt,
         scheme,
         formulation,
         scenario,
-        parameters.as_deref(),
-        None,
-    )?;
-    let mut inner = (cranes.stepper)(model, StepperJob { file, overrides })
-        .ok_or_else(|| unknown_model(&cranes, model))?
-        .map_err(CraneError::new_err)?;
-    let warnings = inner.take_start_findings();
-    warn_findings(module.py(), &warnings)?;
-    Ok(PyStepper {
-        inner: std::sync::Mutex::new(inner),
-        warnings,
-    })
+        parameters,
+    )
+}
+
+impl PyStepper {
+    /// A stepper of `model` of the registry `cranes` (see [`stepper`]).
+    #[allow(clippy::too_many_arguments)]
+    fn made(
+        py: Python<'_>,
+        cranes: &Cranes,
+        model: &str,
+        dt: Option<Number>,
+        scheme: Option<&str>,
+        formulation: Option<&str>,
+        scenario: Option<&Bound<'_, PyAny>>,
+        parameters: Option<Mapping<'_>>,
+    ) -> PyResult<PyStepper> {
+        let (file, overrides) = job(
+            value(dt),
+            None,
+            scheme,
+            formulation,
+            scenario,
+            parameters.as_deref(),
+            None,
+        )?;
+        let mut inner = (cranes.stepper)(model, StepperJob { file, overrides })
+            .ok_or_else(|| unknown_model(cranes, model))?
+            .map_err(CraneError::new_err)?;
+        let warnings = inner.take_start_findings();
+        warn_findings(py, &warnings)?;
+        Ok(PyStepper {
+            inner: std::sync::Mutex::new(inner),
+            warnings,
+        })
+    }
 }
 
 /// Fill `module` with the cranes of registry `R`: `models()`, `run(...)`,
@@ -1369,6 +1420,8 @@ pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyR
     module.add("CraneWarning", py.get_type::<CraneWarning>())?;
     module.add_class::<Run>()?;
     module.add("_cranes", CranesObject(Cranes::of::<R>()))?;
+    // (set once: an import of the module again brings the same registry)
+    let _ = MODULE_CRANES.set(Cranes::of::<R>());
     module.add_function(wrap_pyfunction!(models, module)?)?;
     module.add_function(wrap_pyfunction!(run, module)?)?;
     module.add_class::<PyStepper>()?;

@@ -121,3 +121,13 @@ def test_the_module_s_classes_are_its_own():
     assert issubclass(my_cranes.CraneError, ValueError) and issubclass(crane.CraneError, ValueError)
     with pytest.raises(ValueError):
         my_cranes.run("navy-planar")
+
+
+def test_the_module_s_stepper_class_makes_its_own_cranes():
+    """`my_cranes.Stepper(...)` steps the user's cranes (the registry of the
+    module the class belongs to), not the built-in ones."""
+    s = my_cranes.Stepper("hook-crane", dt=0.02)
+    r = my_cranes.run("hook-crane", dt=0.02)
+    assert np.array_equal(s.step()["u"], r.u[1])
+    with pytest.raises(my_cranes.CraneError, match="unknown model `navy-planar`"):
+        my_cranes.Stepper("navy-planar")
