@@ -130,6 +130,8 @@ class Stepper:
     def warnings(self) -> list[str]:
         """What the step audit (the FMU's) found so far, each also warned of as a
         CraneWarning when found."""
+    def __reduce__(self) -> Any:
+        """Refused: a TypeError that says why (a run under way does not pickle)."""
     def step(self) -> dict[str, Any]:
         """One step; the new state. Raises CraneError if it fails."""
     def step_to(self, t: float) -> dict[str, Any]:

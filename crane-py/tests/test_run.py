@@ -696,3 +696,16 @@ def test_a_stepper_is_made_by_its_class_too():
         assert np.array_equal(made.step()["u"], called.step()["u"])
     with pytest.raises(crane.CraneError, match="unknown model `nope`"):
         crane.Stepper("nope")
+
+
+def test_a_stepper_says_why_it_does_not_pickle():
+    """Pickling or copying a Stepper is a TypeError that says why (a run
+    under way) and what to do instead."""
+    import copy
+    import pickle
+
+    s = crane.stepper("navy-planar")
+    with pytest.raises(TypeError, match="a Stepper does not pickle: it holds a run under way"):
+        pickle.dumps(s)
+    with pytest.raises(TypeError, match="a Stepper does not pickle"):
+        copy.deepcopy(s)

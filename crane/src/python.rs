@@ -1259,6 +1259,15 @@ const SIGNAL_STEPS: usize = 1024;
 
 #[pymethods]
 impl PyStepper {
+    /// Pickling (and copying): refused with the reason.
+    fn __reduce__(&self) -> PyResult<()> {
+        Err(pyo3::exceptions::PyTypeError::new_err(
+            "a Stepper does not pickle: it holds a run under way (its scheme's history of past steps and Newton's \
+             state), not data; pickle the states it returned, or make a new Stepper with the same keywords and \
+             step it to the same time",
+        ))
+    }
+
     /// `Stepper(model, dt=..., ...)`: the same as `stepper(model, ...)`, with
     /// the cranes of the module the class belongs to.
     #[new]
