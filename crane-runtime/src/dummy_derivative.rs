@@ -53,7 +53,6 @@ use std::ops::{Deref, Range};
 
 use nalgebra::{DMatrix, DVector, SVector};
 
-use crate::driver::record;
 use crate::error::Error;
 use crate::init;
 use crate::linsolve::{DenseSolver, Stages, Triangular};
@@ -632,47 +631,12 @@ where
     Tr: Trajectory<A> + Clone,
     S: Method,
 {
-    /// The run, with the system's size.
-    struct Simulate<'a, Mdl, Tr, S: Method, const N: usize, const M: usize, const A: usize> {
-        model: &'a Mdl,
-        trajectory: Tr,
-        start: &'a State<N, M, A>,
-        options: &'a Options<S>,
-        progress: &'a mut dyn FnMut(usize, usize),
-    }
-    impl<Mdl, Tr, S, const N: usize, const M: usize, const A: usize> VisitDummyDerivatives<Mdl, N, M, A>
-        for Simulate<'_, Mdl, Tr, S, N, M, A>
-    where
-        Tr: Trajectory<A> + Clone,
-        S: Method,
-    {
-        type Output = Result<Solution<N, M, A>, Error>;
-        fn visit<const J: usize>(self) -> Self::Output
-        where
-            Mdl: DummyDerivatives<N, M, A, J>,
-        {
-            let mut stepper = DummyDerivativeStepper::<_, _, _, N, M, A, J>::new(
-                self.model,
-                self.trajectory,
-                self.start,
-                self.options,
-            )?;
-            let mut solution = record(&mut stepper, self.options.tf(), self.progress)?;
-            solution.redundant_start_steps = stepper.fallback_steps();
-            Ok(solution)
-        }
-    }
-    let visit = Simulate {
-        model,
-        trajectory,
-        start,
-        options,
-        progress,
-    };
-    Mdl::visit_dummy_derivatives(visit).map_err(|reason| Error::NoDummyDerivatives {
+    // one run of the reduced system, which for a flat crane is this one
+    system_size::<Mdl, N, M, A>().map_err(|reason| Error::NoDummyDerivatives {
         model: Mdl::INFO.name,
         reason,
-    })?
+    })?;
+    crate::state_selection::simulate(model, trajectory, start, options, progress)
 }
 
 /// The size `J` of `Mdl`'s dummy-derivative system of a flat crane

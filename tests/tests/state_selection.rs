@@ -114,9 +114,10 @@ fn a_flat_crane_has_no_states_and_todays_inputs() {
     let options = Options::new(0.01, case.tf()).unwrap();
     let (crane, path) = (case.model(), case.path());
     let run = state_selection::simulate(crane, path, &start, &options, &mut |_, _| {}).unwrap();
-    let flat =
-        crane_runtime::dummy_derivative::simulate_dummy_derivative(crane, path, &start, &options, &mut |_, _| {})
-            .unwrap();
+    // the flat crane's own stepper, recorded step by step
+    let mut stepper =
+        crane_runtime::dummy_derivative::DummyDerivativeStepper::new(crane, path, &start, &options).unwrap();
+    let flat = crane_runtime::driver::record(&mut stepper, options.tf(), &mut |_, _| {}).unwrap();
     assert!(run.selected_states.is_empty());
     assert_eq!(run.states, flat.states);
 }
