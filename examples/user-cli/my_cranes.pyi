@@ -1,0 +1,1 @@
+../../crane-py/crane.pyi
