@@ -78,6 +78,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod bspline;
 pub mod cancel;
 pub mod check;
 pub mod double_double;

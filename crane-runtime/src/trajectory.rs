@@ -203,6 +203,13 @@ pub enum TrajectoryError {
         /// Total duration.
         tau: f64,
     },
+    /// A B-spline's knots, control points or degree do not make one
+    /// ([`crate::bspline::BSpline::new`]).
+    #[error("invalid B-spline: {reason}")]
+    Spline {
+        /// What is wrong.
+        reason: String,
+    },
     /// A start or end point with a NaN or infinite entry.
     #[error("the {which} point has a non-finite entry")]
     NonFinitePoint {
