@@ -119,6 +119,82 @@ impl<const A: usize> BSpline<A> {
         })
     }
 
+    /// The spline through `waypoints` at `times` (increasing, at least two),
+    /// at rest at both ends to order `rest` (its derivatives `1 ..= rest`
+    /// vanish there, so the held ends join it with `rest` continuous
+    /// derivatives): degree `2 rest + 1`, a knot at each interior waypoint's
+    /// time (continuous to order `2 rest` there), the control points solved
+    /// from the `m + 2 rest` conditions. Through two waypoints it is the
+    /// polynomial of degree `2 rest + 1` from rest to rest (with `rest = 4`
+    /// the built-in poly9 move).
+    pub fn through(times: &[f64], waypoints: &[SVector<f64, A>], rest: usize) -> Result<Self, TrajectoryError> {
+        let invalid = |reason: String| Err(TrajectoryError::Spline { reason });
+        let degree = 2 * rest + 1;
+        if times.len() != waypoints.len() || times.len() < 2 {
+            return invalid(format!(
+                "a path through waypoints needs at least two, each with its time; got {} waypoints and {} times",
+                waypoints.len(),
+                times.len()
+            ));
+        }
+        if let Some(k) = times
+            .windows(2)
+            .position(|w| !(w[1] > w[0]) || !w[0].is_finite() || !w[1].is_finite())
+        {
+            return invalid(format!(
+                "the waypoints' times must be finite and increasing: {} then {}",
+                times[k],
+                times[k + 1]
+            ));
+        }
+        if let Some(k) = waypoints.iter().position(|p| !p.iter().all(|v| v.is_finite())) {
+            return invalid(format!("waypoint {k} has a non-finite entry"));
+        }
+        let m = times.len();
+        let (t0, t1) = (times[0], times[m - 1]);
+        let mut knots = vec![t0; degree + 1];
+        knots.extend_from_slice(&times[1..m - 1]);
+        knots.extend(std::iter::repeat_n(t1, degree + 1));
+        let n = m + 2 * rest;
+        // the value of each basis function's derivative `k` at `t`: the
+        // spline of the unit control vector
+        let basis = |t: f64, k: usize| -> Result<Vec<f64>, TrajectoryError> {
+            (0..n)
+                .map(|j| {
+                    let unit = (0..n)
+                        .map(|i| SVector::<f64, 1>::from([f64::from(u8::from(i == j))]))
+                        .collect();
+                    Ok(BSpline::new(degree, knots.clone(), unit)?.evaluate(t, k)[0])
+                })
+                .collect()
+        };
+        let mut rows = Vec::with_capacity(n);
+        let mut rhs = Vec::with_capacity(n);
+        for (&t, point) in times.iter().zip(waypoints) {
+            rows.push(basis(t, 0)?);
+            rhs.push(*point);
+        }
+        for k in 1..=rest {
+            for t in [t0, t1] {
+                rows.push(basis(t, k)?);
+                rhs.push(SVector::zeros());
+            }
+        }
+        let matrix = nalgebra::DMatrix::from_fn(n, n, |i, j| rows[i][j]);
+        let lu = matrix.lu();
+        let mut control = vec![SVector::zeros(); n];
+        for c in 0..A {
+            let column = nalgebra::DVector::from_fn(n, |i, _| rhs[i][c]);
+            let Some(solved) = lu.solve(&column) else {
+                return invalid("the interpolation conditions are singular (waypoints too close in time)".into());
+            };
+            for (point, value) in control.iter_mut().zip(solved.iter()) {
+                point[c] = *value;
+            }
+        }
+        BSpline::new(degree, knots, control)
+    }
+
     /// The degree `p`.
     pub fn degree(&self) -> usize {
         self.degree
@@ -168,8 +244,9 @@ impl<const A: usize> BSpline<A> {
 pub const MAX_DEGREE: usize = 15;
 
 impl<const A: usize> Trajectory<A> for BSpline<A> {
-    /// The derivative of the spline inside its span; outside it the end
-    /// point held (derivatives 0); 0 above the degree.
+    /// The derivative of the spline inside its span, its ends included (the
+    /// spline's own one-sided value where a derivative jumps there); outside
+    /// it the end point held (derivatives 0); 0 above the degree.
     fn derivative(&self, t: f64, k: usize) -> SVector<f64, A> {
         let (t0, t1) = self.span();
         match k {
@@ -301,6 +378,64 @@ mod tests {
         let doubled = vec![0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.3, 1.6, 2.0, 2.0, 2.0, 2.0];
         let spline = BSpline::new(3, doubled, rest(1)).unwrap();
         assert_eq!(spline.continuity(), Some(1));
+    }
+
+    /// Through two waypoints at rest to order 4 the spline is poly9, the
+    /// built-in move (the unique polynomial of degree 9 from rest to rest):
+    /// every derivative equal to round-off.
+    #[test]
+    fn through_two_waypoints_at_rest_to_order_four_is_poly9() {
+        use crate::trajectory::Poly9;
+        let (start, end) = (vector![0.0, -5.0], vector![4.0, -3.0]);
+        let spline = BSpline::through(&[0.5, 5.5], &[start, end], 4).unwrap();
+        let poly9 = Poly9::new(0.5, 5.5, start, end).unwrap();
+        assert_eq!(spline.degree(), 9);
+        for step in 0..=50 {
+            let t = 0.5 + 5.0 * step as f64 / 50.0;
+            // (at the ends poly9 gives the rest's derivatives, the spline
+            // its own: they differ from the 5th on, which jumps there)
+            let top = if step == 0 || step == 50 { 4 } else { 9 };
+            for k in 0..=top {
+                let (got, expected) = (spline.derivative(t, k), poly9.derivative(t, k));
+                assert!(
+                    (got - expected).amax() <= 1e-10 * (1.0 + expected.amax()),
+                    "t = {t}, k = {k}"
+                );
+            }
+        }
+        assert_eq!(spline.continuity(), Some(4));
+    }
+
+    /// Through waypoints: at each time its waypoint, at both ends at rest
+    /// to the order asked, continuous to `2 rest` at the interior knots.
+    #[test]
+    fn through_waypoints_meets_them_at_rest_at_both_ends() {
+        let times = [0.0, 1.5, 2.0, 4.0];
+        let points = [
+            vector![0.0, -5.0],
+            vector![1.0, -2.0],
+            vector![2.5, -2.0],
+            vector![4.0, -5.0],
+        ];
+        let spline = BSpline::through(&times, &points, 3).unwrap();
+        for (&t, point) in times.iter().zip(&points) {
+            assert!((spline.derivative(t, 0) - point).amax() < 1e-12, "t = {t}");
+        }
+        for k in 1..=3 {
+            for t in [0.0, 4.0] {
+                assert!(spline.derivative(t, k).amax() < 1e-9, "t = {t}, k = {k}");
+            }
+        }
+        assert_eq!(spline.continuity(), Some(3));
+        let jump = |k: usize| (spline.derivative(1.5 + 1e-9, k) - spline.derivative(1.5 - 1e-9, k)).amax();
+        assert!(jump(6) < 1e-3 && jump(7) > 1e-2, "{} {}", jump(6), jump(7));
+        let refused = |times: &[f64], points: &[SVector<f64, 2>]| BSpline::through(times, points, 2).unwrap_err();
+        assert!(refused(&[0.0], &points[..1]).to_string().contains("at least two"));
+        assert!(
+            refused(&[0.0, 2.0, 1.0], &points[..3])
+                .to_string()
+                .contains("increasing")
+        );
     }
 
     #[test]
