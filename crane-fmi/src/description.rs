@@ -1,7 +1,10 @@
 //! `modelDescription.xml` (FMI 2.0, co-simulation) from the variable table,
 //! and the GUID that ties a description to its binary.
 
+use std::any::TypeId;
+use std::collections::HashMap;
 use std::fmt::Write;
+use std::sync::{LazyLock, Mutex, PoisonError};
 
 use crane_models::study::Formulation;
 use crane_models::{Case, Crane};
@@ -60,6 +63,22 @@ fn guid(body: &str) -> String {
 /// the bounded solution at the default step (from `t0 - T_pre` to `tf +
 /// T_post`: the FMU plays it back from there).
 pub fn default_experiment<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> (f64, f64) {
+    // found once per crane and process: every instance's start (and reset)
+    // asks, and for a crane whose default is stable inversion the answer
+    // is a whole solve
+    static FOUND: LazyLock<Mutex<HashMap<TypeId, (f64, f64)>>> = LazyLock::new(Default::default);
+    let key = TypeId::of::<C>();
+    let known = FOUND.lock().unwrap_or_else(PoisonError::into_inner).get(&key).copied();
+    if let Some(span) = known {
+        return span;
+    }
+    let span = find_default_experiment::<C, N, M, A>();
+    FOUND.lock().unwrap_or_else(PoisonError::into_inner).insert(key, span);
+    span
+}
+
+/// [`default_experiment`], found.
+fn find_default_experiment<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> (f64, f64) {
     let path = C::maneuver().path;
     let bounded = (Formulation::default_for::<C, N, M, A>() == Formulation::StableInversion)
         .then(|| {

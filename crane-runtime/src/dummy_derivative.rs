@@ -632,10 +632,7 @@ where
     S: Method,
 {
     // one run of the reduced system, which for a flat crane is this one
-    system_size::<Mdl, N, M, A>().map_err(|reason| Error::NoDummyDerivatives {
-        model: Mdl::INFO.name,
-        reason,
-    })?;
+    flat_crane::<Mdl, N, M, A>()?;
     crate::state_selection::simulate(model, trajectory, start, options, progress)
 }
 
@@ -662,6 +659,20 @@ where
         }
     }
     Mdl::visit_dummy_derivatives(Size)?
+}
+
+/// Refuse a crane without a flat dummy-derivative system ([`system_size`]):
+/// one with internal dynamics, or none declared.
+fn flat_crane<Mdl, const N: usize, const M: usize, const A: usize>() -> Result<(), Error>
+where
+    Mdl: CraneModel<N, M, A>,
+{
+    system_size::<Mdl, N, M, A>()
+        .map(|_| ())
+        .map_err(|reason| Error::NoDummyDerivatives {
+            model: Mdl::INFO.name,
+            reason,
+        })
 }
 
 /// Refuse a system with free jets (internal dynamics), which this module's
@@ -695,44 +706,9 @@ where
     Tr: Trajectory<A> + Clone + Send + 'static,
     S: Method + 'static,
 {
-    /// The stepper, with the system's size.
-    struct Build<'a, H, Tr, S: Method, const N: usize, const M: usize, const A: usize> {
-        model: H,
-        trajectory: Tr,
-        start: &'a State<N, M, A>,
-        options: &'a Options<S>,
-    }
-    impl<H, Tr, S, const N: usize, const M: usize, const A: usize> VisitDummyDerivatives<H::Target, N, M, A>
-        for Build<'_, H, Tr, S, N, M, A>
-    where
-        H: Deref<Target: CraneModel<N, M, A> + Sized> + Clone + Send + 'static,
-        Tr: Trajectory<A> + Clone + Send + 'static,
-        S: Method + 'static,
-    {
-        type Output = Result<Box<dyn Advance<N, M, A, Model = H::Target> + Send>, Error>;
-        fn visit<const J: usize>(self) -> Self::Output
-        where
-            H::Target: DummyDerivatives<N, M, A, J>,
-        {
-            let stepper = DummyDerivativeStepper::<_, _, _, N, M, A, J>::new(
-                self.model,
-                self.trajectory,
-                self.start,
-                self.options,
-            )?;
-            Ok(Box::new(stepper))
-        }
-    }
-    let build = Build {
-        model,
-        trajectory,
-        start,
-        options,
-    };
-    H::Target::visit_dummy_derivatives(build).map_err(|reason| Error::NoDummyDerivatives {
-        model: <H::Target as CraneModel<N, M, A>>::INFO.name,
-        reason,
-    })?
+    // the reduced system's stepper, which for a flat crane is this one
+    flat_crane::<H::Target, N, M, A>()?;
+    crate::state_selection::boxed_stepper(model, trajectory, start, options)
 }
 
 #[cfg(test)]

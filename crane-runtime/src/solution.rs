@@ -81,11 +81,17 @@ pub struct Solution<const N: usize, const M: usize, const A: usize> {
 }
 
 impl<const N: usize, const M: usize, const A: usize> Solution<N, M, A> {
+    /// The bytes one state of a run with `ropes` ropes takes: the state,
+    /// its Newton iterations and its tensions.
+    pub fn bytes_per_state(ropes: usize) -> usize {
+        std::mem::size_of::<State<N, M, A>>() + std::mem::size_of::<usize>() + ropes * std::mem::size_of::<f64>()
+    }
+
     /// An empty solution with room for `states` states, or
     /// [`Error::TooManySteps`] if that much cannot be reserved.
     pub fn with_capacity(info: ModelInfo, dt: f64, scheme: &'static str, states: usize) -> Result<Self, Error> {
         let ropes = info.ropes.len();
-        let per_state = std::mem::size_of::<State<N, M, A>>() + std::mem::size_of::<usize>() + ropes * 8;
+        let per_state = Self::bytes_per_state(ropes);
         let too_many = || Error::TooManySteps {
             steps: states.saturating_sub(1) as f64,
             bytes: states as f64 * per_state as f64,

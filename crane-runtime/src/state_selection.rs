@@ -26,7 +26,7 @@ use std::ops::{Deref, Range};
 use nalgebra::{Complex, DMatrix, DVector, SVector};
 
 use crate::driver::record;
-use crate::dummy_derivative::{self, DummyDerivative, DummyDerivativeStepper, PathJets};
+use crate::dummy_derivative::{DummyDerivative, DummyDerivativeStepper, PathJets};
 use crate::error::Error;
 use crate::model::{CraneModel, DummyDerivatives, VisitDummyDerivatives};
 use crate::newton::{NonlinearSystem, RowPattern, normalised_residual_sparse};
@@ -59,6 +59,13 @@ pub const RESELECT_GAIN: f64 = 10.0;
 /// first step's before the states are selected anew
 /// ([`SelectedStatesStepper`]): the ratio is free, the selection is not.
 pub const RESELECT_TRIGGER: f64 = 1e-2;
+
+impl Chain {
+    /// Its jets, `(coordinate, order)`, lowest first.
+    pub fn jets(self) -> impl Iterator<Item = (usize, u8)> {
+        (self.order..self.order + self.count).map(move |order| (self.coordinate, order))
+    }
+}
 
 /// Relative size below which a column of the row-equilibrated Jacobian is
 /// taken as dependent on the columns already chosen (the Jacobian's entries
@@ -244,11 +251,10 @@ where
             _ => format!("^({order})"),
         };
         (self.chains.iter())
-            .flat_map(|chain| {
-                (chain.order..chain.order + chain.count).map(move |order| {
-                    let name = coordinates.get(chain.coordinate).copied().unwrap_or("?");
-                    format!("{name}{}", prime(order))
-                })
+            .flat_map(|chain| chain.jets())
+            .map(|(coordinate, order)| {
+                let name = coordinates.get(coordinate).copied().unwrap_or("?");
+                format!("{name}{}", prime(order))
             })
             .collect()
     }
@@ -286,7 +292,7 @@ where
     /// The slots of the states of `chains` in `z`, in chain order.
     fn state_slots(&self, chains: &[Chain]) -> Vec<usize> {
         (chains.iter())
-            .flat_map(|c| (c.order..c.order + c.count).map(move |o| (c.coordinate, o)))
+            .flat_map(|chain| chain.jets())
             .map(|(j, order)| self.system.slot(j, order.into()))
             .collect()
     }
@@ -503,7 +509,7 @@ where
         let name = <H::Target as CraneModel<N, M, A>>::INFO.name;
         let dimension = <H::Target as DummyDerivatives<N, M, A, J>>::DIMENSION;
         let flat = self.system.start(start, dt, z)?;
-        self.system.gamma = self.system.drive(start.t);
+        self.prepare_time(start.t);
         let jacobian = self.model_jacobian(z);
         let offsets = <H::Target as DummyDerivatives<N, M, A, J>>::OFFSETS;
         let chains = select(&jacobian, &self.columns, offsets, N - A, dimension)
@@ -778,7 +784,7 @@ where
 /// A stepper of the reduced servo problem of the crane behind `model`
 /// (`Box<Mdl>`, `Arc<Mdl>`) that owns its model and path, behind
 /// [`Advance`], for long-lived runs such as an FMU instance: a flat crane's
-/// [`DummyDerivativeStepper`] ([`dummy_derivative::boxed_stepper`]), one
+/// [`DummyDerivativeStepper`], one
 /// with internal dynamics a [`Stepper`] of [`SelectedStates`] on the scheme
 /// of `options`.
 #[allow(clippy::type_complexity)]
@@ -791,7 +797,7 @@ pub fn boxed_stepper<H, Tr, S, const N: usize, const M: usize, const A: usize>(
 where
     H: Deref<Target: CraneModel<N, M, A> + Sized> + Clone + Send + 'static,
     Tr: Trajectory<A> + Clone + Send + 'static,
-    S: Method + Send + 'static,
+    S: Method + 'static,
 {
     /// The stepper, with the system's size.
     struct Build<'a, H, Tr, S: Method, const N: usize, const M: usize, const A: usize> {
@@ -805,7 +811,7 @@ where
     where
         H: Deref<Target: CraneModel<N, M, A> + Sized> + Clone + Send + 'static,
         Tr: Trajectory<A> + Clone + Send + 'static,
-        S: Method + Send + 'static,
+        S: Method + 'static,
     {
         type Output = Result<Box<dyn Advance<N, M, A, Model = H::Target> + Send>, Error>;
         fn visit<const J: usize>(self) -> Self::Output
@@ -813,7 +819,13 @@ where
             H::Target: DummyDerivatives<N, M, A, J>,
         {
             if <H::Target as DummyDerivatives<N, M, A, J>>::DIMENSION == 0 {
-                return dummy_derivative::boxed_stepper(self.model, self.trajectory, self.start, self.options);
+                let stepper = DummyDerivativeStepper::<_, _, _, N, M, A, J>::new(
+                    self.model,
+                    self.trajectory,
+                    self.start,
+                    self.options,
+                )?;
+                return Ok(Box::new(stepper));
             }
             let stepper = SelectedStatesStepper::<_, _, _, N, M, A, J>::new(
                 self.model,

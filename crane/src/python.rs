@@ -179,12 +179,18 @@ struct Columns {
 }
 
 impl Columns {
+    /// The bytes the columns of one state with `ropes` ropes take: `t`, `q`,
+    /// `v`, `u`, `lambda` and the tensions.
+    fn bytes_per_state<const N: usize, const M: usize, const A: usize>(ropes: usize) -> usize {
+        (1 + 2 * N + A + M + ropes) * std::mem::size_of::<f64>()
+    }
+
     /// The columns of `solution`, or where the memory for them cannot be
     /// had, why (an error for Python, not an abort of the interpreter).
     fn of<const N: usize, const M: usize, const A: usize>(solution: &Solution<N, M, A>) -> Result<Self, String> {
         let states = &solution.states;
         let ropes = solution.info.ropes.len();
-        let bytes = states.len() * (1 + 2 * N + A + M + ropes) * std::mem::size_of::<f64>();
+        let bytes = states.len() * Self::bytes_per_state::<N, M, A>(ropes);
         let out_of_memory = |_| {
             format!(
                 "out of memory: the run's {} states take {:.1} MB more as numpy arrays; take a longer dt or a \
@@ -303,14 +309,15 @@ impl Visit for RunJob {
             study::replay::check_step(settings.dt).map_err(|e| e.to_string())?;
         }
         // the peak: the run's states and their numpy copies, and a replay's
-        // (its forward steps, four per step of the run)
+        // (its forward steps per step of the run)
         let steps = ((case.tf() - case.t0()) / settings.dt).max(0.0);
         let ropes = <C::Model as CraneModel<N, M, A>>::INFO.ropes.len();
-        let per_state = std::mem::size_of::<crane_runtime::State<N, M, A>>()
-            + std::mem::size_of::<usize>()
-            + ropes * 8
-            + (1 + 2 * N + A + M + ropes) * 8;
-        let runs = if replay.is_some() { 1.0 + 4.0 } else { 1.0 };
+        let per_state = Solution::<N, M, A>::bytes_per_state(ropes) + Columns::bytes_per_state::<N, M, A>(ropes);
+        let runs = if replay.is_some() {
+            1.0 + study::replay::forward_steps_per_step() as f64
+        } else {
+            1.0
+        };
         check_memory(steps, runs * steps * per_state as f64)?;
         let mut outcome = study::run(&case, &settings, &mut |_, _| {}).map_err(|e| e.to_string())?;
         if let Some(request) = replay {

@@ -87,12 +87,18 @@ impl FeedbackSpec {
 /// crane's swing, and below where the replay's end time loses the step).
 pub const MAX_SETTLE: f64 = 1e6;
 
+/// The forward steps a replay takes per step of the run (its
+/// [`ReplayOptions`]' `refine`).
+pub fn forward_steps_per_step() -> usize {
+    ReplayOptions::new(0.0, Scheme::Bdf2).refine.max(1)
+}
+
 /// Refuse a run's step `dt` whose replay would step the plant below the
 /// runtime's smallest step (a replay takes [`ReplayOptions`]' `refine`
 /// forward steps per step of the run): before the run is made, naming the
 /// step the user gave.
 pub fn check_step(dt: f64) -> Result<(), StudyError> {
-    let refine = ReplayOptions::new(0.0, Scheme::Bdf2).refine.max(1);
+    let refine = forward_steps_per_step();
     if dt / refine as f64 >= crane_runtime::options::MIN_DT {
         return Ok(());
     }
