@@ -279,9 +279,11 @@ fn every_example_parses_and_builds() {
             continue;
         }
         let text = std::fs::read_to_string(&path).unwrap();
+        // a paper figure's scenario names it; another says how to run it
+        let name = path.file_name().unwrap().to_str().unwrap();
         assert!(
-            text.starts_with('#') && text.contains("Fig"),
-            "{}: comment header naming the figure",
+            text.starts_with('#') && (text.contains("Fig") || text.contains(&format!("--scenario examples/{name}"))),
+            "{}: comment header naming the figure or the command",
             path.display()
         );
         let model = text
@@ -2869,4 +2871,80 @@ fn a_replay_step_below_the_smallest_is_refused_before_the_run() {
     assert!(!out.exists(), "nothing written");
     // a run of 4e6 steps takes seconds; the refusal comes before it
     assert!(started.elapsed().as_secs_f64() < 2.0, "{:?}", started.elapsed());
+}
+
+/// A spline scenario through four waypoints: the load is at each waypoint
+/// at its time, at rest at the ends, and its inputs are continuous (their
+/// largest step-to-step change halves with the step); a spline's mistakes
+/// are one-line errors naming the key.
+#[test]
+fn a_spline_scenario_passes_its_waypoints_with_continuous_inputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = example("gantry-3d-spline.toml");
+    let largest_change = |dt: &str| {
+        let out = run_ok(
+            "gantry-3d",
+            &["--scenario", scenario.to_str().unwrap(), "--dt", dt],
+            dir.path(),
+            dt,
+        );
+        let (header, rows) = results(&out);
+        let column = |name: &str| header.iter().position(|h| h == name).unwrap();
+        let (x, y, z) = (column("x"), column("y"), column("z"));
+        for (t, point) in [
+            (0.0, [0.0, 0.0, -5.0]),
+            (2.0, [0.0, 0.0, -3.0]),
+            (7.0, [6.0, 3.0, -3.0]),
+            (9.0, [6.0, 3.0, -5.0]),
+        ] {
+            let row = rows.iter().find(|r| (r[0] - t).abs() < 1e-9).unwrap();
+            for (k, c) in [x, y, z].into_iter().enumerate() {
+                assert!((row[c] - point[k]).abs() < 1e-12, "t = {t}: {} = {}", header[c], row[c]);
+            }
+        }
+        let inputs: Vec<usize> = ["u1", "u2", "u3"].iter().map(|u| column(u)).collect();
+        rows.windows(2)
+            .map(|w| inputs.iter().map(|&c| (w[1][c] - w[0][c]).abs()).fold(0.0, f64::max))
+            .fold(0.0, f64::max)
+    };
+    let ratio = largest_change("0.005") / largest_change("0.01");
+    assert!((0.45..0.55).contains(&ratio), "ratio {ratio}");
+
+    let spline = "trajectory = \"spline\"\n";
+    let two = "waypoints = [[0, 0, -5], [6, 3, -3]]\ntimes = [0, 5]\n";
+    expect_error("gantry-3d", spline, &["`waypoints`", "`times`"]);
+    expect_error(
+        "gantry-3d",
+        &format!("{two}degree = 7\n"),
+        &["`degree`", "too low", "degree 9 or more"],
+    );
+    expect_error("gantry-3d", &format!("{two}degree = 10\n"), &["`degree`", "odd"]);
+    expect_error("gantry-3d", &format!("{two}end = [1, 2, 3]\n"), &["`end`", "last"]);
+    expect_error("gantry-3d", &format!("{two}t1 = 3\n"), &["`t1`", "`times`"]);
+    expect_error(
+        "gantry-3d",
+        &format!("trajectory = \"poly9\"\n{two}"),
+        &["`waypoints`", "only to trajectory = \"spline\""],
+    );
+    expect_error(
+        "gantry-3d",
+        "waypoints = [[0, 0, -5], [6, 3]]\ntimes = [0, 5]\n",
+        &["`waypoints`", "waypoint 2 needs 3 numbers", "(x, y, z)"],
+    );
+    expect_error(
+        "gantry-3d",
+        "waypoints = [[0, 0, -5], [6, 3, -3]]\ntimes = [5, 0]\n",
+        &["`times`", "increasing"],
+    );
+    expect_error(
+        "gantry-3d",
+        "waypoints = [[0, 0, -5]]\ntimes = [0]\n",
+        &["`times`", "at least two"],
+    );
+    // a cubic Bezier from rest is not at rest to order 4 at its ends
+    expect_error(
+        "gantry-3d",
+        "knots = [0, 0, 0, 0, 1, 1, 1, 1]\ncontrol = [[0, 0, -5], [0, 0, -5], [6, 3, -3], [6, 3, -3]]\n",
+        &["`control`", "only to order 1", "order 4"],
+    );
 }

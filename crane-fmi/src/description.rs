@@ -10,7 +10,7 @@ use crane_models::study::Formulation;
 use crane_models::{Case, Crane};
 use crane_runtime::Options;
 
-use crate::variables::{Causality, NameClash, variables};
+use crate::variables::{Causality, TableError, variables};
 
 /// The `modelIdentifier` of a crane: its name with every character that is
 /// not ASCII alphanumeric replaced by `_` (`navy-planar` → `navy_planar`);
@@ -94,7 +94,7 @@ fn find_default_experiment<C: Crane<N, M, A>, const N: usize, const M: usize, co
 
 /// `modelDescription.xml` of crane `C` and its GUID.
 pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>()
--> Result<(String, String), NameClash> {
+-> Result<(String, String), TableError> {
     let table = variables::<C, N, M, A>()?;
     let (start, stop) = default_experiment::<C, N, M, A>();
     let mut vars = String::new();

@@ -19,7 +19,7 @@ use nalgebra::SVector;
 
 use crate::description::default_experiment;
 use crate::variables::{
-    Causality, EXTERNAL_PATH, NameClash, PathChoice, Role, Variable, path_help, path_of_code, status, variables,
+    Causality, EXTERNAL_PATH, PathChoice, Role, TableError, Variable, path_help, path_of_code, status, variables,
 };
 
 /// What an instance can be asked to do, whatever its crane: the object the
@@ -158,7 +158,7 @@ pub struct Instance<C: Crane<N, M, A>, const N: usize, const M: usize, const A: 
 
 impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance<C, N, M, A> {
     /// A new instance with every variable at its start value.
-    pub fn new() -> Result<Self, NameClash> {
+    pub fn new() -> Result<Self, TableError> {
         let table = variables::<C, N, M, A>()?;
         let reals: Vec<f64> = table.iter().filter(|v| !v.integer).map(|v| v.start).collect();
         let mut integers = [0; 3];

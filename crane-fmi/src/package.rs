@@ -16,7 +16,7 @@ use crate::description::{model_description, model_identifier};
 pub enum PackageError {
     /// The crane's variables clash.
     #[error(transparent)]
-    Variables(#[from] crate::variables::NameClash),
+    Variables(#[from] crate::variables::TableError),
     /// Reading the library or writing the archive.
     #[error("{context}: {source}")]
     Io {

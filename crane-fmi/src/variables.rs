@@ -126,7 +126,8 @@ pub fn path_of_code(code: i32) -> Option<PathChoice> {
 pub fn path_help() -> String {
     let profiles: Vec<String> = ProfileKind::ALL
         .iter()
-        .map(|k| format!("{} {}", k.code(), k.name()))
+        .zip(0..)
+        .map(|(k, code)| format!("{code} {}", k.name()))
         .collect();
     format!(
         "{} (the built-in move) or {EXTERNAL_PATH} external target",
@@ -134,19 +135,30 @@ pub fn path_help() -> String {
     )
 }
 
-/// Two variables share a name (a model parameter called `dt`, say).
+/// Why a crane has no table of FMU variables.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("two FMU variables are called `{0}`; rename the model's parameter or coordinate")]
-pub struct NameClash(pub String);
+pub enum TableError {
+    /// Two variables share a name (a model parameter called `dt`, say).
+    #[error("two FMU variables are called `{0}`; rename the model's parameter or coordinate")]
+    NameClash(String),
+    /// The crane's default move is a spline; the FMU's built-in move is a
+    /// straight one, set by its start and end points.
+    #[error(
+        "the crane's default move is a spline, but an FMU's built-in move is a straight one (poly9 or three-phase \
+         from start_ to end_): give the crane a straight default move"
+    )]
+    SplineMove,
+}
 
 /// The variables of crane `C`, in model-description order: the Reals
 /// first, with value references `0..` in table order, then the Integers.
-pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Result<Vec<Variable>, NameClash>
-{
+pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>()
+-> Result<Vec<Variable>, TableError> {
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
     let model = C::Model::default();
     let maneuver = C::maneuver();
     let spec = maneuver.path;
+    let path_code = spec.profile.kind().code().ok_or(TableError::SplineMove)?;
     let load = &info.coordinates[N - A..];
     let mut table = Vec::new();
     let real = |table: &mut Vec<Variable>, name: String, causality, start, description: String, role| {
@@ -291,7 +303,7 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
         integer: true,
         value_reference: 1,
         causality: Causality::Parameter,
-        start: f64::from(spec.profile.kind().code()),
+        start: f64::from(path_code),
         description: format!("load path: {}", path_help()),
         role: Role::Path,
     });
@@ -307,7 +319,7 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
     let mut seen = HashSet::new();
     for v in &table {
         if !seen.insert(v.name.as_str()) {
-            return Err(NameClash(v.name.clone()));
+            return Err(TableError::NameClash(v.name.clone()));
         }
     }
     Ok(table)

@@ -122,11 +122,19 @@ impl<const A: usize> BSpline<A> {
     /// The spline through `waypoints` at `times` (increasing, at least two),
     /// at rest at both ends to order `rest` (its derivatives `1 ..= rest`
     /// vanish there, so the held ends join it with `rest` continuous
-    /// derivatives): degree `2 rest + 1`, a knot at each interior waypoint's
-    /// time (continuous to order `2 rest` there), the control points solved
-    /// from the `m + 2 rest` conditions. Through two waypoints it is the
-    /// polynomial of degree `2 rest + 1` from rest to rest (with `rest = 4`
-    /// the built-in poly9 move).
+    /// derivatives), continuous to order `rest` everywhere: between two
+    /// waypoints a polynomial of degree `2 rest + 1` (a Hermite segment),
+    /// each interior waypoint a knot of multiplicity `rest + 1`.
+    ///
+    /// At an interior waypoint each coordinate's velocity is the slope of
+    /// the chord through its neighbours (Catmull-Rom), or zero where the
+    /// coordinate turns there or holds still on one side (so a lift, a
+    /// traverse and a lowering do not overshoot their corners), and its
+    /// derivatives `2 ..= rest` are zero. A spline continuous to order `2
+    /// rest` at the waypoints (the one of least `int |gamma^(rest+1)|^2`)
+    /// would swing far past them on such a path. Through two waypoints it
+    /// is the polynomial of degree `2 rest + 1` from rest to rest (with
+    /// `rest = 4` the built-in poly9 move).
     pub fn through(times: &[f64], waypoints: &[SVector<f64, A>], rest: usize) -> Result<Self, TrajectoryError> {
         let invalid = |reason: String| Err(TrajectoryError::Spline { reason });
         let degree = 2 * rest + 1;
@@ -150,12 +158,19 @@ impl<const A: usize> BSpline<A> {
         if let Some(k) = waypoints.iter().position(|p| !p.iter().all(|v| v.is_finite())) {
             return invalid(format!("waypoint {k} has a non-finite entry"));
         }
+        if degree > MAX_DEGREE {
+            return invalid(format!(
+                "at rest to order {rest} the spline has degree {degree}, above the highest, {MAX_DEGREE}"
+            ));
+        }
         let m = times.len();
         let (t0, t1) = (times[0], times[m - 1]);
         let mut knots = vec![t0; degree + 1];
-        knots.extend_from_slice(&times[1..m - 1]);
+        for &t in &times[1..m - 1] {
+            knots.extend(std::iter::repeat_n(t, rest + 1));
+        }
         knots.extend(std::iter::repeat_n(t1, degree + 1));
-        let n = m + 2 * rest;
+        let n = m * (rest + 1);
         // the value of each basis function's derivative `k` at `t`: the
         // spline of the unit control vector
         let basis = |t: f64, k: usize| -> Result<Vec<f64>, TrajectoryError> {
@@ -168,16 +183,23 @@ impl<const A: usize> BSpline<A> {
                 })
                 .collect()
         };
+        let velocity = |i: usize| -> SVector<f64, A> {
+            if i == 0 || i == m - 1 {
+                return SVector::zeros();
+            }
+            let before = (waypoints[i] - waypoints[i - 1]) / (times[i] - times[i - 1]);
+            let after = (waypoints[i + 1] - waypoints[i]) / (times[i + 1] - times[i]);
+            let chord = (waypoints[i + 1] - waypoints[i - 1]) / (times[i + 1] - times[i - 1]);
+            SVector::from_fn(|c, _| if before[c] * after[c] > 0.0 { chord[c] } else { 0.0 })
+        };
         let mut rows = Vec::with_capacity(n);
         let mut rhs = Vec::with_capacity(n);
-        for (&t, point) in times.iter().zip(waypoints) {
+        for (i, (&t, point)) in times.iter().zip(waypoints).enumerate() {
             rows.push(basis(t, 0)?);
             rhs.push(*point);
-        }
-        for k in 1..=rest {
-            for t in [t0, t1] {
+            for k in 1..=rest {
                 rows.push(basis(t, k)?);
-                rhs.push(SVector::zeros());
+                rhs.push(if k == 1 { velocity(i) } else { SVector::zeros() });
             }
         }
         let matrix = nalgebra::DMatrix::from_fn(n, n, |i, j| rows[i][j]);
@@ -192,12 +214,25 @@ impl<const A: usize> BSpline<A> {
                 point[c] = *value;
             }
         }
+        // a clamped spline starts at its first control point and ends at
+        // its last: the first and the last waypoint, exactly
+        (control[0], control[n - 1]) = (waypoints[0], waypoints[m - 1]);
         BSpline::new(degree, knots, control)
     }
 
     /// The degree `p`.
     pub fn degree(&self) -> usize {
         self.degree
+    }
+
+    /// The knots `t_0 ..= t_(n+p)`.
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+
+    /// The control points `P_0 ..= P_(n-1)`.
+    pub fn control_points(&self) -> &[SVector<f64, A>] {
+        &self.control[0]
     }
 
     /// The span of the motion, `[t_p, t_n]`.
@@ -238,10 +273,12 @@ impl<const A: usize> BSpline<A> {
     }
 }
 
-/// The highest degree a [`BSpline`] evaluates with its fixed workspace
-/// (above [`MAX_PATH_ORDER`](crate::dummy_derivative::MAX_PATH_ORDER) + 1,
-/// which a crane's continuous inputs may need).
-pub const MAX_DEGREE: usize = 15;
+/// The highest degree a [`BSpline`] evaluates with its fixed workspace:
+/// `2 p + 1` for the highest path order `p`
+/// ([`MAX_PATH_ORDER`](crate::dummy_derivative::MAX_PATH_ORDER)), the
+/// degree of a path through waypoints at rest to that order at both ends
+/// ([`BSpline::through`]), whose inputs are then continuous.
+pub const MAX_DEGREE: usize = 2 * crate::dummy_derivative::MAX_PATH_ORDER + 1;
 
 impl<const A: usize> Trajectory<A> for BSpline<A> {
     /// The derivative of the spline inside its span, its ends included (the
@@ -407,7 +444,10 @@ mod tests {
     }
 
     /// Through waypoints: at each time its waypoint, at both ends at rest
-    /// to the order asked, continuous to `2 rest` at the interior knots.
+    /// to the order asked, continuous to order `rest` at the interior
+    /// waypoints and no further (the derivative `rest + 1` jumps there),
+    /// where a coordinate that turns is at rest and one that goes on has
+    /// the velocity of the chord through the neighbours.
     #[test]
     fn through_waypoints_meets_them_at_rest_at_both_ends() {
         let times = [0.0, 1.5, 2.0, 4.0];
@@ -428,7 +468,19 @@ mod tests {
         }
         assert_eq!(spline.continuity(), Some(3));
         let jump = |k: usize| (spline.derivative(1.5 + 1e-9, k) - spline.derivative(1.5 - 1e-9, k)).amax();
-        assert!(jump(6) < 1e-3 && jump(7) > 1e-2, "{} {}", jump(6), jump(7));
+        // (derivative k changes by about 1e-9 times derivative k + 1 across
+        // the 2e-9 s; the 4th is of order 1e3 here)
+        assert!(jump(3) < 1e-4 && jump(4) > 1.0, "{} {}", jump(3), jump(4));
+        // x goes on at 1.5 s at the chord's slope (2.5 - 0) / (2 - 0), and at
+        // 2 s at (4 - 1) / (4 - 1.5); z turns at both (rises, holds, drops):
+        // at rest
+        assert!((spline.derivative(1.5, 1) - vector![1.25, 0.0]).amax() < 1e-9);
+        assert!((spline.derivative(2.0, 1) - vector![1.2, 0.0]).amax() < 1e-9);
+        // z never rises above the traverse's height, nor drops below the ends'
+        for step in 0..=400 {
+            let z = spline.derivative(4.0 * step as f64 / 400.0, 0)[1];
+            assert!((-5.0 - 1e-12..=-2.0 + 1e-12).contains(&z), "z = {z}");
+        }
         let refused = |times: &[f64], points: &[SVector<f64, 2>]| BSpline::through(times, points, 2).unwrap_err();
         assert!(refused(&[0.0], &points[..1]).to_string().contains("at least two"));
         assert!(
@@ -446,7 +498,7 @@ mod tests {
             other => panic!("{other:?}"),
         };
         assert!(reason(0, vec![0.0, 1.0], 1).contains("at least 1"));
-        assert!(reason(16, vec![0.0; 34], 17).contains("at most 15"));
+        assert!(reason(22, vec![0.0; 46], 23).contains("at most 21"));
         assert!(reason(3, vec![0.0; 7], 3).contains("at least 4 control points"));
         assert!(reason(1, vec![0.0, 0.0, 1.0], 2).contains("need 4 knots"));
         assert!(reason(1, vec![0.0, 0.0, 2.0, 1.0, 1.0], 3).contains("decrease"));

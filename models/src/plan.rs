@@ -298,7 +298,7 @@ pub fn with_duration<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
     model: C::Model,
     duration: f64,
 ) -> Result<Case<C, N, M, A>, String> {
-    let spec = *case.path().spec();
+    let spec = case.path().spec().clone();
     let settle = (case.tf() - spec.t1).max(0.0);
     let scale = duration / (spec.t1 - spec.t0);
     let profile = spec.profile.scaled(scale);

@@ -206,7 +206,7 @@ fn the_structure_says_how_smooth_the_path_must_be() {
         (Profile::ThreePhase { tau0: 5.0 }, 4),
         (Profile::SmoothThreePhase { tau0: 5.0 }, 6),
     ] {
-        let p = path(profile);
+        let p = path(profile.clone());
         let jump = |order: usize| (p.derivative(1e-7, order)[0] - p.derivative(-1e-7, order)[0]).abs();
         assert!(
             jump(k) < 1e-6 && jump(k + 1) > 1e-6,

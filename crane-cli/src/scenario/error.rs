@@ -73,6 +73,8 @@ pub enum ScenarioError {
     DefaultRampTooLong { tau0: f64, duration: f64 },
     #[error("scenario: the load path (keys `trajectory`, `tau0`, `start`, `end`, `t0`, `t1`): {0}")]
     Path(TrajectoryError),
+    #[error("scenario: `{key}`: {reason}")]
+    Spline { key: &'static str, reason: String },
     #[error("scenario: `parameters.{key}`: {source}")]
     Parameter { key: String, source: UnknownParameter },
     #[error("scenario: `parameters.{key}` = {} must be positive (the model declares it `positive`)", Number(*.value))]
@@ -106,6 +108,7 @@ impl ScenarioError {
             MotionEndsBeforeStart { .. } => Some("t1".into()),
             RampWithoutPhases | RampMissing | DefaultRampTooLong { .. } => Some("tau0".into()),
             Path(_) => Some("trajectory".into()),
+            Spline { key, .. } => Some(key.to_string()),
             Parameter { key, .. } | NotPositiveParameter { key, .. } => Some(format!("parameters.{key}")),
             Physical(_) => Some("parameters".into()),
             UnknownInput { key, .. } | LimitNotPositive { key, .. } => Some(format!("limits.{key}")),

@@ -36,6 +36,16 @@ pub struct ScenarioFile {
     pub trajectory: Option<ProfileKind>,
     /// Ramp duration of `three-phase`, s.
     pub tau0: Option<f64>,
+    /// A spline's waypoints, load coordinates each.
+    pub waypoints: Option<Vec<Vec<f64>>>,
+    /// The waypoints' times, s.
+    pub times: Option<Vec<f64>>,
+    /// A spline's degree.
+    pub degree: Option<usize>,
+    /// A spline's knots in the move's normalised time, from 0 to 1.
+    pub knots: Option<Vec<f64>>,
+    /// A spline's control points, load coordinates each.
+    pub control: Option<Vec<Vec<f64>>>,
     /// Load coordinates at `t0`.
     pub start: Option<Vec<f64>>,
     /// Load coordinates at `t1`.

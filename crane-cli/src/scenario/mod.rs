@@ -26,6 +26,18 @@
 //!
 //! Every key is optional; what is missing comes from the paper's maneuver
 //! (the built-in case), and command-line flags override the file.
+//!
+//! A spline path replaces `start`, `end`, `t0` and `t1` by its points:
+//!
+//! ```toml
+//! trajectory = "spline"
+//! times = [0.0, 2.0, 7.0, 9.0]                    # s, increasing
+//! waypoints = [[0, 0, -5], [0, 0, -3], [6, 3, -3], [6, 3, -5]]
+//! degree = 9                # optional, odd: by default 2 p + 1 for path order p
+//! ```
+//!
+//! or `knots` (normalised time, 0 to 1) and `control` points, with `t0` and
+//! `t1` / `duration` as for a straight move.
 
 mod error;
 mod file;
@@ -60,7 +72,7 @@ mod tests {
     use crane_models::navy_planar::Description;
     use proptest::prelude::*;
 
-    const KEYS: [&str; 17] = [
+    const KEYS: [&str; 22] = [
         "dt",
         "tf",
         "formulation",
@@ -78,6 +90,11 @@ mod tests {
         "parameters.mass",
         "limits.u1",
         "limits.u9",
+        "waypoints",
+        "times",
+        "knots",
+        "control",
+        "degree",
     ];
 
     /// A TOML value of any kind: numbers (also negative, zero, huge, nan,
@@ -111,6 +128,18 @@ mod tests {
                 "[{}]",
                 v.iter().map(|x| format!("{x:?}")).collect::<Vec<_>>().join(", ")
             )),
+            // rows of points (waypoints, control points), some of them ragged
+            prop::collection::vec(prop::collection::vec(-20.0..20.0f64, 1..4), 0..6).prop_map(|rows| format!(
+                "[{}]",
+                rows.iter()
+                    .map(|v| format!(
+                        "[{}]",
+                        v.iter().map(|x| format!("{x:?}")).collect::<Vec<_>>().join(", ")
+                    ))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )),
+            Just("\"spline\"".to_string()),
         ]
     }
 

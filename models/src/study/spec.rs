@@ -142,7 +142,7 @@ impl<const A: usize> RunSpec<A> {
             return Err(SpecError::EndBeforeStart { tf: self.tf, t0 });
         }
         Options::new(self.dt, self.tf).map_err(SpecError::Time)?;
-        let path = Path::new(self.path).map_err(SpecError::Path)?;
+        let path = Path::new(self.path.clone()).map_err(SpecError::Path)?;
         let mut model = C::Model::default();
         for (name, value) in &self.parameters {
             model
