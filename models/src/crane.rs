@@ -26,6 +26,23 @@ pub struct Maneuver<const A: usize> {
     pub p0: Vec<f64>,
 }
 
+/// A lower bound on a move's duration, and its derivation in one line.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct LowerBound {
+    /// The duration no move under the limits beats, s.
+    pub duration: f64,
+    /// How it follows from the crane's mechanics.
+    pub derivation: String,
+}
+
+/// The bang-bang time `2 sqrt(d m / f)` of a mass `m` moved `d` from rest
+/// to rest by a force at most `f`: accelerating at `f / m` for half the
+/// way, braking for the other half, the fastest any force history `|F| <=
+/// f` moves it.
+pub fn bang_bang(distance: f64, mass: f64, force: f64) -> f64 {
+    2.0 * (distance.abs() * mass / force).sqrt()
+}
+
 /// One crane: the only description the command line, planning, replay and
 /// the FMU need. Implemented by a unit type per crane
 /// (`navy_planar::Description`, ... for the built-ins), listed once in a
@@ -48,6 +65,21 @@ pub trait Crane<const N: usize, const M: usize, const A: usize>: 'static {
     /// if the crane has one (and it is finite there).
     fn reference(model: &Self::Model, path: &Path<A>, t: f64) -> Option<State<N, M, A>> {
         let _ = (model, path, t);
+        None
+    }
+
+    /// A lower bound on the duration of any rest-to-rest move of the load
+    /// from `start` to `end` under the limits `|u_k| <= limit` (`(k,
+    /// limit)`), where the crane's mechanics give one (the rigid-body
+    /// bang-bang time of a drive that alone moves a body of known mass);
+    /// `None` (the default) where it gives none.
+    fn lower_bound(
+        model: &Self::Model,
+        start: &SVector<f64, A>,
+        end: &SVector<f64, A>,
+        limits: &[(usize, f64)],
+    ) -> Option<LowerBound> {
+        let _ = (model, start, end, limits);
         None
     }
 

@@ -40,7 +40,9 @@ use crate::path::{Path, PathSpec};
 use crate::study::summary::slack_allowance;
 
 mod report;
+mod shape;
 pub use report::{Column, LimitReport, Report, check_grid, sweep_columns};
+pub use shape::{MAX_CONTROL_POINTS, ShapeProgress, ShapeSettings, Shaped, fastest_shape};
 
 /// Torque limits `|u_k| <= limit` and tension floors `N_r >= floor`, by
 /// input and rope index.

@@ -9,7 +9,7 @@ use nalgebra::vector;
 use super::model::Gantry3d;
 use super::reference::reference_at;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver, finite_state};
+use crate::crane::{Crane, LowerBound, Maneuver, bang_bang, finite_state};
 use crate::drawing::{Drawing, Pose};
 use crate::path::{Path, PathSpec, Profile};
 
@@ -58,6 +58,47 @@ impl Crane<6, 1, 3> for Description {
             u: r.u,
             lambda: r.lambda,
         })
+    }
+
+    /// The X momentum of the whole crane (bridge, trolley, load: `m_b +
+    /// m_t + m_l`) changes only by `u1`, the Y momentum of the trolley and
+    /// the load (`m_t + m_l`) only by `u2` (the rope's pull is internal to
+    /// each, and gravity is vertical). From rest to rest the load hangs
+    /// below the trolley at both ends, so each group's centre of mass moves
+    /// as far as the load does: no move under `|u1| <= f1` is faster than
+    /// the bang-bang time of that mass over that distance
+    /// ([`bang_bang`](crate::crane::bang_bang)), and the same for `u2`.
+    fn lower_bound(
+        model: &Gantry3d,
+        start: &SVector<f64, 3>,
+        end: &SVector<f64, 3>,
+        limits: &[(usize, f64)],
+    ) -> Option<LowerBound> {
+        limits
+            .iter()
+            .filter_map(|&(k, force)| {
+                let (mass, what, axis) = match k {
+                    0 => (
+                        model.m_b + model.m_t + model.m_l,
+                        "the whole crane (m_b + m_t + m_l)",
+                        0,
+                    ),
+                    1 => (model.m_t + model.m_l, "the trolley and the load (m_t + m_l)", 1),
+                    _ => return None,
+                };
+                let distance = (end[axis] - start[axis]).abs();
+                (distance > 0.0).then(|| LowerBound {
+                    duration: bang_bang(distance, mass, force),
+                    derivation: format!(
+                        "{} alone moves {what}, {mass} kg, {distance} m along {}: bang-bang 2 sqrt(d m / |u|max) \
+                         at |{}| <= {force}",
+                        ["u1", "u2"][k],
+                        ["X", "Y"][axis],
+                        ["u1", "u2"][k]
+                    ),
+                })
+            })
+            .max_by(|a, b| a.duration.total_cmp(&b.duration))
     }
 
     fn minimal_guess(_: &Gantry3d, start: &State<6, 1, 3>) -> Vec<f64> {
