@@ -1,7 +1,7 @@
 """Inverse dynamics of underactuated cranes: whole runs into numpy arrays."""
 
 from os import PathLike
-from typing import IO, Any, Mapping, Optional, Sequence, Union, final
+from typing import IO, Any, Literal, Mapping, Optional, Sequence, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -182,10 +182,15 @@ def fastest(
     scheme: Optional[str] = None,
     dt: Optional[float] = None,
     tolerance: Optional[float] = None,
+    shape: Literal["time-scaled", "optimal"] = "time-scaled",
+    control_points: Optional[int] = None,
 ) -> dict[str, Any]:
     """The shortest feasible duration as `crane fastest` finds it: the dict
-    of fastest.json with `run`, the run at the answer (a dict of arrays);
-    raises CraneError."""
+    of fastest.json with `run`, the run at the answer (a dict of arrays),
+    and `scenario`, the answer's scenario keys (`run(model,
+    scenario=...)` runs it); `shape="optimal"` optimises the path's shape
+    with the duration (`control_points` per load coordinate, 20 by
+    default); raises CraneError."""
 
 def sweep(
     model: str,

@@ -2948,3 +2948,110 @@ fn a_spline_scenario_passes_its_waypoints_with_continuous_inputs() {
         &["`control`", "only to order 1", "order 4"],
     );
 }
+
+/// The peak |u| of input `name` in a run's results.csv.
+fn peak_of(out: &Path, name: &str) -> f64 {
+    let (header, rows) = results(out);
+    let c = header.iter().position(|h| h == name).unwrap();
+    rows.iter().map(|r| r[c].abs()).fold(0.0, f64::max)
+}
+
+/// `crane fastest` writes its answer as a scenario, `fastest.toml`, and
+/// prints the command that runs it: a three-phase move, whose ramps the
+/// search scales with the duration, peaks at the limit when run as
+/// written (double-pendulum under |u1| <= 500 N: 499.88 N at T* = 9.1003 s,
+/// within 0.1 % of the limit; `--tf 9.1003` alone keeps the ramps and
+/// peaks at 445.8).
+#[test]
+fn fastest_writes_its_answer_as_a_scenario_that_reproduces_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fast");
+    let result = crane(&[
+        "fastest",
+        "double-pendulum",
+        "--limit",
+        "u1=500",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let command = format!(
+        "crane run double-pendulum --scenario {}",
+        out.join("fastest.toml").display()
+    );
+    assert!(stdout.contains(&command), "{stdout}");
+    let scenario = out.join("fastest.toml");
+    let run = run_ok(
+        "double-pendulum",
+        &["--scenario", scenario.to_str().unwrap()],
+        dir.path(),
+        "run",
+    );
+    let peak = peak_of(&run, "u1");
+    assert!(peak <= 500.0 && peak > 499.5, "{peak}");
+}
+
+/// `crane fastest --shape optimal`: gantry-3d under |u1| <= 1000 N, the
+/// shaped move within 5 % of the rigid-body bound 4.899 s (the time-scaled
+/// poly9: 6.553 s), reported in fastest.json with the bound and the gap;
+/// its fastest.toml, run by `crane run` at dt = 0.5 ms, stays within the
+/// limit with the rope taut and the load at rest at both ends; the plots
+/// show both moves.
+#[test]
+fn fastest_with_an_optimal_shape_comes_near_the_bound_and_runs_as_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("shaped");
+    let result = crane(&[
+        "fastest",
+        "gantry-3d",
+        "--limit",
+        "u1=1000",
+        "--shape",
+        "optimal",
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
+    let duration = json["duration"].as_f64().unwrap();
+    let bound = json["shape"]["lower_bound"]["duration"].as_f64().unwrap();
+    assert!((bound - 4.898979485566356).abs() < 1e-12, "{json}");
+    assert!(duration >= bound && duration <= 1.05 * bound, "{json}");
+    assert_eq!(json["shape"]["kind"], "optimal", "{json}");
+    assert!(
+        (json["shape"]["time_scaled"].as_f64().unwrap() - 6.553).abs() < 0.002,
+        "{json}"
+    );
+    assert!((json["shape"]["gap"].as_f64().unwrap() - (duration / bound - 1.0)).abs() < 1e-12);
+    for file in [
+        "fastest.json",
+        "fastest.toml",
+        "fastest-inputs.svg",
+        "fastest-tensions.svg",
+        "fastest-path.svg",
+    ] {
+        assert!(out.join(file).exists(), "{file}");
+    }
+    let scenario = out.join("fastest.toml");
+    let tf = format!("{}", (duration / 0.0005).ceil() * 0.0005);
+    let run = run_ok(
+        "gantry-3d",
+        &["--scenario", scenario.to_str().unwrap(), "--dt", "0.0005", "--tf", &tf],
+        dir.path(),
+        "run",
+    );
+    let peak = peak_of(&run, "u1");
+    assert!(peak <= 1000.0 && peak > 995.0, "{peak}");
+    let summary = summary_json(&run);
+    let rope = &summary["ropes"][0];
+    assert!(
+        rope["first_slack"].is_null() && rope["min_tension"].as_f64().unwrap() > 0.0,
+        "{summary}"
+    );
+    let (header, rows) = results(&run);
+    let x = header.iter().position(|h| h == "x").unwrap();
+    let (first, last) = (&rows[0], rows.last().unwrap());
+    assert_eq!((first[x], last[x]), (0.0, 6.0));
+}

@@ -47,6 +47,24 @@ def test_fastest_is_the_command_line_s(tmp_path):
     assert np.max(np.abs(run["u"][:, 1])) <= 150.0
 
 
+def test_the_fastest_shaped_move_is_the_command_line_s_and_runs_from_its_scenario(tmp_path):
+    f = crane.fastest("gantry-3d", limits={"u1": 1000.0}, shape="optimal", control_points=8)
+    out = cli(tmp_path, "fastest", "gantry-3d", "--limit", "u1=1000", "--shape", "optimal", "--control-points", "8",
+              "--quiet")
+    expected = json.loads((out / "fastest.json").read_text())
+    for key in ["duration", "binding", "limits", "shape", "evaluations", "bracket", "interval"]:
+        assert f[key] == expected[key], key
+    assert f["shape"]["kind"] == "optimal" and f["shape"]["lower_bound"]["duration"] <= f["duration"]
+    # the answer's scenario runs as written: the limit kept, the same path
+    assert f["scenario"]["trajectory"] == "spline" and f["scenario"]["t1"] == f["duration"]
+    r = crane.run("gantry-3d", scenario=f["scenario"])
+    assert np.max(np.abs(r.u[:, 0])) <= 1000.0
+    with pytest.raises(crane.CraneError, match="time-scaled"):
+        crane.fastest("gantry-3d", limits={"u1": 1000.0}, shape="best")
+    with pytest.raises(crane.CraneError, match="control_points"):
+        crane.fastest("gantry-3d", limits={"u1": 1000.0}, control_points=8)
+
+
 def test_a_sweep_is_the_command_line_s_sweep_csv(tmp_path):
     s = crane.sweep("navy-planar", {"m_l": np.linspace(80.0, 120.0, 3)}, durations=[3.0, 4.0], limits={"u2": 150.0})
     out = cli(tmp_path, "sweep", "navy-planar", "--param", "m_l=80:120:3", "--duration", "3:4:2", "--limit",

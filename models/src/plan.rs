@@ -35,13 +35,13 @@ use crane_runtime::error::{Number, Rounded};
 use crane_runtime::{CraneModel, Options, Scheme, Solution};
 
 use crate::case::Case;
-use crate::crane::Crane;
+use crate::crane::{Crane, LowerBound};
 use crate::path::{Path, PathSpec};
 use crate::study::summary::slack_allowance;
 
 mod report;
 mod shape;
-pub use report::{Column, LimitReport, Report, check_grid, sweep_columns};
+pub use report::{Column, LimitReport, Report, ShapeReport, check_grid, sweep_columns};
 pub use shape::{MAX_CONTROL_POINTS, ShapeProgress, ShapeSettings, Shaped, fastest_shape};
 
 /// Torque limits `|u_k| <= limit` and tension floors `N_r >= floor`, by
@@ -528,6 +528,8 @@ pub struct IntervalCheck {
 pub struct Fastest<const N: usize, const M: usize, const A: usize> {
     /// The duration, s (feasible; the bracket's lower end is not).
     pub duration: f64,
+    /// The answer's path: the case's own shape, lasting `duration`.
+    pub path: PathSpec<A>,
     /// The final bracket `(infeasible, feasible)`.
     pub bracket: (f64, f64),
     /// The limit that binds: the one most violated just below the answer
@@ -543,6 +545,9 @@ pub struct Fastest<const N: usize, const M: usize, const A: usize> {
     pub interval: IntervalCheck,
     /// The run at the answer.
     pub solution: Solution<N, M, A>,
+    /// The crane's lower bound on any move's duration under the torque
+    /// limits, where it has one ([`Crane::lower_bound`]).
+    pub lower_bound: Option<LowerBound>,
 }
 
 /// Why there is no answer.
@@ -807,6 +812,11 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
     })?;
     Ok(Fastest {
         duration: hi,
+        path: PathSpec {
+            profile: spec.profile.scaled(hi / own),
+            t1: spec.t0 + hi,
+            ..spec.clone()
+        },
         bracket: (lo, hi),
         binding,
         at_answer,
@@ -817,6 +827,7 @@ pub fn fastest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
             counterexample,
         },
         solution,
+        lower_bound: C::lower_bound(case.model(), &spec.start, &spec.end, &limits.torque),
     })
 }
 

@@ -5,7 +5,8 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use crane_models::plan::{self, Limits, MAX_SWEEP_POINTS, Settings};
+use crane_models::PathSpec;
+use crane_models::plan::{self, Limits, MAX_SWEEP_POINTS, Settings, ShapeSettings};
 use crane_models::registry::{Registry, Visit};
 use crane_models::study::Formulation;
 use crane_models::{Case, Crane};
@@ -57,9 +58,28 @@ pub struct FastestArgs {
     /// Bisection tolerance on the duration, s.
     #[arg(long, default_value_t = 1e-3)]
     tolerance: f64,
+    /// The path's shape: `time-scaled` (the scenario's own path, scaled in
+    /// time) or `optimal` (a spline's shape optimised with the duration).
+    #[arg(long, value_enum, default_value_t = Shape::TimeScaled)]
+    shape: Shape,
+    /// Free control points per load coordinate of an optimal shape.
+    #[arg(long, default_value_t = ShapeSettings::default().control_points)]
+    control_points: usize,
     /// Print fastest.json on stdout instead of the summary.
     #[arg(long)]
     json: bool,
+    /// No progress display.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// What `crane fastest` shapes.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shape {
+    /// The path's own shape, scaled in time.
+    TimeScaled,
+    /// The shape optimised with the duration.
+    Optimal,
 }
 
 /// The flags of `crane sweep`.
@@ -115,13 +135,19 @@ struct Fastest<'a> {
     settings: Settings,
     out: &'a Path,
     json: bool,
+    /// `Some`: optimise the shape with these settings.
+    shape: Option<ShapeSettings>,
+    quiet: bool,
 }
 
 impl Visit for Fastest<'_> {
     type Output = Result<(), CliError>;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
         let (case, limits) = case_and_limits::<C, N, M, A>(self.file, self.flags)?;
-        search(&case, &limits, &self.settings, self.out, self.json)
+        match self.shape {
+            Some(shape) => search_shape(&case, &limits, &self.settings, &shape, self.out, self.json, self.quiet),
+            None => search(&case, &limits, &self.settings, self.out, self.json),
+        }
     }
 }
 
@@ -129,6 +155,10 @@ impl Visit for Fastest<'_> {
 pub fn fastest<R: Registry>(tool: &Tool<R>, args: FastestArgs) -> Result<(), CliError> {
     let (file, out, _claim) = args.plan.files(&args.model)?;
     let settings = args.plan.settings(Some(args.tolerance))?;
+    let shape = (args.shape == Shape::Optimal).then_some(ShapeSettings {
+        control_points: args.control_points,
+        ..ShapeSettings::default()
+    });
     tool.dispatch(
         &args.model,
         Fastest {
@@ -137,6 +167,8 @@ pub fn fastest<R: Registry>(tool: &Tool<R>, args: FastestArgs) -> Result<(), Cli
             settings,
             out: &out,
             json: args.json,
+            shape,
+            quiet: args.quiet,
         },
     )
 }
@@ -308,6 +340,7 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     let solution = &best.solution;
     let mut staged = Staged::new(out)?;
     staged.text("fastest.json", text.clone() + "\n")?;
+    let command = answer_scenario(case, &best.path, limits, out, &mut staged, "the time-scaled path")?;
     let inputs: Vec<(&str, Vec<(f64, f64)>)> = info
         .inputs
         .iter()
@@ -386,8 +419,212 @@ fn search<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
                 )
             }
         )?;
+        say!("  run it: {command}")?;
         say!("wrote {}", out.display())?;
     }
+    Ok(())
+}
+
+/// Stage `fastest.toml`, the scenario of the answer's `path` (with the
+/// case's parameters and the torque limits), and return the command that
+/// runs it.
+fn answer_scenario<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    path: &PathSpec<A>,
+    limits: &Limits,
+    out: &Path,
+    staged: &mut Staged,
+    what: &str,
+) -> Result<String, CliError> {
+    let info = <C::Model as CraneModel<N, M, A>>::INFO;
+    let named: Vec<(String, f64)> = limits
+        .torque
+        .iter()
+        .map(|&(k, limit)| (info.inputs[k].to_string(), limit))
+        .collect();
+    let command = format!(
+        "crane run {} --scenario {}",
+        C::NAME,
+        out.join("fastest.toml").display()
+    );
+    let comment = [
+        format!(
+            "The fastest move of {} found by `crane fastest` ({what}), {} s.",
+            C::NAME,
+            Number(path.t1 - path.t0)
+        ),
+        format!("Run it: {command}"),
+    ];
+    staged.text(
+        "fastest.toml",
+        scenario::scenario_text::<C, N, M, A>(case.model(), path, &named, &comment),
+    )?;
+    Ok(command)
+}
+
+/// The load coordinates of `solution` over time, one curve each, named
+/// with `suffix`.
+fn load_curves<'a, const N: usize, const M: usize, const A: usize>(
+    names: &'a [&'a str],
+    solution: &crane_runtime::Solution<N, M, A>,
+    suffix: &str,
+) -> Vec<(String, Vec<(f64, f64)>)> {
+    names
+        .iter()
+        .enumerate()
+        .map(|(k, name)| {
+            (
+                format!("{name}{suffix}"),
+                solution.states.iter().map(|s| (s.t, s.q[N - A + k])).collect(),
+            )
+        })
+        .collect()
+}
+
+/// Named curves as the plots take them.
+fn as_refs(curves: &[(String, Vec<(f64, f64)>)]) -> Vec<(&str, Vec<(f64, f64)>)> {
+    curves.iter().map(|(n, c)| (n.as_str(), c.clone())).collect()
+}
+
+/// `crane fastest --shape optimal`: the time-scaled answer first (what the
+/// shape improves on), then the shape's optimisation with a progress line;
+/// fastest.json, fastest.toml and plots of both moves side by side.
+fn search_shape<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    limits: &Limits,
+    settings: &Settings,
+    shape: &ShapeSettings,
+    out: &Path,
+    print_json: bool,
+    quiet: bool,
+) -> Result<(), CliError> {
+    let clock = Instant::now();
+    let scaled = plan::fastest(case, limits, settings).map_err(|e| CliError::Planning(e.to_string()))?;
+    let bar = (!quiet && !print_json && std::io::IsTerminal::is_terminal(&std::io::stdout())).then(|| {
+        let bar = indicatif::ProgressBar::new_spinner();
+        bar.set_message(format!("time-scaled {:.4} s; optimising the shape", scaled.duration));
+        bar
+    });
+    let shaped = plan::fastest_shape(case, limits, settings, shape, &mut |p| {
+        if let Some(bar) = &bar {
+            bar.set_message(format!(
+                "iteration {}: T = {:.4} s, worst violation {:.1e}, trust radius {:.1e}",
+                p.iteration, p.duration, p.violation, p.radius
+            ));
+            bar.tick();
+        }
+    })
+    .map_err(|e| CliError::Planning(e.to_string()))?;
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    let wall = clock.elapsed().as_secs_f64();
+    let info = <C::Model as CraneModel<N, M, A>>::INFO;
+    let report = shaped.report::<C>(settings, shape.control_points, scaled.duration, wall);
+    let text = serde_json::to_string_pretty(&report).map_err(|e| CliError::Output {
+        what: "fastest.json".into(),
+        message: e.to_string(),
+    })?;
+    let mut staged = Staged::new(out)?;
+    staged.text("fastest.json", text.clone() + "\n")?;
+    let command = answer_scenario(case, &shaped.path, limits, out, &mut staged, "the optimised shape")?;
+    // inputs, tensions and the load path of both moves side by side
+    let inputs: Vec<(String, Vec<(f64, f64)>)> = (0..A)
+        .flat_map(|k| {
+            [(&shaped.solution, ""), (&scaled.solution, " (time-scaled)")].map(|(run, suffix)| {
+                (
+                    format!("{}{suffix}", info.inputs[k]),
+                    run.states.iter().map(|s| (s.t, s.u[k])).collect(),
+                )
+            })
+        })
+        .collect();
+    let levels: Vec<(usize, f64)> = limits
+        .torque
+        .iter()
+        .flat_map(|&(k, l)| [(2 * k, l), (2 * k, -l)])
+        .collect();
+    let title = format!(
+        "{}: inputs of the shaped move, T* = {:.3} s, and the time-scaled, {:.3} s",
+        C::NAME,
+        shaped.duration,
+        scaled.duration
+    );
+    staged.text(
+        "fastest-inputs.svg",
+        plot::curves_with_levels(&title, "u [N m]", &as_refs(&inputs), &levels)?,
+    )?;
+    if !info.ropes.is_empty() {
+        let tensions: Vec<(String, Vec<(f64, f64)>)> = (0..info.ropes.len())
+            .flat_map(|r| {
+                [(&shaped.solution, ""), (&scaled.solution, " (time-scaled)")].map(|(run, suffix)| {
+                    (
+                        format!("{}{suffix}", info.ropes[r].tension),
+                        (0..run.states.len())
+                            .map(|i| (run.states[i].t, run.tensions_at(i)[r]))
+                            .collect(),
+                    )
+                })
+            })
+            .collect();
+        let floors: Vec<(usize, f64)> = limits.tension.iter().map(|&(r, f)| (2 * r, f)).collect();
+        let title = format!("{}: rope tensions of the shaped and the time-scaled move", C::NAME);
+        staged.text(
+            "fastest-tensions.svg",
+            plot::curves_with_levels(&title, "N [N]", &as_refs(&tensions), &floors)?,
+        )?;
+    }
+    let loads = &info.coordinates[N - A..];
+    let mut path = load_curves(loads, &shaped.solution, "");
+    path.extend(load_curves(loads, &scaled.solution, " (time-scaled)"));
+    let title = format!(
+        "{}: the load's coordinates on the shaped and the time-scaled move",
+        C::NAME
+    );
+    staged.text(
+        "fastest-path.svg",
+        plot::curves_over_time(&title, "[m]", &as_refs(&path))?,
+    )?;
+    staged.commit()?;
+    if print_json {
+        say!("{text}")?;
+        return Ok(());
+    }
+    say!(
+        "{}: fastest shaped move T* = {:.4} s (time-scaled {}: {:.4} s), {} free control points per coordinate",
+        C::NAME,
+        shaped.duration,
+        case.path().spec().profile.kind(),
+        scaled.duration,
+        shape.control_points
+    )?;
+    if let Some(bound) = &shaped.lower_bound {
+        say!(
+            "  lower bound {:.4} s ({}): the answer is {:.2} % above it",
+            bound.duration,
+            bound.derivation,
+            100.0 * (shaped.duration / bound.duration - 1.0)
+        )?;
+    }
+    for b in &shaped.at_answer {
+        say!(
+            "  {} {} {}: {} at t = {:.3} s",
+            b.name,
+            if b.tension { ">=" } else { "<=" },
+            Number(b.limit),
+            Rounded(b.value),
+            b.at
+        )?;
+    }
+    say!(
+        "  {} iterations, {} inverse runs in {:.2} s (the samples kept {:.0e} below each limit)",
+        shaped.iterations,
+        shaped.runs,
+        wall,
+        shaped.margin
+    )?;
+    say!("  run it: {command}")?;
+    say!("wrote {}", out.display())?;
     Ok(())
 }
 

@@ -42,10 +42,12 @@
 mod error;
 mod file;
 mod resolve;
+mod write;
 
 pub use error::ScenarioError;
 pub use file::ScenarioFile;
 pub use resolve::build;
+pub use write::scenario_text;
 
 use crane_models::study::Formulation;
 use crane_runtime::Scheme;

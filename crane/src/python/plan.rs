@@ -7,7 +7,7 @@
 use std::time::Instant;
 
 use crane_cli::scenario::{self, Overrides, ScenarioFile};
-use crane_models::plan::{self, Column, Limits, Settings};
+use crane_models::plan::{self, Column, Limits, Settings, ShapeSettings};
 use crane_models::registry::Visit;
 use crane_models::study::convergence::{DTS, reference_inputs, study_against};
 use crane_models::{Case, Crane};
@@ -63,12 +63,14 @@ impl PlanInputs {
     }
 }
 
-/// `crane fastest` on one crane.
-pub(super) struct FastestJob(PlanInputs);
+/// `crane fastest` on one crane (`Some` shape settings: `--shape optimal`).
+pub(super) struct FastestJob(PlanInputs, Option<ShapeSettings>);
 
-/// The answer of a search: its report (JSON) and the run there.
+/// The answer of a search: its report (JSON), its scenario (TOML) and the
+/// run there.
 pub(super) struct FastestData {
     report: String,
+    scenario: String,
     run: Columns,
     widths: [usize; 4],
 }
@@ -80,11 +82,34 @@ impl Visit for FastestJob {
         let settings = self.0.settings;
         let clock = Instant::now();
         let best = plan::fastest(&case, &limits, &settings).map_err(|e| e.to_string())?;
-        let report = best.report::<C>(&settings, clock.elapsed().as_secs_f64());
         let info = <C::Model as CraneModel<N, M, A>>::INFO;
+        let (report, path, solution) = match self.1 {
+            None => (
+                best.report::<C>(&settings, clock.elapsed().as_secs_f64()),
+                best.path,
+                best.solution,
+            ),
+            Some(shape) => {
+                let shaped =
+                    plan::fastest_shape(&case, &limits, &settings, &shape, &mut |_| {}).map_err(|e| e.to_string())?;
+                let report = shaped.report::<C>(
+                    &settings,
+                    shape.control_points,
+                    best.duration,
+                    clock.elapsed().as_secs_f64(),
+                );
+                (report, shaped.path, shaped.solution)
+            }
+        };
+        let named: Vec<(String, f64)> = limits
+            .torque
+            .iter()
+            .map(|&(k, limit)| (info.inputs[k].to_string(), limit))
+            .collect();
         Ok(FastestData {
             report: serde_json::to_string(&report).map_err(|e| format!("report: {e}"))?,
-            run: Columns::of(&best.solution)?,
+            scenario: scenario::scenario_text::<C, N, M, A>(case.model(), &path, &named, &[]),
+            run: Columns::of(&solution)?,
             widths: [N, A, M, info.ropes.len()],
         })
     }
@@ -99,11 +124,16 @@ impl Visit for FastestJob {
 /// `tolerance` = 1 ms by default. Returns the dict of fastest.json
 /// (`duration`, `binding`, `limits`, `bracket`, `evaluations`, `interval`,
 /// `formulation`, `scheme`, `dt`, `tolerance`, `wall_s`) with `run`, the
-/// run at the answer (a dict of `t`, `q`, `v`, `u`, `lambda_`, `tensions`).
-/// Raises `CraneError` with the tool's message.
+/// run at the answer (a dict of `t`, `q`, `v`, `u`, `lambda_`, `tensions`),
+/// and `scenario`, the answer's scenario keys (fastest.toml as a dict:
+/// `run(model, scenario=...)` runs it). `shape="optimal"` optimises the
+/// path's shape with the duration, as `crane fastest --shape optimal` does
+/// (`control_points` free control points per load coordinate, 20 by
+/// default). Raises `CraneError` with the tool's message.
 #[pyfunction]
 #[pyo3(pass_module, signature = (
-    model, *, limits=None, min_tension=None, scenario=None, parameters=None, scheme=None, dt=None, tolerance=None
+    model, *, limits=None, min_tension=None, scenario=None, parameters=None, scheme=None, dt=None, tolerance=None,
+    shape="time-scaled", control_points=None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn fastest<'py>(
@@ -116,10 +146,27 @@ pub(super) fn fastest<'py>(
     scheme: Option<&str>,
     dt: Option<Number>,
     tolerance: Option<Number>,
+    shape: &str,
+    control_points: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let py = module.py();
     let cranes = Cranes::of_module(module)?;
     let (dt, tolerance) = (value(dt), value(tolerance));
+    let shape = match (shape, control_points) {
+        ("time-scaled", None) => None,
+        ("time-scaled", Some(_)) => {
+            return Err(CraneError::new_err("control_points: applies only to shape=\"optimal\""));
+        }
+        ("optimal", points) => Some(ShapeSettings {
+            control_points: points.unwrap_or(ShapeSettings::default().control_points),
+            ..ShapeSettings::default()
+        }),
+        (other, _) => {
+            return Err(CraneError::new_err(format!(
+                "shape `{other}`: expected \"time-scaled\" or \"optimal\""
+            )));
+        }
+    };
     let inputs = PlanInputs::new(
         scenario,
         parameters.as_deref(),
@@ -129,9 +176,13 @@ pub(super) fn fastest<'py>(
         dt,
         tolerance,
     )?;
-    let data = visit_detached(py, &cranes, cranes.fastest, model, FastestJob(inputs))?;
+    let data = visit_detached(py, &cranes, cranes.fastest, model, FastestJob(inputs, shape))?;
     let dict = json_dict(py, data.report, "report")?;
     dict.set_item("run", data.run.into_dict(py, data.widths)?)?;
+    let keys: toml::Table =
+        toml::from_str(&data.scenario).map_err(|e| CraneError::new_err(format!("scenario: {e}")))?;
+    let keys = serde_json::to_string(&keys).map_err(|e| CraneError::new_err(format!("scenario: {e}")))?;
+    dict.set_item("scenario", json_dict(py, keys, "scenario")?)?;
     Ok(dict)
 }
 

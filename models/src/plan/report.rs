@@ -9,8 +9,8 @@ use serde::Serialize;
 
 use crane_runtime::CraneModel;
 
-use super::{Binding, Fastest, IntervalCheck, MAX_SWEEP_POINTS, PlanError, Settings, SweepPoint};
-use crate::crane::Crane;
+use super::{Binding, Fastest, IntervalCheck, MAX_SWEEP_POINTS, PlanError, Settings, Shaped, SweepPoint};
+use crate::crane::{Crane, LowerBound};
 use crate::study::Formulation;
 
 /// A limit and how the answer meets it, as reported.
@@ -51,12 +51,17 @@ pub struct Report {
     pub binding: LimitReport,
     /// Every limit at the answer.
     pub limits: Vec<LimitReport>,
-    /// The final bracket `[infeasible, feasible]`, s.
-    pub bracket: [f64; 2],
-    /// Evaluations of the search.
+    /// How the answer's path was shaped, and how close it is to the
+    /// crane's lower bound.
+    pub shape: ShapeReport,
+    /// The final bracket `[infeasible, feasible]` of the time scaling's
+    /// bisection, s (`None` for an optimised shape).
+    pub bracket: Option<[f64; 2]>,
+    /// Inverse runs of the search.
     pub evaluations: usize,
-    /// The check that feasible durations form an interval.
-    pub interval: IntervalCheck,
+    /// The check that feasible durations form an interval (`None` for an
+    /// optimised shape).
+    pub interval: Option<IntervalCheck>,
     /// The formulation of every evaluation.
     pub formulation: &'static str,
     /// The scheme (a reduced run discretises nothing and ignores it).
@@ -69,6 +74,85 @@ pub struct Report {
     pub wall_s: f64,
 }
 
+/// How the answer's path was shaped.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ShapeReport {
+    /// `"time-scaled"` (the case's own path shape, scaled in time) or
+    /// `"optimal"` (the shape optimised, [`fastest_shape`](super::fastest_shape)).
+    pub kind: &'static str,
+    /// The profile of the answer's path (`poly9`, ..., `spline`).
+    pub profile: &'static str,
+    /// The time-scaled optimum of the case's own path, s (for an optimised
+    /// shape, what it improves on).
+    pub time_scaled: Option<f64>,
+    /// The free control points per load coordinate of an optimised shape.
+    pub control_points: Option<usize>,
+    /// Iterations of the shape's optimisation.
+    pub iterations: Option<usize>,
+    /// The crane's lower bound on any move's duration, where it has one.
+    pub lower_bound: Option<LowerBound>,
+    /// How far above it the answer is, relative: `duration / bound - 1`.
+    pub gap: Option<f64>,
+}
+
+impl ShapeReport {
+    /// The report of a time-scaled answer of `duration` on `profile`.
+    fn time_scaled(profile: &'static str, duration: f64, lower_bound: Option<LowerBound>) -> Self {
+        Self {
+            kind: "time-scaled",
+            profile,
+            time_scaled: None,
+            control_points: None,
+            iterations: None,
+            gap: lower_bound.as_ref().map(|b| duration / b.duration - 1.0),
+            lower_bound,
+        }
+    }
+}
+
+impl<const N: usize, const M: usize, const A: usize> Shaped<N, M, A> {
+    /// The report of this answer for crane `C`, found with `settings` from
+    /// the time-scaled optimum `time_scaled` (s) in `wall` seconds.
+    pub fn report<C: Crane<N, M, A>>(
+        &self,
+        settings: &Settings,
+        control_points: usize,
+        time_scaled: f64,
+        wall: f64,
+    ) -> Report {
+        let binding = self.at_answer.first().map(LimitReport::from).unwrap_or(LimitReport {
+            name: String::new(),
+            kind: "limit",
+            limit: f64::NAN,
+            value: f64::NAN,
+            at: f64::NAN,
+        });
+        Report {
+            model: C::NAME,
+            duration: self.duration,
+            binding,
+            limits: self.at_answer.iter().map(LimitReport::from).collect(),
+            shape: ShapeReport {
+                kind: "optimal",
+                profile: "spline",
+                time_scaled: Some(time_scaled),
+                control_points: Some(control_points),
+                iterations: Some(self.iterations),
+                gap: self.lower_bound.as_ref().map(|b| self.duration / b.duration - 1.0),
+                lower_bound: self.lower_bound.clone(),
+            },
+            bracket: None,
+            evaluations: self.runs,
+            interval: None,
+            formulation: Formulation::default_for::<C, N, M, A>().name(),
+            scheme: settings.scheme.name(),
+            dt: settings.dt,
+            tolerance: settings.tolerance,
+            wall_s: wall,
+        }
+    }
+}
+
 impl<const N: usize, const M: usize, const A: usize> Fastest<N, M, A> {
     /// The report of this answer for crane `C`, found with `settings` in
     /// `wall` seconds.
@@ -78,9 +162,10 @@ impl<const N: usize, const M: usize, const A: usize> Fastest<N, M, A> {
             duration: self.duration,
             binding: LimitReport::from(&self.binding),
             limits: self.at_answer.iter().map(LimitReport::from).collect(),
-            bracket: [self.bracket.0, self.bracket.1],
+            shape: ShapeReport::time_scaled(self.path.profile.kind().name(), self.duration, self.lower_bound.clone()),
+            bracket: Some([self.bracket.0, self.bracket.1]),
             evaluations: self.evaluations,
-            interval: self.interval.clone(),
+            interval: Some(self.interval.clone()),
             formulation: Formulation::default_for::<C, N, M, A>().name(),
             scheme: settings.scheme.name(),
             dt: settings.dt,

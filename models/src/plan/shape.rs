@@ -12,7 +12,7 @@
 //! inside, so the inputs are continuous).
 //!
 //! **Constraints**: every limited `|u_k| <= limit` and every tension floor,
-//! at fixed samples of `s` (the steps of the exact run, at least twenty
+//! at fixed samples of `s` (the steps of the exact run, at least thirty
 //! per knot span). **Objective**: `T`.
 //!
 //! **Method**: sequential linear programming with a trust region (each
@@ -46,7 +46,7 @@ pub struct ShapeSettings {
     /// at each end).
     pub control_points: usize,
     /// Samples of the constraints per move, at least (more where the knot
-    /// spans need them: twenty per span).
+    /// spans need them: thirty per span).
     pub samples: usize,
     /// Most iterations of the sequential programming.
     pub iterations: usize,
@@ -84,10 +84,11 @@ pub struct ShapeProgress {
 #[derive(Debug, Clone)]
 pub struct Shaped<const N: usize, const M: usize, const A: usize> {
     /// The duration, s: the optimised shape at it is feasible, checked as
-    /// a `fastest` answer is (between the steps, with the audit).
+    /// a `fastest` answer is (between the steps, with the audit), on steps
+    /// four times finer than the samples.
     pub duration: f64,
-    /// The optimised shape, in normalised time.
-    pub shape: SplineShape,
+    /// The answer's path: the optimised shape, lasting `duration`.
+    pub path: PathSpec<A>,
     /// Every limit at the answer.
     pub at_answer: Vec<Binding>,
     /// The run at the answer.
@@ -199,7 +200,11 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Problem<
     fn constraints(&self, y: &[f64]) -> Result<Vec<f64>, String> {
         let solution = self.run(y)?;
         let mut g = Vec::with_capacity(self.constraint_count());
-        for (i, state) in solution.states.iter().enumerate() {
+        // the crane at rest at the start and at the end is the same whatever
+        // the shape and the duration (a rope may carry nothing there, as
+        // navy-planar's N1 at its start): those samples constrain nothing
+        let last = solution.states.len() - 1;
+        for (i, state) in solution.states.iter().enumerate().take(last).skip(1) {
             for &(k, limit) in &self.limits.torque {
                 g.push(state.u[k] / limit - (1.0 - self.margin));
                 g.push(-state.u[k] / limit - (1.0 - self.margin));
@@ -216,7 +221,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Problem<
     }
 
     fn constraint_count(&self) -> usize {
-        (self.samples + 1) * (2 * self.limits.torque.len() + self.limits.tension.len())
+        (self.samples - 1) * (2 * self.limits.torque.len() + self.limits.tension.len())
     }
 }
 
@@ -282,9 +287,14 @@ fn poly9_rise(s: f64) -> f64 {
     s.powi(5) * (126.0 + s * (-420.0 + s * (540.0 + s * (-315.0 + s * 70.0))))
 }
 
-/// The margin below the limits at the samples in the first round (the
-/// peaks between samples rise above the samples by about 2e-5 of a limit at
-/// twenty samples per knot span), and the widest tried.
+/// Samples of the constraints per knot span, at least: the knot spans of
+/// the optimised shapes are where their inputs turn.
+const SAMPLES_PER_SPAN: usize = 30;
+
+/// The margin below the limits at the samples in the first round, widened
+/// threefold per round until the check between the steps holds (at thirty
+/// samples per knot span the peaks of a shape near the optimum rise above
+/// the samples by up to about 1e-3 of a limit), and the widest tried.
 const FIRST_MARGIN: f64 = 1e-4;
 const LAST_MARGIN: f64 = 1e-2;
 
@@ -423,7 +433,7 @@ pub fn fastest_shape<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
             start + (end - start) * poly9_rise(greville)
         })
         .collect();
-    let samples = shape.samples.max(20 * spans);
+    let samples = shape.samples.max(SAMPLES_PER_SPAN * spans);
     let mut runs = 0;
     // the start, time-scaled to its own optimum
     let mut problem = Problem {
@@ -462,13 +472,19 @@ pub fn fastest_shape<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
         iterations += search(&problem, &mut y, shape.iterations, &mut runs, progress)?;
         let duration = problem.duration(&y);
         let case = problem.case_at(&y).map_err(PlanError::Settings)?;
-        let (evaluation, solution) = evaluate(&case, duration, settings);
+        // checked on steps four times finer than the samples (the peaks
+        // between them then within about 2e-6 of a limit)
+        let finer = Settings {
+            dt: duration / (4 * problem.samples) as f64,
+            ..*settings
+        };
+        let (evaluation, solution) = evaluate(&case, duration, &finer);
         runs += 1;
         match solution {
             Some(solution) if evaluation.feasible::<C::Model, N, M, A>(limits) => {
                 break (duration, evaluation.bindings::<C::Model, N, M, A>(limits), solution);
             }
-            _ if problem.margin < LAST_MARGIN => problem.margin *= 10.0,
+            _ if problem.margin < LAST_MARGIN => problem.margin *= 3.0,
             // the start, time-scaled, is feasible: never worse than it
             _ => {
                 y = vec![0.0; n];
@@ -476,10 +492,10 @@ pub fn fastest_shape<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
             }
         }
     };
-    let shape = problem.shape(&y)?;
+    let path = problem.case_at(&y).map_err(PlanError::Settings)?.path().spec().clone();
     Ok(Shaped {
         duration,
-        shape,
+        path,
         at_answer,
         solution,
         margin: problem.margin,
