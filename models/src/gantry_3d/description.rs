@@ -67,7 +67,7 @@ impl Crane<6, 1, 3> for Description {
     /// below the trolley at both ends, so each group's centre of mass moves
     /// as far as the load does: no move under `|u1| <= f1` is faster than
     /// the bang-bang time of that mass over that distance
-    /// ([`bang_bang`](crate::crane::bang_bang)), and the same for `u2`.
+    /// ([`bang_bang`]), and the same for `u2`.
     fn lower_bound(
         model: &Gantry3d,
         start: &SVector<f64, 3>,
