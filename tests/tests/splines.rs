@@ -21,11 +21,17 @@
 //! order 6 eqs. (22) lose digits to round-off below 5 ms (navy-3d-pulley:
 //! 1e-4, 1.7e-3, 2.6e-2 at 5, 2.5, 1.25 ms), whatever the path; the exact
 //! formulation does not.
+//!
+//! A crane of path order 8 (a triple pendulum: a hook block on the hoist,
+//! a second block on a sling, the load on a third) gets continuous inputs
+//! from a spline of degree 17 through waypoints, and inputs that jump
+//! from one of degree 9 (at rest only to order 4), which a scenario
+//! refuses for it.
 
 use crane_models::path::{Profile, SplineShape};
 use crane_models::registry::{BuiltIn, Registry, Visit};
 use crane_models::study::{Formulation, RunSpec};
-use crane_models::{Crane, PathSpec};
+use crane_models::{Case, Crane, Maneuver, PathSpec};
 use crane_runtime::nalgebra::SVector;
 use crane_runtime::{CraneModel, Options, Scheme, Solution};
 
@@ -182,4 +188,106 @@ fn a_spline_through_four_waypoints_runs_on_every_flat_crane_with_continuous_inpu
     // the cranes of path order 4 and those of 6 are both here
     assert!(measured.iter().any(|m| m.path_order == 6));
     assert_eq!(measured.iter().filter(|m| m.against_bdf4.1.is_some()).count(), 5);
+}
+
+crane_macros::crane_model! {
+    /// A triple-pendulum overhead crane: trolley, hoist, a hook block on the
+    /// hoist rope, a second block on a sling below it, the load on a third
+    /// sling. Its inputs need the load path's 8th derivative.
+    pub struct TriplePendulum {
+        params { m_t: positive = 100.0, J: positive = 0.1, r: positive = 0.1, m1: positive = 20.0,
+                 m2: positive = 20.0, m_l: positive = 200.0, l2: positive = 2.0, l3: positive = 2.0,
+                 g: positive = 9.81 }
+        robot  [s, L, x1, z1, x2, z2]
+        load   [x, z]
+        inputs [u1, u2]
+        kinetic = 0.5*m_t*dot(s)^2 + 0.5*J/r^2*dot(L)^2 + 0.5*m1*(dot(x1)^2 + dot(z1)^2)
+                + 0.5*m2*(dot(x2)^2 + dot(z2)^2) + 0.5*m_l*(dot(x)^2 + dot(z)^2);
+        forces { s: u1, L: u2/r, z1: -m1*g, z2: -m2*g, z: -m_l*g }
+        constraints {
+            #[rope(N1 = L)]
+            hoist: 0.5*((x1 - s)^2 + z1^2 - L^2),
+            #[rope(N2 = l2)]
+            upper: 0.5*((x2 - x1)^2 + (z2 - z1)^2 - l2^2),
+            #[rope(N3 = l3)]
+            lower: 0.5*((x - x2)^2 + (z - z2)^2 - l3^2),
+        }
+    }
+}
+
+/// The triple pendulum, hanging at rest: the load 7 m below the trolley.
+struct Triple;
+
+impl Crane<8, 3, 2> for Triple {
+    type Model = TriplePendulum;
+    const NAME: &'static str = "triple-pendulum";
+
+    fn maneuver() -> Maneuver<2> {
+        Maneuver {
+            path: PathSpec {
+                profile: Profile::Poly9,
+                t0: 0.0,
+                t1: 8.0,
+                start: SVector::from([0.0, -7.0]),
+                end: SVector::from([4.0, -6.0]),
+            },
+            p0: vec![0.0, 3.0, 0.0, -3.0, 0.0, -5.0],
+        }
+    }
+}
+
+/// The largest change of an input per step, relative to the peak input, of
+/// the triple pendulum's exact run through four waypoints at rest to order
+/// `rest`, at dt = 10 ms and 5 ms.
+fn triple_largest_change(rest: usize) -> (f64, f64) {
+    let default = Case::<Triple, 8, 3, 2>::maneuver().unwrap();
+    let spec = default.path().spec().clone();
+    let points = waypoints(spec.start, spec.end, 1);
+    let shape = SplineShape::through(&[0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0], &points, rest).unwrap();
+    let mut run_spec = RunSpec::<2>::default_for::<Triple, 8, 3>();
+    run_spec.path = PathSpec {
+        profile: Profile::Spline(std::sync::Arc::new(shape)),
+        ..spec
+    };
+    let (case, _) = run_spec.build::<Triple, 8, 3>().unwrap();
+    let begin = case.start().unwrap();
+    let runs: Vec<Solution<8, 3, 2>> = [0.01, 0.005]
+        .iter()
+        .map(|&dt| {
+            let options = Options::new(dt, case.tf()).unwrap();
+            Formulation::DummyDerivative
+                .simulate(&case, &begin, &options, &mut |_, _| {})
+                .unwrap()
+        })
+        .collect();
+    let peak = runs[1].states.iter().map(|s| s.u.amax()).fold(0.0, f64::max);
+    let change = |run: &Solution<8, 3, 2>| {
+        run.states
+            .windows(2)
+            .map(|w| (w[1].u - w[0].u).amax())
+            .fold(0.0, f64::max)
+            / peak
+    };
+    (change(&runs[0]), change(&runs[1]))
+}
+
+#[test]
+fn a_crane_of_path_order_eight_gets_continuous_inputs_from_a_spline_of_degree_seventeen() {
+    let order = <TriplePendulum as CraneModel<8, 3, 2>>::STRUCTURE
+        .unwrap()
+        .path_order(2);
+    assert_eq!(order, 8);
+    // degree 17, at rest to order 8: the largest change halves with the step
+    // (measured 0.534)
+    let smooth = triple_largest_change(8);
+    let ratio = smooth.1 / smooth.0;
+    println!("degree 17: {smooth:?}, ratio {ratio}");
+    assert!((0.45..0.55).contains(&ratio), "{smooth:?}");
+    // degree 9, at rest only to order 4: derivatives 5 .. 8 jump at the
+    // waypoints and ends, and so do the inputs (the change keeps its size:
+    // measured 1.054)
+    let rough = triple_largest_change(4);
+    let ratio = rough.1 / rough.0;
+    println!("degree 9: {rough:?}, ratio {ratio}");
+    assert!(ratio > 0.9, "{rough:?}");
 }
