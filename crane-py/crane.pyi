@@ -20,6 +20,7 @@ __all__ = [
     "stepper",
     "fastest",
     "sweep",
+    "sweep_points",
     "convergence",
 ]
 
@@ -207,6 +208,23 @@ def sweep(
     """Every combination of `grid` and `durations` as `crane sweep` runs it:
     sweep.csv's columns (float64 and bool arrays, lists of strings for
     `error` and `audit`); raises CraneError."""
+
+def sweep_points(
+    model: str,
+    points: Mapping[str, _Floats],
+    *,
+    durations: Optional[_Floats] = None,
+    limits: Optional[Mapping[str, float]] = None,
+    min_tension: Optional[Mapping[str, float]] = None,
+    scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
+    parameters: Optional[Mapping[str, float]] = None,
+    scheme: Optional[str] = None,
+    dt: Optional[float] = None,
+) -> dict[str, Any]:
+    """Any set of points (`points`: each swept parameter's values, one per
+    point, as equal-length arrays or a pandas DataFrame; `durations`: each
+    point's, the move's own if None): `sweep`'s columns in the order of the
+    points; raises CraneError before any run on a bad set."""
 
 def convergence(
     model: str,

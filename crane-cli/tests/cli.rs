@@ -3055,3 +3055,63 @@ fn fastest_with_an_optimal_shape_comes_near_the_bound_and_runs_as_written() {
     let (first, last) = (&rows[0], rows.last().unwrap());
     assert_eq!((first[x], last[x]), (0.0, 6.0));
 }
+
+/// `crane sweep --points FILE.csv`: any set of points, a `duration` column
+/// giving each point's; every row equals the grid's row with the same
+/// values bit for bit, and a bad set is one error line before any run.
+#[test]
+fn a_sweep_of_a_point_set_equals_the_grid_s_rows() {
+    let dir = tempfile::tempdir().unwrap();
+    let points = dir.path().join("pts.csv");
+    std::fs::write(&points, "m_l,duration\n120,4\n80,3\n100,3.5\n").unwrap();
+    let sweep = |args: &[&str], name: &str| -> Vec<Vec<String>> {
+        let out = dir.path().join(name);
+        let mut all = vec![
+            "sweep",
+            "navy-planar",
+            "--limit",
+            "u2=150",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        all.extend_from_slice(args);
+        let result = crane(&all);
+        assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+        let mut reader = csv::Reader::from_path(out.join("sweep.csv")).unwrap();
+        reader
+            .records()
+            .map(|r| r.unwrap().iter().map(String::from).collect())
+            .collect()
+    };
+    let set = sweep(&["--points", points.to_str().unwrap()], "set");
+    let grid = sweep(&["--param", "m_l=80:120:3", "--duration", "3:4:3"], "grid");
+    assert_eq!(set.len(), 3);
+    for row in &set {
+        assert!(grid.contains(row), "{row:?} not in the grid's rows");
+    }
+    assert_eq!((set[0][0].as_str(), set[0][1].as_str()), ("120.0", "4.0"));
+    for (text, needle) in [
+        ("m_x\n1\n", "no such parameter"),
+        ("m_l\nnan\n", "not finite"),
+        ("m_l\n", "no points"),
+        ("m_l,duration\n100,-1\n", "positive"),
+        ("m_l\nheavy\n", "not a number"),
+    ] {
+        std::fs::write(&points, text).unwrap();
+        let result = crane(&[
+            "sweep",
+            "navy-planar",
+            "--points",
+            points.to_str().unwrap(),
+            "--out",
+            dir.path().join("bad").to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(
+            !result.status.success() && stderr.contains(needle),
+            "{text:?}: {stderr}"
+        );
+        assert!(!dir.path().join("bad").join("sweep.csv").exists());
+    }
+}

@@ -65,6 +65,37 @@ def test_the_fastest_shaped_move_is_the_command_line_s_and_runs_from_its_scenari
         crane.fastest("gantry-3d", limits={"u1": 1000.0}, control_points=8)
 
 
+def test_a_point_set_is_the_command_line_s_and_the_grid_s(tmp_path):
+    points = {"m_l": np.array([120.0, 80.0, 100.0])}
+    durations = [4.0, 3.0, 3.5]
+    s = crane.sweep_points("navy-planar", points, durations=durations, limits={"u2": 150.0})
+    (tmp_path / "pts.csv").write_text("m_l,duration\n120,4\n80,3\n100,3.5\n")
+    out = cli(tmp_path, "sweep", "navy-planar", "--points", str(tmp_path / "pts.csv"), "--limit", "u2=150", "--quiet")
+    expected = csv_columns(out / "sweep.csv")
+    assert list(s) == list(expected)
+    for name in ["m_l", "duration", "peak_u1", "peak_u2", "min_N1", "min_N2"]:
+        assert [repr(float(v)) for v in s[name]] == expected[name], name
+    # each point is the grid's point with the same values, bit for bit
+    g = crane.sweep("navy-planar", {"m_l": [80.0, 100.0, 120.0]}, durations=[3.0, 3.5, 4.0], limits={"u2": 150.0})
+    for i in range(3):
+        j = [k for k in range(9) if g["m_l"][k] == s["m_l"][i] and g["duration"][k] == s["duration"][i]]
+        assert len(j) == 1 and g["peak_u2"][j[0]] == s["peak_u2"][i]
+    # without durations, the move's own; a pandas DataFrame works as a mapping
+    pd = pytest.importorskip("pandas")
+    own = crane.sweep_points("navy-planar", pd.DataFrame({"m_l": [100.0, 120.0]}))
+    assert list(own["duration"]) == [4.0, 4.0]
+    for bad, match in [
+        ({"m_l": [1.0, 2.0], "l": [1.0]}, "ragged"),
+        ({"m_l": [float("nan")]}, "not finite"),
+        ({"m_x": [1.0]}, "no such parameter"),
+        ({"m_l": []}, "no points"),
+    ]:
+        with pytest.raises(crane.CraneError, match=match):
+            crane.sweep_points("navy-planar", bad)
+    with pytest.raises(crane.CraneError, match="durations"):
+        crane.sweep_points("navy-planar", {"m_l": [1.0, 2.0]}, durations=[3.0])
+
+
 def test_a_sweep_is_the_command_line_s_sweep_csv(tmp_path):
     s = crane.sweep("navy-planar", {"m_l": np.linspace(80.0, 120.0, 3)}, durations=[3.0, 4.0], limits={"u2": 150.0})
     out = cli(tmp_path, "sweep", "navy-planar", "--param", "m_l=80:120:3", "--duration", "3:4:2", "--limit",

@@ -380,6 +380,7 @@ struct Cranes {
     stepper: fn(&str, StepperJob) -> Option<<StepperJob as Visit>::Output>,
     fastest: fn(&str, plan::FastestJob) -> Option<<plan::FastestJob as Visit>::Output>,
     sweep: fn(&str, plan::SweepJob) -> Option<<plan::SweepJob as Visit>::Output>,
+    sweep_points: fn(&str, plan::SweepPointsJob) -> Option<<plan::SweepPointsJob as Visit>::Output>,
     convergence: fn(&str, plan::ConvergenceJob) -> Option<<plan::ConvergenceJob as Visit>::Output>,
 }
 
@@ -392,6 +393,7 @@ impl Cranes {
             stepper: |name, job| R::default().visit(name, job),
             fastest: |name, job| R::default().visit(name, job),
             sweep: |name, job| R::default().visit(name, job),
+            sweep_points: |name, job| R::default().visit(name, job),
             convergence: |name, job| R::default().visit(name, job),
         }
     }
@@ -1444,6 +1446,7 @@ pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyR
     module.add_function(wrap_pyfunction!(stepper, module)?)?;
     module.add_function(wrap_pyfunction!(plan::fastest, module)?)?;
     module.add_function(wrap_pyfunction!(plan::sweep, module)?)?;
+    module.add_function(wrap_pyfunction!(plan::sweep_points, module)?)?;
     module.add_function(wrap_pyfunction!(plan::convergence, module)?)?;
     // the classes under the package's own name (`my_cranes.Run` for a
     // user's module, which pickling then finds there, not in `crane`): the
@@ -1469,6 +1472,7 @@ pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyR
             "stepper",
             "fastest",
             "sweep",
+            "sweep_points",
             "convergence",
         ],
     )?;

@@ -41,7 +41,7 @@ use crate::study::summary::slack_allowance;
 
 mod report;
 mod shape;
-pub use report::{Column, LimitReport, Report, ShapeReport, check_grid, sweep_columns};
+pub use report::{Column, LimitReport, Report, ShapeReport, check_grid, check_points, sweep_columns};
 pub use shape::{MAX_CONTROL_POINTS, ShapeProgress, ShapeSettings, Shaped, fastest_shape};
 
 /// Torque limits `|u_k| <= limit` and tension floors `N_r >= floor`, by
@@ -846,11 +846,10 @@ pub struct SweepPoint {
 
 /// The grid of `params` (each `(name, values)`) and `durations` (the
 /// case's own if empty), row-major with the last parameter fastest and the
-/// duration fastest of all; each point evaluated as [`evaluate`] does with
-/// the parameters set by name, in parallel (rayon) and returned in grid
-/// order, so the result does not depend on the number of threads.
-/// `progress` is called once per finished point. A point that fails
-/// records its error; the sweep goes on.
+/// duration fastest of all, as [`sweep_points`] evaluates it: in parallel
+/// and in grid order, so the result does not depend on the number of
+/// threads. `progress` is called once per finished point. A point that
+/// fails records its error; the sweep goes on.
 pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
     params: &[(String, Vec<f64>)],
@@ -860,24 +859,49 @@ pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     progress: &(dyn Fn() + Sync),
 ) -> Vec<SweepPoint> {
     let spec = case.path().spec();
-    let own = [spec.t1 - spec.t0];
+    let points = grid_points(spec.t1 - spec.t0, params, durations);
+    let names: Vec<String> = params.iter().map(|(name, _)| name.clone()).collect();
+    sweep_points(case, &names, points, limits, settings, progress)
+}
+
+/// The points of the grid of `params` and `durations` (`own` if empty),
+/// row-major with the last parameter fastest and the duration fastest of
+/// all: each the parameters' values and a duration.
+pub fn grid_points(own: f64, params: &[(String, Vec<f64>)], durations: &[f64]) -> Vec<(Vec<f64>, f64)> {
+    let own = [own];
     let durations: &[f64] = if durations.is_empty() { &own } else { durations };
-    let mut grid: Vec<(Vec<f64>, f64)> = vec![(Vec::new(), 0.0)];
+    let mut grid: Vec<Vec<f64>> = vec![Vec::new()];
     for (_, values) in params {
         grid = grid
             .into_iter()
-            .flat_map(|(prefix, _)| values.iter().map(move |&v| ([prefix.clone(), vec![v]].concat(), 0.0)))
+            .flat_map(|prefix| values.iter().map(move |&v| [prefix.clone(), vec![v]].concat()))
             .collect();
     }
-    let grid: Vec<(Vec<f64>, f64)> = grid
-        .into_iter()
-        .flat_map(|(values, _)| durations.iter().map(move |&d| (values.clone(), d)))
-        .collect();
+    grid.into_iter()
+        .flat_map(|values| durations.iter().map(move |&d| (values.clone(), d)))
+        .collect()
+}
+
+/// Any set of points: each the values of the parameters `names` (in that
+/// order) and a duration, evaluated as [`evaluate`] does with the
+/// parameters set by name, in parallel (rayon) and returned in the order
+/// given. `progress` is called once per finished point. A point that fails
+/// records its error; the sweep goes on ([`check_points`] refuses a set
+/// that cannot run before any run).
+pub fn sweep_points<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    case: &Case<C, N, M, A>,
+    names: &[String],
+    points: Vec<(Vec<f64>, f64)>,
+    limits: &Limits,
+    settings: &Settings,
+    progress: &(dyn Fn() + Sync),
+) -> Vec<SweepPoint> {
     // a flag in scope here stops the points on the pool's threads too: a
     // point not started once it is set is not evaluated
     let cancel = Cancel::current();
     let run = move || {
-        grid.into_par_iter()
+        points
+            .into_par_iter()
             .map(|(values, duration)| {
                 let point = match &cancel {
                     Some(cancel) if cancel.is_set() => SweepPoint {
@@ -886,8 +910,8 @@ pub fn sweep<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
                         duration,
                         feasible: false,
                     },
-                    Some(cancel) => cancel.scope(|| sweep_point(case, params, &values, duration, limits, settings)),
-                    None => sweep_point(case, params, &values, duration, limits, settings),
+                    Some(cancel) => cancel.scope(|| sweep_point(case, names, &values, duration, limits, settings)),
+                    None => sweep_point(case, names, &values, duration, limits, settings),
                 };
                 progress();
                 point
@@ -923,10 +947,11 @@ fn sweep_pool() -> Option<Arc<rayon::ThreadPool>> {
     Some(built)
 }
 
-/// One sweep point: the model with `values` set, scaled to `duration`.
+/// One sweep point: the model with the parameters `names` set to
+/// `values`, scaled to `duration`.
 pub fn sweep_point<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
-    params: &[(String, Vec<f64>)],
+    names: &[String],
     values: &[f64],
     duration: f64,
     limits: &Limits,
@@ -934,7 +959,7 @@ pub fn sweep_point<C: Crane<N, M, A>, const N: usize, const M: usize, const A: u
 ) -> SweepPoint {
     let mut model = case.model().clone();
     let mut error = impulses(case).err().map(|e| e.to_string());
-    for ((name, _), &value) in params.iter().zip(values) {
+    for (name, &value) in names.iter().zip(values) {
         if let Err(e) = model.set_parameter(name, value) {
             error.get_or_insert(e.to_string());
         }

@@ -183,7 +183,8 @@ fn sweep_rows_are_single_runs_whatever_the_threads() {
     assert_eq!(one, two);
     assert_eq!(one.len(), 12);
     for point in &one {
-        let single = sweep_point(&case, &params, &point.values, point.duration, &limits, &settings);
+        let names: Vec<String> = params.iter().map(|(name, _)| name.clone()).collect();
+        let single = sweep_point(&case, &names, &point.values, point.duration, &limits, &settings);
         assert_eq!(point, &single);
         if point.values[0] < 0.0 {
             let error = point.evaluation.error.as_deref().unwrap();

@@ -95,6 +95,11 @@ pub struct SweepArgs {
     /// Swept durations of the move, LOW:HIGH:COUNT (default: its own).
     #[arg(long, value_name = "LOW:HIGH:COUNT", allow_hyphen_values = true)]
     duration: Option<String>,
+    /// Any set of points instead of a grid: a CSV file whose columns are
+    /// parameter names (and `duration`, else the move's own), a point per
+    /// row.
+    #[arg(long, value_name = "FILE.csv", conflicts_with_all = ["param", "duration"])]
+    points: Option<PathBuf>,
     #[command(flatten)]
     plan: PlanFlags,
     /// Worker threads (default: one per core).
@@ -180,6 +185,8 @@ struct Sweep<'a> {
     out: &'a Path,
     params: &'a [String],
     durations: Vec<f64>,
+    /// A point set read from `--points`: the column names and the rows.
+    points: Option<(Vec<String>, Vec<Vec<f64>>)>,
     quiet: bool,
 }
 
@@ -187,21 +194,87 @@ impl Visit for Sweep<'_> {
     type Output = Result<(), CliError>;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
         let (case, limits) = case_and_limits::<C, N, M, A>(self.file, self.flags)?;
-        let params = self
-            .params
-            .iter()
-            .map(|p| range("--param", p))
-            .collect::<Result<Vec<_>, _>>()?;
+        let spec = case.path().spec();
+        let own = spec.t1 - spec.t0;
+        let planning = |e: plan::PlanError| CliError::Planning(e.to_string());
+        let (names, points, axes) = match self.points {
+            Some((columns, rows)) => {
+                // a `duration` column gives each point's duration
+                let at = columns.iter().position(|c| c == "duration");
+                let names: Vec<String> = columns.iter().filter(|c| *c != "duration").cloned().collect();
+                let points: Vec<(Vec<f64>, f64)> = rows
+                    .into_iter()
+                    .map(|row| {
+                        let duration = at.map_or(own, |k| row[k]);
+                        let values = row.iter().enumerate().filter(|(k, _)| Some(*k) != at).map(|(_, v)| *v);
+                        (values.collect(), duration)
+                    })
+                    .collect();
+                plan::check_points::<C::Model, N, M, A>(&names, &points)
+                    .map_err(|e| CliError::Planning(format!("--points: {e}")))?;
+                (names, points, Vec::new())
+            }
+            None => {
+                let params = self
+                    .params
+                    .iter()
+                    .map(|p| range("--param", p))
+                    .collect::<Result<Vec<_>, _>>()?;
+                plan::check_grid::<C::Model, N, M, A>(&params, &self.durations).map_err(planning)?;
+                // the heat map's axes: the quantities swept over more than one value
+                let mut axes: Vec<(String, Vec<f64>)> = params.iter().filter(|(_, v)| v.len() > 1).cloned().collect();
+                if self.durations.len() > 1 {
+                    axes.push(("duration".into(), self.durations.clone()));
+                }
+                let names = params.iter().map(|(n, _)| n.clone()).collect();
+                (names, plan::grid_points(own, &params, &self.durations), axes)
+            }
+        };
         grid(
             &case,
-            &params,
-            &self.durations,
+            &names,
+            points,
+            &axes,
             &limits,
             &self.settings,
             self.out,
             self.quiet,
         )
     }
+}
+
+/// The rows of a `--points` file: its header (the column names) and its
+/// numbers, every row as long as the header.
+fn read_points(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), CliError> {
+    let bad = |message: String| CliError::Planning(format!("--points {}: {message}", path.display()));
+    if !std::fs::metadata(path).map_err(|e| bad(e.to_string()))?.is_file() {
+        return Err(bad("not a regular file".into()));
+    }
+    let mut reader = csv::Reader::from_path(path).map_err(|e| bad(e.to_string()))?;
+    let names: Vec<String> = reader
+        .headers()
+        .map_err(|e| bad(e.to_string()))?
+        .iter()
+        .map(|h| h.trim().to_string())
+        .collect();
+    let mut rows = Vec::new();
+    for (i, record) in reader.records().enumerate() {
+        let record = record.map_err(|e| bad(e.to_string()))?;
+        let row = record
+            .iter()
+            .enumerate()
+            .map(|(k, v)| {
+                v.trim()
+                    .parse::<f64>()
+                    .map_err(|_| bad(format!("row {}, column `{}`: `{v}` is not a number", i + 1, names[k])))
+            })
+            .collect::<Result<Vec<f64>, _>>()?;
+        rows.push(row);
+        if rows.len() > MAX_SWEEP_POINTS {
+            return Err(bad(format!("more than {MAX_SWEEP_POINTS} points (split the set)")));
+        }
+    }
+    Ok((names, rows))
 }
 
 /// `crane sweep`.
@@ -217,13 +290,17 @@ pub fn sweep<R: Registry>(tool: &Tool<R>, args: SweepArgs) -> Result<(), CliErro
         })?,
         None => Vec::new(),
     };
-    if args.param.is_empty() && durations.len() < 2 {
+    let points = args.points.as_deref().map(read_points).transpose()?;
+    if points.is_none() && args.param.is_empty() && durations.len() < 2 {
         return Err(CliError::Planning(match args.duration.as_deref() {
             Some(spec) => format!(
                 "--duration `{spec}` is one duration, and no --param is given: nothing to sweep (give COUNT >= 2, \
                  or --param NAME=LOW:HIGH:COUNT)"
             ),
-            None => "nothing to sweep: give --param NAME=LOW:HIGH:COUNT or --duration LOW:HIGH:COUNT".into(),
+            None => {
+                "nothing to sweep: give --param NAME=LOW:HIGH:COUNT, --duration LOW:HIGH:COUNT or --points FILE.csv"
+                    .into()
+            }
         }));
     }
     let job = || {
@@ -234,6 +311,7 @@ pub fn sweep<R: Registry>(tool: &Tool<R>, args: SweepArgs) -> Result<(), CliErro
             out: &out,
             params: &args.param,
             durations,
+            points,
             quiet: args.quiet,
         };
         tool.dispatch(&args.model, job)
@@ -628,20 +706,21 @@ fn search_shape<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
     Ok(())
 }
 
-/// The grid, checked first ([`plan::check_grid`]), in parallel; sweep.csv and
-/// (two swept quantities) a heat map.
+/// The points (a grid's or a set's, checked), in parallel; sweep.csv and
+/// (two swept quantities of a grid, `axes`) a heat map.
+#[allow(clippy::too_many_arguments)]
 fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
-    params: &[(String, Vec<f64>)],
-    durations: &[f64],
+    names: &[String],
+    points: Vec<(Vec<f64>, f64)>,
+    axes: &[(String, Vec<f64>)],
     limits: &Limits,
     settings: &Settings,
     out: &Path,
     quiet: bool,
 ) -> Result<(), CliError> {
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
-    let count =
-        plan::check_grid::<C::Model, N, M, A>(params, durations).map_err(|e| CliError::Planning(e.to_string()))?;
+    let count = points.len();
     plan::impulses(case).map_err(|e| CliError::Planning(e.to_string()))?;
     let spec = case.path().spec();
     let bar = (!quiet && std::io::IsTerminal::is_terminal(&std::io::stdout())).then(|| {
@@ -653,7 +732,7 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     });
     let done = AtomicUsize::new(0);
     let clock = Instant::now();
-    let points = plan::sweep(case, params, durations, limits, settings, &|| {
+    let points = plan::sweep_points(case, names, points, limits, settings, &|| {
         let n = done.fetch_add(1, Ordering::Relaxed) + 1;
         if let Some(bar) = &bar {
             bar.set_position(n as u64);
@@ -663,8 +742,7 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
         bar.finish_and_clear();
     }
     let wall = clock.elapsed().as_secs_f64();
-    let names: Vec<String> = params.iter().map(|(n, _)| n.clone()).collect();
-    let columns = plan::sweep_columns::<C::Model, N, M, A>(&names, &points);
+    let columns = plan::sweep_columns::<C::Model, N, M, A>(names, &points);
     let mut writer = csv::Writer::from_writer(Vec::new());
     let failed_csv = |e: csv::Error| CliError::Output {
         what: "sweep.csv".into(),
@@ -689,10 +767,6 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     staged.text("sweep.csv", bytes)?;
     // two swept quantities: a heat map of the largest |u| relative to its
     // limit (or of the first input's peak without limits)
-    let mut axes: Vec<(String, Vec<f64>)> = params.iter().filter(|(_, v)| v.len() > 1).cloned().collect();
-    if durations.len() > 1 {
-        axes.push(("duration".into(), durations.to_vec()));
-    }
     let measure = |e: &plan::Evaluation| -> Option<f64> {
         if e.error.is_some() {
             return None;
@@ -709,7 +783,7 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
             if name == "duration" {
                 p.duration
             } else {
-                p.values[params.iter().position(|(n, _)| n == name).unwrap_or(0)]
+                p.values[names.iter().position(|n| n == name).unwrap_or(0)]
             }
         };
         // per cell (rows: the second axis), the points of the sweep there

@@ -266,6 +266,50 @@ pub(super) fn sweep<'py>(
         durations,
     };
     let columns = visit_detached(py, &cranes, cranes.sweep, model, job)?;
+    columns_dict(py, columns)
+}
+
+/// `sweep_points` on one crane: the points' parameter values and
+/// durations (the move's own where `None`).
+pub(super) struct SweepPointsJob {
+    inputs: PlanInputs,
+    names: Vec<String>,
+    values: Vec<Vec<f64>>,
+    durations: Option<Vec<f64>>,
+}
+
+impl Visit for SweepPointsJob {
+    type Output = Result<Vec<(String, Column)>, String>;
+    fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+        let (case, limits) = self.inputs.case_and_limits::<C, N, M, A>()?;
+        let settings = self.inputs.settings;
+        let spec = case.path().spec();
+        let own = spec.t1 - spec.t0;
+        let points: Vec<(Vec<f64>, f64)> = match self.durations {
+            Some(durations) => self.values.into_iter().zip(durations).collect(),
+            None => self.values.into_iter().map(|v| (v, own)).collect(),
+        };
+        plan::check_points::<C::Model, N, M, A>(&self.names, &points).map_err(|e| format!("points: {e}"))?;
+        plan::impulses(&case).map_err(|e| e.to_string())?;
+        let points = plan::sweep_points(&case, &self.names, points, &limits, &settings, &|| {});
+        Ok(plan::sweep_columns::<C::Model, N, M, A>(&self.names, &points))
+    }
+}
+
+/// A sequence of numbers from Python: a list or tuple, or what `tolist()`
+/// makes of a numpy array or a pandas Series.
+fn floats(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
+    let list = if obj.hasattr("tolist")? {
+        obj.call_method0("tolist")?
+    } else {
+        obj.clone()
+    };
+    list.extract()
+        .map_err(|_| CraneError::new_err(format!("{what} must be a sequence of numbers")))
+}
+
+/// The columns of a sweep as a dict of numpy arrays (and lists of strings).
+fn columns_dict<'py>(py: Python<'py>, columns: Vec<(String, Column)>) -> PyResult<Bound<'py, PyDict>> {
     let dict = PyDict::new(py);
     for (name, column) in columns {
         match column {
@@ -278,6 +322,82 @@ pub(super) fn sweep<'py>(
         }
     }
     Ok(dict)
+}
+
+/// A sweep of `model` over any set of points: `points` maps each swept
+/// parameter to its values, one per point (a dict of equal-length arrays,
+/// or a pandas DataFrame), `durations` gives each point's duration (the
+/// move's own if none). Returns the columns `sweep` returns, in the order
+/// of the points; `sweep` is this over its grid. Every point is checked
+/// before any run: an unknown name, a NaN, ragged arrays, no points or
+/// more than a million are a `CraneError`.
+#[pyfunction]
+#[pyo3(pass_module, signature = (
+    model, points, *, durations=None, limits=None, min_tension=None, scenario=None, parameters=None, scheme=None,
+    dt=None
+))]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn sweep_points<'py>(
+    module: &Bound<'py, PyModule>,
+    model: &str,
+    points: Mapping<'_>,
+    durations: Option<&Bound<'_, PyAny>>,
+    limits: Option<Mapping<'_>>,
+    min_tension: Option<Mapping<'_>>,
+    scenario: Option<&Bound<'_, PyAny>>,
+    parameters: Option<Mapping<'_>>,
+    scheme: Option<&str>,
+    dt: Option<Number>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let py = module.py();
+    let cranes = Cranes::of_module(module)?;
+    let inputs = PlanInputs::new(
+        scenario,
+        parameters.as_deref(),
+        limits.as_deref(),
+        min_tension.as_deref(),
+        scheme,
+        value(dt),
+        None,
+    )?;
+    let mut names = Vec::new();
+    let mut columns: Vec<Vec<f64>> = Vec::new();
+    for (key, values) in points.iter() {
+        let name: String = key
+            .extract()
+            .map_err(|_| CraneError::new_err("points: every name must be a string"))?;
+        columns.push(floats(&values, &format!("points: `{name}`"))?);
+        names.push(name);
+    }
+    let count = match (columns.first(), durations) {
+        (Some(first), _) => first.len(),
+        (None, Some(d)) => floats(d, "durations")?.len(),
+        (None, None) => 0,
+    };
+    if let Some(k) = columns.iter().position(|c| c.len() != count) {
+        return Err(CraneError::new_err(format!(
+            "points: ragged: `{}` has {} values, `{}` {count}",
+            names[k],
+            columns[k].len(),
+            names[0]
+        )));
+    }
+    let durations = durations.map(|d| floats(d, "durations")).transpose()?;
+    if let Some(d) = durations.as_ref().filter(|d| d.len() != count) {
+        return Err(CraneError::new_err(format!(
+            "durations: {} for {count} points",
+            d.len()
+        )));
+    }
+    let values = (0..count).map(|i| columns.iter().map(|c| c[i]).collect()).collect();
+    let job = SweepPointsJob {
+        inputs,
+        names,
+        values,
+        durations,
+    };
+    let columns = visit_detached(py, &cranes, cranes.sweep_points, model, job)?;
+    columns_dict(py, columns)
 }
 
 /// `crane convergence` on one crane.

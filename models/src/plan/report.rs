@@ -175,6 +175,73 @@ impl<const N: usize, const M: usize, const A: usize> Fastest<N, M, A> {
     }
 }
 
+/// Check a set of points for crane `Mdl` before any run (as
+/// [`sweep_points`](super::sweep_points) takes them: each the values of
+/// `names` and a duration): every name a parameter of the crane, given
+/// once; at least one point and at most [`MAX_SWEEP_POINTS`]; every point
+/// with one value per name, every value finite, every duration finite and
+/// positive. Returns the number of points.
+///
+/// ```
+/// use crane_models::navy_planar::NavyPlanar;
+/// use crane_models::plan::check_points;
+/// let names = vec!["m_l".to_string()];
+/// assert_eq!(check_points::<NavyPlanar, 7, 3, 2>(&names, &[(vec![80.0], 4.0), (vec![120.0], 3.0)]).unwrap(), 2);
+/// assert!(check_points::<NavyPlanar, 7, 3, 2>(&names, &[(vec![f64::NAN], 4.0)]).is_err());
+/// assert!(check_points::<NavyPlanar, 7, 3, 2>(&names, &[]).is_err());
+/// ```
+pub fn check_points<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    names: &[String],
+    points: &[(Vec<f64>, f64)],
+) -> Result<usize, PlanError> {
+    let known = Mdl::INFO.parameters;
+    for (i, name) in names.iter().enumerate() {
+        if !known.contains(&name.as_str()) {
+            return Err(PlanError::Grid(format!(
+                "`{name}`: no such parameter; the parameters are {}",
+                known.join(", ")
+            )));
+        }
+        if names[..i].contains(name) {
+            return Err(PlanError::Grid(format!("`{name}` is given twice")));
+        }
+    }
+    if points.is_empty() {
+        return Err(PlanError::Grid("no points".into()));
+    }
+    if points.len() > MAX_SWEEP_POINTS {
+        return Err(PlanError::Grid(format!(
+            "{} points, more than {MAX_SWEEP_POINTS} (split the set)",
+            points.len()
+        )));
+    }
+    for (i, (values, duration)) in points.iter().enumerate() {
+        if values.len() != names.len() {
+            return Err(PlanError::Grid(format!(
+                "point {}: {} values for {} parameters",
+                i + 1,
+                values.len(),
+                names.len()
+            )));
+        }
+        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+            return Err(PlanError::Grid(format!(
+                "point {}: `{}` = {} is not finite",
+                i + 1,
+                names[k],
+                values[k]
+            )));
+        }
+        if !(duration.is_finite() && *duration > 0.0) {
+            return Err(PlanError::Grid(format!(
+                "point {}: the duration {duration} s must be positive and finite",
+                i + 1
+            )));
+        }
+    }
+    Ok(points.len())
+}
+
 /// Check a sweep's grid for crane `Mdl` before any run: every swept name
 /// is a parameter of the crane and is swept once, every value and
 /// duration is finite (durations positive), and the grid has at most
