@@ -1,6 +1,7 @@
 """Inverse dynamics of underactuated cranes: whole runs into numpy arrays."""
 
 from os import PathLike
+from types import ModuleType
 from typing import IO, Any, Literal, Mapping, Optional, Sequence, Union, final
 
 import numpy as np
@@ -23,6 +24,12 @@ __all__ = [
     "sweep_points",
     "convergence",
 ]
+
+distributed: ModuleType
+"""Sweeps on a Dask cluster: `distributed.sweep(model, grid=None,
+points=None, *, client, durations=None, chunk_size=10_000, progress=False,
+**options)` returns `sweep`'s columns, the same numbers as one machine's
+(dask is imported only when used: `pip install "crane[distributed]"`)."""
 
 _Floats: TypeAlias = Union[Sequence[float], npt.NDArray[np.floating[Any]]]
 """Numbers as a sequence or a numpy array (grids, durations, steps)."""

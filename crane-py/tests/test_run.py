@@ -461,6 +461,7 @@ def test_the_module_has_its_version_and_its_public_names():
             "stepper",
             "fastest",
             "sweep",
+            "sweep_points",
             "convergence",
         ]
     )

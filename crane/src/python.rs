@@ -1425,6 +1425,34 @@ impl PyStepper {
     }
 }
 
+/// The Python source of `PACKAGE.distributed`: sweeps on a Dask cluster.
+const DISTRIBUTED: &str = include_str!("python/distributed.py");
+
+/// Add `package.distributed` (sweeps on a Dask cluster, in Python: it
+/// imports dask only when used) as an attribute of `module` and of the
+/// package, and to `sys.modules`, so that `from crane import distributed`
+/// and `import crane.distributed` find it, and the workers of a cluster
+/// unpickle its task function by name.
+fn add_distributed(module: &Bound<'_, PyModule>, package: &str) -> PyResult<()> {
+    let py = module.py();
+    let name = format!("{package}.distributed");
+    let code = std::ffi::CString::new(DISTRIBUTED).map_err(|e| CraneError::new_err(e.to_string()))?;
+    let file =
+        std::ffi::CString::new(format!("{package}/distributed.py")).map_err(|e| CraneError::new_err(e.to_string()))?;
+    let module_name = std::ffi::CString::new(name.clone()).map_err(|e| CraneError::new_err(e.to_string()))?;
+    let distributed = PyModule::from_code(py, &code, &file, &module_name)?;
+    distributed.setattr("_PACKAGE", package)?;
+    module.add("distributed", &distributed)?;
+    let modules = py.import("sys")?.getattr("modules")?;
+    modules.set_item(&name, &distributed)?;
+    if let Ok(parent) = modules.get_item(package)
+        && !parent.is(module)
+    {
+        parent.setattr("distributed", &distributed)?;
+    }
+    Ok(())
+}
+
 /// Fill `module` with the cranes of registry `R`: `models()`, `run(...)`,
 /// `stepper(...)`, `fastest(...)`, `sweep(...)`, `convergence(...)`, the
 /// classes `Run` and `Stepper` and the exception `CraneError`. What
@@ -1456,6 +1484,7 @@ pub fn add_to_module<R: Registry + Default>(module: &Bound<'_, PyModule>) -> PyR
     for class in ["CraneError", "CraneWarning", "Run", "Stepper"] {
         module.getattr(class)?.setattr("__module__", &package)?;
     }
+    add_distributed(module, package)?;
     // the version of the library the module was built with (in `__all__`
     // too: a wheel's package re-exports the module by `import *`)
     module.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -131,3 +131,23 @@ def test_the_module_s_stepper_class_makes_its_own_cranes():
     assert np.array_equal(s.step()["u"], r.u[1])
     with pytest.raises(my_cranes.CraneError, match="unknown model `navy-planar`"):
         my_cranes.Stepper("navy-planar")
+
+
+def test_a_sweep_of_the_user_s_crane_on_a_dask_cluster_is_the_module_s():
+    """`my_cranes.distributed.sweep`: the workers import `my_cranes` and run
+    its cranes; the table is `my_cranes.sweep`'s, bit for bit."""
+    pytest.importorskip("distributed")
+    from dask.distributed import Client, LocalCluster
+
+    grid = {"m_l": [100.0, 150.0, 200.0, 250.0]}
+    expected = my_cranes.sweep("planar-gantry", grid, durations=[4.0, 5.0])
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with Client(cluster) as client:
+            table = my_cranes.distributed.sweep("planar-gantry", grid, durations=[4.0, 5.0], client=client,
+                                                chunk_size=3)
+    assert list(table) == list(expected)
+    for name, column in expected.items():
+        if isinstance(column, np.ndarray):
+            assert np.array_equal(column, table[name], equal_nan=True), name
+        else:
+            assert column == table[name], name

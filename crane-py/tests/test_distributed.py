@@ -1,0 +1,95 @@
+"""Sweeps on a Dask cluster (`crane.distributed.sweep`): a LocalCluster of
+two worker processes runs a 3-parameter grid of 20,000 points in chunks,
+and every column equals `crane.sweep`'s on one machine, bit for bit; with
+one worker process killed mid-sweep (after the first chunk is done) the
+scheduler runs its chunks again and the result is the same."""
+
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import crane
+
+distributed = pytest.importorskip("distributed")
+
+GRID = {
+    "m_l": np.linspace(80.0, 120.0, 25),
+    "l": np.linspace(9.0, 11.0, 20),
+    "J1": np.linspace(0.5, 1.5, 20),
+}
+DURATIONS = [3.5, 4.0]
+LIMITS = {"u2": 150.0}
+
+
+def assert_same(table, expected):
+    assert list(table) == list(expected)
+    for name, column in expected.items():
+        if isinstance(column, np.ndarray):
+            assert column.dtype == table[name].dtype and np.array_equal(column, table[name], equal_nan=True), name
+        else:
+            assert column == table[name], name
+
+
+@pytest.fixture(scope="module")
+def expected():
+    return crane.sweep("navy-planar", GRID, durations=DURATIONS, limits=LIMITS)
+
+
+@pytest.fixture(scope="module")
+def client():
+    from dask.distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with Client(cluster) as client:
+            yield client
+
+
+def test_a_grid_on_a_local_cluster_is_one_machine_s_sweep(expected, client):
+    assert len(expected["m_l"]) == 20_000
+    table = crane.distributed.sweep("navy-planar", GRID, durations=DURATIONS, client=client, chunk_size=2_000,
+                                    limits=LIMITS)
+    assert_same(table, expected)
+
+
+def test_a_worker_killed_mid_sweep_changes_nothing(expected, client):
+    pids = client.run(os.getpid)
+    killed = {}
+
+    def kill_after_the_first_chunk():
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline:
+            if any(client.has_what().values()):
+                worker, pid = next(iter(pids.items()))
+                os.kill(pid, signal.SIGKILL)
+                killed["at"] = time.monotonic()
+                return
+            time.sleep(0.01)
+
+    killer = threading.Thread(target=kill_after_the_first_chunk)
+    killer.start()
+    table = crane.distributed.sweep("navy-planar", GRID, durations=DURATIONS, client=client, chunk_size=1_000,
+                                    limits=LIMITS)
+    done = time.monotonic()
+    killer.join()
+    assert "at" in killed and killed["at"] < done, "no worker was killed while the sweep ran"
+    assert_same(table, expected)
+
+
+def test_points_on_a_cluster_are_sweep_points_and_bad_sets_fail_before_any_task(client):
+    points = {"m_l": [120.0, 80.0, 100.0]}
+    table = crane.distributed.sweep("navy-planar", points=points, durations=[4.0, 3.0, 3.5], client=client,
+                                    chunk_size=2, limits=LIMITS)
+    assert_same(table, crane.sweep_points("navy-planar", points, durations=[4.0, 3.0, 3.5], limits=LIMITS))
+    for kwargs, match in [
+        (dict(points={"m_l": [1.0, float("nan")]}), "not finite"),
+        (dict(points={"m_x": [1.0]}), "no such parameter"),
+        (dict(points={"m_l": [1.0, 2.0], "l": [9.0]}), "ragged"),
+        (dict(grid={"m_l": [1.0]}, points={"m_l": [1.0]}), "not both"),
+        (dict(points={"m_l": [1.0]}, chunk_size=0), "chunk_size"),
+    ]:
+        with pytest.raises(crane.CraneError, match=match):
+            crane.distributed.sweep("navy-planar", client=client, **kwargs)
