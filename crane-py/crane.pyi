@@ -29,7 +29,9 @@ distributed: ModuleType
 """Sweeps on a Dask cluster: `distributed.sweep(model, grid=None,
 points=None, *, client, durations=None, chunk_size=10_000, progress=False,
 **options)` returns `sweep`'s columns, the same numbers as one machine's
-(dask is imported only when used: `pip install "crane[distributed]"`)."""
+(dask is imported only when used: `pip install "crane[distributed]"`);
+`distributed.to_parquet(path, model, ...)` has the workers write it as
+Parquet shards, one per chunk."""
 
 _Floats: TypeAlias = Union[Sequence[float], npt.NDArray[np.floating[Any]]]
 """Numbers as a sequence or a numpy array (grids, durations, steps)."""

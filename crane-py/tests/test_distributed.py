@@ -93,3 +93,26 @@ def test_points_on_a_cluster_are_sweep_points_and_bad_sets_fail_before_any_task(
     ]:
         with pytest.raises(crane.CraneError, match=match):
             crane.distributed.sweep("navy-planar", client=client, **kwargs)
+
+
+def test_to_parquet_writes_a_shard_per_chunk_that_read_back_are_the_sweep(tmp_path, expected, client):
+    pandas = pytest.importorskip("pandas")
+    pytest.importorskip("pyarrow")
+    target = tmp_path / "sweep"
+    shards = crane.distributed.to_parquet(target, "navy-planar", GRID, durations=DURATIONS, client=client,
+                                          chunk_size=6_000, limits=LIMITS)
+    assert [os.path.basename(s) for s in shards] == [f"part-{i:05d}.parquet" for i in range(4)]
+    assert sorted(os.listdir(target)) == [os.path.basename(s) for s in shards]
+    frame = pandas.read_parquet(target)
+    assert list(frame.columns) == list(expected)
+    for name, column in expected.items():
+        if isinstance(column, np.ndarray):
+            assert np.array_equal(frame[name].to_numpy(), column, equal_nan=True), name
+        else:
+            assert frame[name].tolist() == column, name
+    # the folder is new; a sweep that fails leaves nothing behind
+    with pytest.raises(crane.CraneError, match="exists"):
+        crane.distributed.to_parquet(target, "navy-planar", GRID, client=client)
+    with pytest.raises(crane.CraneError, match="has no input"):
+        crane.distributed.to_parquet(tmp_path / "bad", "navy-planar", GRID, client=client, limits={"u9": 1.0})
+    assert sorted(os.listdir(tmp_path)) == ["sweep"]

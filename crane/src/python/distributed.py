@@ -17,6 +17,8 @@ and the result is the same. Dask is imported only here, when used:
 """
 
 import importlib
+import os
+import shutil
 import sys
 
 import numpy as np
@@ -79,14 +81,11 @@ def _join(chunks):
     return table
 
 
-def sweep(model, grid=None, points=None, *, client, durations=None, chunk_size=CHUNK_SIZE, progress=False,
-          **options):
-    """The sweep of `model` over `grid` (with `durations`, as `sweep`) or
-    over `points` (with per-point `durations`, as `sweep_points`) on the
-    Dask cluster of `client`, in chunks of `chunk_size` points; returns
-    `sweep`'s columns in the order of the points. `progress` prints the
-    chunks done on stderr. `options` are `sweep_points`' keywords
-    (`limits`, `min_tension`, `scenario`, `parameters`, `scheme`, `dt`)."""
+def _prepare(model, grid, points, durations, chunk_size, options):
+    """The points of a grid or a set, checked: the names, one list of values
+    per name, the durations (None: the move's own) and the chunks' starts.
+    The first point is run here, so that an unknown name or option fails
+    before any task."""
     package = _package()
     if (grid is None) == (points is None):
         raise package.CraneError("give a grid or points, not both or neither")
@@ -104,29 +103,87 @@ def sweep(model, grid=None, points=None, *, client, durations=None, chunk_size=C
         raise package.CraneError("points: ragged: every parameter and the durations need one value per point")
     if count == 0:
         raise package.CraneError("points: no points")
-    # before any task: every value finite, and the first point run here
-    # (unknown names, limits and options fail as they would on a worker)
     for name, column in zip(names, columns):
         if not all(np.isfinite(column)):
             raise package.CraneError(f"points: `{name}` has a value that is not finite")
     _chunk(_PACKAGE, model, names, [c[:1] for c in columns], None if durations is None else durations[:1], options)
-    starts = range(0, count, chunk_size)
-    futures = [
+    return names, columns, durations, range(0, count, chunk_size)
+
+
+def _submit(client, task, model, names, columns, durations, starts, chunk_size, options, extra=lambda i: ()):
+    """One task per chunk: `task(package, model, names, columns, durations,
+    options, *extra(i))` for the chunk starting at point `i`."""
+    return [
         client.submit(
-            _chunk,
+            task,
             _PACKAGE,
             model,
             names,
             [c[i:i + chunk_size] for c in columns],
             None if durations is None else durations[i:i + chunk_size],
             options,
+            *extra(i),
             pure=False,
         )
         for i in starts
     ]
+
+
+def _wait(futures, progress):
+    """Print the chunks done on stderr as they finish, if asked."""
     if progress:
         from dask.distributed import as_completed
 
         for done, _ in enumerate(as_completed(futures), start=1):
             print(f"sweep: {done}/{len(futures)} chunks", file=sys.stderr)
+
+
+def sweep(model, grid=None, points=None, *, client, durations=None, chunk_size=CHUNK_SIZE, progress=False,
+          **options):
+    """The sweep of `model` over `grid` (with `durations`, as `sweep`) or
+    over `points` (with per-point `durations`, as `sweep_points`) on the
+    Dask cluster of `client`, in chunks of `chunk_size` points; returns
+    `sweep`'s columns in the order of the points. `progress` prints the
+    chunks done on stderr. `options` are `sweep_points`' keywords
+    (`limits`, `min_tension`, `scenario`, `parameters`, `scheme`, `dt`)."""
+    names, columns, durations, starts = _prepare(model, grid, points, durations, chunk_size, options)
+    futures = _submit(client, _chunk, model, names, columns, durations, starts, chunk_size, options)
+    _wait(futures, progress)
     return _join(client.gather(futures))
+
+
+def _shard(package, model, names, columns, durations, options, path):
+    """One task: a chunk's sweep written by the worker to `path` as Parquet."""
+    import pandas
+
+    pandas.DataFrame(_chunk(package, model, names, columns, durations, options)).to_parquet(path, index=False)
+    return path
+
+
+def to_parquet(path, model, grid=None, points=None, *, client, durations=None, chunk_size=CHUNK_SIZE,
+               progress=False, **options):
+    """The sweep `sweep` makes, written by the workers as Parquet, one shard
+    per chunk (`path/part-00000.parquet`, ... in the order of the points),
+    for tables larger than one machine's memory: `pandas.read_parquet(path)`
+    reads them back as one table. `path` must not exist and be on a file
+    system every worker writes to; the shards go into a folder beside it
+    that is renamed to `path` only when all of them are written (a failed
+    sweep leaves no `path`). Needs pandas and pyarrow on the workers.
+    Returns the shards' paths."""
+    package = _package()
+    target = os.path.abspath(os.fspath(path))
+    if os.path.lexists(target):
+        raise package.CraneError(f"{target} exists: to_parquet writes a new folder")
+    names, columns, durations, starts = _prepare(model, grid, points, durations, chunk_size, options)
+    partial = f"{target}.partial-{os.getpid()}"
+    os.makedirs(partial)
+    try:
+        shard = lambda i: (os.path.join(partial, f"part-{i // chunk_size:05d}.parquet"),)
+        futures = _submit(client, _shard, model, names, columns, durations, starts, chunk_size, options, shard)
+        _wait(futures, progress)
+        client.gather(futures)
+        os.rename(partial, target)
+    except BaseException:
+        shutil.rmtree(partial, ignore_errors=True)
+        raise
+    return [os.path.join(target, f"part-{i // chunk_size:05d}.parquet") for i in starts]
