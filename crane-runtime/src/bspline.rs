@@ -21,6 +21,7 @@
 
 use nalgebra::SVector;
 
+use crate::double_double::DoubleDouble;
 use crate::trajectory::{Trajectory, TrajectoryError};
 
 /// A clamped B-spline `gamma(t) = sum_i N_(i,p)(t) P_i` of degree `p` on the
@@ -300,6 +301,73 @@ impl<const A: usize> Trajectory<A> for BSpline<A> {
     /// last `r + 1` control points are equal), the held ends join it with
     /// `r` continuous derivatives; inside, a knot of multiplicity `m` leaves
     /// `p - m`. The smaller of the two.
+    /// De Boor's recursion in double-double on the control points of the
+    /// span holding `t` and their differences (those of derivatives 1
+    /// and 2, formed in double-double too): the spline these `f64` knots
+    /// and points define, to double-double precision, so that eqs. (22)
+    /// do not differentiate its rounding to `f64`.
+    fn target_extended(&self, t: DoubleDouble) -> Option<[SVector<DoubleDouble, A>; 3]> {
+        let zero = SVector::from_element(DoubleDouble::from(0.0));
+        let (t0, t1) = self.span();
+        let points = &self.control[0];
+        let held = |point: &SVector<f64, A>| Some([point.map(DoubleDouble::from), zero, zero]);
+        if t.hi <= t0 {
+            return held(&points[0]);
+        }
+        if t.hi >= t1 {
+            return held(&points[points.len() - 1]);
+        }
+        let degree = self.degree;
+        let n = points.len();
+        // the span [knots[s], knots[s + 1]) holding t
+        let s = (degree..n).rev().find(|&s| self.knots[s] <= t.hi).unwrap_or(degree);
+        // the window of control points of derivatives 0, 1, 2 there:
+        // level k holds points s - p .. s - k of derivative k
+        let mut window = [[zero; MAX_DEGREE + 1]; 3];
+        for (j, point) in window[0].iter_mut().enumerate().take(degree + 1) {
+            *point = points[s - degree + j].map(DoubleDouble::from);
+        }
+        let levels = degree.min(2);
+        for k in 1..=levels {
+            let scale = DoubleDouble::from((degree - k + 1) as f64);
+            for j in 0..=degree - k {
+                let i = s - degree + j;
+                let width = DoubleDouble::sum(self.knots[i + degree + 1], -self.knots[i + k]);
+                let (before, after) = (window[k - 1][j], window[k - 1][j + 1]);
+                window[k][j] = if width.hi > 0.0 {
+                    SVector::from_fn(|c, _| (after[c] - before[c]) * scale / width)
+                } else {
+                    zero
+                };
+            }
+        }
+        let mut out = [zero; 3];
+        for (k, value) in out.iter_mut().enumerate().take(levels + 1) {
+            // de Boor on derivative k: degree p - k on the knots without
+            // the first and the last k
+            let p = degree - k;
+            let knots = &self.knots[k..self.knots.len() - k];
+            let span = s - k;
+            let mut d = window[k];
+            for r in 1..=p {
+                for j in (r..=p).rev() {
+                    let i = span + j - p;
+                    let denominator = DoubleDouble::sum(knots[i + p + 1 - r], -knots[i]);
+                    let alpha = if denominator.hi > 0.0 {
+                        (t - knots[i]) / denominator
+                    } else {
+                        DoubleDouble::from(0.0)
+                    };
+                    let one_minus = DoubleDouble::from(1.0) - alpha;
+                    let (lower, upper) = (d[j - 1], d[j]);
+                    d[j] = SVector::from_fn(|c, _| lower[c] * one_minus + upper[c] * alpha);
+                }
+            }
+            *value = d[p];
+        }
+        Some(out)
+    }
+
     fn continuity(&self) -> Option<usize> {
         let (t0, t1) = self.span();
         let at_rest = (1..=self.degree)
@@ -488,6 +556,46 @@ mod tests {
                 .to_string()
                 .contains("increasing")
         );
+    }
+
+    /// In double-double the spline is the one its `f64` knots and points
+    /// define, to about 1e-30 of its size: it agrees with the `f64`
+    /// evaluation to the latter's rounding (1e-14 relative) in value and
+    /// the first two derivatives, inside, at a knot, and held at the ends.
+    #[test]
+    fn the_double_double_target_is_the_spline_to_its_precision() {
+        let times = [0.0, 1.5, 2.0, 4.0];
+        let points = [
+            vector![0.0, -5.0],
+            vector![1.0, -2.0],
+            vector![2.5, -2.0],
+            vector![4.0, -5.0],
+        ];
+        let spline = BSpline::through(&times, &points, 4).unwrap();
+        for t in [-1.0, 0.0, 0.3, 1.5, 1.7, 2.0, 3.99, 4.0, 5.0] {
+            let extended = spline.target_extended(DoubleDouble::from(t)).unwrap();
+            for k in 0..3 {
+                let (got, expected) = (extended[k].map(DoubleDouble::to_f64), spline.derivative(t, k));
+                let scale = 1.0 + spline.derivative(t, k).amax();
+                assert!(
+                    (got - expected).amax() <= 1e-13 * scale,
+                    "t = {t}, k = {k}: {got} {expected}"
+                );
+            }
+        }
+        // between two step times 1e-17 s apart the double-double target
+        // moves by the velocity times 1e-17; f64 cannot tell the times apart
+        let t = DoubleDouble::new(1.7, 1e-17);
+        let moved = spline.target_extended(t).unwrap()[0] - spline.target_extended(DoubleDouble::from(1.7)).unwrap()[0];
+        let velocity = spline.derivative(1.7, 1);
+        for c in 0..2 {
+            let error = (moved[c].to_f64() - velocity[c] * 1e-17).abs();
+            assert!(
+                error <= 1e-3 * velocity[c].abs() * 1e-17 + 1e-30,
+                "{c}: {error:e}, velocity {}",
+                velocity[c]
+            );
+        }
     }
 
     #[test]
