@@ -514,12 +514,6 @@ fn answer_scenario<C: Crane<N, M, A>, const N: usize, const M: usize, const A: u
     staged: &mut Staged,
     what: &str,
 ) -> Result<String, CliError> {
-    let info = <C::Model as CraneModel<N, M, A>>::INFO;
-    let named: Vec<(String, f64)> = limits
-        .torque
-        .iter()
-        .map(|&(k, limit)| (info.inputs[k].to_string(), limit))
-        .collect();
     let command = format!(
         "crane run {} --scenario {}",
         C::NAME,
@@ -535,7 +529,7 @@ fn answer_scenario<C: Crane<N, M, A>, const N: usize, const M: usize, const A: u
     ];
     staged.text(
         "fastest.toml",
-        scenario::scenario_text::<C, N, M, A>(case.model(), path, &named, &comment),
+        scenario::scenario_text::<C, N, M, A>(case.model(), path, limits, &comment),
     )?;
     Ok(command)
 }

@@ -235,13 +235,11 @@ fn spline_of<const A: usize>(
                 .map(|shape| (shape, t0, t1))?
         }
         (None, Some(control)) => {
-            for (key, given) in [("times", file.times.is_some())] {
-                if given {
-                    return refuse(
-                        key,
-                        "`times` go with `waypoints`; `knots` are in the move's normalised time",
-                    );
-                }
+            if file.times.is_some() {
+                return refuse(
+                    "times",
+                    "`times` go with `waypoints`; `knots` are in the move's normalised time",
+                );
             }
             let Some(knots) = &file.knots else {
                 return refuse(

@@ -6,6 +6,7 @@
 use std::fmt::Write;
 
 use crane_models::path::Profile;
+use crane_models::plan::Limits;
 use crane_models::{Crane, PathSpec};
 use crane_runtime::CraneModel;
 
@@ -20,13 +21,13 @@ fn list(values: impl IntoIterator<Item = f64>) -> String {
 }
 
 /// The scenario of crane `C` with `model`'s parameters moving on `path`
-/// under `limits` (`(input name, limit)`), headed by `comment` lines; the
+/// under the torque `limits` (by input name), headed by `comment` lines; the
 /// run ends at the first whole step of the default `dt` at or after the
 /// motion (`tf`), so that it runs as written.
 pub fn scenario_text<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     model: &C::Model,
     path: &PathSpec<A>,
-    limits: &[(String, f64)],
+    limits: &Limits,
     comment: &[String],
 ) -> String {
     let dt = crane_models::study::DEFAULT_DT;
@@ -68,10 +69,10 @@ pub fn scenario_text<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
     for (name, value) in info.parameters.iter().zip(model.parameter_values()) {
         let _ = writeln!(text, "{name} = {}", number(value));
     }
-    if !limits.is_empty() {
+    if !limits.torque.is_empty() {
         let _ = writeln!(text, "\n[limits]");
-        for (name, value) in limits {
-            let _ = writeln!(text, "{name} = {}", number(*value));
+        for &(k, value) in &limits.torque {
+            let _ = writeln!(text, "{} = {}", info.inputs[k], number(value));
         }
     }
     text

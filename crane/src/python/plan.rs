@@ -101,14 +101,9 @@ impl Visit for FastestJob {
                 (report, shaped.path, shaped.solution)
             }
         };
-        let named: Vec<(String, f64)> = limits
-            .torque
-            .iter()
-            .map(|&(k, limit)| (info.inputs[k].to_string(), limit))
-            .collect();
         Ok(FastestData {
             report: serde_json::to_string(&report).map_err(|e| format!("report: {e}"))?,
-            scenario: scenario::scenario_text::<C, N, M, A>(case.model(), &path, &named, &[]),
+            scenario: scenario::scenario_text::<C, N, M, A>(case.model(), &path, &limits, &[]),
             run: Columns::of(&solution)?,
             widths: [N, A, M, info.ropes.len()],
         })

@@ -463,12 +463,11 @@ pub fn fastest_shape<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
             floor.abs().max(largest).max(1.0)
         })
         .collect();
-    let n = problem.variables();
     let mut y = zero;
     let mut iterations = 0;
     // rounds of the programme, each with a wider margin below the limits
     // at the samples until the check between the steps holds
-    let (duration, at_answer, solution) = loop {
+    let (duration, path, at_answer, solution) = loop {
         iterations += search(&problem, &mut y, shape.iterations, &mut runs, progress)?;
         let duration = problem.duration(&y);
         let case = problem.case_at(&y).map_err(PlanError::Settings)?;
@@ -482,17 +481,19 @@ pub fn fastest_shape<C: Crane<N, M, A>, const N: usize, const M: usize, const A:
         runs += 1;
         match solution {
             Some(solution) if evaluation.feasible::<C::Model, N, M, A>(limits) => {
-                break (duration, evaluation.bindings::<C::Model, N, M, A>(limits), solution);
+                let path = case.path().spec().clone();
+                break (
+                    duration,
+                    path,
+                    evaluation.bindings::<C::Model, N, M, A>(limits),
+                    solution,
+                );
             }
             _ if problem.margin < LAST_MARGIN => problem.margin *= 3.0,
             // the start, time-scaled, is feasible: never worse than it
-            _ => {
-                y = vec![0.0; n];
-                break (scaled.duration, scaled.at_answer, scaled.solution);
-            }
+            _ => break (scaled.duration, scaled.path, scaled.at_answer, scaled.solution),
         }
     };
-    let path = problem.case_at(&y).map_err(PlanError::Settings)?.path().spec().clone();
     Ok(Shaped {
         duration,
         path,
