@@ -55,4 +55,6 @@ pub enum CliError {
     NoFmuLibrary(String),
     #[error(transparent)]
     Package(#[from] crane_fmi::package::PackageError),
+    #[error("the run the FMU starts from: {0}")]
+    FmuStart(#[from] crane_fmi::start::StartError),
 }

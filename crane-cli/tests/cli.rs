@@ -1259,6 +1259,55 @@ fn fmu_packages_the_description_and_the_library() {
     assert!(String::from_utf8_lossy(&result.stderr).contains("unknown model"));
 }
 
+/// `crane fmu MODEL --scenario FILE` packages the scenario's run with the
+/// description and the library (`resources/start.toml`) and says what the
+/// FMU starts from; a scenario for another crane or one its crane cannot
+/// run is refused with the key's error, and no FMU is written.
+#[test]
+fn fmu_packages_a_scenarios_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let library = dir.path().join("libfake.so");
+    std::fs::write(&library, b"\x7fELF stand-in naming fmi2Instantiate and fmi2DoStep").unwrap();
+    let out = dir.path().join("spline.fmu");
+    let fmu = |scenario: &std::path::Path| {
+        crane(&[
+            "fmu",
+            "gantry-3d",
+            "--scenario",
+            scenario.to_str().unwrap(),
+            "--library",
+            library.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    let example = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/gantry-3d-spline.toml");
+    let result = fmu(&example);
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    assert!(
+        stdout.contains("the spline move (path = 4) from t0 = 0 s for 9 s"),
+        "{stdout}"
+    );
+    let bytes = std::fs::read(&out).unwrap();
+    assert!(String::from_utf8_lossy(&bytes).contains("resources/start.toml"));
+    std::fs::remove_file(&out).unwrap();
+    for (text, needle) in [
+        ("model = \"navy-planar\"\n", "navy-planar"),
+        (
+            "trajectory = \"spline\"\ntimes = [0.0, 9.0]\nwaypoints = [[0.0, 0.0, -5.0], [6.0, 3.0, -3.0]]\ndegree = 5\n",
+            "degree",
+        ),
+    ] {
+        let scenario = dir.path().join("bad.toml");
+        std::fs::write(&scenario, text).unwrap();
+        let result = fmu(&scenario);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(!result.status.success() && stderr.contains(needle), "{stderr}");
+        assert!(!out.exists());
+    }
+}
+
 /// `crane fastest`: the shortest duration under |u2| <= 150 N m (rope 1
 /// allowed to push, so that the torque binds): 2.95 s, bound by u2; the
 /// JSON has `duration` and `binding`, and the files are written. With the

@@ -20,7 +20,13 @@ C host (host.c) loading the FMU's shared library directly, against the same
 run. Prints the time per doStep of the C host and of FMPy next to the
 native stepper's (`TOOL bench`).
 
-usage: python check_fmus.py TOOL_EXECUTABLE HOST_EXECUTABLE OUT_DIR
+Then for each MODEL=SCENARIO given: `TOOL fmu MODEL --scenario SCENARIO`
+(the FMU starts from the scenario's run, a spline move's shape in
+resources/start.toml), validate_fmu, and FMPy's simulate_fmu over its
+default experiment (FMPy passes the resource location) against `TOOL run
+MODEL --scenario SCENARIO`, to the same 1e-9.
+
+usage: python check_fmus.py TOOL_EXECUTABLE HOST_EXECUTABLE OUT_DIR [MODEL=SCENARIO ...]
 """
 
 import csv
@@ -155,8 +161,27 @@ def audit(unzipped, md, summary, start, stop):
     return f"status {at_start} at the start, {at_end} at the end"
 
 
+def scenario_fmu(crane, out, model, scenario):
+    """The FMU of `model` packaged with `scenario`'s run against `TOOL run
+    MODEL --scenario`; returns the largest relative difference."""
+    fmu = out / f"{model}-scenario.fmu"
+    run(crane, "fmu", model, "--scenario", scenario, "--out", str(fmu))
+    problems = validate_fmu(str(fmu))
+    if problems:
+        raise SystemExit(f"{model} with {scenario}: validate_fmu: {problems}")
+    md = fmpy.read_model_description(str(fmu))
+    experiment = md.defaultExperiment
+    start, stop, step = float(experiment.startTime), float(experiment.stopTime), float(experiment.stepSize)
+    outputs = [v.name for v in md.modelVariables if v.causality == "output" and v.type == "Real" and not v.name.startswith("lambda")]
+    written = Path(run(crane, "run", model, "--scenario", scenario, "--quiet", "--out", str(out / f"{model}-scenario")).split("wrote ")[-1].strip())
+    reference = columns(written / "results.csv")
+    result = fmpy.simulate_fmu(str(fmu), start_time=start, stop_time=stop, output_interval=step, step_size=step, output=outputs)
+    return max(agree(f"{model} with {scenario}: FMPy {name}", reference[name], list(result[name])) for name in outputs if name in reference)
+
+
 def main():
     crane, host, out = sys.argv[1], sys.argv[2], Path(sys.argv[3])
+    scenarios = [item.split("=", 1) for item in sys.argv[4:]]
     out.mkdir(parents=True, exist_ok=True)
     report = []
     for model in models(crane):
@@ -218,6 +243,10 @@ def main():
         report.append((model, len(result) - 1, worst_fmpy, worst_host, native, host_step, fmpy_step))
         print(f"{model}: validated; FMPy and C host agree with {Path(crane).name} run to {worst_fmpy:.1e} and {worst_host:.1e} (relative); "
               f"{mass} = -1: {bad_mass.strip()}; FMI errors for {', '.join(misused)}; audit: {audited}", flush=True)
+
+    for model, scenario in scenarios:
+        worst = scenario_fmu(crane, out, model, scenario)
+        print(f"{model} packaged with {scenario}: validated; FMPy agrees with {Path(crane).name} run --scenario to {worst:.1e} (relative)", flush=True)
 
     print(f"\nper step (dt = 0.01 s): native stepper ({Path(crane).name} bench, median) | C host fmi2DoStep (median) | FMPy doStep (median, through ctypes)")
     for model, steps, _, _, native, host_step, fmpy_step in report:

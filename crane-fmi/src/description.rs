@@ -6,10 +6,11 @@ use std::collections::HashMap;
 use std::fmt::Write;
 use std::sync::{LazyLock, Mutex, PoisonError};
 
-use crane_models::study::Formulation;
-use crane_models::{Case, Crane};
+use crane_models::Crane;
+use crane_models::study::{Formulation, RunSpec};
 use crane_runtime::Options;
 
+use crate::start::Start;
 use crate::variables::{Causality, TableError, variables};
 
 /// The `modelIdentifier` of a crane: its name with every character that is
@@ -58,45 +59,53 @@ fn guid(body: &str) -> String {
     )
 }
 
-/// The default experiment's start and stop times of crane `C`: its default
-/// move's, and for a crane whose default is stable inversion the span of
-/// the bounded solution at the default step (from `t0 - T_pre` to `tf +
+/// The default experiment's start and stop times of crane `C` from
+/// `start`: its move's start and the run's end, and for a run by stable
+/// inversion the span of the bounded solution (from `t0 - T_pre` to `tf +
 /// T_post`: the FMU plays it back from there).
-pub fn default_experiment<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> (f64, f64) {
-    // found once per crane and process: every instance's start (and reset)
-    // asks, and for a crane whose default is stable inversion the answer
+pub fn default_experiment<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    start: &Start<A>,
+) -> (f64, f64) {
+    // found once per crane, packaged run and process: every instance's
+    // start (and reset) asks, and for a run by stable inversion the answer
     // is a whole solve
-    static FOUND: LazyLock<Mutex<HashMap<TypeId, (f64, f64)>>> = LazyLock::new(Default::default);
-    let key = TypeId::of::<C>();
+    type Key = (TypeId, Option<String>);
+    static FOUND: LazyLock<Mutex<HashMap<Key, (f64, f64)>>> = LazyLock::new(Default::default);
+    let key = (TypeId::of::<C>(), start.resource.clone());
     let known = FOUND.lock().unwrap_or_else(PoisonError::into_inner).get(&key).copied();
     if let Some(span) = known {
         return span;
     }
-    let span = find_default_experiment::<C, N, M, A>();
+    let span = find_default_experiment::<C, N, M, A>(&start.spec);
     FOUND.lock().unwrap_or_else(PoisonError::into_inner).insert(key, span);
     span
 }
 
 /// [`default_experiment`], found.
-fn find_default_experiment<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> (f64, f64) {
-    let path = C::maneuver().path;
-    let bounded = (Formulation::default_for::<C, N, M, A>() == Formulation::StableInversion)
+fn find_default_experiment<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    spec: &RunSpec<A>,
+) -> (f64, f64) {
+    let bounded = (spec.formulation == Formulation::StableInversion)
         .then(|| {
-            let case = Case::<C, N, M, A>::maneuver().ok()?;
-            let options = Options::new(crate::variables::DEFAULT_DT, case.tf()).ok()?;
+            let (case, settings) = spec.build::<C, N, M>().ok()?;
+            let options = Options::new(settings.dt, case.tf()).ok()?;
             let start = case.run_start().ok()?;
             let states = case.simulate_stable_inversion(&start, &options).ok()?.solution.states;
             Some((states.first()?.t, states.last()?.t))
         })
         .flatten();
-    bounded.unwrap_or((path.t0, path.t1))
+    bounded.unwrap_or((spec.path.t0, spec.tf))
 }
 
-/// `modelDescription.xml` of crane `C` and its GUID.
-pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>()
--> Result<(String, String), TableError> {
-    let table = variables::<C, N, M, A>()?;
-    let (start, stop) = default_experiment::<C, N, M, A>();
+/// `modelDescription.xml` of crane `C` starting from `start`, and its
+/// GUID (which a packaged run's text enters too: a binary refuses a
+/// description whose run it was not given).
+pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    start: &Start<A>,
+) -> Result<(String, String), TableError> {
+    let table = variables::<C, N, M, A>(start)?;
+    let step = start.spec.dt;
+    let (start_time, stop) = default_experiment::<C, N, M, A>(start);
     let mut vars = String::new();
     for v in &table {
         let (causality, variability, initial) = match v.causality {
@@ -132,12 +141,13 @@ pub fn model_description<C: Crane<N, M, A>, const N: usize, const M: usize, cons
     let body = format!(
         "  <CoSimulation modelIdentifier=\"{identifier}\" canHandleVariableCommunicationStepSize=\"true\" \
             canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"false\" canSerializeFMUstate=\"false\" providesDirectionalDerivative=\"false\"/>\n  <DefaultExperiment startTime=\"{}\" stopTime=\"{}\" stepSize=\"{}\"/>\n  <ModelVariables>\n{vars}  </ModelVariables>\n  <ModelStructure>\n    <Outputs>\n{outputs}    </Outputs>\n    <InitialUnknowns>\n{outputs}    </InitialUnknowns>\n  </ModelStructure>\n",
-        number(start),
+        number(start_time),
         number(stop),
-        number(crate::variables::DEFAULT_DT),
+        number(step),
     );
     let version = env!("CARGO_PKG_VERSION");
-    let guid = guid(&format!("{version}\n{}\n{body}", C::NAME));
+    let packaged = start.resource.as_deref().unwrap_or_default();
+    let guid = guid(&format!("{version}\n{}\n{body}{packaged}", C::NAME));
     let xml = format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<fmiModelDescription fmiVersion=\"2.0\" \
             modelName=\"{}\" guid=\"{guid}\" description=\"{}\" generationTool=\"crane-fmi {version}\" variableNamingConvention=\"flat\" numberOfEventIndicators=\"0\">\n{body}</fmiModelDescription>\n",
@@ -159,8 +169,9 @@ mod tests {
     #[test]
     fn the_description_lists_every_variable_once() {
         type D = navy_planar::Description;
-        let (xml, guid) = model_description::<D, 7, 3, 2>().unwrap();
-        let table = crate::variables::variables::<D, 7, 3, 2>().unwrap();
+        let start = Start::default_for::<D, 7, 3>();
+        let (xml, guid) = model_description::<D, 7, 3, 2>(&start).unwrap();
+        let table = crate::variables::variables::<D, 7, 3, 2>(&start).unwrap();
         assert_eq!(xml.matches("<ScalarVariable ").count(), table.len());
         // the Reals first (the instance finds a Real by indexing the table)
         assert!(table.iter().skip_while(|v| !v.integer).all(|v| v.integer));
@@ -198,7 +209,12 @@ mod tests {
             assert_eq!(start.to_bits(), values[k].to_bits(), "{}", v.name);
         }
         assert!(xml.contains(&format!("guid=\"{guid}\"")));
-        let (_, other) = model_description::<navy_planar_pulley::Description, 8, 4, 3>().unwrap();
+        let (_, other) = model_description::<navy_planar_pulley::Description, 8, 4, 3>(&Start::default_for::<
+            navy_planar_pulley::Description,
+            8,
+            4,
+        >())
+        .unwrap();
         assert_ne!(guid, other);
         assert_eq!(model_identifier("navy-planar"), "navy_planar");
         assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");

@@ -16,6 +16,7 @@ use crate::fmi2::{
     ValueReference,
 };
 use crate::instance::{Component, Instance};
+use crate::start::{Start, StartError};
 
 /// One crane an exported library can instantiate: found by the GUID the
 /// host passes to `fmi2Instantiate`.
@@ -23,25 +24,118 @@ use crate::instance::{Component, Instance};
 pub struct Entry {
     /// The crane's name.
     pub name: &'static str,
-    /// Its model description and GUID.
-    pub description: fn() -> Result<(String, String), String>,
-    /// A new instance.
-    pub instantiate: fn() -> Result<Box<dyn Component>, String>,
+    /// Its model description and GUID, for its default run or the
+    /// packaged one whose text is given ([`start`](crate::start)); `None`
+    /// if that run is another crane's.
+    pub description: fn(Option<&str>) -> Result<Option<Described>, String>,
+    /// A new instance, of its default run or the packaged one.
+    pub instantiate: fn(Option<&str>) -> Result<Boxed, String>,
 }
+
+/// An instance behind the C interface.
+pub type Boxed = Box<dyn Component>;
+
+/// A model description and its GUID.
+pub type Described = (String, String);
 
 impl Entry {
     /// The entry of crane `C`.
     pub fn of<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Self {
         Self {
             name: C::NAME,
-            description: || model_description::<C, N, M, A>().map_err(|e| e.to_string()),
-            instantiate: || {
-                Instance::<C, N, M, A>::new()
+            description: |packaged| {
+                let Some(start) = start_of::<C, N, M, A>(packaged)? else {
+                    return Ok(None);
+                };
+                model_description::<C, N, M, A>(&start)
+                    .map(Some)
+                    .map_err(|e| e.to_string())
+            },
+            instantiate: |packaged| {
+                let start = start_of::<C, N, M, A>(packaged)?
+                    .ok_or_else(|| format!("the packaged run is not {}'s", C::NAME))?;
+                Instance::<C, N, M, A>::starting_from(start)
                     .map(|i| Box::new(i) as Box<dyn Component>)
                     .map_err(|e| e.to_string())
             },
         }
     }
+}
+
+/// Crane `C`'s default run, or the packaged run `packaged` holds (`None`
+/// if it is another crane's).
+fn start_of<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    packaged: Option<&str>,
+) -> Result<Option<Start<A>>, String> {
+    match packaged.map(Start::read::<C, N, M>) {
+        None => Ok(Some(Start::default_for::<C, N, M>())),
+        Some(Ok(start)) => Ok(Some(start)),
+        Some(Err(StartError::WrongModel { .. })) => Ok(None),
+        Some(Err(e)) => Err(e.to_string()),
+    }
+}
+
+/// The packaged run in the folder of the `file:` URI `location` (the
+/// host's `fmuResourceLocation`), if the folder has one.
+fn packaged_run(location: Option<&str>) -> Result<Option<String>, String> {
+    let Some(location) = location.filter(|l| !l.is_empty()) else {
+        return Ok(None);
+    };
+    let folder = folder_of_uri(location)
+        .ok_or_else(|| format!("the resource location {location} is not a file: URI of a local folder"))?;
+    let path = folder.join(crate::start::RESOURCE);
+    match std::fs::metadata(&path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(format!("reading {}: {e}", path.display())),
+        Ok(meta) if meta.len() > crate::start::MAX_RESOURCE_BYTES => {
+            return Err(format!(
+                "{} has {} bytes, more than a packaged run's {}",
+                path.display(),
+                meta.len(),
+                crate::start::MAX_RESOURCE_BYTES
+            ));
+        }
+        Ok(_) => {}
+    }
+    std::fs::read_to_string(&path)
+        .map(Some)
+        .map_err(|e| format!("reading {}: {e}", path.display()))
+}
+
+/// The local folder a `file:` URI names (`file:///tmp/x/resources/`,
+/// `file:/tmp/x/resources`, `file://localhost/tmp/x`), percent-escapes
+/// decoded; `None` for another scheme or host.
+pub fn folder_of_uri(uri: &str) -> Option<std::path::PathBuf> {
+    let rest = uri.strip_prefix("file:")?;
+    let path = match rest.strip_prefix("//") {
+        Some(authority_and_path) => {
+            let slash = authority_and_path.find('/')?;
+            let (host, path) = authority_and_path.split_at(slash);
+            if !(host.is_empty() || host.eq_ignore_ascii_case("localhost")) {
+                return None;
+            }
+            path
+        }
+        None => rest,
+    };
+    if !path.starts_with('/') {
+        return None;
+    }
+    let bytes = path.as_bytes();
+    let mut decoded = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hex = std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok()?;
+            decoded.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            decoded.push(bytes[i]);
+            i += 1;
+        }
+    }
+    use std::os::unix::ffi::OsStringExt;
+    Some(std::ffi::OsString::from_vec(decoded).into())
 }
 
 /// The addresses of the instances `instantiate` made and `free_instance`
@@ -173,6 +267,7 @@ pub unsafe fn instantiate(
     instance_name: FmiString,
     fmu_type: FmuType,
     guid: FmiString,
+    resource_location: FmiString,
     callbacks: *const CallbackFunctions,
     logging_on: Boolean,
 ) -> RawComponent {
@@ -187,14 +282,27 @@ pub unsafe fn instantiate(
             return Err("this FMU supports co-simulation only (fmi2CoSimulation)".into());
         }
         let guid = unsafe { text(guid) }.ok_or("no GUID given")?;
+        let packaged = packaged_run(unsafe { text(resource_location) })?;
         for entry in entries {
-            let (_, entry_guid) = (entry.description)()?;
+            // a packaged run names its crane: the other entries pass
+            let Some((_, entry_guid)) = (entry.description)(packaged.as_deref())? else {
+                continue;
+            };
             if entry_guid == guid {
-                return (entry.instantiate)();
+                return (entry.instantiate)(packaged.as_deref());
             }
         }
+        let run = match &packaged {
+            Some(_) => format!("with the run in resources/{}", crate::start::RESOURCE),
+            None => format!(
+                "without a packaged run (an FMU packaged with a scenario needs its resources/{} from the \
+                 resource location, which the host gave as {})",
+                crate::start::RESOURCE,
+                unsafe { text(resource_location) }.unwrap_or("nothing")
+            ),
+        };
         Err(format!(
-            "GUID {guid} matches none of this library's cranes ({}); was the FMU packaged with this binary?",
+            "GUID {guid} matches none of this library's cranes ({}) {run}; was the FMU packaged with this binary?",
             entries.iter().map(|e| e.name).collect::<Vec<_>>().join(", ")
         ))
     }));

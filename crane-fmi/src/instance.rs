@@ -18,8 +18,10 @@ use crane_runtime::{Advance, CraneModel, Options, Scheme, Stepper, state_selecti
 use nalgebra::SVector;
 
 use crate::description::default_experiment;
+use crate::start::Start;
 use crate::variables::{
-    Causality, EXTERNAL_PATH, PathChoice, Role, TableError, Variable, path_help, path_of_code, status, variables,
+    Causality, EXTERNAL_PATH, PathChoice, Role, SPLINE_PATH, TableError, Variable, path_help, path_of_code, status,
+    variables,
 };
 
 /// What an instance can be asked to do, whatever its crane: the object the
@@ -141,6 +143,8 @@ impl<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, const A: usize> R
 
 /// An FMU instance of crane `C`.
 pub struct Instance<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> {
+    /// The run it starts from (the spline of a spline move is its).
+    start: Start<A>,
     table: Vec<Variable>,
     defaults: (Vec<f64>, [i32; 3]),
     reals: Vec<f64>,
@@ -157,9 +161,16 @@ pub struct Instance<C: Crane<N, M, A>, const N: usize, const M: usize, const A: 
 }
 
 impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance<C, N, M, A> {
-    /// A new instance with every variable at its start value.
+    /// A new instance of the crane's default run, every variable at its
+    /// start value.
     pub fn new() -> Result<Self, TableError> {
-        let table = variables::<C, N, M, A>()?;
+        Self::starting_from(Start::default_for::<C, N, M>())
+    }
+
+    /// A new instance of the run `start` (a packaged scenario's), every
+    /// variable at its start value.
+    pub fn starting_from(start: Start<A>) -> Result<Self, TableError> {
+        let table = variables::<C, N, M, A>(&start)?;
         let reals: Vec<f64> = table.iter().filter(|v| !v.integer).map(|v| v.start).collect();
         let mut integers = [0; 3];
         for v in table.iter().filter(|v| v.integer) {
@@ -178,9 +189,10 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
             reals,
             integers,
             mode: Mode::Instantiated,
-            start_time: default_experiment::<C, N, M, A>().0,
+            start_time: default_experiment::<C, N, M, A>(&start).0,
             run: None,
             warning: None,
+            start,
         })
     }
 
@@ -223,11 +235,15 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
     }
 
     /// The run the variables describe, checked: the crane's parameters, the
-    /// built-in move or (path = external) a path at rest at the external
-    /// target, the default start guess, `dt` and the scheme.
+    /// built-in move, the spline move timed anew or (path = external) a
+    /// path at rest at the external target, the start run's start guess and
+    /// formulation, `dt` and the scheme.
     fn spec(&self) -> Result<(RunSpec<A>, Option<ServoTarget<A>>), String> {
         let info = <C::Model as CraneModel<N, M, A>>::INFO;
-        let mut spec = RunSpec::default_for::<C, N, M>();
+        let mut spec = self.start.spec.clone();
+        // how long the start run goes on after its move (a stable
+        // inversion's post-actuation is found within it)
+        let tail = (spec.tf - spec.path.t1).max(0.0);
         spec.parameters = info
             .parameters
             .iter()
@@ -241,7 +257,13 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         let position = |role: fn(usize) -> Role| SVector::<f64, A>::from_fn(|k, _| self.value(role(k)));
         let t0 = self.value(Role::T0);
         let external = match path_of_code(self.integers[1]) {
-            None => return Err(format!("path = {}: expected {}", self.integers[1], path_help())),
+            None => {
+                return Err(format!(
+                    "path = {}: expected {}",
+                    self.integers[1],
+                    path_help(self.spline().is_some())
+                ));
+            }
             Some(PathChoice::External) => {
                 let target = self.target();
                 if target[1].amax() != 0.0 || target[2].amax() != 0.0 {
@@ -274,9 +296,26 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
                 };
                 None
             }
+            Some(PathChoice::Spline) => {
+                let Some(profile) = self.spline() else {
+                    return Err(format!(
+                        "path = {SPLINE_PATH} (the spline move): this FMU has none; package one with `crane fmu \
+                         MODEL --scenario FILE` from a scenario with trajectory = \"spline\""
+                    ));
+                };
+                spec.path.profile = profile;
+                spec.path.t0 = t0;
+                spec.path.t1 = t0 + self.value(Role::Duration);
+                None
+            }
         };
-        spec.tf = spec.path.t1;
+        spec.tf = spec.path.t1 + if external.is_some() { 0.0 } else { tail };
         Ok((spec, external))
+    }
+
+    /// The spline move of the start run, if it has one.
+    fn spline(&self) -> Option<Profile> {
+        matches!(self.start.spec.path.profile, Profile::Spline(_)).then(|| self.start.spec.path.profile.clone())
     }
 
     /// The crane, path, start and stepper from the variables: the start of
@@ -578,7 +617,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Componen
         self.integers = self.defaults.1;
         self.warning = None;
         self.mode = Mode::Instantiated;
-        self.start_time = default_experiment::<C, N, M, A>().0;
+        self.start_time = default_experiment::<C, N, M, A>(&self.start).0;
     }
 
     fn time(&self) -> f64 {

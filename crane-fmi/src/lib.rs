@@ -13,6 +13,8 @@
 //! - [`instance`]: the co-simulation state machine in safe Rust;
 //! - [`ffi`] and [`export_fmu!`]: the C entry points;
 //! - [`package`](mod@package): the `.fmu` archive;
+//! - [`start`]: the run an FMU starts from, the crane's default or a
+//!   packaged scenario's (a spline move's shape travels in `resources/`);
 //! - [`fmi2`]: the FMI 2.0 C types.
 //!
 //! # Exporting a crane
@@ -28,8 +30,10 @@
 //! test or a small binary of the same crate):
 //!
 //! ```ignore
+//! use crane_fmi::start::Start;
 //! crane_fmi::package::package::<MyCraneDescription, 4, 1, 2>(
-//!     "target/release/libmy_crane.so".as_ref(), "MyCrane.fmu".as_ref())?;
+//!     "target/release/libmy_crane.so".as_ref(), "MyCrane.fmu".as_ref(),
+//!     &Start::default_for::<MyCraneDescription, 4, 1>())?;
 //! ```
 //!
 //! The built-in cranes are exported by the `crane-fmu` library, and
@@ -50,7 +54,8 @@
 //! for k in 0..150 {
 //!     fmu.do_step(k as f64 * 0.01, 0.01).unwrap();
 //! }
-//! let table = crane_fmi::variables::variables::<navy_planar::Description, 7, 3, 2>().unwrap();
+//! let start = crane_fmi::start::Start::default_for::<navy_planar::Description, 7, 3>();
+//! let table = crane_fmi::variables::variables::<navy_planar::Description, 7, 3, 2>(&start).unwrap();
 //! let u2 = table.iter().find(|v| v.name == "u2").unwrap().value_reference;
 //! let mut value = [0.0];
 //! fmu.get_real(&[u2], &mut value).unwrap();
@@ -64,6 +69,7 @@ pub mod ffi;
 pub mod fmi2;
 pub mod instance;
 pub mod package;
+pub mod start;
 pub mod variables;
 
 pub use crane_models::{Crane, Maneuver, PathSpec, Profile, Registry};
@@ -136,11 +142,11 @@ macro_rules! export_fmu {
             }
             #[unsafe(no_mangle)]
             pub unsafe extern "C" fn fmi2Instantiate(
-                name: FmiString, kind: FmuType, guid: FmiString, _resources: FmiString,
+                name: FmiString, kind: FmuType, guid: FmiString, resources: FmiString,
                 callbacks: *const CallbackFunctions, _visible: Boolean, logging: Boolean,
             ) -> Component {
                 let entries = $entries();
-                unsafe { ffi::instantiate(&entries, name, kind, guid, callbacks, logging) }
+                unsafe { ffi::instantiate(&entries, name, kind, guid, resources, callbacks, logging) }
             }
             #[unsafe(no_mangle)]
             pub unsafe extern "C" fn fmi2FreeInstance(c: Component) { unsafe { ffi::free_instance(c) } }

@@ -1,5 +1,6 @@
-//! The FMU archive: `modelDescription.xml` and the shared library as
-//! `binaries/linux64/<modelIdentifier>.so`, zipped (the `zip` crate).
+//! The FMU archive: `modelDescription.xml`, the shared library as
+//! `binaries/linux64/<modelIdentifier>.so` and, for a packaged run, the
+//! run as `resources/start.toml` ([`Start`]), zipped (the `zip` crate).
 //! Written to a temporary file next to the target and renamed, so a failed
 //! packaging leaves no partial FMU.
 
@@ -10,6 +11,7 @@ use std::path::{Path, PathBuf};
 use crane_models::Crane;
 
 use crate::description::{model_description, model_identifier};
+use crate::start::{RESOURCE, Start};
 
 /// Why an FMU could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -57,19 +59,23 @@ fn io(context: impl Into<String>) -> impl FnOnce(std::io::Error) -> PackageError
     move |source| PackageError::Io { context, source }
 }
 
-/// Write the FMU of crane `C` to `out`, with the shared library `library`
-/// (a `cdylib` that calls [`export_fmu!`](crate::export_fmu) on `C`).
+/// Write the FMU of crane `C` starting from `start` (its default run,
+/// [`Start::default_for`], or a packaged one, [`Start::packaged`]) to
+/// `out`, with the shared library `library` (a `cdylib` that calls
+/// [`export_fmu!`](crate::export_fmu) on `C`).
 pub fn package<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     library: &Path,
     out: &Path,
+    start: &Start<A>,
 ) -> Result<(), PackageError> {
-    let (xml, _) = model_description::<C, N, M, A>()?;
+    let (xml, _) = model_description::<C, N, M, A>(start)?;
     let binary = std::fs::read(library).map_err(io(format!("reading the FMU library {}", library.display())))?;
     check_library(&binary).map_err(|reason| PackageError::NotALibrary {
         path: library.to_path_buf(),
         reason,
     })?;
-    write_archive(&xml, &model_identifier(C::NAME), &binary, out)
+    let resource = start.resource.as_deref().map(|text| (RESOURCE, text.as_bytes()));
+    write_archive(&xml, &model_identifier(C::NAME), &binary, resource, out)
 }
 
 /// Why `binary` cannot be an FMU's shared library for linux64, if it cannot:
@@ -90,8 +96,15 @@ fn check_library(binary: &[u8]) -> Result<(), &'static str> {
     Ok(())
 }
 
-/// Zip `xml` and `binary` into `out` (through a temporary file).
-pub fn write_archive(xml: &str, identifier: &str, binary: &[u8], out: &Path) -> Result<(), PackageError> {
+/// Zip `xml`, `binary` and a resource `(name, contents)` into `out`
+/// (through a temporary file).
+pub fn write_archive(
+    xml: &str,
+    identifier: &str,
+    binary: &[u8],
+    resource: Option<(&str, &[u8])>,
+    out: &Path,
+) -> Result<(), PackageError> {
     if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent).map_err(io(format!("creating {}", parent.display())))?;
     }
@@ -122,6 +135,12 @@ pub fn write_archive(xml: &str, identifier: &str, binary: &[u8], out: &Path) -> 
         zip.start_file(format!("binaries/linux64/{identifier}.so"), so)
             .map_err(zip_error)?;
         zip.write_all(binary).map_err(io("writing the library"))?;
+        if let Some((name, contents)) = resource {
+            zip.start_file(format!("resources/{name}"), options)
+                .map_err(zip_error)?;
+            zip.write_all(contents)
+                .map_err(io(format!("writing resources/{name}")))?;
+        }
         zip.finish().map_err(zip_error)?;
         std::fs::rename(&partial, out).map_err(io(format!("renaming to {}", out.display())))
     })();

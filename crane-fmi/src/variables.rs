@@ -3,7 +3,8 @@
 //!
 //! Reals (value references `0..`) in this order: the model's parameters,
 //! `dt`, the built-in move (`t0`, `duration`, `start_<x>`, `end_<x>` per
-//! load coordinate, `tau0`), the external load target (`gamma_<x>`,
+//! load coordinate, `tau0`; a spline move's shape is the packaged run's,
+//! [`Start`]), the external load target (`gamma_<x>`,
 //! `gamma_<x>_d`, `gamma_<x>_dd`), then the outputs: the inputs `u1..`,
 //! the coordinates, the multipliers `lambda1..` and the rope tensions, all
 //! named as the model declares them. Integers: `scheme` and `path`, and
@@ -11,9 +12,10 @@
 
 use std::collections::HashSet;
 
-use crane_models::{Crane, ProfileKind};
+use crane_models::{Crane, Profile, ProfileKind};
 use crane_runtime::CraneModel;
-use crane_runtime::Scheme;
+
+use crate::start::Start;
 
 /// Default internal step, s (that of `crane run`).
 pub use crane_models::study::DEFAULT_DT;
@@ -103,34 +105,46 @@ pub struct Variable {
 /// codes of [`ProfileKind::code`], 0 to 2).
 pub const EXTERNAL_PATH: i32 = ProfileKind::ALL.len() as i32;
 
+/// The `path` code of the spline move of the run the FMU starts from
+/// ([`Start`]: the crane's default move or a packaged scenario's).
+pub const SPLINE_PATH: i32 = EXTERNAL_PATH + 1;
+
 /// What an instance's `path` code asks for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PathChoice {
-    /// A built-in move of this profile.
+    /// A built-in straight move of this profile.
     Move(ProfileKind),
     /// The external target.
     External,
+    /// The spline move the FMU starts from.
+    Spline,
 }
 
 /// What a `path` code asks for, if it is a code at all.
 pub fn path_of_code(code: i32) -> Option<PathChoice> {
-    if code == EXTERNAL_PATH {
-        Some(PathChoice::External)
-    } else {
-        ProfileKind::from_code(code).map(PathChoice::Move)
+    match code {
+        EXTERNAL_PATH => Some(PathChoice::External),
+        SPLINE_PATH => Some(PathChoice::Spline),
+        code => ProfileKind::from_code(code).map(PathChoice::Move),
     }
 }
 
 /// The `path` codes in words: "0 poly9, 1 three-phase, 2 smooth-three-phase
-/// (the built-in move) or 3 external target".
-pub fn path_help() -> String {
+/// (the built-in move from start_ to end_), 3 external target", and where
+/// the FMU has a spline move, "or 4 the packaged spline move".
+pub fn path_help(spline: bool) -> String {
     let profiles: Vec<String> = ProfileKind::ALL
         .iter()
         .zip(0..)
         .map(|(k, code)| format!("{code} {}", k.name()))
         .collect();
+    let spline = if spline {
+        format!(", {SPLINE_PATH} the spline move (its shape packaged, timed by t0 and duration)")
+    } else {
+        String::new()
+    };
     format!(
-        "{} (the built-in move) or {EXTERNAL_PATH} external target",
+        "{} (the built-in move from start_ to end_), {EXTERNAL_PATH} external target{spline}",
         profiles.join(", ")
     )
 }
@@ -141,24 +155,18 @@ pub enum TableError {
     /// Two variables share a name (a model parameter called `dt`, say).
     #[error("two FMU variables are called `{0}`; rename the model's parameter or coordinate")]
     NameClash(String),
-    /// The crane's default move is a spline; the FMU's built-in move is a
-    /// straight one, set by its start and end points.
-    #[error(
-        "the crane's default move is a spline, but an FMU's built-in move is a straight one (poly9 or three-phase \
-         from start_ to end_): give the crane a straight default move"
-    )]
-    SplineMove,
 }
 
-/// The variables of crane `C`, in model-description order: the Reals
-/// first, with value references `0..` in table order, then the Integers.
-pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>()
--> Result<Vec<Variable>, TableError> {
+/// The variables of crane `C` starting from `start`, in model-description
+/// order: the Reals first, with value references `0..` in table order,
+/// then the Integers.
+pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    start: &Start<A>,
+) -> Result<Vec<Variable>, TableError> {
     let info = <C::Model as CraneModel<N, M, A>>::INFO;
-    let model = C::Model::default();
-    let maneuver = C::maneuver();
-    let spec = maneuver.path;
-    let path_code = spec.profile.kind().code().ok_or(TableError::SplineMove)?;
+    let spec = &start.spec.path;
+    let spline = matches!(spec.profile, Profile::Spline(_));
+    let path_code = spec.profile.kind().code().unwrap_or(SPLINE_PATH);
     let load = &info.coordinates[N - A..];
     let mut table = Vec::new();
     let real = |table: &mut Vec<Variable>, name: String, causality, start, description: String, role| {
@@ -173,7 +181,7 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
             role,
         });
     };
-    let values = model.parameter_values();
+    let values = start.parameter_values::<C, N, M>();
     for (k, name) in info.parameters.iter().enumerate() {
         real(
             &mut table,
@@ -188,7 +196,7 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
         &mut table,
         "dt".into(),
         Causality::Parameter,
-        DEFAULT_DT,
+        start.spec.dt,
         "internal time step, s; a communication step is a whole multiple of it".into(),
         Role::Dt,
     );
@@ -214,7 +222,7 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
             format!("start_{x}"),
             Causality::Parameter,
             spec.start[k],
-            format!("load coordinate {x} at the start of the built-in move"),
+            format!("load coordinate {x} at the start of the built-in straight move"),
             Role::Start(k),
         );
     }
@@ -224,7 +232,7 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
             format!("end_{x}"),
             Causality::Parameter,
             spec.end[k],
-            format!("load coordinate {x} at the end of the built-in move"),
+            format!("load coordinate {x} at the end of the built-in straight move"),
             Role::End(k),
         );
     }
@@ -294,8 +302,8 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
         integer: true,
         value_reference: 0,
         causality: Causality::Parameter,
-        start: f64::from(Scheme::default().code()),
-        description: format!("the scheme: {}", Scheme::code_help()),
+        start: f64::from(start.spec.scheme.code()),
+        description: format!("the scheme: {}", crane_runtime::Scheme::code_help()),
         role: Role::Scheme,
     });
     table.push(Variable {
@@ -304,7 +312,7 @@ pub fn variables<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usi
         value_reference: 1,
         causality: Causality::Parameter,
         start: f64::from(path_code),
-        description: format!("load path: {}", path_help()),
+        description: format!("load path: {}", path_help(spline)),
         role: Role::Path,
     });
     table.push(Variable {

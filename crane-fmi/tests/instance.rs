@@ -5,6 +5,7 @@
 
 use crane_fmi::description::default_experiment;
 use crane_fmi::instance::{Component, Instance};
+use crane_fmi::start::Start;
 use crane_fmi::variables::{Role, variables};
 use crane_models::registry::{self, Visit};
 use crane_models::study::Formulation;
@@ -13,7 +14,7 @@ use crane_runtime::{Options, Trajectory};
 
 /// The value reference of the Real playing `role`.
 fn vr<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(role: Role) -> u32 {
-    variables::<C, N, M, A>()
+    variables::<C, N, M, A>(&Start::default_for::<C, N, M>())
         .unwrap()
         .into_iter()
         .find(|v| v.role == role && !v.integer)
@@ -24,7 +25,8 @@ fn vr<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(role: R
 /// An initialised instance of `C` with the defaults.
 fn started<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>() -> Instance<C, N, M, A> {
     let mut fmu = Instance::<C, N, M, A>::new().unwrap();
-    fmu.setup_experiment(default_experiment::<C, N, M, A>().0).unwrap();
+    fmu.setup_experiment(default_experiment::<C, N, M, A>(&Start::default_for::<C, N, M>()).0)
+        .unwrap();
     fmu.enter_initialization_mode().unwrap();
     fmu.exit_initialization_mode().unwrap();
     fmu
@@ -407,7 +409,7 @@ fn a_rope_of_non_positive_length_is_an_fmi_error() {
 #[test]
 fn the_coupled_trolleys_built_in_move_plays_back_its_bounded_inputs() {
     type D = crane_models::coupled_trolley::Description;
-    let (start, stop) = default_experiment::<D, 4, 1, 2>();
+    let (start, stop) = default_experiment::<D, 4, 1, 2>(&Start::default_for::<D, 4, 1>());
     assert!(
         (start + 2.33).abs() < 1e-9 && (stop - 6.81).abs() < 1e-9,
         "{start} {stop}"

@@ -5,6 +5,7 @@
 //! other test allocates while one counts.
 
 use crane_fmi::instance::{Component, Instance};
+use crane_fmi::start::Start;
 use crane_fmi::variables::{Role, variables};
 use crane_models::navy_planar;
 use crane_runtime::Trajectory;
@@ -16,7 +17,7 @@ static GLOBAL: Counting = Counting;
 #[test]
 fn do_step_does_not_allocate() {
     type D = navy_planar::Description;
-    let table = variables::<D, 7, 3, 2>().unwrap();
+    let table = variables::<D, 7, 3, 2>(&Start::default_for::<D, 7, 3>()).unwrap();
     let vr = |role| {
         table
             .iter()

@@ -2,9 +2,11 @@
 
 use std::path::{Path, PathBuf};
 
+use crane_fmi::start::Start;
 use crane_models::Crane;
 use crane_models::registry::{Registry, Visit};
 
+use crate::scenario::{self, Overrides, ScenarioFile};
 use crate::{CliError, Tool};
 
 /// The flags of `crane fmu`.
@@ -20,25 +22,69 @@ pub struct FmuArgs {
     /// `crane`, as `cargo build --release` leaves it).
     #[arg(long, value_name = "FILE.so")]
     library: Option<PathBuf>,
+    /// A scenario file whose run the FMU starts from: its parameters,
+    /// move (a spline move included: `path` = 4), step, scheme and
+    /// formulation become the FMU's start values, packaged as
+    /// resources/start.toml (limits and a replay's plant play no part).
+    #[arg(long, value_name = "FILE.toml")]
+    scenario: Option<PathBuf>,
 }
 
 /// Package the FMU of a crane.
 struct Package<'a> {
     library: &'a Path,
     out: &'a Path,
+    scenario: Option<&'a ScenarioFile>,
 }
 
 impl Visit for Package<'_> {
-    type Output = Result<(), CliError>;
+    /// What the FMU starts from, in words, if not the crane's default.
+    type Output = Result<Option<String>, CliError>;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
-        Ok(crane_fmi::package::package::<C, N, M, A>(self.library, self.out)?)
+        let Some(file) = self.scenario else {
+            let start = Start::default_for::<C, N, M>();
+            crane_fmi::package::package::<C, N, M, A>(self.library, self.out, &start)?;
+            return Ok(None);
+        };
+        let spec = scenario::checked_spec::<C, N, M, A>(Some(file), &Overrides::default())?;
+        let start = Start::packaged::<C, N, M>(&spec)?;
+        crane_fmi::package::package::<C, N, M, A>(self.library, self.out, &start)?;
+        let path = &start.spec.path;
+        let mut words = match path.profile.kind().code() {
+            Some(code) => format!(
+                "a {} move (path = {code}) from t0 = {} s for {} s",
+                path.profile.kind(),
+                path.t0,
+                path.t1 - path.t0
+            ),
+            None => format!(
+                "the spline move (path = {}) from t0 = {} s for {} s",
+                crane_fmi::variables::SPLINE_PATH,
+                path.t0,
+                path.t1 - path.t0
+            ),
+        };
+        if !spec.limits.is_empty() {
+            let limits: Vec<String> = spec.limits.iter().map(|(u, l)| format!("|{u}| <= {l}")).collect();
+            words.push_str(&format!(
+                "; the scenario's limits ({}) are not the FMU's: it computes the inputs, `crane run` checks them",
+                limits.join(", ")
+            ));
+        }
+        Ok(Some(words))
     }
 }
 
 /// Write the FMU.
 pub fn fmu<R: Registry>(tool: &Tool<R>, args: FmuArgs) -> Result<(), CliError> {
-    let FmuArgs { model, out, library } = args;
+    let FmuArgs {
+        model,
+        out,
+        library,
+        scenario,
+    } = args;
     tool.entry(&model)?;
+    let scenario = scenario.as_deref().map(ScenarioFile::load).transpose()?;
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("{model}.fmu")));
     let library = match library {
         Some(path) => path,
@@ -52,11 +98,12 @@ pub fn fmu<R: Registry>(tool: &Tool<R>, args: FmuArgs) -> Result<(), CliError> {
     if !library.is_file() {
         return Err(CliError::NoFmuLibrary(library.display().to_string()));
     }
-    tool.dispatch(
+    let packaged = tool.dispatch(
         &model,
         Package {
             library: &library,
             out: &out,
+            scenario: scenario.as_ref(),
         },
     )?;
     say!(
@@ -64,5 +111,11 @@ pub fn fmu<R: Registry>(tool: &Tool<R>, args: FmuArgs) -> Result<(), CliError> {
         out.display(),
         crane_fmi::description::model_identifier(&model)
     )?;
+    if let Some(words) = packaged {
+        say!(
+            "  starting from the scenario's run (resources/{}): {words}",
+            crane_fmi::start::RESOURCE
+        )?;
+    }
     Ok(())
 }

@@ -46,7 +46,7 @@ mod write;
 
 pub use error::ScenarioError;
 pub use file::ScenarioFile;
-pub use resolve::build;
+pub use resolve::{build, checked_spec};
 pub use write::scenario_text;
 
 use crane_models::study::Formulation;

@@ -493,6 +493,17 @@ pub fn build<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     spec.build::<C, N, M>().map_err(|error| by_key::<C, N, M, A>(error))
 }
 
+/// The run of a scenario (or none: the default manoeuvre) with the
+/// command-line overrides, checked as [`build`] checks it.
+pub fn checked_spec<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    file: Option<&ScenarioFile>,
+    overrides: &Overrides,
+) -> Result<RunSpec<A>, ScenarioError> {
+    let spec = spec::<C, N, M, A>(file, overrides)?;
+    spec.build::<C, N, M>().map_err(|error| by_key::<C, N, M, A>(error))?;
+    Ok(spec)
+}
+
 /// A [`SpecError`] as the scenario error of the key it comes from.
 fn by_key<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(error: SpecError) -> ScenarioError {
     let model = C::NAME.to_string();

@@ -1,0 +1,188 @@
+//! An FMU packaged with a scenario's run (`crane fmu MODEL --scenario`):
+//! the run travels as text, reads back as written, and the instance steps
+//! it, a spline move included, as the API runs it.
+
+use std::sync::Arc;
+
+use crane_fmi::description::model_description;
+use crane_fmi::ffi::folder_of_uri;
+use crane_fmi::instance::{Component, Instance};
+use crane_fmi::start::{Start, StartError};
+use crane_fmi::variables::{Role, SPLINE_PATH, variables};
+use crane_models::path::SplineShape;
+use crane_models::study::RunSpec;
+use crane_models::{PathSpec, Profile, navy_planar};
+use crane_runtime::{CraneModel, Options, Solution};
+use nalgebra::SVector;
+
+type D = navy_planar::Description;
+
+/// navy-planar's default move bent into a spline through four waypoints
+/// (raised by a tenth of the move's length between its ends), at rest to
+/// the crane's path order at both ends; with a heavier load, a step of
+/// 5 ms and BDF-2.
+fn spline_run() -> RunSpec<2> {
+    let mut spec = RunSpec::<2>::default_for::<D, 7, 3>();
+    let PathSpec { start, end, .. } = spec.path.clone();
+    let lift = SVector::<f64, 2>::new(0.0, 0.1 * (end - start).norm());
+    let points = [
+        start,
+        start + (end - start) / 3.0 + lift,
+        start + (end - start) * (2.0 / 3.0) + lift,
+        end,
+    ];
+    let rest = <navy_planar::NavyPlanar as CraneModel<7, 3, 2>>::STRUCTURE
+        .unwrap()
+        .path_order(2);
+    let shape = SplineShape::through(&[0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0], &points, rest).unwrap();
+    spec.path.profile = Profile::Spline(Arc::new(shape));
+    spec.parameters.push(("m_l".into(), 150.0));
+    spec.dt = 0.005;
+    spec.scheme = "bdf2".parse().unwrap();
+    spec
+}
+
+/// The API's run of `spec` in its formulation.
+fn api_run(spec: &RunSpec<2>) -> Solution<7, 3, 2> {
+    let (case, settings) = spec.build::<D, 7, 3>().unwrap();
+    let options = Options::new(settings.dt, case.tf())
+        .unwrap()
+        .with_scheme(settings.scheme);
+    settings
+        .formulation
+        .simulate(&case, &case.start().unwrap(), &options, &mut |_, _| {})
+        .unwrap()
+}
+
+/// Value references of the inputs and coordinates.
+fn output_refs(start: &Start<2>) -> Vec<u32> {
+    let table = variables::<D, 7, 3, 2>(start).unwrap();
+    let vr = |role| {
+        table
+            .iter()
+            .find(|v| v.role == role && !v.integer)
+            .unwrap()
+            .value_reference
+    };
+    (0..2)
+        .map(|k| vr(Role::Input(k)))
+        .chain((0..7).map(|k| vr(Role::Coordinate(k))))
+        .collect()
+}
+
+/// The instance of `start` stepped over `run`'s times, one internal step per
+/// communication step, against `run` at every step (bit for bit).
+fn steps_as(start: &Start<2>, run: &Solution<7, 3, 2>, set: impl FnOnce(&mut Instance<D, 7, 3, 2>)) {
+    let refs = output_refs(start);
+    let mut fmu = Instance::<D, 7, 3, 2>::starting_from(start.clone()).unwrap();
+    fmu.setup_experiment(run.states[0].t).unwrap();
+    fmu.enter_initialization_mode().unwrap();
+    set(&mut fmu);
+    fmu.exit_initialization_mode().unwrap();
+    let dt = run.states[1].t - run.states[0].t;
+    let mut values = vec![0.0; refs.len()];
+    for (i, state) in run.states.iter().enumerate() {
+        if i > 0 {
+            fmu.do_step(run.states[i - 1].t, dt).unwrap();
+        }
+        fmu.get_real(&refs, &mut values).unwrap();
+        let expected: Vec<f64> = state.u.iter().chain(state.q.iter()).copied().collect();
+        assert_eq!(values, expected, "at t = {}", state.t);
+    }
+}
+
+/// The packaged spline run starts with `path` = 4 and its parameters,
+/// step and scheme as start values, and the instance gives the API's run of
+/// the same spec bit for bit; its GUID is not the default FMU's.
+#[test]
+fn a_packaged_spline_run_is_the_api_run_bit_for_bit() {
+    let spec = spline_run();
+    let start = Start::packaged::<D, 7, 3>(&spec).unwrap();
+    let table = variables::<D, 7, 3, 2>(&start).unwrap();
+    let start_of = |name: &str| table.iter().find(|v| v.name == name).unwrap().start;
+    assert_eq!(start_of("path"), f64::from(SPLINE_PATH));
+    assert_eq!(start_of("m_l"), 150.0);
+    assert_eq!(start_of("dt"), 0.005);
+    assert_eq!(start_of("scheme"), f64::from(spec.scheme.code()));
+    let run = api_run(&spec);
+    assert!(run.states.len() > 100, "{} steps", run.states.len());
+    steps_as(&start, &run, |_| {});
+    let (xml, guid) = model_description::<D, 7, 3, 2>(&start).unwrap();
+    let (_, default_guid) = model_description::<D, 7, 3, 2>(&Start::default_for::<D, 7, 3>()).unwrap();
+    assert_ne!(guid, default_guid);
+    assert!(xml.contains("4 the spline move"), "{xml}");
+}
+
+/// `t0` and `duration` re-time the packaged shape: the instance with the
+/// move starting 0.5 s later and lasting twice as long is the API's run of
+/// that spline.
+#[test]
+fn t0_and_duration_retime_the_packaged_spline() {
+    let spec = spline_run();
+    let start = Start::packaged::<D, 7, 3>(&spec).unwrap();
+    let mut retimed = spec.clone();
+    let length = spec.path.t1 - spec.path.t0;
+    retimed.path.t0 = spec.path.t0 + 0.5;
+    retimed.path.t1 = retimed.path.t0 + 2.0 * length;
+    retimed.tf = retimed.path.t1;
+    let run = api_run(&retimed);
+    let table = variables::<D, 7, 3, 2>(&start).unwrap();
+    let vr = |role| table.iter().find(|v| v.role == role).unwrap().value_reference;
+    let (t0, duration) = (vr(Role::T0), vr(Role::Duration));
+    steps_as(&start, &run, |fmu| {
+        fmu.set_real(&[t0, duration], &[retimed.path.t0, 2.0 * length]).unwrap();
+    });
+}
+
+/// The text reads back to the run packaged; a run for another crane, a
+/// control point of the wrong length and an unknown key are refused with
+/// what is wrong.
+#[test]
+fn the_packaged_run_reads_back_as_written() {
+    let start = Start::packaged::<D, 7, 3>(&spline_run()).unwrap();
+    let text = start.resource.clone().unwrap();
+    assert_eq!(Start::read::<D, 7, 3>(&text).unwrap(), start);
+    let other = Start::read::<crane_models::gantry_3d::Description, 6, 1>(&text);
+    assert!(
+        matches!(other, Err(StartError::WrongModel { ref found, .. }) if found == "navy-planar"),
+        "{other:?}"
+    );
+    let short = text.replacen("control = [[", "control = [[1.0], [", 1);
+    let error = Start::read::<D, 7, 3>(&short).unwrap_err().to_string();
+    assert!(error.contains("`control` has 1 numbers, not 2"), "{error}");
+    let unknown = format!("colour = 1\n{text}");
+    let error = Start::read::<D, 7, 3>(&unknown).unwrap_err().to_string();
+    assert!(error.contains("colour"), "{error}");
+    let negative = text.replace("m_l = 150.0", "m_l = -150.0");
+    assert_ne!(negative, text);
+    assert!(matches!(Start::read::<D, 7, 3>(&negative), Err(StartError::Run(_))));
+}
+
+/// `path` = 4 on an FMU without a spline move is refused at
+/// `fmi2ExitInitializationMode`, saying how to package one.
+#[test]
+fn the_spline_path_without_a_packaged_spline_is_an_error() {
+    let mut fmu = Instance::<D, 7, 3, 2>::new().unwrap();
+    fmu.setup_experiment(0.0).unwrap();
+    fmu.enter_initialization_mode().unwrap();
+    fmu.set_integer(&[1], &[SPLINE_PATH]).unwrap();
+    let error = fmu.exit_initialization_mode().unwrap_err();
+    assert!(error.contains("--scenario"), "{error}");
+}
+
+/// The resource locations hosts pass: `file:///`, `file:/`, `localhost`,
+/// percent-escapes; anything else is no local folder.
+#[test]
+fn resource_locations_are_file_uris() {
+    let folder = |uri: &str| folder_of_uri(uri).map(|p| p.display().to_string());
+    assert_eq!(
+        folder("file:///tmp/a%20b/resources/").as_deref(),
+        Some("/tmp/a b/resources/")
+    );
+    assert_eq!(folder("file:/tmp/x/resources").as_deref(), Some("/tmp/x/resources"));
+    assert_eq!(folder("file://localhost/tmp/x").as_deref(), Some("/tmp/x"));
+    assert_eq!(folder("file://server/share"), None);
+    assert_eq!(folder("http://example.com/x"), None);
+    assert_eq!(folder("file:///tmp/%zz"), None);
+    assert_eq!(folder("file:relative/path"), None);
+}
