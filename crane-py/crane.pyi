@@ -1,8 +1,7 @@
 """Inverse dynamics of underactuated cranes: whole runs into numpy arrays."""
 
 from os import PathLike
-from types import ModuleType
-from typing import IO, Any, Literal, Mapping, Optional, Sequence, Union, final
+from typing import IO, Any, Literal, Mapping, Optional, Protocol, Sequence, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -25,16 +24,60 @@ __all__ = [
     "convergence",
 ]
 
-distributed: ModuleType
-"""Sweeps on a Dask cluster: `distributed.sweep(model, grid=None,
-points=None, *, client, durations=None, chunk_size=10_000, progress=False,
-**options)` returns `sweep`'s columns, the same numbers as one machine's
-(dask is imported only when used: `pip install "crane[distributed]"`);
-`distributed.to_parquet(path, model, ...)` has the workers write it as
-Parquet shards, one per chunk."""
-
 _Floats: TypeAlias = Union[Sequence[float], npt.NDArray[np.floating[Any]]]
 """Numbers as a sequence or a numpy array (grids, durations, steps)."""
+
+class _Distributed(Protocol):
+    """The submodule `crane.distributed`: sweeps on a Dask cluster (dask is
+    imported only when used: `pip install "crane[distributed]"`)."""
+
+    def sweep(
+        self,
+        model: str,
+        grid: Optional[Mapping[str, _Floats]] = None,
+        points: Optional[Mapping[str, _Floats]] = None,
+        *,
+        client: Any,
+        durations: Optional[_Floats] = None,
+        chunk_size: int = 10_000,
+        progress: bool = False,
+        limits: Optional[Mapping[str, float]] = None,
+        min_tension: Optional[Mapping[str, float]] = None,
+        scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
+        parameters: Optional[Mapping[str, float]] = None,
+        scheme: Optional[str] = None,
+        dt: Optional[float] = None,
+    ) -> dict[str, Any]:
+        """The sweep of `model` over `grid` (with `durations`, as `sweep`)
+        or over `points` (with per-point `durations`, as `sweep_points`) on
+        the Dask cluster of `client` (a `dask.distributed.Client`), in
+        chunks of `chunk_size` points: `sweep`'s columns in the order of
+        the points, the same numbers as one machine's."""
+
+    def to_parquet(
+        self,
+        path: Union[str, PathLike[str]],
+        model: str,
+        grid: Optional[Mapping[str, _Floats]] = None,
+        points: Optional[Mapping[str, _Floats]] = None,
+        *,
+        client: Any,
+        durations: Optional[_Floats] = None,
+        chunk_size: int = 10_000,
+        progress: bool = False,
+        limits: Optional[Mapping[str, float]] = None,
+        min_tension: Optional[Mapping[str, float]] = None,
+        scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
+        parameters: Optional[Mapping[str, float]] = None,
+        scheme: Optional[str] = None,
+        dt: Optional[float] = None,
+    ) -> list[str]:
+        """The same sweep written by the workers as Parquet shards, one per
+        chunk (`path/part-00000.parquet`, ...); returns their paths."""
+
+distributed: _Distributed
+"""Sweeps on a Dask cluster: `distributed.sweep(...)` and
+`distributed.to_parquet(...)`."""
 
 class CraneError(ValueError):
     """A run the tool could not make, or an argument it refuses: the tool's one-line message."""

@@ -116,3 +116,31 @@ def test_to_parquet_writes_a_shard_per_chunk_that_read_back_are_the_sweep(tmp_pa
     with pytest.raises(crane.CraneError, match="has no input"):
         crane.distributed.to_parquet(tmp_path / "bad", "navy-planar", GRID, client=client, limits={"u9": 1.0})
     assert sorted(os.listdir(tmp_path)) == ["sweep"]
+
+
+def test_the_stub_of_crane_distributed_names_what_it_takes():
+    """The stub types `crane.distributed` (a Protocol, for mypy and pyright)
+    with every parameter its functions take: their own, then the keywords
+    of `sweep_points` they pass through `**options` (stubtest checks
+    `sweep_points`' stub against the extension; this ties the two)."""
+    import ast
+    import inspect
+    from pathlib import Path
+
+    tree = ast.parse(Path(crane.__file__).with_name("__init__.pyi").read_text())
+    protocol = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "_Distributed")
+    sweep_points = next(n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "sweep_points")
+    options = [a.arg for a in sweep_points.args.kwonlyargs if a.arg != "durations"]
+    typed = {n.name: n for n in protocol.body if isinstance(n, ast.FunctionDef)}
+    assert sorted(typed) == ["sweep", "to_parquet"]
+    for name, stub in typed.items():
+        runtime = inspect.signature(getattr(crane.distributed, name)).parameters.values()
+        own = [p.name for p in runtime if p.kind is not inspect.Parameter.VAR_KEYWORD]
+        assert any(p.kind is inspect.Parameter.VAR_KEYWORD for p in runtime), name
+        stubbed = [a.arg for a in stub.args.args[1:]] + [a.arg for a in stub.args.kwonlyargs]
+        assert stubbed == own + options, name
+        defaults = {p.name: p.default for p in runtime if p.default is not inspect.Parameter.empty}
+        stub_defaults = dict(zip([a.arg for a in stub.args.args[1:]][-len(stub.args.defaults):], stub.args.defaults))
+        stub_defaults.update({a.arg: d for a, d in zip(stub.args.kwonlyargs, stub.args.kw_defaults) if d is not None})
+        for key, value in defaults.items():
+            assert ast.literal_eval(stub_defaults[key]) == value, (name, key)
