@@ -19,6 +19,8 @@
 //! # Ok::<(), crane_runtime::trajectory::TrajectoryError>(())
 //! ```
 
+use std::ops::{Add, Div, Mul, Sub};
+
 use nalgebra::SVector;
 
 use crate::double_double::DoubleDouble;
@@ -258,20 +260,79 @@ impl<const A: usize> BSpline<A> {
         for (j, point) in d.iter_mut().enumerate().take(p + 1) {
             *point = control[s + j - p];
         }
-        for r in 1..=p {
-            for j in (r..=p).rev() {
-                let i = s + j - p;
-                let denominator = knots[i + p + 1 - r] - knots[i];
-                let alpha = if denominator > 0.0 {
-                    (t - knots[i]) / denominator
-                } else {
-                    0.0
-                };
-                d[j] = d[j - 1] * (1.0 - alpha) + d[j] * alpha;
-            }
-        }
-        d[p]
+        de_boor(knots, p, s, &mut d, t)
     }
+}
+
+/// A number de Boor's recursion runs in: `f64`, or [`DoubleDouble`] for
+/// the load target of eqs. (22).
+trait Scalar:
+    nalgebra::Scalar
+    + Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Sub<f64, Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+{
+    /// `x` in this type.
+    fn of(x: f64) -> Self;
+    /// `a - b` as this type holds it (rounded in `f64`, exact in
+    /// double-double).
+    fn difference(a: f64, b: f64) -> Self;
+    /// Whether it is above zero.
+    fn positive(self) -> bool;
+}
+
+impl Scalar for f64 {
+    fn of(x: f64) -> Self {
+        x
+    }
+    fn difference(a: f64, b: f64) -> Self {
+        a - b
+    }
+    fn positive(self) -> bool {
+        self > 0.0
+    }
+}
+
+impl Scalar for DoubleDouble {
+    fn of(x: f64) -> Self {
+        DoubleDouble::from(x)
+    }
+    fn difference(a: f64, b: f64) -> Self {
+        DoubleDouble::sum(a, -b)
+    }
+    fn positive(self) -> bool {
+        self.hi > 0.0
+    }
+}
+
+/// De Boor's recursion of degree `p` on `knots` at `t` in the span
+/// `[knots[s], knots[s + 1])`, whose `p + 1` control points `d` holds on
+/// entry: the curve's point (`d` is overwritten).
+fn de_boor<S: Scalar, const A: usize>(
+    knots: &[f64],
+    p: usize,
+    s: usize,
+    d: &mut [SVector<S, A>; MAX_DEGREE + 1],
+    t: S,
+) -> SVector<S, A> {
+    for r in 1..=p {
+        for j in (r..=p).rev() {
+            let i = s + j - p;
+            let denominator = S::difference(knots[i + p + 1 - r], knots[i]);
+            let alpha = if denominator.positive() {
+                (t - knots[i]) / denominator
+            } else {
+                S::of(0.0)
+            };
+            let one_minus = S::of(1.0) - alpha;
+            let (lower, upper) = (d[j - 1], d[j]);
+            d[j] = SVector::from_fn(|c, _| lower[c] * one_minus + upper[c] * alpha);
+        }
+    }
+    d[p]
 }
 
 /// The highest degree a [`BSpline`] evaluates with its fixed workspace:
@@ -296,11 +357,6 @@ impl<const A: usize> Trajectory<A> for BSpline<A> {
         }
     }
 
-    /// Where the curve starts and ends at rest to order `r` (its
-    /// derivatives 1 ..= r vanish at both ends, as where the first and the
-    /// last `r + 1` control points are equal), the held ends join it with
-    /// `r` continuous derivatives; inside, a knot of multiplicity `m` leaves
-    /// `p - m`. The smaller of the two.
     /// De Boor's recursion in double-double on the control points of the
     /// span holding `t` and their differences (those of derivatives 1
     /// and 2, formed in double-double too): the spline these `f64` knots
@@ -346,28 +402,17 @@ impl<const A: usize> Trajectory<A> for BSpline<A> {
             // de Boor on derivative k: degree p - k on the knots without
             // the first and the last k
             let p = degree - k;
-            let knots = &self.knots[k..self.knots.len() - k];
-            let span = s - k;
             let mut d = window[k];
-            for r in 1..=p {
-                for j in (r..=p).rev() {
-                    let i = span + j - p;
-                    let denominator = DoubleDouble::sum(knots[i + p + 1 - r], -knots[i]);
-                    let alpha = if denominator.hi > 0.0 {
-                        (t - knots[i]) / denominator
-                    } else {
-                        DoubleDouble::from(0.0)
-                    };
-                    let one_minus = DoubleDouble::from(1.0) - alpha;
-                    let (lower, upper) = (d[j - 1], d[j]);
-                    d[j] = SVector::from_fn(|c, _| lower[c] * one_minus + upper[c] * alpha);
-                }
-            }
-            *value = d[p];
+            *value = de_boor(&self.knots[k..self.knots.len() - k], p, s - k, &mut d, t);
         }
         Some(out)
     }
 
+    /// Where the curve starts and ends at rest to order `r` (its
+    /// derivatives 1 ..= r vanish at both ends, as where the first and the
+    /// last `r + 1` control points are equal), the held ends join it with
+    /// `r` continuous derivatives; inside, a knot of multiplicity `m` leaves
+    /// `p - m`. The smaller of the two.
     fn continuity(&self) -> Option<usize> {
         let (t0, t1) = self.span();
         let at_rest = (1..=self.degree)

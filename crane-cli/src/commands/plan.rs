@@ -773,19 +773,13 @@ fn grid<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     };
     if axes.len() == 2 {
         let (ax, ay) = (&axes[0], &axes[1]);
-        let index = |name: &str, p: &plan::SweepPoint| -> f64 {
-            if name == "duration" {
-                p.duration
-            } else {
-                p.values[names.iter().position(|n| n == name).unwrap_or(0)]
-            }
-        };
+        // each axis's column among the swept parameters (none: the
+        // duration, which is no parameter)
+        let column = |name: &str| names.iter().position(|n| n == name);
+        let (cx, cy) = (column(&ax.0), column(&ay.0));
+        let value = |c: Option<usize>, p: &plan::SweepPoint| c.map_or(p.duration, |k| p.values[k]);
         // per cell (rows: the second axis), the points of the sweep there
-        let at = |x: f64, y: f64| {
-            points
-                .iter()
-                .filter(move |p| index(&ax.0, p) == x && index(&ay.0, p) == y)
-        };
+        let at = |x: f64, y: f64| points.iter().filter(move |p| value(cx, p) == x && value(cy, p) == y);
         let grid = over_cells(&ax.1, &ay.1, |x, y| {
             at(x, y).next().and_then(|p| measure(&p.evaluation))
         });
