@@ -5,12 +5,12 @@
 //! flatness-based reference and the drawing.
 
 use crane_runtime::State;
-use nalgebra::vector;
+use nalgebra::{SVector, vector};
 
 use super::model::DoublePendulum;
 use super::reference::reference_at;
 use crate::case::Case;
-use crate::crane::{Crane, Maneuver, finite_state};
+use crate::crane::{Crane, LowerBound, Maneuver, bang_bang, finite_state};
 use crate::drawing::{Drawing, Pose};
 use crate::path::{Path, PathSpec, Profile};
 
@@ -57,6 +57,36 @@ impl Crane<6, 2, 2> for Description {
     /// The flatness-based solution of [`reference`](super::reference).
     fn reference(model: &DoublePendulum, path: &Path<2>, t: f64) -> Option<State<6, 2, 2>> {
         finite_state(reference_at(model, path, t).state(t))
+    }
+
+    /// The horizontal momentum of trolley, hook and load (`m_t + m_h +
+    /// m_l`) changes only by `u1`: the ropes' pulls are internal (the
+    /// constraints depend on `xh - s` and `x - xh` only), the winch acts
+    /// along the rope and gravity is vertical. From rest to rest hook and
+    /// load hang below the trolley at both ends, so the centre of mass
+    /// moves as far along `x` as the load: no move under `|u1| <= f` is
+    /// faster than the bang-bang time of that mass over that distance
+    /// ([`bang_bang`]). `u2` gives no such bound (the hoist's force is
+    /// not the only vertical one).
+    fn lower_bound(
+        model: &DoublePendulum,
+        start: &SVector<f64, 2>,
+        end: &SVector<f64, 2>,
+        limits: &[(usize, f64)],
+    ) -> Option<LowerBound> {
+        let distance = (end[0] - start[0]).abs();
+        let mass = model.m_t + model.m_h + model.m_l;
+        limits
+            .iter()
+            .find(|&&(k, _)| k == 0)
+            .filter(|_| distance > 0.0)
+            .map(|&(_, force)| LowerBound {
+                duration: bang_bang(distance, mass, force),
+                derivation: format!(
+                    "u1 alone moves trolley, hook and load (m_t + m_h + m_l), {mass} kg, {distance} m along x: \
+                     bang-bang 2 sqrt(d m / |u|max) at |u1| <= {force}"
+                ),
+            })
     }
 
     /// `q = [s, L, xh, zh | x, z]`: the rail at height 0, the trolley
