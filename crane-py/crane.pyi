@@ -5,7 +5,7 @@ from typing import IO, Any, Literal, Mapping, Optional, Protocol, Sequence, Unio
 
 import numpy as np
 import numpy.typing as npt
-from typing_extensions import Self, TypeAlias
+from typing_extensions import Self, TypeAlias, TypedDict, Unpack
 
 __version__: str
 """The version of the crane library the module was built with (the wheel's)."""
@@ -27,6 +27,16 @@ __all__ = [
 _Floats: TypeAlias = Union[Sequence[float], npt.NDArray[np.floating[Any]]]
 """Numbers as a sequence or a numpy array (grids, durations, steps)."""
 
+class _SweepOptions(TypedDict, total=False):
+    """The keywords `crane.distributed` passes on to `sweep_points`."""
+
+    limits: Optional[Mapping[str, float]]
+    min_tension: Optional[Mapping[str, float]]
+    scenario: Union[str, PathLike[str], Mapping[str, Any], None]
+    parameters: Optional[Mapping[str, float]]
+    scheme: Optional[str]
+    dt: Optional[float]
+
 class _Distributed(Protocol):
     """The submodule `crane.distributed`: sweeps on a Dask cluster (dask is
     imported only when used: `pip install "crane[distributed]"`)."""
@@ -41,12 +51,7 @@ class _Distributed(Protocol):
         durations: Optional[_Floats] = None,
         chunk_size: int = 10_000,
         progress: bool = False,
-        limits: Optional[Mapping[str, float]] = None,
-        min_tension: Optional[Mapping[str, float]] = None,
-        scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
-        parameters: Optional[Mapping[str, float]] = None,
-        scheme: Optional[str] = None,
-        dt: Optional[float] = None,
+        **options: Unpack[_SweepOptions],
     ) -> dict[str, Any]:
         """The sweep of `model` over `grid` (with `durations`, as `sweep`)
         or over `points` (with per-point `durations`, as `sweep_points`) on
@@ -65,12 +70,7 @@ class _Distributed(Protocol):
         durations: Optional[_Floats] = None,
         chunk_size: int = 10_000,
         progress: bool = False,
-        limits: Optional[Mapping[str, float]] = None,
-        min_tension: Optional[Mapping[str, float]] = None,
-        scenario: Union[str, PathLike[str], Mapping[str, Any], None] = None,
-        parameters: Optional[Mapping[str, float]] = None,
-        scheme: Optional[str] = None,
-        dt: Optional[float] = None,
+        **options: Unpack[_SweepOptions],
     ) -> list[str]:
         """The same sweep written by the workers as Parquet shards, one per
         chunk (`path/part-00000.parquet`, ...); returns their paths."""

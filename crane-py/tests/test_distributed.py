@@ -120,27 +120,32 @@ def test_to_parquet_writes_a_shard_per_chunk_that_read_back_are_the_sweep(tmp_pa
 
 def test_the_stub_of_crane_distributed_names_what_it_takes():
     """The stub types `crane.distributed` (a Protocol, for mypy and pyright)
-    with every parameter its functions take: their own, then the keywords
-    of `sweep_points` they pass through `**options` (stubtest checks
-    `sweep_points`' stub against the extension; this ties the two)."""
+    with every parameter its functions take: their own, with the same
+    defaults, and `**options` as the keywords of `sweep_points` (stubtest
+    checks `sweep_points`' stub against the extension; this ties the
+    two)."""
     import ast
     import inspect
     from pathlib import Path
 
     tree = ast.parse(Path(crane.__file__).with_name("__init__.pyi").read_text())
-    protocol = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "_Distributed")
+    classes = {n.name: n for n in tree.body if isinstance(n, ast.ClassDef)}
     sweep_points = next(n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "sweep_points")
     options = [a.arg for a in sweep_points.args.kwonlyargs if a.arg != "durations"]
-    typed = {n.name: n for n in protocol.body if isinstance(n, ast.FunctionDef)}
+    fields = [n.target.id for n in classes["_SweepOptions"].body if isinstance(n, ast.AnnAssign)]
+    assert fields == options
+    typed = {n.name: n for n in classes["_Distributed"].body if isinstance(n, ast.FunctionDef)}
     assert sorted(typed) == ["sweep", "to_parquet"]
     for name, stub in typed.items():
         runtime = inspect.signature(getattr(crane.distributed, name)).parameters.values()
         own = [p.name for p in runtime if p.kind is not inspect.Parameter.VAR_KEYWORD]
-        assert any(p.kind is inspect.Parameter.VAR_KEYWORD for p in runtime), name
-        stubbed = [a.arg for a in stub.args.args[1:]] + [a.arg for a in stub.args.kwonlyargs]
-        assert stubbed == own + options, name
+        assert [p.kind for p in runtime][-1] is inspect.Parameter.VAR_KEYWORD, name
+        assert [a.arg for a in stub.args.args[1:]] + [a.arg for a in stub.args.kwonlyargs] == own, name
+        assert ast.unparse(stub.args.kwarg.annotation) == "Unpack[_SweepOptions]", name
         defaults = {p.name: p.default for p in runtime if p.default is not inspect.Parameter.empty}
-        stub_defaults = dict(zip([a.arg for a in stub.args.args[1:]][-len(stub.args.defaults):], stub.args.defaults))
+        positional = [a.arg for a in stub.args.args[1:]]
+        stub_defaults = dict(zip(positional[len(positional) - len(stub.args.defaults):], stub.args.defaults))
         stub_defaults.update({a.arg: d for a, d in zip(stub.args.kwonlyargs, stub.args.kw_defaults) if d is not None})
+        assert sorted(stub_defaults) == sorted(defaults), name
         for key, value in defaults.items():
             assert ast.literal_eval(stub_defaults[key]) == value, (name, key)
