@@ -55,6 +55,11 @@ pub enum CliError {
     NoFmuLibrary(String),
     #[error(transparent)]
     Package(#[from] crane_fmi::package::PackageError),
+    #[error(
+        "the scenario's [plant] table ({0}) applies only to a replay (`crane run --replay`); an FMU computes the \
+         inputs of the crane the scenario's parameters describe: remove [plant] to package it"
+    )]
+    FmuPlant(String),
     #[error("the run the FMU starts from: {0}")]
     FmuStart(#[from] crane_fmi::start::StartError),
 }

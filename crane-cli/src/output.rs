@@ -270,6 +270,48 @@ pub fn remove_partials_on_signals() {
     let _ = installed;
 }
 
+/// Write one file `path` (not a folder's output: no lock, no list of
+/// outputs) through a temporary file beside it, registered for the signal
+/// handler and renamed when whole: an error or SIGINT/SIGTERM on the way
+/// leaves `path` as it was and no partial file.
+pub fn write_whole(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    if let Some(kind) = crane_models::files::not_a_regular_file(path) {
+        return Err(CliError::Output {
+            what: path.display().to_string(),
+            message: format!(
+                "it exists and is {kind}, which crane does not replace: remove it or choose another --out"
+            ),
+        });
+    }
+    let dir = match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    };
+    fs::create_dir_all(dir).map_err(io_error(format!("creating {}", dir.display())))?;
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let temporary = dir.join(format!(".{name}.{}.partial", std::process::id()));
+    let written = {
+        let mut partials = partials();
+        partials.push(temporary.clone());
+        fs::File::create(&temporary).map_err(io_error(format!("creating {}", temporary.display())))
+    };
+    let result = written.and_then(|mut file| {
+        std::io::Write::write_all(&mut file, bytes).map_err(io_error(format!("writing {}", temporary.display())))?;
+        let mut partials = partials();
+        let renamed = fs::rename(&temporary, path).map_err(io_error(format!("renaming to {}", path.display())));
+        partials.retain(|p| p != &temporary);
+        renamed
+    });
+    if result.is_err() {
+        let _ = fs::remove_file(&temporary);
+        partials().retain(|p| p != &temporary);
+    }
+    result
+}
+
 impl Staged {
     /// Output into `dir` (created if missing), once its lock is ours.
     pub fn new(dir: &Path) -> Result<Self, CliError> {

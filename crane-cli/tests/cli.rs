@@ -1292,8 +1292,30 @@ fn fmu_packages_a_scenarios_run() {
     let bytes = std::fs::read(&out).unwrap();
     assert!(String::from_utf8_lossy(&bytes).contains("resources/start.toml"));
     std::fs::remove_file(&out).unwrap();
+    // the scenario itself as --out: refused, the scenario left as it was
+    let copy = dir.path().join("copy.toml");
+    std::fs::copy(&example, &copy).unwrap();
+    let result = crane(&[
+        "fmu",
+        "gantry-3d",
+        "--scenario",
+        copy.to_str().unwrap(),
+        "--library",
+        library.to_str().unwrap(),
+        "--out",
+        copy.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(
+        !result.status.success() && stderr.contains("the scenario itself"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read(&copy).unwrap(), std::fs::read(&example).unwrap());
     for (text, needle) in [
         ("model = \"navy-planar\"\n", "navy-planar"),
+        ("[plant]\nm_l = 600.0\n", "applies only to a replay"),
+        ("p0 = [0.0, 0.0, 4.0]\n", "give a `p0` that meets every constraint"),
+        ("dt = 0.03\ntf = 8.0\n", "not a whole number of steps"),
         (
             "trajectory = \"spline\"\ntimes = [0.0, 9.0]\nwaypoints = [[0.0, 0.0, -5.0], [6.0, 3.0, -3.0]]\ndegree = 5\n",
             "degree",
@@ -1863,6 +1885,57 @@ fn an_interrupted_run_leaves_no_partial_file() {
         }
     }
     assert!(interrupted > 0, "no run was interrupted: the test tested nothing");
+}
+
+/// SIGINT at any moment of `crane fmu` (zipping a 48 MB library, writing
+/// the archive) ends it with status 130 or a whole FMU, and no partial file
+/// beside it.
+#[test]
+fn an_interrupted_fmu_leaves_no_partial_file() {
+    let dir = tempfile::tempdir().unwrap();
+    // a stand-in library that deflate cannot shrink much: xorshift bytes
+    let library = dir.path().join("libbig.so");
+    let mut bytes = b"\x7fELF stand-in naming fmi2Instantiate and fmi2DoStep".to_vec();
+    let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+    bytes.extend((0..48 << 20).map(|_| {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x as u8
+    }));
+    std::fs::write(&library, &bytes).unwrap();
+    let mut interrupted = 0;
+    for (k, delay) in [100u64, 300, 600, 900, 1200, 1600, 2000].into_iter().enumerate() {
+        let out = dir.path().join(format!("fmu{k}")).join("gantry-3d.fmu");
+        let mut child = Command::new(env!("CARGO_BIN_EXE_crane"))
+            .args(["fmu", "gantry-3d", "--library"])
+            .arg(&library)
+            .arg("--out")
+            .arg(&out)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(delay));
+        let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+        let status = child.wait().unwrap();
+        assert!(status.success() || status.code() == Some(130), "{delay} ms: {status:?}");
+        interrupted += usize::from(status.code() == Some(130));
+        if let Some(folder) = out.parent().filter(|f| f.exists()) {
+            for entry in std::fs::read_dir(folder).unwrap() {
+                let name = entry.unwrap().file_name().to_string_lossy().to_string();
+                assert!(!name.ends_with(".partial"), "{delay} ms: {name} left behind");
+            }
+        }
+        if status.code() == Some(130) {
+            assert!(
+                !out.exists(),
+                "{delay} ms: an interrupted packaging wrote {}",
+                out.display()
+            );
+        }
+    }
+    assert!(interrupted > 0, "no packaging was interrupted: the test tested nothing");
 }
 
 /// Messages that name the real problem: a start beyond 1e100 m (whose

@@ -24,7 +24,7 @@ Then for each MODEL=SCENARIO given: `TOOL fmu MODEL --scenario SCENARIO`
 (the FMU starts from the scenario's run, a spline move's shape in
 resources/start.toml), validate_fmu, and FMPy's simulate_fmu over its
 default experiment (FMPy passes the resource location) against `TOOL run
-MODEL --scenario SCENARIO`, to the same 1e-9.
+MODEL --scenario SCENARIO`, to the same 1e-9, and the C host likewise.
 
 usage: python check_fmus.py TOOL_EXECUTABLE HOST_EXECUTABLE OUT_DIR [MODEL=SCENARIO ...]
 """
@@ -161,9 +161,11 @@ def audit(unzipped, md, summary, start, stop):
     return f"status {at_start} at the start, {at_end} at the end"
 
 
-def scenario_fmu(crane, out, model, scenario):
+def scenario_fmu(crane, host, out, model, scenario):
     """The FMU of `model` packaged with `scenario`'s run against `TOOL run
-    MODEL --scenario`; returns the largest relative difference."""
+    MODEL --scenario`, through FMPy and through the C host (which passes
+    the extracted FMU's resources folder); returns the largest relative
+    difference of each."""
     fmu = out / f"{model}-scenario.fmu"
     run(crane, "fmu", model, "--scenario", scenario, "--out", str(fmu))
     problems = validate_fmu(str(fmu))
@@ -172,11 +174,19 @@ def scenario_fmu(crane, out, model, scenario):
     md = fmpy.read_model_description(str(fmu))
     experiment = md.defaultExperiment
     start, stop, step = float(experiment.startTime), float(experiment.stopTime), float(experiment.stepSize)
-    outputs = [v.name for v in md.modelVariables if v.causality == "output" and v.type == "Real" and not v.name.startswith("lambda")]
+    outputs = [v for v in md.modelVariables if v.causality == "output" and v.type == "Real" and not v.name.startswith("lambda")]
+    names = [v.name for v in outputs]
     written = Path(run(crane, "run", model, "--scenario", scenario, "--quiet", "--out", str(out / f"{model}-scenario")).split("wrote ")[-1].strip())
     reference = columns(written / "results.csv")
-    result = fmpy.simulate_fmu(str(fmu), start_time=start, stop_time=stop, output_interval=step, step_size=step, output=outputs)
-    return max(agree(f"{model} with {scenario}: FMPy {name}", reference[name], list(result[name])) for name in outputs if name in reference)
+    result = fmpy.simulate_fmu(str(fmu), start_time=start, stop_time=stop, output_interval=step, step_size=step, output=names)
+    worst_fmpy = max(agree(f"{model} with {scenario}: FMPy {name}", reference[name], list(result[name])) for name in names if name in reference)
+    unzipped = fmpy.extract(str(fmu))
+    library = Path(unzipped) / "binaries" / "linux64" / f"{md.coSimulation.modelIdentifier}.so"
+    refs = [str(v.valueReference) for v in outputs]
+    hosted = subprocess.run([host, str(library), md.guid, str(start), str(stop), str(step), *refs], check=True, capture_output=True, text=True)
+    rows = [list(map(float, line.split(","))) for line in hosted.stdout.splitlines()]
+    worst_host = max(agree(f"{model} with {scenario}: C host {name}", reference[name], [r[i + 1] for r in rows]) for i, name in enumerate(names) if name in reference)
+    return worst_fmpy, worst_host
 
 
 def main():
@@ -245,8 +255,9 @@ def main():
               f"{mass} = -1: {bad_mass.strip()}; FMI errors for {', '.join(misused)}; audit: {audited}", flush=True)
 
     for model, scenario in scenarios:
-        worst = scenario_fmu(crane, out, model, scenario)
-        print(f"{model} packaged with {scenario}: validated; FMPy agrees with {Path(crane).name} run --scenario to {worst:.1e} (relative)", flush=True)
+        worst_fmpy, worst_host = scenario_fmu(crane, host, out, model, scenario)
+        print(f"{model} packaged with {scenario}: validated; FMPy and C host agree with {Path(crane).name} run --scenario "
+              f"to {worst_fmpy:.1e} and {worst_host:.1e} (relative)", flush=True)
 
     print(f"\nper step (dt = 0.01 s): native stepper ({Path(crane).name} bench, median) | C host fmi2DoStep (median) | FMPy doStep (median, through ctypes)")
     for model, steps, _, _, native, host_step, fmpy_step in report:

@@ -1,7 +1,9 @@
 /* A minimal FMI 2.0 co-simulation host in C: loads an FMU's shared library
  * directly (dlopen), runs the built-in move with one communication step per
  * internal step, prints the requested Real variables as CSV on stdout and
- * the median time per fmi2DoStep on stderr.
+ * the median time per fmi2DoStep on stderr. The resource location it passes
+ * is the `resources` folder of the extracted FMU the library lies in
+ * (LIBRARY.so is `<FMU>/binaries/linux64/<id>.so`), as a file: URI.
  *
  *   host LIBRARY.so GUID START STOP STEP VR...       run from START, print t,VR...
  *   host LIBRARY.so GUID START --bad VR VALUE        expect fmi2Error from
@@ -52,6 +54,35 @@ static void *symbol(void *library, const char *name) {
     return f;
 }
 
+/* The file: URI of the `resources` folder three levels above `library`
+ * (percent-escaping every byte but unreserved characters and '/'), or "" if
+ * the library's path cannot be resolved. */
+static char *resource_location(const char *library) {
+    static char uri[3 * 4096 + 32];
+    char *path = realpath(library, NULL);
+    if (!path) {
+        uri[0] = '\0';
+        return uri;
+    }
+    for (int level = 0; level < 3; level++) {
+        char *slash = strrchr(path, '/');
+        if (slash) {
+            *slash = '\0';
+        }
+    }
+    char *end = uri + sprintf(uri, "file://");
+    for (const unsigned char *c = (const unsigned char *)path; *c && end < uri + sizeof uri - 16; c++) {
+        if ((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || strchr("-._~/", *c)) {
+            *end++ = (char)*c;
+        } else {
+            end += sprintf(end, "%%%02X", *c);
+        }
+    }
+    strcpy(end, "/resources/");
+    free(path);
+    return uri;
+}
+
 static int compare(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
@@ -79,7 +110,7 @@ int main(int argc, char **argv) {
     void (*free_instance)(fmi2Component) = symbol(library, "fmi2FreeInstance");
 
     fmi2CallbackFunctions callbacks = {logger, calloc, free, NULL, NULL};
-    fmi2Component c = instantiate("host", 1, argv[2], "", &callbacks, 0, 0);
+    fmi2Component c = instantiate("host", 1, argv[2], resource_location(argv[1]), &callbacks, 0, 0);
     if (!c) {
         fprintf(stderr, "host: fmi2Instantiate failed\n");
         return 1;

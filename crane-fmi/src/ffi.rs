@@ -76,7 +76,9 @@ fn start_of<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
 }
 
 /// The packaged run in the folder of the `file:` URI `location` (the
-/// host's `fmuResourceLocation`), if the folder has one.
+/// host's `fmuResourceLocation`), if the folder has one: a regular file of
+/// at most [`MAX_RESOURCE_BYTES`](crate::start::MAX_RESOURCE_BYTES) (a
+/// FIFO or a device there is refused, not waited on or read without end).
 fn packaged_run(location: Option<&str>) -> Result<Option<String>, String> {
     let Some(location) = location.filter(|l| !l.is_empty()) else {
         return Ok(None);
@@ -84,29 +86,39 @@ fn packaged_run(location: Option<&str>) -> Result<Option<String>, String> {
     let folder = folder_of_uri(location)
         .ok_or_else(|| format!("the resource location {location} is not a file: URI of a local folder"))?;
     let path = folder.join(crate::start::RESOURCE);
-    match std::fs::metadata(&path) {
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-        Err(e) => return Err(format!("reading {}: {e}", path.display())),
-        Ok(meta) if meta.len() > crate::start::MAX_RESOURCE_BYTES => {
-            return Err(format!(
-                "{} has {} bytes, more than a packaged run's {}",
-                path.display(),
-                meta.len(),
-                crate::start::MAX_RESOURCE_BYTES
-            ));
-        }
-        Ok(_) => {}
+    if std::fs::symlink_metadata(&path).is_err() {
+        return Ok(None);
     }
-    std::fs::read_to_string(&path)
+    if let Some(kind) = crane_models::files::not_a_regular_file(&path) {
+        return Err(format!("{} is {kind}, not a packaged run", path.display()));
+    }
+    let limit = crate::start::MAX_RESOURCE_BYTES;
+    let file = std::fs::File::open(&path).map_err(|e| format!("reading {}: {e}", path.display()))?;
+    let mut bytes = Vec::new();
+    std::io::Read::read_to_end(&mut std::io::Read::take(file, limit + 1), &mut bytes)
+        .map_err(|e| format!("reading {}: {e}", path.display()))?;
+    if bytes.len() as u64 > limit {
+        return Err(format!(
+            "{} has more than a packaged run's {limit} bytes",
+            path.display()
+        ));
+    }
+    String::from_utf8(bytes)
         .map(Some)
-        .map_err(|e| format!("reading {}: {e}", path.display()))
+        .map_err(|_| format!("{} is not UTF-8 text", path.display()))
 }
 
 /// The local folder a `file:` URI names (`file:///tmp/x/resources/`,
 /// `file:/tmp/x/resources`, `file://localhost/tmp/x`), percent-escapes
-/// decoded; `None` for another scheme or host.
+/// decoded, a query or fragment dropped; `None` for another scheme or
+/// host.
 pub fn folder_of_uri(uri: &str) -> Option<std::path::PathBuf> {
-    let rest = uri.strip_prefix("file:")?;
+    // the scheme is case-insensitive; a query or a fragment names no folder
+    let (scheme, rest) = uri.split_at_checked(5)?;
+    if !scheme.eq_ignore_ascii_case("file:") {
+        return None;
+    }
+    let rest = rest.split(['?', '#']).next().unwrap_or_default();
     let path = match rest.strip_prefix("//") {
         Some(authority_and_path) => {
             let slash = authority_and_path.find('/')?;
@@ -292,19 +304,32 @@ pub unsafe fn instantiate(
                 return (entry.instantiate)(packaged.as_deref());
             }
         }
-        let run = match &packaged {
-            Some(_) => format!("with the run in resources/{}", crate::start::RESOURCE),
-            None => format!(
-                "without a packaged run (an FMU packaged with a scenario needs its resources/{} from the \
-                 resource location, which the host gave as {})",
-                crate::start::RESOURCE,
-                unsafe { text(resource_location) }.unwrap_or("nothing")
+        let cranes = entries.iter().map(|e| e.name).collect::<Vec<_>>().join(", ");
+        Err(match &packaged {
+            Some(_) => format!(
+                "GUID {guid} is not that of this library's crane with the run in resources/{}: the run's text \
+                 enters the GUID, so an edited resources/{0} (or a binary it was not packaged with) is refused; \
+                 package the FMU anew (`crane fmu MODEL --scenario FILE`)",
+                crate::start::RESOURCE
             ),
-        };
-        Err(format!(
-            "GUID {guid} matches none of this library's cranes ({}) {run}; was the FMU packaged with this binary?",
-            entries.iter().map(|e| e.name).collect::<Vec<_>>().join(", ")
-        ))
+            None => {
+                let given = if resource_location.is_null() {
+                    "gave none".to_string()
+                } else {
+                    match unsafe { text(resource_location) } {
+                        Some("") => "gave an empty one".to_string(),
+                        Some(location) => format!("gave {location}, where there is none"),
+                        None => "gave one that is not UTF-8".to_string(),
+                    }
+                };
+                format!(
+                    "GUID {guid} matches none of this library's cranes ({cranes}) without a packaged run; an FMU \
+                     packaged with a scenario reads its resources/{} from the resource location, of which the host \
+                     {given}; was the FMU packaged with this binary?",
+                    crate::start::RESOURCE
+                )
+            }
+        })
     }));
     match result {
         Ok(Ok(component)) => {

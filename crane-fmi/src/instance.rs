@@ -404,8 +404,8 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Instance
         if lead < -1e-9 || (lead - lead.round()).abs() > 1e-6 {
             return Err(format!(
                 "the bounded inputs of {} by stable inversion act from t = {first} s, {} s before the move \
-                 (pre-actuation): set the start time to {first} s (the default experiment's), or earlier by whole \
-                 steps of dt = {dt} s; it is {} s",
+                 (pre-actuation): set the start time to {first} s (t0 - T_pre: the default experiment's for the \
+                 default t0), or earlier by whole steps of dt = {dt} s; it is {} s",
                 C::NAME,
                 inversion.t_pre,
                 self.start_time

@@ -68,6 +68,17 @@ pub fn package<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
     out: &Path,
     start: &Start<A>,
 ) -> Result<(), PackageError> {
+    let bytes = archive::<C, N, M, A>(library, start)?;
+    write_file(&bytes, out)
+}
+
+/// The FMU of crane `C` starting from `start`, with the shared library
+/// `library`, as the bytes of its archive (for a caller that writes files
+/// its own way).
+pub fn archive<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    library: &Path,
+    start: &Start<A>,
+) -> Result<Vec<u8>, PackageError> {
     let (xml, _) = model_description::<C, N, M, A>(start)?;
     let binary = std::fs::read(library).map_err(io(format!("reading the FMU library {}", library.display())))?;
     check_library(&binary).map_err(|reason| PackageError::NotALibrary {
@@ -75,7 +86,7 @@ pub fn package<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize
         reason,
     })?;
     let resource = start.resource.as_deref().map(|text| (RESOURCE, text.as_bytes()));
-    write_archive(&xml, &model_identifier(C::NAME), &binary, resource, out)
+    zip_archive(&xml, &model_identifier(C::NAME), &binary, resource)
 }
 
 /// Why `binary` cannot be an FMU's shared library for linux64, if it cannot:
@@ -96,15 +107,38 @@ fn check_library(binary: &[u8]) -> Result<(), &'static str> {
     Ok(())
 }
 
-/// Zip `xml`, `binary` and a resource `(name, contents)` into `out`
-/// (through a temporary file).
-pub fn write_archive(
+/// Zip `xml`, `binary` and a resource `(name, contents)` in memory.
+fn zip_archive(
     xml: &str,
     identifier: &str,
     binary: &[u8],
     resource: Option<(&str, &[u8])>,
-    out: &Path,
-) -> Result<(), PackageError> {
+) -> Result<Vec<u8>, PackageError> {
+    let zip_error = |source| PackageError::Zip {
+        path: PathBuf::from(format!("{identifier}.fmu")),
+        source,
+    };
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let options = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    zip.start_file("modelDescription.xml", options).map_err(zip_error)?;
+    zip.write_all(xml.as_bytes())
+        .map_err(io("writing modelDescription.xml"))?;
+    let so = options.unix_permissions(0o755);
+    zip.start_file(format!("binaries/linux64/{identifier}.so"), so)
+        .map_err(zip_error)?;
+    zip.write_all(binary).map_err(io("writing the library"))?;
+    if let Some((name, contents)) = resource {
+        zip.start_file(format!("resources/{name}"), options)
+            .map_err(zip_error)?;
+        zip.write_all(contents)
+            .map_err(io(format!("writing resources/{name}")))?;
+    }
+    Ok(zip.finish().map_err(zip_error)?.into_inner())
+}
+
+/// Write `bytes` to `out` through a temporary file beside it, renamed when
+/// whole.
+fn write_file(bytes: &[u8], out: &Path) -> Result<(), PackageError> {
     if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent).map_err(io(format!("creating {}", parent.display())))?;
     }
@@ -120,28 +154,10 @@ pub fn write_archive(
     static SERIAL: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let serial = SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let partial = out.with_extension(format!("fmu.{}-{serial}.partial", std::process::id()));
-    let zip_error = |source| PackageError::Zip {
-        path: out.to_path_buf(),
-        source,
-    };
     let result = (|| {
-        let file = File::create(&partial).map_err(io(format!("creating {}", partial.display())))?;
-        let mut zip = zip::ZipWriter::new(file);
-        let options = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
-        zip.start_file("modelDescription.xml", options).map_err(zip_error)?;
-        zip.write_all(xml.as_bytes())
-            .map_err(io("writing modelDescription.xml"))?;
-        let so = options.unix_permissions(0o755);
-        zip.start_file(format!("binaries/linux64/{identifier}.so"), so)
-            .map_err(zip_error)?;
-        zip.write_all(binary).map_err(io("writing the library"))?;
-        if let Some((name, contents)) = resource {
-            zip.start_file(format!("resources/{name}"), options)
-                .map_err(zip_error)?;
-            zip.write_all(contents)
-                .map_err(io(format!("writing resources/{name}")))?;
-        }
-        zip.finish().map_err(zip_error)?;
+        let mut file = File::create(&partial).map_err(io(format!("creating {}", partial.display())))?;
+        file.write_all(bytes)
+            .map_err(io(format!("writing {}", partial.display())))?;
         std::fs::rename(&partial, out).map_err(io(format!("renaming to {}", out.display())))
     })();
     if result.is_err() {

@@ -87,13 +87,26 @@ impl<const A: usize> Start<A> {
         }
     }
 
-    /// A packaged run of crane `C`, checked as `crane run` checks it; its
-    /// limits and replay plant play no part in an FMU and are dropped.
+    /// A packaged run of crane `C`, checked as `crane run` checks it (the
+    /// parameters, the path, a whole number of steps to its end, the start
+    /// `p0`); its limits and replay plant play no part in an FMU and are
+    /// dropped.
     pub fn packaged<C: Crane<N, M, A>, const N: usize, const M: usize>(spec: &RunSpec<A>) -> Result<Self, StartError> {
         let mut spec = spec.clone();
         spec.limits.clear();
         spec.plant.clear();
-        spec.build::<C, N, M>().map_err(|e| StartError::Run(e.to_string()))?;
+        let (case, settings) = spec.build::<C, N, M>().map_err(|e| StartError::Run(e.to_string()))?;
+        // as `crane run` checks the run: a whole number of steps to its end
+        // (the default experiment's last step is one), and a start that
+        // is the scenario's `p0` where it gives one
+        crane_runtime::options::step_count(case.t0(), case.tf(), settings.dt)
+            .map_err(|e| StartError::Run(e.to_string()))?;
+        case.run_start().map_err(|e| {
+            StartError::Run(format!(
+                "no start: {e}; give a `p0` that meets every constraint with the load at the path's start, or \
+                 leave `p0` out to start from the static equilibrium"
+            ))
+        })?;
         let path = &spec.path;
         let shape = match &path.profile {
             Profile::Spline(shape) => Some(shape),

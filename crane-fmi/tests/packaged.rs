@@ -170,6 +170,21 @@ fn the_spline_path_without_a_packaged_spline_is_an_error() {
     assert!(error.contains("--scenario"), "{error}");
 }
 
+/// A run `crane run` refuses is not packaged: a `p0` that is no start,
+/// an end that is no whole number of steps.
+#[test]
+fn a_run_crane_run_refuses_is_not_packaged() {
+    let mut spec = spline_run();
+    spec.p0 = vec![1.0, 2.0, 3.0, 4.0, 5.0];
+    let error = Start::packaged::<D, 7, 3>(&spec).unwrap_err().to_string();
+    assert!(error.contains("give a `p0` that meets every constraint"), "{error}");
+    let mut spec = spline_run();
+    spec.dt = 0.03;
+    spec.tf = spec.path.t1 + 0.01;
+    let error = Start::packaged::<D, 7, 3>(&spec).unwrap_err().to_string();
+    assert!(error.contains("not a whole number of steps"), "{error}");
+}
+
 /// The resource locations hosts pass: `file:///`, `file:/`, `localhost`,
 /// percent-escapes; anything else is no local folder.
 #[test]
@@ -181,6 +196,11 @@ fn resource_locations_are_file_uris() {
     );
     assert_eq!(folder("file:/tmp/x/resources").as_deref(), Some("/tmp/x/resources"));
     assert_eq!(folder("file://localhost/tmp/x").as_deref(), Some("/tmp/x"));
+    assert_eq!(folder("FILE:///tmp/x").as_deref(), Some("/tmp/x"));
+    assert_eq!(
+        folder("file:///tmp/x/resources?v=1#top").as_deref(),
+        Some("/tmp/x/resources")
+    );
     assert_eq!(folder("file://server/share"), None);
     assert_eq!(folder("http://example.com/x"), None);
     assert_eq!(folder("file:///tmp/%zz"), None);

@@ -33,22 +33,21 @@ pub struct FmuArgs {
 /// Package the FMU of a crane.
 struct Package<'a> {
     library: &'a Path,
-    out: &'a Path,
     scenario: Option<&'a ScenarioFile>,
 }
 
 impl Visit for Package<'_> {
-    /// What the FMU starts from, in words, if not the crane's default.
-    type Output = Result<Option<String>, CliError>;
+    /// The archive, and what the FMU starts from in words if not the
+    /// crane's default.
+    type Output = Result<(Vec<u8>, Option<String>), CliError>;
     fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
         let Some(file) = self.scenario else {
             let start = Start::default_for::<C, N, M>();
-            crane_fmi::package::package::<C, N, M, A>(self.library, self.out, &start)?;
-            return Ok(None);
+            return Ok((crane_fmi::package::archive::<C, N, M, A>(self.library, &start)?, None));
         };
         let spec = scenario::checked_spec::<C, N, M, A>(Some(file), &Overrides::default())?;
         let start = Start::packaged::<C, N, M>(&spec)?;
-        crane_fmi::package::package::<C, N, M, A>(self.library, self.out, &start)?;
+        let bytes = crane_fmi::package::archive::<C, N, M, A>(self.library, &start)?;
         let path = &start.spec.path;
         let mut words = match path.profile.kind().code() {
             Some(code) => format!(
@@ -71,7 +70,7 @@ impl Visit for Package<'_> {
                 limits.join(", ")
             ));
         }
-        Ok(Some(words))
+        Ok((bytes, Some(words)))
     }
 }
 
@@ -84,7 +83,14 @@ pub fn fmu<R: Registry>(tool: &Tool<R>, args: FmuArgs) -> Result<(), CliError> {
         scenario,
     } = args;
     tool.entry(&model)?;
-    let scenario = scenario.as_deref().map(ScenarioFile::load).transpose()?;
+    let scenario_path = scenario;
+    let scenario = scenario_path.as_deref().map(ScenarioFile::load).transpose()?;
+    if let Some(file) = &scenario
+        && !file.plant.is_empty()
+    {
+        let names: Vec<&str> = file.plant.keys().map(String::as_str).collect();
+        return Err(CliError::FmuPlant(names.join(", ")));
+    }
     let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("{model}.fmu")));
     let library = match library {
         Some(path) => path,
@@ -98,14 +104,22 @@ pub fn fmu<R: Registry>(tool: &Tool<R>, args: FmuArgs) -> Result<(), CliError> {
     if !library.is_file() {
         return Err(CliError::NoFmuLibrary(library.display().to_string()));
     }
-    let packaged = tool.dispatch(
+    if let Some(path) = &scenario_path
+        && same_file(path, &out)
+    {
+        return Err(CliError::Output {
+            what: out.display().to_string(),
+            message: "it is the scenario itself: choose another --out".into(),
+        });
+    }
+    let (bytes, packaged) = tool.dispatch(
         &model,
         Package {
             library: &library,
-            out: &out,
             scenario: scenario.as_ref(),
         },
     )?;
+    crate::output::write_whole(&out, &bytes)?;
     say!(
         "wrote {} (FMI 2.0 co-simulation, binaries/linux64/{}.so)",
         out.display(),
@@ -118,4 +132,12 @@ pub fn fmu<R: Registry>(tool: &Tool<R>, args: FmuArgs) -> Result<(), CliError> {
         )?;
     }
     Ok(())
+}
+
+/// Whether `a` and `b` name one existing file.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
 }
