@@ -279,7 +279,8 @@ pub fn write_whole(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
         return Err(CliError::Output {
             what: path.display().to_string(),
             message: format!(
-                "it exists and is {kind}, which crane does not replace: remove it or choose another --out"
+                "it exists and is {kind}, not a regular file, which crane does not replace: remove it or choose \
+                 another --out"
             ),
         });
     }

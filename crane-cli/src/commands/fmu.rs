@@ -104,6 +104,10 @@ pub fn fmu<R: Registry>(tool: &Tool<R>, args: FmuArgs) -> Result<(), CliError> {
     if !library.is_file() {
         return Err(CliError::NoFmuLibrary(library.display().to_string()));
     }
+    // refused before any work, as the packager refuses it
+    if let Some(kind) = crane_models::files::not_a_regular_file(&out) {
+        return Err(crane_fmi::package::PackageError::NotAFile { path: out, kind }.into());
+    }
     if let Some(path) = &scenario_path
         && same_file(path, &out)
     {
