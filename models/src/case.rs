@@ -37,6 +37,10 @@ pub struct Case<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
     crane: PhantomData<fn() -> C>,
 }
 
+/// The most static equilibria [`Case::simulate_stable_inversion`] continues
+/// along the path to find the rest state at its end.
+pub const END_CONTINUATION_STEPS: usize = 64;
+
 impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Clone for Case<C, N, M, A> {
     fn clone(&self) -> Self {
         Self {
@@ -217,8 +221,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
     ) -> Result<StableInversion<N, M, A>, Error> {
         let t0 = self.t0();
         let tf = self.move_end(options.tf());
-        let p = N - A;
-        let end = init::static_equilibrium(&self.model, &self.path, tf, &start.q.as_slice()[..p])?;
+        let end = self.rest_at_end(start, tf, options.dt())?;
         let diagnosis = |state: &State<N, M, A>| {
             internal_dynamics(&self.model, state).map_err(|reason| Error::InternalDynamicsUnknown { reason })
         };
@@ -231,6 +234,29 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
             t_post,
         };
         stable_inversion::stable_inversion(&self.model, &self.path, start, &settings)
+    }
+
+    /// The static equilibrium at `tf`, continued from `start` along the
+    /// path: each of at most [`END_CONTINUATION_STEPS`] equilibria (one per
+    /// step of `dt` where fewer) guessed from the last one found. One solve from
+    /// the start's coordinates lands on the mirror branch of a rope (length
+    /// `-L`) when the move is longer than the rope (coupled-trolley 6 m
+    /// across at 5 m depth); a step of the continuation moves the load a
+    /// small part of the move, so each guess stays on its branch.
+    fn rest_at_end(&self, start: &State<N, M, A>, tf: f64, dt: f64) -> Result<State<N, M, A>, Error> {
+        let t0 = self.t0();
+        let p = N - A;
+        let steps = ((tf - t0) / dt).ceil().clamp(1.0, END_CONTINUATION_STEPS as f64) as usize;
+        let mut rest = *start;
+        // mid-move the path's acceleration may leave no balance: the guess
+        // then stays the last one found, as in the march of Newton's start
+        for k in 1..steps {
+            let t = t0 + (tf - t0) * k as f64 / steps as f64;
+            if let Ok(found) = init::static_equilibrium(&self.model, &self.path, t, &rest.q.as_slice()[..p]) {
+                rest = found;
+            }
+        }
+        init::static_equilibrium(&self.model, &self.path, tf, &rest.q.as_slice()[..p])
     }
 
     /// Where a stable inversion of a run to `tf` ends its move: the later of

@@ -261,3 +261,39 @@ fn faster_moves_converge_with_larger_bounded_inputs() {
         "{peaks:?}"
     );
 }
+
+/// A level move longer than the rope, 8 m across at 5 m below the rail,
+/// through `Case::simulate_stable_inversion` (what `crane run` and the FMU
+/// call): the rest state at the move's end is continued along the path.
+/// Solved at once from the start's coordinates it landed on the rope's
+/// mirror branch (length -5) and the move was refused ("the start gives
+/// rope `N` the length -5"). The offset `w` is the closed form's scaled by
+/// the travel (its equation is linear in `x''`), to the bound the 4 m move
+/// meets at dt = 0.005 (1e-6 of the offset: the relative error does not
+/// change with the scale).
+#[test]
+fn a_move_longer_than_the_rope_ends_on_the_ropes_branch() {
+    let travel = 8.0;
+    let default = DefaultCase::maneuver().unwrap();
+    let path = kit::stand_in_path(vector![0.0, -HEIGHT], vector![travel, -HEIGHT], DURATION);
+    let case = Case::<Description, 4, 1, 2>::from_parts(*default.model(), path, vec![0.0, HEIGHT], DURATION);
+    let start = case.start().unwrap();
+    let options = crane_runtime::Options::new(0.005, DURATION).unwrap();
+    let inversion = case.simulate_stable_inversion(&start, &options).unwrap();
+    let states = &inversion.solution.states;
+    assert!(states.iter().all(|s| s.q[1] > 0.0), "a rope length at or below zero");
+    let last = states.last().unwrap();
+    assert!(
+        (last.q[0] - travel).abs() < 1e-6 && (last.q[1] - HEIGHT).abs() < 1e-6,
+        "{:?}",
+        last.q
+    );
+    let (mut error, mut size) = (0.0f64, 0.0f64);
+    for state in states.iter().filter(|s| (-1.0..=6.0).contains(&s.t)) {
+        let w = state.q[0] - state.q[2];
+        error = error.max((w - travel / TRAVEL * bounded_offset(state.t)).abs());
+        size = size.max(w.abs());
+    }
+    eprintln!("|w - w_exact| = {error:.3e} of max |w| = {size:.3e}");
+    assert!(error < 1e-6 * size, "{error} of {size}");
+}
