@@ -202,12 +202,19 @@ pub enum Error {
     },
     /// A start has a rope of zero or negative length (a mirror solution of
     /// the rope constraint).
-    #[error("the start gives rope `{rope}` the length {length}: rope lengths must be positive (try another guess)")]
+    #[error(
+        "the state at rest at t = {} s gives rope `{rope}` the length {length}: rope lengths must be positive (try \
+         another guess)",
+        Seconds::of(.t)
+    )]
     NonPositiveRopeLength {
         /// The rope's tension name.
         rope: &'static str,
-        /// Its length at the start.
+        /// Its length there.
         length: f64,
+        /// The time of the state (a run's start, or the rest state at a
+        /// move's end), s.
+        t: f64,
     },
     /// A parameter declared `positive` is zero or negative.
     #[error("parameter `{name}` = {} must be positive (it is declared `positive`)", Number(*.value))]

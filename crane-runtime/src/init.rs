@@ -160,6 +160,7 @@ fn check_rope_lengths<Mdl: CraneModel<N, M, A>, const N: usize, const M: usize, 
             return Err(Error::NonPositiveRopeLength {
                 rope: rope.tension,
                 length,
+                t: start.t,
             });
         }
     }
