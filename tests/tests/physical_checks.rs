@@ -152,8 +152,14 @@ fn a_start_with_a_negative_rope_length_is_refused() {
         error,
         Error::NonPositiveRopeLength {
             rope: "N",
-            length: -5.0
+            length: -5.0,
+            t: 0.0
         }
+    );
+    assert!(
+        error
+            .to_string()
+            .starts_with("the state at rest at t = 0 s gives rope `N` the length -5")
     );
     assert!(init::static_equilibrium(case.model(), case.path(), 0.0, &[3.0, 3.0, 5.0]).is_ok());
 }
