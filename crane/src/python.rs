@@ -1442,6 +1442,8 @@ fn add_distributed(module: &Bound<'_, PyModule>, package: &str) -> PyResult<()> 
     let module_name = std::ffi::CString::new(name.clone()).map_err(|e| CraneError::new_err(e.to_string()))?;
     let distributed = PyModule::from_code(py, &code, &file, &module_name)?;
     distributed.setattr("_PACKAGE", package)?;
+    // the grid's order is `sweep`'s own, from the one place that knows it
+    distributed.setattr("_grid_points", wrap_pyfunction!(plan::grid_points, module)?)?;
     module.add("distributed", &distributed)?;
     let modules = py.import("sys")?.getattr("modules")?;
     modules.set_item(&name, &distributed)?;

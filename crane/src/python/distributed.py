@@ -32,21 +32,9 @@ _PACKAGE = "crane"
 CHUNK_SIZE = 10_000
 
 
-def _grid(grid, durations):
-    """The points of `grid` and `durations` in `sweep`'s order (row-major,
-    the last parameter fastest, the duration fastest of all): the names,
-    one list of values per name, and the durations (None: the move's own)."""
-    names = list(grid or {})
-    rows = [[]]
-    for name in names:
-        values = [float(v) for v in _floats(grid[name], f"grid: `{name}`")]
-        rows = [row + [v] for row in rows for v in values]
-    if durations is None:
-        return names, [[row[k] for row in rows] for k in range(len(names))], None
-    durations = [float(d) for d in _floats(durations, "durations")]
-    points = [(row, d) for row in rows for d in durations]
-    columns = [[row[k] for row, _ in points] for k in range(len(names))]
-    return names, columns, [d for _, d in points]
+# `_grid_points(grid, durations)`, the grid's points in `sweep`'s order
+# (names, one list of values per name, durations or None), is set on this
+# module by the extension that loads it.
 
 
 def _floats(values, what):
@@ -92,7 +80,8 @@ def _prepare(model, grid, points, durations, chunk_size, options):
     if not (isinstance(chunk_size, int) and chunk_size >= 1):
         raise package.CraneError(f"chunk_size {chunk_size!r}: expected a positive integer")
     if grid is not None:
-        names, columns, durations = _grid(grid, durations)
+        # the grid in `sweep`'s order (`_grid_points`, set by the extension)
+        names, columns, durations = _grid_points(grid, durations)
     else:
         names = list(points)
         columns = [[float(v) for v in _floats(points[name], f"points: `{name}`")] for name in names]

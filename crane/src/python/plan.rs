@@ -303,6 +303,38 @@ fn floats(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
         .map_err(|_| CraneError::new_err(format!("{what} must be a sequence of numbers")))
 }
 
+/// The points of `grid` and `durations` in `sweep`'s order
+/// ([`plan::grid_points`]: row-major, the last parameter fastest, the
+/// duration fastest of all), for `distributed.sweep`: the names, one list
+/// of values per name, and the durations (`None`: the move's own).
+#[pyfunction]
+#[pyo3(signature = (grid, durations=None))]
+pub(super) fn grid_points(
+    grid: Mapping<'_>,
+    durations: Option<&Bound<'_, PyAny>>,
+) -> PyResult<(Vec<String>, Vec<Vec<f64>>, Option<Vec<f64>>)> {
+    let mut swept = Vec::new();
+    for (key, values) in grid.iter() {
+        let name: String = key
+            .extract()
+            .map_err(|_| CraneError::new_err("grid: every name must be a string"))?;
+        let values = floats(&values, &format!("grid: `{name}`"))?;
+        swept.push((name, values));
+    }
+    let given = durations.map(|d| floats(d, "durations")).transpose()?;
+    // no durations: each point's is the move's own, which the sweep knows
+    let points = match &given {
+        Some(d) if d.is_empty() => Vec::new(),
+        Some(d) => plan::grid_points(f64::NAN, &swept, d),
+        None => plan::grid_points(f64::NAN, &swept, &[]),
+    };
+    let columns = (0..swept.len())
+        .map(|k| points.iter().map(|(values, _)| values[k]).collect())
+        .collect();
+    let durations = given.map(|_| points.iter().map(|&(_, d)| d).collect());
+    Ok((swept.into_iter().map(|(name, _)| name).collect(), columns, durations))
+}
+
 /// The columns of a sweep as a dict of numpy arrays (and lists of strings).
 fn columns_dict<'py>(py: Python<'py>, columns: Vec<(String, Column)>) -> PyResult<Bound<'py, PyDict>> {
     let dict = PyDict::new(py);
