@@ -206,3 +206,76 @@ fn resource_locations_are_file_uris() {
     assert_eq!(folder("file:///tmp/%zz"), None);
     assert_eq!(folder("file:relative/path"), None);
 }
+
+/// gantry-3d with a spline as its own default move (lift, carry, lower
+/// through four waypoints in 9 s): no resource needed, the FMU starts on
+/// `path` = 4.
+struct SplineGantry;
+
+impl crane_models::Crane<6, 1, 3> for SplineGantry {
+    type Model = crane_models::gantry_3d::Gantry3d;
+    const NAME: &'static str = "spline-gantry";
+
+    fn maneuver() -> crane_models::Maneuver<3> {
+        let points = [
+            SVector::<f64, 3>::new(0.0, 0.0, -5.0),
+            SVector::<f64, 3>::new(0.0, 0.0, -3.0),
+            SVector::<f64, 3>::new(6.0, 3.0, -3.0),
+            SVector::<f64, 3>::new(6.0, 3.0, -5.0),
+        ];
+        let shape = SplineShape::through(&[0.0, 2.0 / 9.0, 7.0 / 9.0, 1.0], &points, 4).unwrap();
+        crane_models::Maneuver {
+            path: PathSpec {
+                profile: Profile::Spline(Arc::new(shape)),
+                t0: 0.0,
+                t1: 9.0,
+                start: points[0],
+                end: points[3],
+            },
+            p0: vec![0.0, 0.0, 5.0],
+        }
+    }
+}
+
+/// A crane whose own default move is a spline has an FMU: its `path`
+/// starts at 4, and the instance steps the API's run of its default move
+/// bit for bit (inputs and coordinates, 900 steps).
+#[test]
+fn a_crane_whose_default_move_is_a_spline_has_an_fmu() {
+    type G = SplineGantry;
+    let start = Start::<3>::default_for::<G, 6, 1>();
+    let table = variables::<G, 6, 1, 3>(&start).unwrap();
+    let vr = |role| {
+        table
+            .iter()
+            .find(|v| v.role == role && !v.integer)
+            .unwrap()
+            .value_reference
+    };
+    let path = table.iter().find(|v| v.name == "path").unwrap();
+    assert_eq!(path.start, f64::from(SPLINE_PATH));
+    let (case, settings) = start.spec.build::<G, 6, 1>().unwrap();
+    let options = Options::new(settings.dt, case.tf()).unwrap();
+    let run = settings
+        .formulation
+        .simulate(&case, &case.start().unwrap(), &options, &mut |_, _| {})
+        .unwrap();
+    assert_eq!(run.states.len(), 901);
+    let refs: Vec<u32> = (0..3)
+        .map(|k| vr(Role::Input(k)))
+        .chain((0..6).map(|k| vr(Role::Coordinate(k))))
+        .collect();
+    let mut fmu = Instance::<G, 6, 1, 3>::new().unwrap();
+    fmu.setup_experiment(0.0).unwrap();
+    fmu.enter_initialization_mode().unwrap();
+    fmu.exit_initialization_mode().unwrap();
+    let mut values = vec![0.0; refs.len()];
+    for (i, state) in run.states.iter().enumerate() {
+        if i > 0 {
+            fmu.do_step(run.states[i - 1].t, settings.dt).unwrap();
+        }
+        fmu.get_real(&refs, &mut values).unwrap();
+        let expected: Vec<f64> = state.u.iter().chain(state.q.iter()).copied().collect();
+        assert_eq!(values, expected, "at t = {}", state.t);
+    }
+}
