@@ -107,6 +107,7 @@ impl<const A: usize> Start<A> {
                  leave `p0` out to start from the static equilibrium"
             ))
         })?;
+        case.check_workspace().map_err(|e| StartError::Run(e.to_string()))?;
         let path = &spec.path;
         let shape = match &path.profile {
             Profile::Spline(shape) => Some(shape),

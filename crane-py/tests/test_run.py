@@ -136,6 +136,13 @@ def test_a_scenario_dict_is_the_scenario_file(tmp_path):
     assert not np.array_equal(again.u[200], from_dict.u[100])
 
 
+def test_a_path_outside_the_workspace_is_refused_before_the_run():
+    # to a point above the boom tip: with the load held there a rope would
+    # be shorter than zero
+    with pytest.raises(crane.CraneError, match="the load path leaves navy-planar's workspace: with the load held at rest"):
+        crane.run("navy-planar", scenario={"end": [-3.0, 5.0]})
+
+
 def test_the_audit_s_findings_are_the_warnings():
     # the causal inverse of the coupled trolley runs away
     r = crane.run("coupled-trolley", formulation="redundant")

@@ -4,10 +4,11 @@
 
 use std::marker::PhantomData;
 
+use crane_runtime::error::Number;
 use crane_runtime::internal::internal_dynamics;
 use crane_runtime::stable_inversion::{self, StableInversion, StableInversionOptions};
-use crane_runtime::trajectory::TrajectoryError;
-use crane_runtime::{Error, Options, Solution, State, dummy_derivative, init, redundant};
+use crane_runtime::trajectory::{FromFn, TrajectoryError};
+use crane_runtime::{Error, Options, Solution, State, Trajectory, dummy_derivative, init, redundant};
 
 use crate::crane::Crane;
 use crate::path::Path;
@@ -40,6 +41,30 @@ pub struct Case<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
 /// The most static equilibria [`Case::simulate_stable_inversion`] continues
 /// along the path to find the rest state at its end.
 pub const END_CONTINUATION_STEPS: usize = 64;
+
+/// The points of the move after its start at which
+/// [`Case::check_workspace`] holds the load at rest.
+pub const WORKSPACE_POINTS: usize = 64;
+
+/// A load path that leaves the crane's workspace: with the load held at
+/// rest at one of its points, a rope would be no longer than zero.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "the load path leaves {model}'s workspace: with the load held at rest at the path's point of t = {} s, rope \
+     {rope} would be {length:.4} m long, and a rope's length must stay above zero; keep the path's points where \
+     the crane can hold the load (a scenario's `end`, or its waypoints)",
+    Number(*.t)
+)]
+pub struct OutsideWorkspace {
+    /// The crane's name.
+    pub model: &'static str,
+    /// The rope's tension name.
+    pub rope: &'static str,
+    /// Its length there, m: zero or below.
+    pub length: f64,
+    /// The time of the path's point, s.
+    pub t: f64,
+}
 
 impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Clone for Case<C, N, M, A> {
     fn clone(&self) -> Self {
@@ -259,6 +284,76 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
         init::static_equilibrium(&self.model, &self.path, tf, &rest.q.as_slice()[..p])
     }
 
+    /// The path with its point at each time held: velocity and
+    /// acceleration zero. Its static equilibrium holds the load at rest
+    /// there; the equilibrium of the moving path would balance the move's
+    /// acceleration too, which on a fast move swings a jib round.
+    fn held(&self) -> impl Trajectory<A> + '_ {
+        FromFn(|t: f64, k: usize| {
+            if k == 0 {
+                self.path.derivative(t, 0)
+            } else {
+                crane_runtime::nalgebra::SVector::<f64, A>::zeros()
+            }
+        })
+    }
+
+    /// The load held at rest at the path's point of `t`, found by a march
+    /// of static equilibria from `t0` to `t` in `steps` steps, each guessed
+    /// from the one before (from `p0` at the start): a step moves the load
+    /// a small part of the way, so each guess stays on its branch of every
+    /// rope. The first failure ends the march: a rope no longer than zero
+    /// is [`Error::NonPositiveRopeLength`] at its time.
+    pub fn rest_along(&self, t: f64, steps: usize) -> Result<State<N, M, A>, Error> {
+        let held = self.held();
+        let t0 = self.t0();
+        let steps = steps.max(1);
+        let mut guess = self.p0.clone();
+        let mut rest = init::static_equilibrium(&self.model, &held, t0 + (t - t0) / steps as f64, &guess)?;
+        for k in 2..=steps {
+            guess.clear();
+            guess.extend_from_slice(&rest.q.as_slice()[..N - A]);
+            rest = init::static_equilibrium(&self.model, &held, t0 + (t - t0) * k as f64 / steps as f64, &guess)?;
+        }
+        Ok(rest)
+    }
+
+    /// Refuse a path that leaves the crane's workspace, before any run:
+    /// with the load held at rest at [`WORKSPACE_POINTS`] points of the
+    /// move after its start, every rope must be longer than zero. Each
+    /// static equilibrium is guessed from the last one found (from `p0` at
+    /// first); a point where none is found (a slack rope leaves a massless
+    /// pulley free) is passed over. A move inside the workspace that is too
+    /// fast for the crane passes, and so does a point where a rope of
+    /// positive length would have to push (a rope of several that goes
+    /// slack there leaves the load held by the others, which the crane's
+    /// equations with every rope taut do not tell): the run's audit
+    /// measures every rope at every step.
+    pub fn check_workspace(&self) -> Result<(), OutsideWorkspace> {
+        let (t0, t1) = (self.t0(), self.path.spec().t1);
+        let held = self.held();
+        let mut guess = self.p0.clone();
+        for k in 1..=WORKSPACE_POINTS {
+            let t = t0 + (t1 - t0) * k as f64 / WORKSPACE_POINTS as f64;
+            match init::static_equilibrium(&self.model, &held, t, &guess) {
+                Ok(rest) => {
+                    guess.clear();
+                    guess.extend_from_slice(&rest.q.as_slice()[..N - A]);
+                }
+                Err(Error::NonPositiveRopeLength { rope, length, .. }) => {
+                    return Err(OutsideWorkspace {
+                        model: C::NAME,
+                        rope,
+                        length,
+                        t,
+                    });
+                }
+                Err(_) => {}
+            }
+        }
+        Ok(())
+    }
+
     /// Where a stable inversion of a run to `tf` ends its move: the later of
     /// `tf` and the path's end (the bounded solution needs the whole move;
     /// its post-actuation follows).
@@ -274,5 +369,51 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
     /// The derived outputs of `state`.
     pub fn derived(&self, state: &State<N, M, A>) -> Vec<f64> {
         C::derived(&self.model, state)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::registry::{CATALOG, Visit, visit};
+
+    /// Whether crane `C`'s default move passes [`Case::check_workspace`].
+    struct DefaultInside;
+    impl Visit for DefaultInside {
+        type Output = Result<(), OutsideWorkspace>;
+        fn visit<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(self) -> Self::Output {
+            Case::<C, N, M, A>::maneuver()
+                .expect("the default move")
+                .check_workspace()
+        }
+    }
+
+    /// Every built-in's default move stays inside its workspace, and so
+    /// does navy-planar's moved in 2 s (too fast: a rope swings through
+    /// zero length in the run, but the path's points are the same); its
+    /// move to `[-3, 5]`, above the boom tip, leaves it: the hoist rope N2
+    /// would be shorter than zero with the load held at rest on the way.
+    #[test]
+    fn a_path_outside_the_workspace_is_refused_and_the_default_moves_are_not() {
+        for entry in CATALOG {
+            assert_eq!(visit(entry.name, DefaultInside), Some(Ok(())), "{}", entry.name);
+        }
+        type Navy = Case<crate::navy_planar::Description, 7, 3, 2>;
+        assert_eq!(Navy::new(2.0).unwrap().check_workspace(), Ok(()));
+        let mut above = Navy::maneuver().unwrap();
+        let spec = crate::path::PathSpec {
+            end: crane_runtime::nalgebra::vector![-3.0, 5.0],
+            ..above.path.spec().clone()
+        };
+        above.path = Path::new(spec).unwrap();
+        let outside = above.check_workspace().unwrap_err();
+        assert_eq!((outside.model, outside.rope), ("navy-planar", "N2"));
+        assert!(
+            outside.length < 0.0 && outside.t > 0.0 && outside.t <= 4.0,
+            "{outside:?}"
+        );
+        // the march's own grid: the first of its points, not a time between
+        let k = outside.t / 4.0 * WORKSPACE_POINTS as f64;
+        assert!((k - k.round()).abs() < 1e-9, "{outside:?}");
     }
 }

@@ -265,6 +265,9 @@ pub enum StudyError {
     /// The runtime refused the run or a step failed.
     #[error(transparent)]
     Runtime(#[from] crane_runtime::Error),
+    /// The load path leaves the crane's workspace ([`Case::check_workspace`]).
+    #[error(transparent)]
+    OutsideWorkspace(#[from] crate::case::OutsideWorkspace),
     /// The minimal formulation of a crane without a minimal map.
     #[error("model `{model}` declares no minimal-coordinate map; run it in its default formulation, {default}")]
     NoMinimalMap {
@@ -401,7 +404,8 @@ impl<const N: usize, const M: usize, const A: usize> Outcome<N, M, A> {
     }
 }
 
-/// Run `case` from its checked start with `settings`, calling
+/// Run `case` from its checked start with `settings` (a path that leaves
+/// the crane's workspace refused first, [`Case::check_workspace`]), calling
 /// `progress(step, steps)` after every step: the solution, its summary
 /// (peaks, ropes, limits, errors against the reference, the internal
 /// dynamics at 101 states, the path's smoothness) and the warnings; a
@@ -412,6 +416,7 @@ pub fn run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Outcome<N, M, A>, StudyError> {
     let start = case.run_start()?;
+    case.check_workspace()?;
     let options = Options::new(settings.dt, case.tf())?.with_scheme(settings.scheme);
     let clock = Instant::now();
     let solution = settings.formulation.simulate(case, &start, &options, progress)?;
@@ -555,42 +560,23 @@ fn stable_inversion_summary<C: Crane<N, M, A>, const N: usize, const M: usize, c
 }
 
 /// The length of rope `r` with the load at rest at the point of `case`'s
-/// path at time `t`: the static equilibria along the path from its start
-/// (from the case's `p0`) to `t` in [`REST_MARCH`] steps, each from the
-/// one before; zero where one of them needs some rope shorter than zero
-/// (the path leaves the workspace), `None` where one is not found.
+/// path at time `t` ([`Case::rest_along`] in [`REST_MARCH`] steps); zero
+/// where the march needs some rope shorter than zero (the path leaves the
+/// workspace), `None` where an equilibrium is not found.
 fn length_at_rest<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
     case: &Case<C, N, M, A>,
     r: usize,
     t: f64,
 ) -> Option<f64> {
-    // the path's point at each time, held: a load at rest there (the
-    // static equilibrium of the path itself would balance the move's
-    // acceleration too, which on a fast move swings the jib round)
-    let path = case.path();
-    let at_rest = crane_runtime::trajectory::FromFn(|t: f64, k: usize| {
-        if k == 0 {
-            crane_runtime::Trajectory::derivative(path, t, 0)
-        } else {
-            crane_runtime::nalgebra::SVector::<f64, A>::zeros()
+    match case.rest_along(t, REST_MARCH) {
+        Ok(rest) => {
+            let mut lengths = vec![0.0; <C::Model as CraneModel<N, M, A>>::INFO.ropes.len()];
+            case.model().rope_lengths(&rest.q, &mut lengths);
+            lengths.get(r).copied()
         }
-    });
-    let model = case.model();
-    let mut lengths = vec![0.0; <C::Model as CraneModel<N, M, A>>::INFO.ropes.len()];
-    let mut guess = case.p0.clone();
-    let t0 = case.t0();
-    for k in 1..=REST_MARCH {
-        let at = t0 + (t - t0) * k as f64 / REST_MARCH as f64;
-        match crane_runtime::init::static_equilibrium(model, &at_rest, at, &guess) {
-            Ok(rest) => {
-                model.rope_lengths(&rest.q, &mut lengths);
-                guess = rest.q.iter().take(N - A).copied().collect();
-            }
-            Err(crane_runtime::Error::NonPositiveRopeLength { .. }) => return Some(0.0),
-            Err(_) => return None,
-        }
+        Err(crane_runtime::Error::NonPositiveRopeLength { .. }) => Some(0.0),
+        Err(_) => None,
     }
-    lengths.get(r).copied()
 }
 
 /// Steps of the march of static equilibria in [`length_at_rest`].
