@@ -171,7 +171,8 @@ fn the_spline_path_without_a_packaged_spline_is_an_error() {
 }
 
 /// A run `crane run` refuses is not packaged: a `p0` that is no start,
-/// an end that is no whole number of steps.
+/// an end that is no whole number of steps, a path that leaves the
+/// crane's workspace (to a point above the boom tip).
 #[test]
 fn a_run_crane_run_refuses_is_not_packaged() {
     let mut spec = spline_run();
@@ -183,6 +184,13 @@ fn a_run_crane_run_refuses_is_not_packaged() {
     spec.tf = spec.path.t1 + 0.01;
     let error = Start::packaged::<D, 7, 3>(&spec).unwrap_err().to_string();
     assert!(error.contains("not a whole number of steps"), "{error}");
+    let mut spec = RunSpec::<2>::default_for::<D, 7, 3>();
+    spec.path.end = SVector::<f64, 2>::new(-3.0, 5.0);
+    let error = Start::packaged::<D, 7, 3>(&spec).unwrap_err().to_string();
+    assert!(
+        error.contains("the load path leaves navy-planar's workspace") && error.contains("rope N2 would be -"),
+        "{error}"
+    );
 }
 
 /// The resource locations hosts pass: `file:///`, `file:/`, `localhost`,
