@@ -2986,7 +2986,8 @@ fn a_replay_step_below_the_smallest_is_refused_before_the_run() {
 /// A spline scenario through four waypoints: the load is at each waypoint
 /// at its time, at rest at the ends, and its inputs are continuous (their
 /// largest step-to-step change halves with the step); a spline's mistakes
-/// are one-line errors naming the key.
+/// are one-line errors naming the key, and a spline that leaves the
+/// crane's workspace is refused before the run.
 #[test]
 fn a_spline_scenario_passes_its_waypoints_with_continuous_inputs() {
     let dir = tempfile::tempdir().unwrap();
@@ -3050,6 +3051,17 @@ fn a_spline_scenario_passes_its_waypoints_with_continuous_inputs() {
         "gantry-3d",
         "waypoints = [[0, 0, -5]]\ntimes = [0]\n",
         &["`times`", "at least two"],
+    );
+    // through points 1 m above the trolley (at height 0): held there the
+    // rope would push with the load's weight
+    expect_error(
+        "gantry-3d",
+        "trajectory = \"spline\"\ntimes = [0, 2, 7, 9]\n\
+         waypoints = [[0, 0, -5], [0, 0, 1], [6, 3, 1], [6, 3, -5]]\n",
+        &[
+            "the load path leaves gantry-3d's workspace",
+            "every rope would have to push (N = -4.9050e3 N)",
+        ],
     );
     // a cubic Bezier from rest is not at rest to order 4 at its ends
     expect_error(

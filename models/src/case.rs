@@ -8,7 +8,7 @@ use crane_runtime::error::Number;
 use crane_runtime::internal::internal_dynamics;
 use crane_runtime::stable_inversion::{self, StableInversion, StableInversionOptions};
 use crane_runtime::trajectory::{FromFn, TrajectoryError};
-use crane_runtime::{Error, Options, Solution, State, Trajectory, dummy_derivative, init, redundant};
+use crane_runtime::{CraneModel, Error, Options, Solution, State, Trajectory, dummy_derivative, init, redundant};
 
 use crate::crane::Crane;
 use crate::path::Path;
@@ -43,28 +43,60 @@ pub struct Case<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usiz
 pub const END_CONTINUATION_STEPS: usize = 64;
 
 /// The points of the move after its start at which
-/// [`Case::check_workspace`] holds the load at rest.
+/// [`Case::check_workspace`] holds the load at rest (and at the start).
 pub const WORKSPACE_POINTS: usize = 64;
 
 /// A load path that leaves the crane's workspace: with the load held at
-/// rest at one of its points, a rope would be no longer than zero.
+/// rest at one of its points, a rope would be no longer than zero, or no
+/// rope would pull.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error(
-    "the load path leaves {model}'s workspace: with the load held at rest at the path's point of t = {} s, rope \
-     {rope} would be {length:.4} m long, and a rope's length must stay above zero; keep the path's points where \
-     the crane can hold the load (a scenario's `end`, or its waypoints)",
-    Number(*.t)
-)]
-pub struct OutsideWorkspace {
-    /// The crane's name.
-    pub model: &'static str,
-    /// The rope's tension name.
-    pub rope: &'static str,
-    /// Its length there, m: zero or below.
-    pub length: f64,
-    /// The time of the path's point, s.
-    pub t: f64,
+pub enum OutsideWorkspace {
+    /// A rope would be no longer than zero.
+    #[error(
+        "the load path leaves {model}'s workspace: with the load held at rest at the path's point of t = {} s, \
+         rope {rope} would be {length:.4} m long, and a rope's length must stay above zero; {KEEP_INSIDE}",
+        Number(*.t)
+    )]
+    RopeLength {
+        /// The crane's name.
+        model: &'static str,
+        /// The rope's tension name.
+        rope: &'static str,
+        /// Its length there, m: zero or below.
+        length: f64,
+        /// The time of the path's point, s.
+        t: f64,
+    },
+    /// Every rope would have to push: nothing holds the load up.
+    #[error(
+        "{}: with the load held at rest at the path's point of t = {} s, every rope would have to push ({}), and a \
+         rope only pulls: nothing holds the load up there; {}",
+        if *.t == *.t0 { format!("{model} cannot hold the load at the path's start") }
+        else { format!("the load path leaves {model}'s workspace") },
+        Number(*.t),
+        tensions.iter().map(|(rope, n)| format!("{rope} = {n:.4e} N")).collect::<Vec<_>>().join(", "),
+        if *.t == *.t0 {
+            "where the load hangs below its ropes, check the sign of gravity in the crane's forces (with z up, \
+             `z: -m_l*g`)"
+        } else {
+            KEEP_INSIDE
+        }
+    )]
+    NothingHolds {
+        /// The crane's name.
+        model: &'static str,
+        /// Each rope's tension name and its tension there, N.
+        tensions: Vec<(&'static str, f64)>,
+        /// The time of the path's point, s.
+        t: f64,
+        /// The path's start, s.
+        t0: f64,
+    },
 }
+
+/// What an [`OutsideWorkspace`] error asks of the user.
+const KEEP_INSIDE: &str =
+    "keep the path's points where the crane can hold the load (a scenario's `end`, or its waypoints)";
 
 impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Clone for Case<C, N, M, A> {
     fn clone(&self) -> Self {
@@ -319,37 +351,59 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
     }
 
     /// Refuse a path that leaves the crane's workspace, before any run:
-    /// with the load held at rest at [`WORKSPACE_POINTS`] points of the
-    /// move after its start, every rope must be longer than zero. Each
+    /// with the load held at rest at its start and [`WORKSPACE_POINTS`]
+    /// points of the move after it, every rope must be longer than zero and some
+    /// rope must pull (with every rope pushing beyond round-off,
+    /// [`below_floor`](crate::study::summary::below_floor) 0, nothing holds
+    /// the load up against gravity: a load above a gantry's trolley). Each
     /// static equilibrium is guessed from the last one found (from `p0` at
     /// first); a point where none is found (a slack rope leaves a massless
-    /// pulley free) is passed over. A move inside the workspace that is too
-    /// fast for the crane passes, and so does a point where a rope of
-    /// positive length would have to push (a rope of several that goes
-    /// slack there leaves the load held by the others, which the crane's
-    /// equations with every rope taut do not tell): the run's audit
-    /// measures every rope at every step.
+    /// pulley free) is passed over. Every rope pushing at the start itself,
+    /// where the crane's start holds the load, points at gravity declared
+    /// upward, and the error says so.
+    ///
+    /// A point where only some ropes would push passes: one of several
+    /// that goes slack leaves the load held by the others (navy-planar's
+    /// rope N1 near its start), which the crane's equations with every rope
+    /// taut do not tell. So does a move inside the workspace that is too
+    /// fast for the crane. The run's audit measures every rope at every
+    /// step.
     pub fn check_workspace(&self) -> Result<(), OutsideWorkspace> {
         let (t0, t1) = (self.t0(), self.path.spec().t1);
         let held = self.held();
+        let ropes = <C::Model as CraneModel<N, M, A>>::INFO.ropes;
+        let mut tensions = vec![0.0; ropes.len()];
         let mut guess = self.p0.clone();
-        for k in 1..=WORKSPACE_POINTS {
+        for k in 0..=WORKSPACE_POINTS {
             let t = t0 + (t1 - t0) * k as f64 / WORKSPACE_POINTS as f64;
-            match init::static_equilibrium(&self.model, &held, t, &guess) {
-                Ok(rest) => {
-                    guess.clear();
-                    guess.extend_from_slice(&rest.q.as_slice()[..N - A]);
-                }
+            let rest = match init::static_equilibrium(&self.model, &held, t, &guess) {
+                Ok(rest) => rest,
                 Err(Error::NonPositiveRopeLength { rope, length, .. }) => {
-                    return Err(OutsideWorkspace {
+                    return Err(OutsideWorkspace::RopeLength {
                         model: C::NAME,
                         rope,
                         length,
                         t,
                     });
                 }
-                Err(_) => {}
+                Err(_) => continue,
+            };
+            self.model.rope_tensions(&rest.q, &rest.lambda, &mut tensions);
+            let peak = tensions.iter().fold(0.0f64, |m, n| m.max(n.abs()));
+            if !ropes.is_empty()
+                && tensions
+                    .iter()
+                    .all(|&n| crate::study::summary::below_floor(n, 0.0, peak))
+            {
+                return Err(OutsideWorkspace::NothingHolds {
+                    model: C::NAME,
+                    tensions: ropes.iter().map(|r| r.tension).zip(tensions.iter().copied()).collect(),
+                    t,
+                    t0,
+                });
             }
+            guess.clear();
+            guess.extend_from_slice(&rest.q.as_slice()[..N - A]);
         }
         Ok(())
     }
@@ -392,7 +446,8 @@ mod tests {
     /// does navy-planar's moved in 2 s (too fast: a rope swings through
     /// zero length in the run, but the path's points are the same); its
     /// move to `[-3, 5]`, above the boom tip, leaves it: the hoist rope N2
-    /// would be shorter than zero with the load held at rest on the way.
+    /// would be shorter than zero with the load held at rest on the way;
+    /// gantry-3d's to a point above its trolley leaves it too.
     #[test]
     fn a_path_outside_the_workspace_is_refused_and_the_default_moves_are_not() {
         for entry in CATALOG {
@@ -407,13 +462,35 @@ mod tests {
         };
         above.path = Path::new(spec).unwrap();
         let outside = above.check_workspace().unwrap_err();
-        assert_eq!((outside.model, outside.rope), ("navy-planar", "N2"));
-        assert!(
-            outside.length < 0.0 && outside.t > 0.0 && outside.t <= 4.0,
-            "{outside:?}"
-        );
-        // the march's own grid: the first of its points, not a time between
-        let k = outside.t / 4.0 * WORKSPACE_POINTS as f64;
+        let OutsideWorkspace::RopeLength { model, rope, length, t } = outside else {
+            panic!("{outside:?}");
+        };
+        assert_eq!((model, rope), ("navy-planar", "N2"));
+        assert!(length < 0.0 && t > 0.0 && t <= 4.0, "{outside:?}");
+        // the march's own grid: one of its points, not a time between
+        let k = t / 4.0 * WORKSPACE_POINTS as f64;
         assert!((k - k.round()).abs() < 1e-9, "{outside:?}");
+
+        // gantry-3d's load lifted to 1 m above its trolley (at height 0):
+        // held there the rope would push with at most the load's weight
+        // (or be no longer than zero), so nothing holds the load up
+        type Gantry = Case<crate::gantry_3d::Description, 6, 1, 3>;
+        let mut lifted = Gantry::maneuver().unwrap();
+        let spec = crate::path::PathSpec {
+            end: crane_runtime::nalgebra::vector![6.0, 3.0, 1.0],
+            ..lifted.path.spec().clone()
+        };
+        lifted.path = Path::new(spec).unwrap();
+        let outside = lifted.check_workspace().unwrap_err();
+        let message = outside.to_string();
+        match outside {
+            OutsideWorkspace::NothingHolds { tensions, .. } => {
+                let weight = lifted.model.m_l * lifted.model.g;
+                assert!(tensions.len() == 1 && tensions[0].1 < 0.0, "{tensions:?}");
+                assert!(-tensions[0].1 <= weight * (1.0 + 1e-9), "{tensions:?}");
+                assert!(message.contains("every rope would have to push (N = -"), "{message}");
+            }
+            OutsideWorkspace::RopeLength { rope, length, .. } => assert!(rope == "N" && length <= 0.0),
+        }
     }
 }

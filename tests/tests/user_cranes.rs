@@ -336,16 +336,30 @@ impl Crane<4, 1, 2> for UpsideDownGantry {
 }
 
 /// Gravity declared upward: the load below the trolley pushes on its rope
-/// all along (-1962 N at rest). The run says so, and what to check, where
-/// it once said only that the rope goes slack at t = 0; `--strict` fails
-/// on it. The correct gantry's rope stays taut.
+/// (-1962 N = m_l g at rest). The run is refused before it starts, saying
+/// so and what to check, where it once said only that the rope goes slack
+/// at t = 0; the audit of a run says the same. The correct gantry's rope
+/// stays taut.
 #[test]
 fn a_rope_that_pushes_all_along_points_at_gravity() {
     let settings = RunSettings::default();
     let case = Case::<UpsideDownGantry, 4, 1, 2>::maneuver().unwrap();
-    let summary = study::run(&case, &settings, &mut |_, _| {}).unwrap().summary;
+    let refused = study::run(&case, &settings, &mut |_, _| {}).unwrap_err().to_string();
+    assert!(
+        refused.starts_with(
+            "upside-down cannot hold the load at the path's start: with the load held at rest at the path's point \
+             of t = 0 s, every rope would have to push (N = -1.9620e3 N)"
+        ) && refused.ends_with("check the sign of gravity in the crane's forces (with z up, `z: -m_l*g`)"),
+        "{refused}"
+    );
+    let start = case.run_start().unwrap();
+    let options = crane_runtime::Options::new(settings.dt, case.tf()).unwrap();
+    let run = settings
+        .formulation
+        .simulate(&case, &start, &options, &mut |_, _| {})
+        .unwrap();
+    let summary = study::summarize_run(&case, &settings, &run, 0.0, study::DIAGNOSIS_SAMPLES);
     let rope = &summary.ropes[0];
-    println!("N between {} and {} N", rope.min_tension, rope.max_tension);
     // the load's weight pushes: -1962 N at rest, between -2133 and -1837 N
     // along the move (measured)
     assert!(rope.max_tension < 0.0, "{}", rope.max_tension);
