@@ -11,7 +11,7 @@ use crane_fmi::start::{Start, StartError};
 use crane_fmi::variables::{Role, SPLINE_PATH, variables};
 use crane_models::path::SplineShape;
 use crane_models::study::RunSpec;
-use crane_models::{PathSpec, Profile, navy_planar};
+use crane_models::{Crane, PathSpec, Profile, navy_planar};
 use crane_runtime::{CraneModel, Options, Solution};
 use nalgebra::SVector;
 
@@ -42,9 +42,9 @@ fn spline_run() -> RunSpec<2> {
     spec
 }
 
-/// The API's run of `spec` in its formulation.
-fn api_run(spec: &RunSpec<2>) -> Solution<7, 3, 2> {
-    let (case, settings) = spec.build::<D, 7, 3>().unwrap();
+/// The API's run of `spec` on crane `C` in its formulation.
+fn api_run<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(spec: &RunSpec<A>) -> Solution<N, M, A> {
+    let (case, settings) = spec.build::<C, N, M>().unwrap();
     let options = Options::new(settings.dt, case.tf())
         .unwrap()
         .with_scheme(settings.scheme);
@@ -54,9 +54,9 @@ fn api_run(spec: &RunSpec<2>) -> Solution<7, 3, 2> {
         .unwrap()
 }
 
-/// Value references of the inputs and coordinates.
-fn output_refs(start: &Start<2>) -> Vec<u32> {
-    let table = variables::<D, 7, 3, 2>(start).unwrap();
+/// Value references of crane `C`'s inputs and coordinates.
+fn output_refs<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(start: &Start<A>) -> Vec<u32> {
+    let table = variables::<C, N, M, A>(start).unwrap();
     let vr = |role| {
         table
             .iter()
@@ -64,17 +64,21 @@ fn output_refs(start: &Start<2>) -> Vec<u32> {
             .unwrap()
             .value_reference
     };
-    (0..2)
+    (0..A)
         .map(|k| vr(Role::Input(k)))
-        .chain((0..7).map(|k| vr(Role::Coordinate(k))))
+        .chain((0..N).map(|k| vr(Role::Coordinate(k))))
         .collect()
 }
 
 /// The instance of `start` stepped over `run`'s times, one internal step per
 /// communication step, against `run` at every step (bit for bit).
-fn steps_as(start: &Start<2>, run: &Solution<7, 3, 2>, set: impl FnOnce(&mut Instance<D, 7, 3, 2>)) {
-    let refs = output_refs(start);
-    let mut fmu = Instance::<D, 7, 3, 2>::starting_from(start.clone()).unwrap();
+fn steps_as<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize>(
+    start: &Start<A>,
+    run: &Solution<N, M, A>,
+    set: impl FnOnce(&mut Instance<C, N, M, A>),
+) {
+    let refs = output_refs::<C, N, M, A>(start);
+    let mut fmu = Instance::<C, N, M, A>::starting_from(start.clone()).unwrap();
     fmu.setup_experiment(run.states[0].t).unwrap();
     fmu.enter_initialization_mode().unwrap();
     set(&mut fmu);
@@ -104,9 +108,9 @@ fn a_packaged_spline_run_is_the_api_run_bit_for_bit() {
     assert_eq!(start_of("m_l"), 150.0);
     assert_eq!(start_of("dt"), 0.005);
     assert_eq!(start_of("scheme"), f64::from(spec.scheme.code()));
-    let run = api_run(&spec);
+    let run = api_run::<D, 7, 3, 2>(&spec);
     assert!(run.states.len() > 100, "{} steps", run.states.len());
-    steps_as(&start, &run, |_| {});
+    steps_as::<D, 7, 3, 2>(&start, &run, |_| {});
     let (xml, guid) = model_description::<D, 7, 3, 2>(&start).unwrap();
     let (_, default_guid) = model_description::<D, 7, 3, 2>(&Start::default_for::<D, 7, 3>()).unwrap();
     assert_ne!(guid, default_guid);
@@ -125,11 +129,11 @@ fn t0_and_duration_retime_the_packaged_spline() {
     retimed.path.t0 = spec.path.t0 + 0.5;
     retimed.path.t1 = retimed.path.t0 + 2.0 * length;
     retimed.tf = retimed.path.t1;
-    let run = api_run(&retimed);
+    let run = api_run::<D, 7, 3, 2>(&retimed);
     let table = variables::<D, 7, 3, 2>(&start).unwrap();
     let vr = |role| table.iter().find(|v| v.role == role).unwrap().value_reference;
     let (t0, duration) = (vr(Role::T0), vr(Role::Duration));
-    steps_as(&start, &run, |fmu| {
+    steps_as::<D, 7, 3, 2>(&start, &run, |fmu| {
         fmu.set_real(&[t0, duration], &[retimed.path.t0, 2.0 * length]).unwrap();
     });
 }
@@ -220,7 +224,7 @@ fn resource_locations_are_file_uris() {
 /// `path` = 4.
 struct SplineGantry;
 
-impl crane_models::Crane<6, 1, 3> for SplineGantry {
+impl Crane<6, 1, 3> for SplineGantry {
     type Model = crane_models::gantry_3d::Gantry3d;
     const NAME: &'static str = "spline-gantry";
 
@@ -253,37 +257,9 @@ fn a_crane_whose_default_move_is_a_spline_has_an_fmu() {
     type G = SplineGantry;
     let start = Start::<3>::default_for::<G, 6, 1>();
     let table = variables::<G, 6, 1, 3>(&start).unwrap();
-    let vr = |role| {
-        table
-            .iter()
-            .find(|v| v.role == role && !v.integer)
-            .unwrap()
-            .value_reference
-    };
     let path = table.iter().find(|v| v.name == "path").unwrap();
     assert_eq!(path.start, f64::from(SPLINE_PATH));
-    let (case, settings) = start.spec.build::<G, 6, 1>().unwrap();
-    let options = Options::new(settings.dt, case.tf()).unwrap();
-    let run = settings
-        .formulation
-        .simulate(&case, &case.start().unwrap(), &options, &mut |_, _| {})
-        .unwrap();
+    let run = api_run::<G, 6, 1, 3>(&start.spec);
     assert_eq!(run.states.len(), 901);
-    let refs: Vec<u32> = (0..3)
-        .map(|k| vr(Role::Input(k)))
-        .chain((0..6).map(|k| vr(Role::Coordinate(k))))
-        .collect();
-    let mut fmu = Instance::<G, 6, 1, 3>::new().unwrap();
-    fmu.setup_experiment(0.0).unwrap();
-    fmu.enter_initialization_mode().unwrap();
-    fmu.exit_initialization_mode().unwrap();
-    let mut values = vec![0.0; refs.len()];
-    for (i, state) in run.states.iter().enumerate() {
-        if i > 0 {
-            fmu.do_step(run.states[i - 1].t, settings.dt).unwrap();
-        }
-        fmu.get_real(&refs, &mut values).unwrap();
-        let expected: Vec<f64> = state.u.iter().chain(state.q.iter()).copied().collect();
-        assert_eq!(values, expected, "at t = {}", state.t);
-    }
+    steps_as::<G, 6, 1, 3>(&start, &run, |_| {});
 }
