@@ -340,12 +340,10 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
         let held = self.held();
         let t0 = self.t0();
         let steps = steps.max(1);
-        let mut guess = self.p0.clone();
-        let mut rest = init::static_equilibrium(&self.model, &held, t0 + (t - t0) / steps as f64, &guess)?;
+        let at = |k: usize| t0 + (t - t0) * k as f64 / steps as f64;
+        let mut rest = init::static_equilibrium(&self.model, &held, at(1), &self.p0)?;
         for k in 2..=steps {
-            guess.clear();
-            guess.extend_from_slice(&rest.q.as_slice()[..N - A]);
-            rest = init::static_equilibrium(&self.model, &held, t0 + (t - t0) * k as f64 / steps as f64, &guess)?;
+            rest = init::static_equilibrium(&self.model, &held, at(k), &rest.q.as_slice()[..N - A])?;
         }
         Ok(rest)
     }
@@ -373,10 +371,11 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
         let held = self.held();
         let ropes = <C::Model as CraneModel<N, M, A>>::INFO.ropes;
         let mut tensions = vec![0.0; ropes.len()];
-        let mut guess = self.p0.clone();
+        let mut last: Option<State<N, M, A>> = None;
         for k in 0..=WORKSPACE_POINTS {
             let t = t0 + (t1 - t0) * k as f64 / WORKSPACE_POINTS as f64;
-            let rest = match init::static_equilibrium(&self.model, &held, t, &guess) {
+            let guess = last.as_ref().map_or(&self.p0[..], |rest| &rest.q.as_slice()[..N - A]);
+            let rest = match init::static_equilibrium(&self.model, &held, t, guess) {
                 Ok(rest) => rest,
                 Err(Error::NonPositiveRopeLength { rope, length, .. }) => {
                     return Err(OutsideWorkspace::RopeLength {
@@ -402,8 +401,7 @@ impl<C: Crane<N, M, A>, const N: usize, const M: usize, const A: usize> Case<C, 
                     t0,
                 });
             }
-            guess.clear();
-            guess.extend_from_slice(&rest.q.as_slice()[..N - A]);
+            last = Some(rest);
         }
         Ok(())
     }
